@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# The one list of system packages aquatoria needs (ARCHITECTURE §2). Idempotent: quiet and fast
+# when everything is present; otherwise runs `apt-get update` once and installs what is missing.
+# Only Debian's registry is used; nothing is downloaded from anywhere else.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  libgdal-dev gdal-bin
+  libgeographiclib-dev
+  libnetcdf-dev netcdf-bin
+  libgtest-dev libgmock-dev
+  libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev
+  libcairo2-dev
+  libfftw3-dev
+  ferret-datasets
+  gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install_deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install_deps: done" >&2

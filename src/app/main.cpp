@@ -1,0 +1,45 @@
+// The `aquatoria` command: parses the command line, runs one subcommand, maps errors to exit
+// codes (0 ok, 1 run/input failure, 2 usage/config error; ARCHITECTURE §7).
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/commands.hpp"
+#include "core/error.hpp"
+
+#ifndef AQ_VERSION
+#define AQ_VERSION "dev"
+#endif
+
+int main(int argc, char** argv) {
+  aq::app::Context ctx;
+  CLI::App app{"aquatoria: global finite-element ocean meshes and regional orthogonal grids from bathymetry"};
+  app.set_version_flag("--version", std::string("aquatoria ") + AQ_VERSION);
+  app.require_subcommand(1);
+  bool verbose = false;
+  bool quiet = false;
+  app.add_flag("-v,--verbose", verbose, "More detail on stderr");
+  app.add_flag("-q,--quiet", quiet, "Only warnings and errors on stderr");
+
+  aq::app::add_info_command(app, ctx);
+  // SUBCOMMANDS: one line each (keep this list in the order of `aquatoria --help`).
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  if (verbose) ctx.log.set_level(aq::LogLevel::kDebug);
+  if (quiet) ctx.log.set_level(aq::LogLevel::kWarning);
+  try {
+    return ctx.run ? ctx.run() : 2;
+  } catch (const aq::Error& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: internal: %s\n", e.what());
+    return 1;
+  }
+}

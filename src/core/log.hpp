@@ -1,0 +1,58 @@
+// Logging to stderr and progress reporting. The library never prints by itself: it receives a
+// Logger (messages and stage lines) whose sink the application chooses. Progress bars are drawn
+// by the sink only on a terminal and only from the calling thread.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace aq {
+
+enum class LogLevel { kDebug = 0, kInfo = 1, kWarning = 2, kError = 3 };
+
+/// Receives progress of a long stage: fraction done in [0,1] and a short label.
+using ProgressFn = std::function<void(double fraction, std::string_view label)>;
+
+/// Where log lines go. The default sink writes to stderr; tests install a capturing sink.
+class Logger {
+public:
+  using Sink = std::function<void(LogLevel, std::string_view)>;
+
+  Logger();
+  explicit Logger(Sink sink, LogLevel min_level = LogLevel::kInfo);
+
+  void set_level(LogLevel level) { min_level_ = level; }
+  [[nodiscard]] LogLevel level() const { return min_level_; }
+  void log(LogLevel level, std::string_view message) const;
+
+  template <typename... Args>
+  void info(fmt::format_string<Args...> f, Args&&... args) const {
+    log(LogLevel::kInfo, fmt::format(f, std::forward<Args>(args)...));
+  }
+  template <typename... Args>
+  void warn(fmt::format_string<Args...> f, Args&&... args) const {
+    log(LogLevel::kWarning, fmt::format(f, std::forward<Args>(args)...));
+  }
+  template <typename... Args>
+  void debug(fmt::format_string<Args...> f, Args&&... args) const {
+    log(LogLevel::kDebug, fmt::format(f, std::forward<Args>(args)...));
+  }
+
+  /// A progress callback for a stage; draws a bar on a terminal, nothing otherwise.
+  [[nodiscard]] ProgressFn progress(std::string stage) const;
+  /// Whether progress bars are drawn (stderr is a terminal and level <= info).
+  void set_progress_enabled(bool on) { progress_enabled_ = on; }
+
+  /// A logger that discards everything (for tests and library defaults).
+  static const Logger& null();
+
+private:
+  Sink sink_;
+  LogLevel min_level_ = LogLevel::kInfo;
+  bool progress_enabled_ = false;
+};
+
+}  // namespace aq

@@ -1,0 +1,83 @@
+// OutputSet and file checksums.
+#include "core/output_files.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <system_error>
+
+#include "core/error.hpp"
+
+namespace aq {
+
+namespace fs = std::filesystem;
+
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t hash) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t k = 0; k < n; ++k) {
+    hash ^= p[k];
+    hash *= 1099511628211ULL;
+  }
+  return hash;
+}
+
+std::string file_checksum(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open for checksum", path.string()));
+  std::vector<char> buf(1 << 20);
+  std::uint64_t h = kFnvOffset;
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    h = fnv1a(buf.data(), static_cast<std::size_t>(in.gcount()), h);
+  }
+  return fmt::format("{:016x}", h);
+}
+
+OutputSet::OutputSet(fs::path dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) {
+    throw OutputError(fmt::format("output directory {}: cannot create: {}", dir_.string(), ec.message()));
+  }
+  if (!fs::is_directory(dir_)) {
+    throw OutputError(fmt::format("output directory {}: not a directory", dir_.string()));
+  }
+  if (access(dir_.c_str(), W_OK) != 0) {
+    throw OutputError(fmt::format("output directory {}: not writable", dir_.string()));
+  }
+}
+
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  for (const auto& [tmp, fin] : files_) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+  }
+}
+
+fs::path OutputSet::temp_path(const std::string& name) {
+  const fs::path fin = dir_ / name;
+  const fs::path tmp = dir_ / fmt::format(".{}.tmp{}", name, static_cast<long>(getpid()));
+  std::error_code ec;
+  fs::create_directories(fin.parent_path(), ec);
+  files_.emplace_back(tmp, fin);
+  return tmp;
+}
+
+std::vector<fs::path> OutputSet::commit() {
+  std::vector<fs::path> out;
+  for (const auto& [tmp, fin] : files_) {
+    std::error_code ec;
+    if (!fs::exists(tmp)) {
+      throw InternalError(fmt::format("output {} was reserved but never written", fin.string()));
+    }
+    fs::rename(tmp, fin, ec);
+    if (ec) throw OutputError(fmt::format("{}: cannot rename into place: {}", fin.string(), ec.message()));
+    out.push_back(fin);
+  }
+  committed_ = true;
+  return out;
+}
+
+}  // namespace aq

@@ -1,0 +1,41 @@
+// All-or-nothing output (ARCHITECTURE §4.8, §9): every file is written under a temporary name
+// in the destination folder and renamed only when the whole run succeeded. If the run fails
+// (an exception unwinds past the OutputSet), the temporaries are removed: no partial outputs.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace aq {
+
+/// 64-bit FNV-1a checksum of a file's bytes, as 16 hex digits. Throws InputError if unreadable.
+std::string file_checksum(const std::filesystem::path& path);
+/// 64-bit FNV-1a over a byte range, continuing from `hash` (start with kFnvOffset).
+inline constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t hash = kFnvOffset);
+
+class OutputSet {
+public:
+  /// Creates `dir` if needed and checks it is writable; throws OutputError naming it otherwise.
+  explicit OutputSet(std::filesystem::path dir);
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  /// Reserves `name` in the folder; returns the temporary path a writer should write to.
+  std::filesystem::path temp_path(const std::string& name);
+  /// Renames every temporary to its final name. Returns the final paths in reservation order.
+  std::vector<std::filesystem::path> commit();
+  [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }
+  /// Final path of a reserved name (valid before and after commit).
+  [[nodiscard]] std::filesystem::path final_path(const std::string& name) const { return dir_ / name; }
+
+private:
+  std::filesystem::path dir_;
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, final
+  bool committed_ = false;
+};
+
+}  // namespace aq

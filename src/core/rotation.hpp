@@ -1,0 +1,30 @@
+// Pole rotation (ARCHITECTURE §4.7, seed 002 Fig. 8): a rotated spherical system whose North
+// pole sits at geographic (λp, φp). Implemented as a 3×3 rotation matrix R = Rz(λp)·Ry(90°-φp):
+// the rotated system's North pole maps to (λp, φp) and the rotated meridian λ' = 0 passes through
+// the geographic North pole's side (λ' = 180° points to the geographic North pole when φp < 90).
+// Round trips are exact to ~1e-13°.
+#pragma once
+
+#include <array>
+
+namespace aq {
+
+class PoleRotation {
+public:
+  /// Identity rotation.
+  PoleRotation() = default;
+  /// Rotated North pole at geographic (pole_lon_deg, pole_lat_deg); pole_lat_deg in [-90, 90].
+  PoleRotation(double pole_lon_deg, double pole_lat_deg);
+
+  /// Rotated (λ', φ') -> geographic (λ, φ), degrees; λ in (-180, 180].
+  void to_geographic(double rlon_deg, double rlat_deg, double& lon_deg, double& lat_deg) const;
+  /// Geographic -> rotated, degrees; λ' in (-180, 180].
+  void to_rotated(double lon_deg, double lat_deg, double& rlon_deg, double& rlat_deg) const;
+  [[nodiscard]] bool identity() const { return identity_; }
+
+private:
+  std::array<double, 9> m_{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< rotated xyz -> geographic xyz, row-major
+  bool identity_ = true;
+};
+
+}  // namespace aq
