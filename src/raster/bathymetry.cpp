@@ -392,11 +392,11 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   if (!(rx > 0.0) || !(ry > 0.0)) throw InputError(fmt::format("{}: invalid pixel size {} × {}", o.path, gt[1], gt[5]));
   info.north_up = gt[5] < 0.0;
   const auto w = info.width, h = info.height;
-  if (std::abs(static_cast<double>(w) * rx - 360.0) <= 0.02 * rx) {
+  if (std::abs(static_cast<double>(w) * rx - 360.0) <= 0.25 * rx) {
     info.global_lon = true;
     info.dlon = 360.0 / static_cast<double>(w);
     info.ncols = w;
-  } else if (w > 1 && std::abs(static_cast<double>(w - 1) * rx - 360.0) <= 0.02 * rx) {
+  } else if (w > 1 && std::abs(static_cast<double>(w - 1) * rx - 360.0) <= 0.25 * rx) {
     info.global_lon = true;
     info.duplicate_column = true;
     info.dlon = 360.0 / static_cast<double>(w - 1);
@@ -405,10 +405,10 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     info.dlon = rx;
     info.ncols = w;
   }
-  if (std::abs(static_cast<double>(h) * ry - 180.0) <= 0.02 * ry) {
+  if (std::abs(static_cast<double>(h) * ry - 180.0) <= 0.25 * ry) {
     im->global_lat = true;
     info.dlat = 180.0 / static_cast<double>(h);
-  } else if (h > 1 && std::abs(static_cast<double>(h - 1) * ry - 180.0) <= 0.02 * ry) {
+  } else if (h > 1 && std::abs(static_cast<double>(h - 1) * ry - 180.0) <= 0.25 * ry) {
     im->global_lat = true;
     info.dlat = 180.0 / static_cast<double>(h - 1);
   } else {
