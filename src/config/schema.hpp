@@ -1,0 +1,288 @@
+// Private to src/config: a table of configuration keys (section, name, help, setter, getter)
+// that reads a TOML document into a plain option struct. Every problem (unknown section or key,
+// wrong type, bad value) is collected with file:line:column and reported together in one
+// ConfigError. Only files in src/config include this header (and so TOML).
+#pragma once
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <toml.hpp>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/report.hpp"
+
+namespace aq::config::detail {
+
+/// Where a value came from and how to resolve relative paths in it.
+struct Origin {
+  std::string where;                 ///< "file:line:col" or "--set section.key=value"
+  std::filesystem::path base_dir;    ///< folder relative paths resolve against
+  std::uint32_t line = 0, column = 0;
+};
+
+/// All problems found in one pass.
+class Problems {
+public:
+  void add(const Origin& o, const std::string& key, const std::string& text) {
+    items_.push_back({o.line, o.column, fmt::format("{}: {}: {}", o.where, key, text)});
+  }
+  void add_plain(std::uint32_t line, const std::string& text) { items_.push_back({line, 0, text}); }
+  [[nodiscard]] bool empty() const { return items_.empty(); }
+  /// Throws ConfigError listing every problem (sorted by position) if there are any.
+  void throw_if_any(const std::string& source) const {
+    if (items_.empty()) return;
+    auto v = items_;
+    std::stable_sort(v.begin(), v.end(), [](const Item& a, const Item& b) {
+      return a.line != b.line ? a.line < b.line : a.column < b.column;
+    });
+    std::string msg = fmt::format("{}: {} configuration error{}:", source, v.size(), v.size() == 1 ? "" : "s");
+    for (const auto& it : v) msg += "\n  " + it.text;
+    throw ConfigError(msg);
+  }
+
+private:
+  struct Item {
+    std::uint32_t line, column;
+    std::string text;
+  };
+  std::vector<Item> items_;
+};
+
+inline Origin origin_of(const toml::value& v, const std::string& file, const std::filesystem::path& base) {
+  const auto loc = v.location();
+  Origin o;
+  o.line = loc.line();
+  o.column = loc.column();
+  o.where = fmt::format("{}:{}:{}", file, loc.line(), loc.column());
+  o.base_dir = base;
+  return o;
+}
+
+// ---- conversions from TOML values; return an error text or nothing ----
+inline std::optional<std::string> convert(const toml::value& v, double& out) {
+  if (v.is_floating()) { out = v.as_floating(); return std::nullopt; }
+  if (v.is_integer()) { out = static_cast<double>(v.as_integer()); return std::nullopt; }
+  return "expected a number";
+}
+inline std::optional<std::string> convert(const toml::value& v, int& out) {
+  if (!v.is_integer()) return "expected an integer";
+  const auto x = v.as_integer();
+  if (x < -2147483647 || x > 2147483647) return "integer out of range";
+  out = static_cast<int>(x);
+  return std::nullopt;
+}
+inline std::optional<std::string> convert(const toml::value& v, bool& out) {
+  if (!v.is_boolean()) return "expected true or false";
+  out = v.as_boolean();
+  return std::nullopt;
+}
+inline std::optional<std::string> convert(const toml::value& v, std::string& out) {
+  if (!v.is_string()) return "expected a string in quotes";
+  out = v.as_string().str;
+  return std::nullopt;
+}
+template <std::size_t N>
+std::optional<std::string> convert(const toml::value& v, std::array<double, N>& out) {
+  if (!v.is_array() || v.as_array().size() != N) return fmt::format("expected an array of {} numbers", N);
+  for (std::size_t k = 0; k < N; ++k)
+    if (auto err = convert(v.as_array()[k], out[k])) return *err;
+  return std::nullopt;
+}
+template <typename E>
+std::optional<std::string> convert(const toml::value& v, std::vector<E>& out) {
+  if (!v.is_array()) return "expected an array [ ... ]";
+  std::vector<E> r;
+  for (const auto& e : v.as_array()) {
+    E x{};
+    if (auto err = convert(e, x)) return fmt::format("element {}: {}", r.size(), *err);
+    r.push_back(std::move(x));
+  }
+  out = std::move(r);
+  return std::nullopt;
+}
+
+// ---- JSON echo of values ----
+template <typename V>
+Json to_json(const V& v) { return Json(v); }
+
+/// A table of keys for option struct T.
+template <typename T>
+class Schema {
+public:
+  using Setter = std::function<void(T&, const toml::value&, const Origin&, Problems&)>;
+  using Getter = std::function<Json(const T&)>;
+  struct Key {
+    std::string section, name, help;
+    Setter set;
+    Getter get;
+  };
+
+  /// A key whose value converts with `convert` and passes `check` (returns an error text or "").
+  template <typename V>
+  void add(const std::string& section, const std::string& name, std::function<V&(T&)> field,
+           std::function<std::string(const V&)> check, const std::string& help) {
+    Key k;
+    k.section = section;
+    k.name = name;
+    k.help = help;
+    k.set = [field, check, section, name](T& t, const toml::value& v, const Origin& o, Problems& p) {
+      V x{};
+      if (auto err = convert(v, x)) {
+        p.add(o, section + "." + name, *err);
+        return;
+      }
+      if (check) {
+        const std::string e = check(x);
+        if (!e.empty()) {
+          p.add(o, section + "." + name, e);
+          return;
+        }
+      }
+      field(t) = std::move(x);
+    };
+    k.get = [field](const T& t) { return to_json(field(const_cast<T&>(t))); };
+    keys_.push_back(std::move(k));
+  }
+  /// A key with a fully custom setter and getter (arrays of tables, paths).
+  void add_custom(const std::string& section, const std::string& name, Setter set, Getter get,
+                  const std::string& help) {
+    keys_.push_back(Key{section, name, help, std::move(set), std::move(get)});
+  }
+
+  [[nodiscard]] const std::vector<Key>& keys() const { return keys_; }
+
+  /// Applies a parsed document to `t`, reporting unknown sections/keys and bad values into `p`.
+  void apply(T& t, const toml::value& doc, const std::string& file, const std::filesystem::path& base,
+             Problems& p) const {
+    if (!doc.is_table()) return;
+    for (const auto& [sec, table] : doc.as_table()) {
+      const Origin so = origin_of(table, file, base);
+      if (!has_section(sec)) {
+        p.add(so, sec, fmt::format("unknown section [{}]{}", sec, suggest_section(sec)));
+        continue;
+      }
+      if (!table.is_table()) {
+        p.add(so, sec, "expected a table [" + sec + "]");
+        continue;
+      }
+      for (const auto& [name, value] : table.as_table()) {
+        const Origin o = origin_of(value, file, base);
+        const Key* k = find(sec, name);
+        if (k == nullptr) {
+          p.add(o, sec + "." + name, fmt::format("unknown key{}", suggest_key(sec, name)));
+          continue;
+        }
+        k->set(t, value, o, p);
+      }
+    }
+  }
+
+  /// Applies one `section.key=value` override; the value is read as TOML, or as a plain string
+  /// when it is not valid TOML (so --set output.dir=out2 works without quotes).
+  void apply_override(T& t, const std::string& text, Problems& p) const {
+    Origin o;
+    o.where = "--set " + text;
+    o.line = 1000000;  // after every file position
+    o.base_dir = std::filesystem::current_path();
+    const auto eq = text.find('=');
+    const std::string path = eq == std::string::npos ? text : text.substr(0, eq);
+    const auto dot = path.find('.');
+    if (eq == std::string::npos || dot == std::string::npos) {
+      p.add(o, path, "expected --set section.key=value");
+      return;
+    }
+    const std::string sec = path.substr(0, dot), name = path.substr(dot + 1);
+    const Key* k = find(sec, name);
+    if (k == nullptr) {
+      p.add(o, path, fmt::format("unknown key{}", has_section(sec) ? suggest_key(sec, name) : suggest_section(sec)));
+      return;
+    }
+    const std::string raw = text.substr(eq + 1);
+    toml::value doc;
+    try {
+      std::istringstream in("v = " + raw);
+      doc = toml::parse(in, "--set");
+    } catch (const std::exception&) {
+      std::istringstream in("v = " + toml::format(toml::value(raw)));
+      doc = toml::parse(in, "--set");
+    }
+    k->set(t, doc.as_table().at("v"), o, p);
+  }
+
+  /// The effective configuration as JSON: {section: {key: value}} in table order.
+  [[nodiscard]] Json echo(const T& t) const {
+    Json j = Json::object();
+    for (const auto& k : keys_) j[k.section][k.name] = k.get(t);
+    return j;
+  }
+
+private:
+  [[nodiscard]] bool has_section(const std::string& s) const {
+    return std::any_of(keys_.begin(), keys_.end(), [&](const Key& k) { return k.section == s; });
+  }
+  [[nodiscard]] const Key* find(const std::string& s, const std::string& n) const {
+    for (const auto& k : keys_)
+      if (k.section == s && k.name == n) return &k;
+    return nullptr;
+  }
+  static std::size_t distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> d(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) d[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      std::size_t prev = d[0];
+      d[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t cur = d[j];
+        d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (a[i - 1] == b[j - 1] ? 0 : 1)});
+        prev = cur;
+      }
+    }
+    return d[b.size()];
+  }
+  [[nodiscard]] std::string suggest_key(const std::string& sec, const std::string& name) const {
+    std::string best;
+    std::size_t bd = 3;
+    for (const auto& k : keys_)
+      if (k.section == sec && distance(k.name, name) < bd) {
+        bd = distance(k.name, name);
+        best = k.name;
+      }
+    return best.empty() ? std::string() : fmt::format(" (did you mean {}.{}?)", sec, best);
+  }
+  [[nodiscard]] std::string suggest_section(const std::string& sec) const {
+    std::string best;
+    std::size_t bd = 3;
+    for (const auto& k : keys_)
+      if (distance(k.section, sec) < bd) {
+        bd = distance(k.section, sec);
+        best = k.section;
+      }
+    return best.empty() ? std::string() : fmt::format(" (did you mean [{}]?)", best);
+  }
+
+  std::vector<Key> keys_;
+};
+
+/// Parses a TOML file; a syntax error becomes a ConfigError with toml11's file:line:column text.
+inline toml::value parse_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw ConfigError(fmt::format("{}: no such configuration file", path.string()));
+  try {
+    return toml::parse(path.string());
+  } catch (const toml::syntax_error& e) {
+    throw ConfigError(fmt::format("{}: TOML syntax error:\n{}", path.string(), e.what()));
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: cannot read: {}", path.string(), e.what()));
+  }
+}
+
+}  // namespace aq::config::detail

@@ -1,0 +1,141 @@
+// Configuration: example.toml documents exactly the keys the code knows; unknown keys and bad
+// values are reported with file:line, all of them in one run; --set overrides; path resolution.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <toml.hpp>
+
+#include "config/load.hpp"
+#include "core/error.hpp"
+
+namespace fs = std::filesystem;
+using aq::config::load_global;
+using ::testing::HasSubstr;
+
+namespace {
+
+fs::path write_temp(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "aq_config_test";
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::string error_of(const std::optional<std::string>& path, const std::vector<std::string>& over = {}) {
+  try {
+    (void)load_global(path, over);
+  } catch (const aq::ConfigError& e) {
+    EXPECT_EQ(e.exit_code(), 2);
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ExampleToml, ListsExactlyTheKeysTheCodeKnows) {
+  const fs::path example = fs::path(AQ_SOURCE_DIR) / "configs" / "example.toml";
+  const toml::value doc = toml::parse(example.string());
+  std::set<std::string> in_file;
+  for (const auto& [sec, table] : doc.as_table())
+    for (const auto& [key, v] : table.as_table()) in_file.insert(sec + "." + key);
+  const auto keys = aq::config::global_keys();
+  const std::set<std::string> in_code(keys.begin(), keys.end());
+  for (const auto& k : in_code) EXPECT_TRUE(in_file.count(k)) << k << " is in the code but not in example.toml";
+  for (const auto& k : in_file) EXPECT_TRUE(in_code.count(k)) << k << " is in example.toml but not in the code";
+  EXPECT_GE(in_code.size(), 30u);
+}
+
+TEST(ExampleToml, StatesTheDefaults) {
+  const fs::path example = fs::path(AQ_SOURCE_DIR) / "configs" / "example.toml";
+  const auto from_file = load_global(example.string(), {});
+  const auto defaults = load_global(std::nullopt, {});
+  EXPECT_EQ(from_file.echo.dump(), defaults.echo.dump());
+  EXPECT_EQ(defaults.options.quadtree.levels, 3);
+  EXPECT_EQ(defaults.options.mask.cursor, 2);
+  EXPECT_DOUBLE_EQ(defaults.options.quadtree.step_deg, 4.0);
+}
+
+TEST(Config, UnknownKeyNamesKeyAndLine) {
+  const auto p = write_temp("unknown.toml", "[mask]\ncursor = 3\ncursr = 2\n");
+  const std::string e = error_of(p.string());
+  EXPECT_THAT(e, HasSubstr("mask.cursr"));
+  EXPECT_THAT(e, HasSubstr("unknown.toml:3:"));
+  EXPECT_THAT(e, HasSubstr("did you mean mask.cursor"));
+}
+
+TEST(Config, UnknownSectionIsAnError) {
+  const auto p = write_temp("section.toml", "[quadtre]\nlevels = 3\n");
+  EXPECT_THAT(error_of(p.string()), HasSubstr("unknown section [quadtre]"));
+}
+
+TEST(Config, AllBadValuesReportedInOneRun) {
+  const auto p = write_temp("three.toml",
+                            "[mask]\ncursor = 0\n[quadtree]\nstep_deg = 7.0\n[mesh]\ndiagonal = \"sw\"\n");
+  const std::string e = error_of(p.string());
+  EXPECT_THAT(e, HasSubstr("3 configuration errors"));
+  EXPECT_THAT(e, HasSubstr("three.toml:2:"));
+  EXPECT_THAT(e, HasSubstr("mask.cursor"));
+  EXPECT_THAT(e, HasSubstr("three.toml:4:"));
+  EXPECT_THAT(e, HasSubstr("quadtree.step_deg"));
+  EXPECT_THAT(e, HasSubstr("three.toml:6:"));
+  EXPECT_THAT(e, HasSubstr("\"sw\" is not one of"));
+}
+
+TEST(Config, WrongTypeIsReported) {
+  const auto p = write_temp("type.toml", "[quadtree]\nlevels = \"three\"\n");
+  EXPECT_THAT(error_of(p.string()), HasSubstr("expected an integer"));
+}
+
+TEST(Config, SyntaxErrorNamesFile) {
+  const auto p = write_temp("syntax.toml", "[mask\ncursor = 3\n");
+  EXPECT_THAT(error_of(p.string()), HasSubstr("syntax.toml"));
+}
+
+TEST(Config, MissingFile) { EXPECT_THAT(error_of("/nonexistent/x.toml"), HasSubstr("/nonexistent/x.toml")); }
+
+TEST(Config, SetOverridesFileAndDefaults) {
+  const auto p = write_temp("set.toml", "[mask]\nmin_depth_m = 10.0\n");
+  const auto c = load_global(p.string(), {"mask.min_depth_m=200", "quadtree.levels=4", "output.dir=out2",
+                                          "mask.seeds=[[10.0, -40.0], [170, 0]]"});
+  EXPECT_DOUBLE_EQ(c.options.mask.min_depth_m, 200.0);
+  EXPECT_EQ(c.options.quadtree.levels, 4);
+  EXPECT_EQ(c.options.output.dir, "out2");
+  ASSERT_EQ(c.options.mask.seeds.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.options.mask.seeds[1][0], 170.0);
+  EXPECT_EQ(c.echo["quadtree"]["levels"], 4);
+}
+
+TEST(Config, BadSetIsReported) {
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.levles=4"}), HasSubstr("did you mean quadtree.levels"));
+  EXPECT_THAT(error_of(std::nullopt, {"nodot=4"}), HasSubstr("section.key=value"));
+  EXPECT_THAT(error_of(std::nullopt, {"mask.cursor=abc"}), HasSubstr("expected an integer"));
+}
+
+TEST(Config, RelativeInputPathResolvesAgainstConfigFolder) {
+  const auto p = write_temp("rel.toml", "[input]\npath = \"data/x.nc\"\n");
+  const auto c = load_global(p.string(), {});
+  EXPECT_EQ(c.options.input.path, (p.parent_path() / "data/x.nc").lexically_normal().string());
+}
+
+TEST(Config, RulesParseAndCrossCheckLevels) {
+  const auto p = write_temp("rules.toml",
+                            "[quadtree]\nlevels = 3\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, level = 2}]\n"
+                            "box_rules = [{lon_min_deg = -10.0, lon_max_deg = 40.0, lat_min_deg = 30.0, lat_max_deg = 46.0, level = 5}]\n");
+  EXPECT_THAT(error_of(p.string()), HasSubstr("level 5 exceeds quadtree.levels = 3"));
+  const auto ok = load_global(p.string(), {"quadtree.levels=5"});
+  ASSERT_EQ(ok.options.quadtree.depth_rules.size(), 1u);
+  EXPECT_EQ(ok.options.quadtree.depth_rules[0].level, 2);
+  EXPECT_DOUBLE_EQ(ok.options.quadtree.box_rules[0].lat_max_deg, 46.0);
+}
+
+TEST(Config, ShippedConfigsLoad) {
+  for (const char* name : {"seed_4deg_L3.toml", "global_1deg_L5.toml", "rotated_greenland.toml"}) {
+    const fs::path p = fs::path(AQ_SOURCE_DIR) / "configs" / name;
+    EXPECT_NO_THROW((void)load_global(p.string(), {})) << name;
+  }
+}
