@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Speed and memory benchmarks (ARCHITECTURE §8), printed as a table: wall, CPU and peak RSS per
+# stage from each run's report, against the targets. Not a test: it never fails on a missed
+# target, it reports it.
+#   scripts/bench.sh            all cases (makes the 1' raster once, cached outside the repo)
+#   scripts/bench.sh quick      only the seed reference run and Black Sea
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+bash scripts/build.sh release >/dev/null 2>&1
+mode="${1:-all}"
+bin=./build/aquatoria
+work="${AQ_BENCH_DIR:-/tmp/aq_bench}"
+rm -rf "$work"; mkdir -p "$work"
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
+
+echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GB RAM, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
+echo "OMP_NUM_THREADS=$OMP_NUM_THREADS"
+
+table() {  # name target_wall_s report.json
+  python3 - "$@" <<'PY'
+import json, sys
+name, target, path = sys.argv[1], float(sys.argv[2]), sys.argv[3]
+r = json.load(open(path))
+tot = r.get("total", {})
+print(f"\n== {name}")
+print(f"{'stage':<14}{'wall s':>9}{'cpu s':>9}{'peak MB':>10}  summary")
+for s in r.get("stages", []):
+    print(f"{s['stage']:<14}{s['wall_s']:>9.3f}{s['cpu_s']:>9.3f}{s['peak_rss_mb']:>10.1f}  {s['summary'][:70]}")
+w = tot.get("wall_s", 0.0)
+verdict = "OK" if w < target else "MISSED"
+print(f"{'total':<14}{w:>9.3f}{tot.get('cpu_s',0):>9.3f}{tot.get('peak_rss_mb',0):>10.1f}  target < {target:g} s: {verdict}")
+for s in r.get("stages", []):
+    if s["stage"] == "triangles" and s["wall_s"] > 0:
+        n = r.get("mesh", {}).get("triangles", 0)
+        print(f"triangle emission: {n / s['wall_s'] / 1e6:.1f} million triangles/s (target > 10)")
+PY
+}
+
+# 1. The seed reference run on ETOPO5 (all outputs).
+$bin mesh -q -o "$work/seed" >/dev/null
+table "seed reference: ETOPO5, Δ0=4°, L=3, K=2, h=0, all outputs (target < 0.5 s)" 0.5 "$work/seed/seed_4deg_L3_report.json"
+
+if [ -f configs/black_sea.toml ]; then
+  $bin regional -q -c configs/black_sea.toml -o "$work/black_sea" >/dev/null
+  table "regional Black Sea, all stages (target < 1 s)" 1 "$work/black_sea/black_sea_report.json"
+fi
+[ "$mode" = quick ] && exit 0
+
+# 2. A 1' global lattice (21600×10800: Δ0=16', L=4) from a 1' raster made from ETOPO5.
+raster=$(bash data_tools/make_resampled.sh 60)
+$bin mesh -q -o "$work/one_minute" --set input.path="$raster" --set quadtree.step_deg=0.26666666666666666 \
+  --set quadtree.levels=4 --set output.name=one_minute --set 'output.formats=["msh"]' --set output.msh_binary=true >/dev/null
+table "1' global lattice 21600×10800 (Δ0=16', L=4) from a 1' raster, binary MSH (target < 10 s, < 4096 MB)" 10 \
+  "$work/one_minute/one_minute_report.json"
+
+if [ -f configs/black_sea_fig16.toml ]; then
+  $bin regional -q -c configs/black_sea_fig16.toml -o "$work/fig16" >/dev/null
+  table "regional 1703×913 supergrid (seed Fig. 16 size) (target < 30 s)" 30 "$work/fig16/black_sea_fig16_report.json"
+fi
