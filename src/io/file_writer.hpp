@@ -1,0 +1,70 @@
+// Buffered output file used by every text and binary writer of src/io. Bytes are collected in
+// a memory buffer (text through fmt::format_to, binary through `put`) and handed to the kernel
+// in chunks of ~4 MiB with POSIX write(2), so that every failure (no permission, ENOSPC, EIO,
+// a failing close on NFS) is seen with its errno and reported as an OutputError naming the file.
+// Nothing is written to a final name here: callers pass the temporary path OutputSet gave them.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <type_traits>
+
+namespace aq::io {
+
+class FileWriter {
+public:
+  /// Creates (truncates) `path`. Throws OutputError naming it when it cannot be opened.
+  explicit FileWriter(std::filesystem::path path);
+  /// Closes without reporting errors if `close()` was not called (an exception is unwinding).
+  ~FileWriter();
+  FileWriter(const FileWriter&) = delete;
+  FileWriter& operator=(const FileWriter&) = delete;
+
+  /// The buffer text goes into; call `maybe_flush()` every few thousand appends.
+  fmt::memory_buffer& buffer() { return buf_; }
+  /// Formats into the buffer.
+  template <typename... Args>
+  void print(fmt::format_string<Args...> f, Args&&... args) {
+    fmt::format_to(std::back_inserter(buf_), f, std::forward<Args>(args)...);
+  }
+  void text(std::string_view s) { buf_.append(s.data(), s.data() + s.size()); }
+  /// Appends raw bytes.
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const char*>(data);
+    buf_.append(p, p + n);
+  }
+  /// Appends the native (little-endian on every supported machine) bytes of a trivially
+  /// copyable value.
+  template <typename T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes(&value, sizeof(T));
+  }
+  /// Hands the buffer to the kernel when it is larger than the chunk size.
+  void maybe_flush() {
+    if (buf_.size() >= kChunkBytes) flush();
+  }
+  /// Writes everything buffered. Throws OutputError naming the file (with strerror).
+  void flush();
+  /// Flushes and closes. Throws OutputError naming the file. Returns the file size in bytes.
+  std::int64_t close();
+
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  /// Bytes handed to the kernel plus bytes still buffered.
+  [[nodiscard]] std::int64_t size() const { return written_ + static_cast<std::int64_t>(buf_.size()); }
+
+  static constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
+
+private:
+  [[noreturn]] void fail(const char* what, int err) const;
+
+  std::filesystem::path path_;
+  int fd_ = -1;
+  std::int64_t written_ = 0;
+  fmt::memory_buffer buf_;
+};
+
+}  // namespace aq::io
