@@ -1,0 +1,37 @@
+// The quadtree stage (seed 002 §"дискретный аналог акватории", Fig. 1; ARCHITECTURE §4.4): from
+// the filled set Ω_L to balanced leaves, in the order Ω_l/D_l -> coastal band -> depth/box rules
+// -> 2:1 smoothing -> leaves -> checkers (partition of Ω_L, balance).
+#pragma once
+
+#include <vector>
+
+#include "config/options.hpp"
+#include "core/bitmap.hpp"
+#include "core/lattice.hpp"
+#include "core/log.hpp"
+#include "core/report.hpp"
+#include "core/rotation.hpp"
+#include "quadtree/leaves.hpp"
+
+namespace aq::raster {
+class Bathymetry;
+}
+
+namespace aq::quadtree {
+
+/// Builds the balanced leaves of the filled set.
+///
+/// `filled` is Ω_L on the lattice (lat.nx × lat.ny pixels). `rotation` maps lattice coordinates
+/// to geographic ones (identity without pole rotation); `bathy` is needed only for depth rules
+/// (may be null otherwise). Logs one stage line and, when `report` is given, writes the
+/// "quadtree" section: leaves per level for the bare D_l rule, after the coastal band and rules,
+/// and after smoothing, plus sub-stage timings.
+///
+/// Throws ConfigError for bad quadtree options (coast_band < 0, balance not "face"/"corner", bad
+/// rules) and InternalError when a checker fails (leaves not partitioning Ω_L, or balance
+/// violations left).
+std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const config::QuadtreeOptions& options,
+                               const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
+                               Report* report);
+
+}  // namespace aq::quadtree

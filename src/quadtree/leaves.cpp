@@ -1,0 +1,365 @@
+// Level pyramid, coastal band, refinement rules and leaf extraction (see leaves.hpp).
+#include "quadtree/leaves.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/types.hpp"
+#include "quadtree/bits.hpp"
+#include "quadtree/parallel.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::quadtree {
+
+namespace {
+
+using Words = std::vector<std::uint64_t>;
+
+void check_shape(const Bitmap& filled, const Lattice& lat) {
+  if (filled.nx() != lat.nx || filled.ny() != lat.ny) {
+    throw InternalError(fmt::format("quadtree: filled set is {}×{} pixels but the lattice is {}×{}", filled.nx(),
+                                    filled.ny(), lat.nx, lat.ny));
+  }
+}
+
+/// H[j] = row j of the unfilled pixels dilated by r along the (periodic) row.
+Bitmap dry_dilation(const Bitmap& filled, std::int64_t r) {
+  Bitmap h(filled.nx(), filled.ny());
+  const std::int64_t nx = filled.nx();
+  const std::int64_t ny = filled.ny();
+  const std::int64_t words = filled.words_per_row();
+  const std::uint64_t last = bits::last_word_mask(nx);
+#pragma omp parallel default(none) shared(filled, h, nx, ny, words, last, r)
+  {
+    Words comp(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
+#pragma omp for schedule(static)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      const std::uint64_t* src = filled.row(j);
+      for (std::int64_t w = 0; w < words; ++w) comp[static_cast<std::size_t>(w)] = ~src[w];
+      comp[static_cast<std::size_t>(words - 1)] &= last;
+      bits::dilate_row(comp.data(), h.row(j), tmp.data(), nx, r);
+    }
+  }
+  return h;
+}
+
+/// out = filled row j with the coastal band removed (band = filled & OR of h rows j-r .. j+r).
+void interior_row(const Bitmap& filled, const Bitmap& h, std::int64_t j, std::int64_t r, std::uint64_t* out) {
+  const std::int64_t words = filled.words_per_row();
+  const std::int64_t j0 = std::max<std::int64_t>(0, j - r);
+  const std::int64_t j1 = std::min<std::int64_t>(filled.ny() - 1, j + r);
+  const std::uint64_t* f = filled.row(j);
+  for (std::int64_t w = 0; w < words; ++w) {
+    std::uint64_t v = 0;
+    for (std::int64_t k = j0; k <= j1; ++k) v |= h.row(k)[w];
+    out[w] = f[w] & ~v;
+  }
+}
+
+bool in_box(const config::BoxRule& r, double lon, double lat) {
+  if (lat < r.lat_min_deg || lat > r.lat_max_deg) return false;
+  const double hi = r.lon_max_deg < r.lon_min_deg ? r.lon_max_deg + 360.0 : r.lon_max_deg;
+  return wrap_lon_deg(lon, r.lon_min_deg) <= hi;
+}
+
+void validate_rules(const config::QuadtreeOptions& o, int levels) {
+  for (std::size_t k = 0; k < o.depth_rules.size(); ++k) {
+    const config::DepthRule& r = o.depth_rules[k];
+    if (r.level < 0 || r.level > levels) {
+      throw ConfigError(fmt::format("quadtree.depth_rules[{}].level = {}: must be between 0 and quadtree.levels = {}",
+                                    k, r.level, levels));
+    }
+    if (!(r.max_depth_m > r.min_depth_m)) {
+      throw ConfigError(fmt::format("quadtree.depth_rules[{}]: empty depth range [{}, {}) m", k, r.min_depth_m,
+                                    r.max_depth_m));
+    }
+  }
+  for (std::size_t k = 0; k < o.box_rules.size(); ++k) {
+    const config::BoxRule& r = o.box_rules[k];
+    if (r.level < 0 || r.level > levels) {
+      throw ConfigError(fmt::format("quadtree.box_rules[{}].level = {}: must be between 0 and quadtree.levels = {}", k,
+                                    r.level, levels));
+    }
+    if (!(r.lat_max_deg >= r.lat_min_deg)) {
+      throw ConfigError(fmt::format("quadtree.box_rules[{}]: lat_min_deg = {} is above lat_max_deg = {}", k,
+                                    r.lat_min_deg, r.lat_max_deg));
+    }
+  }
+}
+
+void collect_leaves(const LevelMasks& m, int levels, int l, std::int64_t a, std::int64_t b, std::vector<Leaf>& out) {
+  if (m.omega[static_cast<std::size_t>(l)].get(a, b)) {
+    out.push_back(Leaf{l, a, b});
+    return;
+  }
+  if (l == levels || !m.any_at(l).get(a, b)) return;
+  for (std::int64_t c = 0; c < 4; ++c) collect_leaves(m, levels, l + 1, 2 * a + (c & 1), 2 * b + (c >> 1), out);
+}
+
+void check_leaf_range(const Leaf& f, const Lattice& lat) {
+  const bool ok = f.level >= 0 && f.level <= lat.levels && f.a >= 0 && f.b >= 0 &&
+                  f.a < (lat.nx >> (lat.levels - f.level)) && f.b < (lat.ny >> (lat.levels - f.level));
+  if (!ok) {
+    throw InternalError(fmt::format("quadtree: leaf (level {}, a {}, b {}) lies outside the {}×{} lattice of {} levels",
+                                    f.level, f.a, f.b, lat.nx, lat.ny, lat.levels));
+  }
+}
+
+}  // namespace
+
+LeafKey pixel_key(const Lattice& lat, std::int64_t i, std::int64_t j) {
+  const int sh = lat.levels;
+  const std::int64_t mask = (std::int64_t{1} << sh) - 1;
+  const std::int64_t nx0 = lat.nx >> sh;
+  return LeafKey{static_cast<std::uint64_t>((j >> sh) * nx0 + (i >> sh)),
+                 bits::morton(static_cast<std::uint64_t>(i & mask), static_cast<std::uint64_t>(j & mask))};
+}
+
+LeafKey leaf_key(const Lattice& lat, const Leaf& f) { return pixel_key(lat, leaf_i0(lat, f), leaf_j0(lat, f)); }
+
+Bitmap coastal_band(const Bitmap& filled, int band) {
+  Bitmap out(filled.nx(), filled.ny());
+  if (band <= 0) return out;
+  const Bitmap h = dry_dilation(filled, band);
+  const std::int64_t ny = filled.ny();
+  const std::int64_t words = filled.words_per_row();
+  const std::int64_t r = band;
+#pragma omp parallel default(none) shared(filled, h, out, ny, words, r)
+  {
+    Words inner(static_cast<std::size_t>(words));
+#pragma omp for schedule(static)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      interior_row(filled, h, j, r, inner.data());
+      const std::uint64_t* f = filled.row(j);
+      std::uint64_t* o = out.row(j);
+      for (std::int64_t w = 0; w < words; ++w) o[w] = f[w] & ~inner[static_cast<std::size_t>(w)];
+    }
+  }
+  return out;
+}
+
+LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band) {
+  check_shape(filled, lat);
+  if (coast_band < 0) {
+    throw ConfigError(fmt::format("quadtree.coast_band = {}: must be >= 0 (pixels)", coast_band));
+  }
+  const int levels = lat.levels;
+  LevelMasks m;
+  m.omega.resize(static_cast<std::size_t>(levels) + 1);
+  m.any.resize(static_cast<std::size_t>(levels) + 1);
+  m.omega.back() = filled;
+  if (levels == 0) return m;
+
+  const auto top = static_cast<std::size_t>(levels - 1);
+  if (coast_band == 0) {
+    m.omega[top] = bits::reduce(filled, false);
+  } else {
+    const std::int64_t r = coast_band;
+    const Bitmap h = dry_dilation(filled, r);
+    Bitmap& dst = m.omega[top];
+    dst = Bitmap(filled.nx() / 2, filled.ny() / 2);
+    const std::int64_t rows = dst.ny();
+    const std::int64_t words = filled.words_per_row();
+#pragma omp parallel default(none) shared(filled, h, dst, rows, words, r)
+    {
+      Words lo(static_cast<std::size_t>(words)), hi(static_cast<std::size_t>(words));
+#pragma omp for schedule(static)
+      for (std::int64_t b = 0; b < rows; ++b) {
+        interior_row(filled, h, 2 * b, r, lo.data());
+        interior_row(filled, h, 2 * b + 1, r, hi.data());
+        bits::reduce_rows(lo.data(), hi.data(), words, dst.row(b), false);
+      }
+    }
+  }
+  for (int l = levels - 2; l >= 0; --l) {
+    m.omega[static_cast<std::size_t>(l)] = bits::reduce(m.omega[static_cast<std::size_t>(l) + 1], false);
+  }
+  m.any[top] = bits::reduce(filled, true);
+  for (int l = levels - 2; l >= 0; --l) {
+    m.any[static_cast<std::size_t>(l)] = bits::reduce(m.any[static_cast<std::size_t>(l) + 1], true);
+  }
+  return m;
+}
+
+void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
+                            const PoleRotation& rotation, const raster::Bathymetry* bathy) {
+  if (options.depth_rules.empty() && options.box_rules.empty()) return;
+  const int levels = lat.levels;
+  validate_rules(options, levels);
+  if (!options.depth_rules.empty() && bathy == nullptr) {
+    throw InternalError("quadtree: depth rules need the bathymetry raster");
+  }
+  int max_level = 0;
+  for (const config::DepthRule& r : options.depth_rules) max_level = std::max(max_level, r.level);
+  for (const config::BoxRule& r : options.box_rules) max_level = std::max(max_level, r.level);
+
+  const std::vector<config::DepthRule>& depth_rules = options.depth_rules;
+  const std::vector<config::BoxRule>& box_rules = options.box_rules;
+  for (int l = std::min(levels, max_level) - 1; l >= 0; --l) {
+    Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
+    if (l + 1 < max_level && l + 1 < levels) {  // keep omega monotone after the finer level's splits
+      const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
+      for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
+    }
+    // Rules asking level l+1 are sampled at the centres of the level-l squares.
+    const int want = l + 1;
+    bool need_box = false, need_depth = false;
+    for (const config::BoxRule& r : box_rules) need_box = need_box || r.level == want;
+    for (const config::DepthRule& r : depth_rules) need_depth = need_depth || r.level == want;
+    if (!need_box && !need_depth) continue;
+    const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
+    const double lon0 = lat.lon0_deg;
+    const std::int64_t rows = om.ny();
+    const std::int64_t words = om.words_per_row();
+#pragma omp parallel for default(none) \
+    shared(om, rows, words, step, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
+    schedule(dynamic, 16)
+    for (std::int64_t b = 0; b < rows; ++b) {
+      const double rlat = -90.0 + (static_cast<double>(b) + 0.5) * step;
+      std::uint64_t* row = om.row(b);
+      for (std::int64_t w = 0; w < words; ++w) {
+        std::uint64_t bitsleft = row[w];
+        while (bitsleft != 0) {
+          const int t = std::countr_zero(bitsleft);
+          bitsleft &= bitsleft - 1;
+          const std::int64_t a = 64 * w + t;
+          double lon = 0.0, lat_deg = 0.0;
+          rotation.to_geographic(lon0 + (static_cast<double>(a) + 0.5) * step, rlat, lon, lat_deg);
+          bool split = false;
+          if (need_box) {
+            for (const config::BoxRule& r : box_rules) split = split || (r.level == want && in_box(r, lon, lat_deg));
+          }
+          if (!split && need_depth) {
+            const double depth = -bathy->sample(lon, lat_deg);
+            for (const config::DepthRule& r : depth_rules) {
+              split = split || (r.level == want && depth >= r.min_depth_m && depth < r.max_depth_m);
+            }
+          }
+          if (split) row[w] &= ~(1ULL << t);
+        }
+      }
+    }
+  }
+}
+
+std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat) {
+  const int levels = masks.levels();
+  const std::int64_t nx0 = lat.nx >> lat.levels;
+  const std::int64_t ny0 = lat.ny >> lat.levels;
+  const std::int64_t roots = nx0 * ny0;
+  std::vector<std::vector<Leaf>> parts(static_cast<std::size_t>(max_threads()));
+  const int blocks = parallel_blocks(roots, [&](int t, std::int64_t begin, std::int64_t end) {
+    std::vector<Leaf>& out = parts[static_cast<std::size_t>(t)];
+    for (std::int64_t r = begin; r < end; ++r) collect_leaves(masks, levels, 0, r % nx0, r / nx0, out);
+  });
+  std::size_t total = 0;
+  for (int t = 0; t < blocks; ++t) total += parts[static_cast<std::size_t>(t)].size();
+  std::vector<Leaf> leaves;
+  leaves.reserve(total);
+  for (int t = 0; t < blocks; ++t) {
+    std::vector<Leaf>& p = parts[static_cast<std::size_t>(t)];
+    leaves.insert(leaves.end(), p.begin(), p.end());
+    std::vector<Leaf>().swap(p);
+  }
+  return leaves;
+}
+
+std::vector<std::int64_t> count_leaves_per_level(const LevelMasks& masks) {
+  const int levels = masks.levels();
+  std::vector<std::int64_t> counts(static_cast<std::size_t>(levels) + 1, 0);
+  counts[0] = masks.omega[0].count();
+  for (int l = 1; l <= levels; ++l) {
+    const Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
+    const Bitmap& parent = masks.omega[static_cast<std::size_t>(l) - 1];
+    const std::int64_t rows = om.ny();
+    const std::int64_t words = om.words_per_row();
+    std::int64_t n = 0;
+#pragma omp parallel default(none) shared(om, parent, rows, words) reduction(+ : n)
+    {
+      Words up(static_cast<std::size_t>(words));
+#pragma omp for schedule(static)
+      for (std::int64_t b = 0; b < rows; ++b) {
+        bits::expand_row(parent.row(b / 2), up.data(), words);
+        const std::uint64_t* row = om.row(b);
+        for (std::int64_t w = 0; w < words; ++w) n += std::popcount(row[w] & ~up[static_cast<std::size_t>(w)]);
+      }
+    }
+    counts[static_cast<std::size_t>(l)] = n;
+  }
+  return counts;
+}
+
+bool leaves_sorted(const std::vector<Leaf>& leaves, const Lattice& lat) {
+  for (std::size_t k = 1; k < leaves.size(); ++k) {
+    if (!(leaf_key(lat, leaves[k - 1]) < leaf_key(lat, leaves[k]))) return false;
+  }
+  return true;
+}
+
+Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat) {
+  Bitmap cov(lat.nx, lat.ny);
+  std::int64_t area = 0;
+  for (const Leaf& f : leaves) {
+    check_leaf_range(f, lat);
+    const std::int64_t s = leaf_size(lat, f);
+    const std::int64_t i0 = leaf_i0(lat, f);
+    const std::int64_t j0 = leaf_j0(lat, f);
+    for (std::int64_t j = j0; j < j0 + s; ++j) bits::set_range(cov.row(j), i0, i0 + s);
+    area += s * s;
+  }
+  if (cov.count() != area) {
+    throw InternalError(fmt::format("quadtree: leaves overlap ({} pixels in leaves, {} covered)", area, cov.count()));
+  }
+  return cov;
+}
+
+LevelMasks masks_from_leaves(const std::vector<Leaf>& leaves, const Lattice& lat) {
+  const int levels = lat.levels;
+  LevelMasks m;
+  m.omega.resize(static_cast<std::size_t>(levels) + 1);
+  m.any.resize(static_cast<std::size_t>(levels) + 1);
+  m.omega.back() = leaf_coverage(leaves, lat);
+  for (int l = 0; l < levels; ++l) {
+    Bitmap& om = m.omega[static_cast<std::size_t>(l)];
+    om = Bitmap(lat.nx >> (levels - l), lat.ny >> (levels - l));
+    for (const Leaf& f : leaves) {
+      if (f.level > l) continue;
+      const int k = l - f.level;
+      for (std::int64_t b = f.b << k; b < (f.b + 1) << k; ++b) bits::set_range(om.row(b), f.a << k, (f.a + 1) << k);
+    }
+  }
+  for (int l = levels - 1; l >= 0; --l) {
+    m.any[static_cast<std::size_t>(l)] = bits::reduce(m.any_at(l + 1), true);
+  }
+  return m;
+}
+
+LeafLocator::LeafLocator(const std::vector<Leaf>& leaves, const Lattice& lat) : leaves_(leaves), lat_(lat) {
+  keys_.resize(leaves.size());
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    keys_[k] = leaf_key(lat, leaves[k]);
+    if (k > 0 && !(keys_[k - 1] < keys_[k])) {
+      throw InternalError(fmt::format("quadtree: leaves {} and {} are not in the deterministic order", k - 1, k));
+    }
+  }
+}
+
+std::int64_t LeafLocator::find(std::int64_t i, std::int64_t j) const {
+  if (j < 0 || j >= lat_.ny) return -1;
+  const std::int64_t iw = wrap_index(i, lat_.nx);
+  const LeafKey key = pixel_key(lat_, iw, j);
+  const auto it = std::upper_bound(keys_.begin(), keys_.end(), key);
+  if (it == keys_.begin()) return -1;
+  const auto k = static_cast<std::int64_t>(it - keys_.begin()) - 1;
+  const Leaf& f = leaves_[static_cast<std::size_t>(k)];
+  const std::int64_t s = leaf_size(lat_, f);
+  const std::int64_t i0 = leaf_i0(lat_, f);
+  const std::int64_t j0 = leaf_j0(lat_, f);
+  return (iw >= i0 && iw < i0 + s && j >= j0 && j < j0 + s) ? k : -1;
+}
+
+}  // namespace aq::quadtree

@@ -1,0 +1,142 @@
+// Quadtree leaves from the filled set Ω_L (seed 002, §"дискретный аналог акватории": the sets
+// Ω_l and D_l; ARCHITECTURE §4.4). The quadtree lives in a pyramid of bitmaps, one per level,
+// built in O(N) with word tricks (bits.hpp):
+//
+//   omega[l](a, b)  square (l, a, b) lies inside a leaf of level <= l        (the seed's Ω_l)
+//   any[l](a, b)    square (l, a, b) holds at least one filled pixel
+//
+// omega[L] is the filled set Ω_L itself. A leaf of level l is a square with omega[l] set and
+// omega[l-1] clear on its parent (level 0: omega[0] set) — for the bare rule these are exactly
+// the seed's D_l = {Q^l ⊆ Ω_L, Q^l ⊄ Ω_{l-1}}. Refinement only ever clears omega bits (splits),
+// and omega stays monotone: omega[l] set implies omega[l+1] set on all four children.
+//
+// Squares, children and order (level l has nx_l = nx·2^(l-L) by ny_l = ny·2^(l-L) squares;
+// square (l, a, b) covers pixels [a·2^(L-l), (a+1)·2^(L-l)) × [b·2^(L-l), (b+1)·2^(L-l))):
+//
+//        +-----+-----+        children of (l, a, b) at level l+1, in Morton (z) order:
+//        |  2  |  3  |          0 SW (2a, 2b)     1 SE (2a+1, 2b)
+//        | NW  | NE  |          2 NW (2a, 2b+1)   3 NE (2a+1, 2b+1)
+//        +-----+-----+
+//        |  0  |  1  |        Leaves are ordered by their level-0 square (row-major: b0 first,
+//        | SW  | SE  |        then a0) and, inside it, by the Morton key of their SW pixel.
+//        +-----+-----+
+//
+// Refinement rules applied before smoothing (all of them split, never merge):
+//  * coastal band (`QuadtreeOptions::coast_band` = r): a filled pixel is in the band when an
+//    unfilled pixel lies within Chebyshev distance r (columns wrap at the seam; rows beyond the
+//    poles do not exist, so the lattice edge at φ = ±90° is not coast). Every leaf holding a band
+//    pixel is split, recursively, until the band pixels are leaves of level L.
+//  * depth rules (`DepthRule`) and box rules (`BoxRule`) asking level m >= 1 are sampled on the
+//    level-(m-1) grid: every level-(m-1) square whose centre is in the rule's range is split,
+//    together with every coarser square containing it, so the leaves there get level >= m.
+//    A depth rule's range is depth (positive down, = -elevation) in [min_depth_m, max_depth_m),
+//    sampled from the raster at the centre (NaN: not in range). A box rule's range is
+//    lat_min <= φ <= lat_max and λ in [lon_min, lon_max] modulo 360 (lon_max < lon_min means the
+//    box crosses the antimeridian). Centres are taken in the lattice (rotated) system and mapped
+//    to geographic (λ, φ) through the PoleRotation. Where several rules apply the finest level
+//    wins; level 0 asks nothing.
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <vector>
+
+#include "config/options.hpp"
+#include "core/bitmap.hpp"
+#include "core/lattice.hpp"
+#include "core/rotation.hpp"
+
+namespace aq::raster {
+class Bathymetry;
+}
+
+namespace aq::quadtree {
+
+/// A quadtree leaf: the square (a, b) of level `level` (0 <= level <= L, 0 <= a < nx_l,
+/// 0 <= b < ny_l). Plain data; the pixel extent follows from core/lattice.hpp.
+struct Leaf {
+  std::int32_t level = 0;
+  std::int64_t a = 0;
+  std::int64_t b = 0;
+  friend bool operator==(const Leaf&, const Leaf&) = default;
+};
+
+/// Pixels per side of a leaf: 2^(L - level).
+inline std::int64_t leaf_size(const Lattice& lat, const Leaf& f) { return lat.pixels_per_square(f.level); }
+/// Column of the leaf's SW pixel (= I of its SW corner vertex).
+inline std::int64_t leaf_i0(const Lattice& lat, const Leaf& f) { return f.a * leaf_size(lat, f); }
+/// Row of the leaf's SW pixel (= J of its SW corner vertex).
+inline std::int64_t leaf_j0(const Lattice& lat, const Leaf& f) { return f.b * leaf_size(lat, f); }
+
+/// Sort key of the deterministic leaf order: level-0 square row-major, then Morton of the SW
+/// pixel inside it. Keys of non-overlapping leaves are distinct.
+struct LeafKey {
+  std::uint64_t root = 0;    ///< b0 · nx_0 + a0 of the level-0 square
+  std::uint64_t morton = 0;  ///< Morton key of the pixel's offset inside the level-0 square
+  auto operator<=>(const LeafKey&) const = default;
+};
+/// Key of pixel (i, j), 0 <= i < nx, 0 <= j < ny.
+LeafKey pixel_key(const Lattice& lat, std::int64_t i, std::int64_t j);
+/// Key of a leaf (the key of its SW pixel).
+LeafKey leaf_key(const Lattice& lat, const Leaf& f);
+
+/// The quadtree as a pyramid of bitmaps (see the file comment). omega has L+1 levels; any has
+/// L+1 entries of which any[L] is left empty: use any_at(), which returns omega[L] for l = L.
+struct LevelMasks {
+  std::vector<Bitmap> omega;
+  std::vector<Bitmap> any;
+  [[nodiscard]] int levels() const { return static_cast<int>(omega.size()) - 1; }
+  [[nodiscard]] const Bitmap& any_at(int l) const { return l == levels() ? omega.back() : any[static_cast<std::size_t>(l)]; }
+  [[nodiscard]] const Bitmap& filled() const { return omega.back(); }
+};
+
+/// Pixels of the coastal band of radius `band` >= 0 (see the file comment); empty for band = 0.
+/// Cost O((log band + 2·band + 1) · N / 64) word operations.
+Bitmap coastal_band(const Bitmap& filled, int band);
+
+/// The pyramid of Ω_l (the bare D_l rule when coast_band = 0, else with the coastal band split
+/// to level L). `filled` must be lat.nx × lat.ny; throws InternalError otherwise and ConfigError
+/// (naming quadtree.coast_band) for a negative band. O(N / 64) word operations, parallel.
+LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band);
+
+/// Applies the depth and box rules of `options` in place (see the file comment). `bathy` may be
+/// null when there are no depth rules. Throws ConfigError naming quadtree.depth_rules[k] /
+/// quadtree.box_rules[k] for a level outside 0..L, an empty depth range or an inverted latitude
+/// range, and InternalError when depth rules are given without a raster.
+void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
+                            const PoleRotation& rotation, const raster::Bathymetry* bathy);
+
+/// Leaves of the pyramid in the deterministic order. Parallel over level-0 squares.
+std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat);
+
+/// Number of leaves per level (index = level, L+1 entries), counted on the bitmaps.
+std::vector<std::int64_t> count_leaves_per_level(const LevelMasks& masks);
+
+/// Whether `leaves` are in the deterministic order with strictly increasing keys.
+bool leaves_sorted(const std::vector<Leaf>& leaves, const Lattice& lat);
+
+/// The filled pixels covered by `leaves` (any order). Throws InternalError when leaves overlap
+/// (their pixel count differs from the covered count) or lie outside the lattice.
+Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat);
+
+/// The pyramid of a leaf set (inverse of extract_leaves for sorted, non-overlapping leaves).
+/// Throws InternalError when the leaves are not sorted or overlap.
+LevelMasks masks_from_leaves(const std::vector<Leaf>& leaves, const Lattice& lat);
+
+/// Finds the leaf holding a pixel by binary search on the leaf order, O(log n).
+class LeafLocator {
+public:
+  /// Keeps a reference to `leaves`, which must outlive the locator. Throws InternalError when
+  /// the leaves are not in the deterministic order.
+  LeafLocator(const std::vector<Leaf>& leaves, const Lattice& lat);
+  /// Index of the leaf containing pixel (i mod nx, j), or -1 when the pixel is not covered or
+  /// j is outside [0, ny).
+  [[nodiscard]] std::int64_t find(std::int64_t i, std::int64_t j) const;
+
+private:
+  const std::vector<Leaf>& leaves_;
+  Lattice lat_;
+  std::vector<LeafKey> keys_;
+};
+
+}  // namespace aq::quadtree
