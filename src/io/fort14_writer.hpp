@@ -1,0 +1,45 @@
+// ADCIRC grid and boundary information file (fort.14), as described in the ADCIRC technical
+// reference (adcirc.github.io/adcirc/technical_reference/input_files/fort14.html):
+//
+//   AGRID                              title line
+//   NE NP                              triangles, nodes
+//   JN X Y DP                          NP lines: 1-based id, longitude, latitude (degrees),
+//                                      depth below the datum in metres (positive down)
+//   JE 3 NM1 NM2 NM3                   NE lines: 1-based triangle, anticlockwise
+//   NOPE = 0, NETA = 0                 no open boundaries (a global mesh is closed)
+//   NBOU, NVEL                         land boundaries, their total node count
+//   NVELL IBTYPE, then NVELL node ids  per boundary loop
+//
+// Choices:
+// - Land boundaries: one per boundary loop of the mesh, in loop order (wet area on the left,
+//   i.e. anticlockwise around the water), closed by repeating the first node at the end (a
+//   convention ADCIRC mesh checkers accept for closed boundaries). IBTYPE 0 (mainland) for the
+//   outer loop (Mesh::loops[k].outer, the loop of largest extent), IBTYPE 1 (island) for every
+//   other loop, including the pole line φ = 90° of an unrotated mesh, which is a wall at the
+//   pole singularity.
+// - Longitudes are written wrapped into [-180, 180). Elements at the seam/antimeridian are kept
+//   as they are and join nodes near +180 to nodes near -180: that is how global ADCIRC meshes
+//   are stored (ADCIRC's global mode, adcirc/adcirc PR #171, corrects the element geometry
+//   across the ±180° overlap; OceanMesh2D global meshes use the same layout). No nodes are
+//   duplicated, so the mesh stays topologically closed across the seam.
+// - Pole-row nodes are kept (distinct nodes at latitude 90°); only triangles are written.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "io/write_stats.hpp"
+#include "mesh/mesh.hpp"
+
+namespace aq::io {
+
+struct Fort14Options {
+  std::string title = "aquatoria global ocean mesh";  ///< AGRID (cut to 80 characters, one line)
+};
+
+/// Writes the triangles of `mesh` to `path` (a temporary path of an OutputSet). Throws
+/// OutputError naming the path on any write failure, InternalError when the mesh has no
+/// triangles or inconsistent arrays. WriteStats::boundary_edges counts the land boundary edges.
+WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& path, const Fort14Options& options = {});
+
+}  // namespace aq::io
