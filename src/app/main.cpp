@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
 
   aq::app::add_info_command(app, ctx);
   // SUBCOMMANDS: one line each (keep this list in the order of `aquatoria --help`).
+  aq::app::add_check_command(app, ctx);
 
   try {
     app.parse(argc, argv);
