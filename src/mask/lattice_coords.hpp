@@ -1,0 +1,94 @@
+// Named conversions between the index spaces of the mask stage (ARCHITECTURE §3, seed 002 §2):
+// pixels (i, j), lattice vertices (I, J), K-windows (lower-left pixel), lattice (rotated) degrees
+// and geographic degrees. Every place that converts goes through these functions.
+//
+//   φ = -90 + (j+1)Δ  +-------+-------+
+//                     | (i,j) |(i+1,j)|      pixel (i, j) has lower-left vertex (I, J) = (i, j)
+//   φ = -90 +  j   Δ  o-------+-------+      and centre (λ0 + (i+½)Δ, -90 + (j+½)Δ)
+//                   λ0+iΔ   λ0+(i+1)Δ        i is periodic mod nx, j in [0, ny), J in [0, ny]
+//
+// A K-window "at (i, j)" is the K×K block of pixels [i, i+K) × [j, j+K) (i wraps over the seam).
+// With a PoleRotation the λ, φ above are rotated coordinates; `to_geographic` maps them back.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "core/lattice.hpp"
+#include "core/rotation.hpp"
+#include "core/types.hpp"
+
+namespace aq::mask {
+
+/// A pixel (or window lower-left pixel, or lattice vertex) by its integer lattice indices.
+struct PixelIJ {
+  std::int64_t i = 0;  ///< column, 0 <= i < nx
+  std::int64_t j = 0;  ///< row, 0 <= j < ny (vertices: 0 <= J <= ny)
+  friend bool operator==(const PixelIJ&, const PixelIJ&) = default;
+};
+
+/// A point in geographic or lattice (rotated) degrees.
+struct LonLat {
+  double lon_deg = 0.0;
+  double lat_deg = 0.0;
+};
+
+/// Row-major pixel index j·nx + i.
+[[nodiscard]] inline PixelIndex pixel_index(PixelIJ p, std::int64_t nx) { return p.j * nx + p.i; }
+
+/// Lattice (rotated) coordinates of vertex (I, J); I may be any integer (periodic).
+[[nodiscard]] inline LonLat vertex_lattice_deg(const Lattice& lat, std::int64_t I, std::int64_t J) {
+  return {lat.lon_of(I), lat.lat_of(J)};
+}
+
+/// Lattice (rotated) coordinates of a point given in fractional pixel units (x along λ from the
+/// seam, y along φ from the South pole).
+[[nodiscard]] inline LonLat lattice_xy_to_deg(const Lattice& lat, double x, double y) {
+  return {lat.lon0_deg + x * lat.pixel_deg(), -90.0 + y * lat.pixel_deg()};
+}
+
+/// Fractional pixel coordinates of a lattice-degree point: x in [0, nx), y in [0, ny].
+inline void deg_to_lattice_xy(const Lattice& lat, LonLat p, double& x, double& y) {
+  const double nx = static_cast<double>(lat.nx);
+  x = (wrap_lon_deg(p.lon_deg, lat.lon0_deg) - lat.lon0_deg) / lat.pixel_deg();
+  if (x >= nx) x -= nx;
+  if (x < 0.0) x = 0.0;
+  y = (p.lat_deg + 90.0) / lat.pixel_deg();
+}
+
+/// Lattice (rotated) coordinates of the centre of pixel (i, j).
+[[nodiscard]] inline LonLat pixel_center_lattice_deg(const Lattice& lat, PixelIJ p) {
+  return lattice_xy_to_deg(lat, static_cast<double>(p.i) + 0.5, static_cast<double>(p.j) + 0.5);
+}
+
+/// Lattice (rotated) coordinates of the centre of the K-window at (i, j).
+[[nodiscard]] inline LonLat window_center_lattice_deg(const Lattice& lat, PixelIJ w, int k) {
+  const double h = 0.5 * static_cast<double>(k);
+  return lattice_xy_to_deg(lat, static_cast<double>(w.i) + h, static_cast<double>(w.j) + h);
+}
+
+/// Lattice (rotated) -> geographic degrees (identity without rotation; λ in (-180, 180] with).
+[[nodiscard]] inline LonLat lattice_to_geographic(const PoleRotation& rot, LonLat p) {
+  LonLat g;
+  rot.to_geographic(p.lon_deg, p.lat_deg, g.lon_deg, g.lat_deg);
+  return g;
+}
+
+/// Geographic -> lattice (rotated) degrees.
+[[nodiscard]] inline LonLat geographic_to_lattice(const PoleRotation& rot, LonLat p) {
+  LonLat r;
+  rot.to_rotated(p.lon_deg, p.lat_deg, r.lon_deg, r.lat_deg);
+  return r;
+}
+
+/// Great-circle angle between two points, degrees in [0, 180] (haversine form, accurate for
+/// small angles).
+[[nodiscard]] inline double angular_distance_deg(LonLat a, LonLat b) {
+  const double p1 = a.lat_deg * kDegToRad, p2 = b.lat_deg * kDegToRad;
+  const double dp = p2 - p1, dl = (b.lon_deg - a.lon_deg) * kDegToRad;
+  const double s = std::sin(0.5 * dp), t = std::sin(0.5 * dl);
+  const double h = s * s + std::cos(p1) * std::cos(p2) * t * t;
+  return 2.0 * std::asin(std::sqrt(h < 1.0 ? h : 1.0)) * kRadToDeg;
+}
+
+}  // namespace aq::mask
