@@ -1,0 +1,315 @@
+// Pixel classes (seed 002 §2; ARCHITECTURE §4.2): vertex sampling row by row into a wet-vertex
+// bitmap, the 4-vertex rule by word arithmetic, and the optional area rule.
+#include "mask/pixel_classes.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.hpp"
+#include "mask/bit_rows.hpp"
+#include "mask/lattice_coords.hpp"
+
+namespace aq::mask {
+
+namespace {
+
+// Progress of a parallel loop over rows with schedule(static) and no barriers: thread 0 (the
+// calling thread) reports the fraction of its own contiguous chunk done, which tracks the whole
+// loop; the owner calls finish() after the loop. One parallel region per pass keeps the cost of
+// barriers out of the loop (they are expensive when the cores are shared).
+class RowProgress {
+public:
+  RowProgress(const ProgressFn& fn, std::int64_t rows, const char* label) : fn_(fn), rows_(rows), label_(label) {}
+  // Call once per row from inside the loop.
+  void row_done() {
+    if (!fn_) return;
+#ifdef _OPENMP
+    if (omp_get_thread_num() != 0) return;
+    const std::int64_t t = omp_get_num_threads();
+#else
+    const std::int64_t t = 1;
+#endif
+    const std::int64_t chunk = rows_ / t + (rows_ % t != 0 ? 1 : 0);  // thread 0's static chunk
+    ++done_;
+    const std::int64_t pct = 100 * done_ / std::max<std::int64_t>(chunk, 1);
+    if (pct != last_pct_ && pct < 100) {
+      last_pct_ = pct;
+      fn_(static_cast<double>(pct) / 100.0, label_);
+    }
+  }
+  void finish() const {
+    if (fn_) fn_(1.0, label_);
+  }
+
+private:
+  const ProgressFn& fn_;
+  std::int64_t rows_;
+  const char* label_;
+  std::int64_t done_ = 0;
+  std::int64_t last_pct_ = -1;
+};
+
+// out bit k = (values[k] <= threshold) for k < n; NaN compares false (dry).
+template <typename T>
+void threshold_row(const T* values, std::int64_t n, double threshold, std::uint64_t* out) {
+  const std::int64_t nw = bits::words_for(n);
+  for (std::int64_t w = 0; w < nw; ++w) {
+    const std::int64_t i0 = w << 6;
+    const int len = static_cast<int>(std::min<std::int64_t>(64, n - i0));
+    std::uint64_t word = 0;
+    for (int b = 0; b < len; ++b)
+      word |= static_cast<std::uint64_t>(static_cast<double>(values[i0 + b]) <= threshold) << b;
+    out[w] = word;
+  }
+}
+
+// Lattices with fewer samples than this are classified by one thread.
+constexpr std::int64_t kParallelMinSamples = std::int64_t{1} << 16;
+
+void check_depth(double h) {
+  if (!std::isfinite(h) || h < 0.0)
+    throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", h));
+}
+
+// Vertex rule through the pole rotation: per row, lattice -> geographic, sample_points (which
+// runs serially inside this parallel region).
+void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                    double threshold, const ProgressFn& progress, Bitmap& wv) {
+  const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
+  RowProgress rp(progress, nv, "vertices");
+#pragma omp parallel default(none) shared(bathy, lattice, rot, wv, rp, nx, nv, threshold) if (nx * nv >= kParallelMinSamples)
+  {
+    std::vector<double> lon(static_cast<std::size_t>(nx)), lat(lon.size()), val(lon.size());
+#pragma omp for schedule(static)
+    for (std::int64_t J = 0; J < nv; ++J) {
+      for (std::int64_t I = 0; I < nx; ++I) {
+        const LonLat g = lattice_to_geographic(rot, vertex_lattice_deg(lattice, I, J));
+        lon[static_cast<std::size_t>(I)] = g.lon_deg;
+        lat[static_cast<std::size_t>(I)] = g.lat_deg;
+      }
+      bathy.sample_points(lon.data(), lat.data(), nx, val.data());
+      threshold_row(val.data(), nx, threshold, wv.row(J));
+      rp.row_done();
+    }
+  }
+  rp.finish();
+}
+
+// Per-row accumulation of the area rule: has a point, all points wet, some point wet.
+struct AreaFlags {
+  std::vector<unsigned char> has, all_wet, any_wet;
+  explicit AreaFlags(std::int64_t n)
+      : has(static_cast<std::size_t>(n)), all_wet(has.size()), any_wet(has.size()) {}
+  void reset() {
+    std::fill(has.begin(), has.end(), 0);
+    std::fill(all_wet.begin(), all_wet.end(), 1);
+    std::fill(any_wet.begin(), any_wet.end(), 0);
+  }
+  void add(std::int64_t i, bool wet) {
+    const auto s = static_cast<std::size_t>(i);
+    has[s] = 1;
+    all_wet[s] = static_cast<unsigned char>(all_wet[s] & static_cast<unsigned char>(wet));
+    any_wet[s] = static_cast<unsigned char>(any_wet[s] | static_cast<unsigned char>(wet));
+  }
+  // Overwrites the vertex-rule classes of pixels that had points.
+  void store(std::int64_t nx, std::uint64_t* wet_row, std::uint64_t* coastal_row) const {
+    for (std::int64_t i = 0; i < nx; ++i) {
+      const auto s = static_cast<std::size_t>(i);
+      if (has[s] == 0) continue;
+      const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+      const std::int64_t w = i >> 6;
+      wet_row[w] = all_wet[s] != 0 ? (wet_row[w] | bit) : (wet_row[w] & ~bit);
+      coastal_row[w] = (any_wet[s] != 0 && all_wet[s] == 0) ? (coastal_row[w] | bit) : (coastal_row[w] & ~bit);
+    }
+  }
+};
+
+// Area rule, lattice aligned with the raster axes: raster points inside each closed pixel.
+void classify_area_aligned(const raster::Bathymetry& bathy, const Lattice& lattice, double threshold,
+                           const ProgressFn& progress, Bitmap& wet, Bitmap& coastal) {
+  const auto& in = bathy.info();
+  const std::int64_t nx = lattice.nx, ny = lattice.ny;
+  const double eps = 1e-9;
+  const double d = lattice.pixel_deg();
+  // Raster column range [c_lo, c_hi] (unwrapped) of each pixel column.
+  std::vector<std::int64_t> c_lo(static_cast<std::size_t>(nx)), c_hi(c_lo.size());
+  const double width = static_cast<double>(in.ncols) * in.dlon;
+  const double west = in.global_lon ? in.lon_first : in.lon_first - 0.5 * (360.0 - width);
+  for (std::int64_t i = 0; i < nx; ++i) {
+    const double x = (wrap_lon_deg(lattice.lon_of(i), west) - in.lon_first) / in.dlon;
+    auto lo = static_cast<std::int64_t>(std::ceil(x - eps));
+    auto hi = static_cast<std::int64_t>(std::floor(x + d / in.dlon + eps));
+    if (!in.global_lon) {
+      lo = std::max<std::int64_t>(lo, 0);
+      hi = std::min<std::int64_t>(hi, in.ncols - 1);
+    }
+    c_lo[static_cast<std::size_t>(i)] = lo;
+    c_hi[static_cast<std::size_t>(i)] = hi;
+  }
+  RowProgress rp(progress, ny, "pixels (area)");
+#pragma omp parallel default(none) shared(bathy, lattice, in, c_lo, c_hi, wet, coastal, rp, ny, nx, d, eps, threshold) \
+    if (nx * ny >= kParallelMinSamples)
+  {
+    AreaFlags flags(nx);
+#pragma omp for schedule(static)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      flags.reset();
+      const double y = (lattice.lat_of(j) - in.lat_first) / in.dlat;
+      const auto r_lo = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(y - eps)));
+      const auto r_hi =
+          std::min<std::int64_t>(in.nrows - 1, static_cast<std::int64_t>(std::floor(y + d / in.dlat + eps)));
+      for (std::int64_t r = r_lo; r <= r_hi; ++r) {
+        for (std::int64_t i = 0; i < nx; ++i) {
+          const auto s = static_cast<std::size_t>(i);
+          for (std::int64_t c = c_lo[s]; c <= c_hi[s]; ++c)
+            flags.add(i, static_cast<double>(bathy.value(c, r)) <= threshold);
+        }
+      }
+      flags.store(nx, wet.row(j), coastal.row(j));
+      rp.row_done();
+    }
+  }
+  rp.finish();
+}
+
+// Area rule through the pole rotation: (n+1)×(n+1) bilinear samples per pixel. Each thread
+// handles whole pixel rows, one sample row (nx·n points, periodic) at a time.
+void classify_area_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                           double threshold, const ProgressFn& progress, Bitmap& wet, Bitmap& coastal) {
+  const auto& in = bathy.info();
+  const std::int64_t nx = lattice.nx, ny = lattice.ny;
+  const auto n = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil(lattice.pixel_deg() / std::min(in.dlon, in.dlat) - 1e-9)));
+  const std::int64_t cols = nx * n;  // sample columns along the row (periodic)
+  const auto dn = static_cast<double>(n);
+  RowProgress rp(progress, ny, "pixels (area)");
+#pragma omp parallel default(none) shared(bathy, lattice, rot, wet, coastal, rp, nx, ny, n, dn, cols, threshold) \
+    if (nx * ny >= kParallelMinSamples)
+  {
+    std::vector<double> lon(static_cast<std::size_t>(cols)), lat(lon.size()), val(lon.size());
+    AreaFlags flags(nx);
+#pragma omp for schedule(static)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      flags.reset();
+      for (std::int64_t b = 0; b <= n; ++b) {
+        for (std::int64_t a = 0; a < cols; ++a) {
+          // Sample (a, b) of pixel row j sits at fractional pixel coordinates (a/n, j + b/n).
+          const LonLat p = lattice_xy_to_deg(lattice, static_cast<double>(a) / dn, static_cast<double>(j * n + b) / dn);
+          const LonLat g = lattice_to_geographic(rot, p);
+          lon[static_cast<std::size_t>(a)] = g.lon_deg;
+          lat[static_cast<std::size_t>(a)] = g.lat_deg;
+        }
+        bathy.sample_points(lon.data(), lat.data(), cols, val.data());
+        for (std::int64_t i = 0; i < nx; ++i)
+          for (std::int64_t a = i * n; a <= (i + 1) * n; ++a)
+            flags.add(i, val[static_cast<std::size_t>(a < cols ? a : a - cols)] <= threshold);
+      }
+      flags.store(nx, wet.row(j), coastal.row(j));
+      rp.row_done();
+    }
+  }
+  rp.finish();
+}
+
+}  // namespace
+
+Sampling parse_sampling(const std::string& name) {
+  if (name == "vertex") return Sampling::kVertex;
+  if (name == "area") return Sampling::kArea;
+  throw ConfigError(fmt::format("mask.sampling = \"{}\": must be \"vertex\" (the seed's rule) or \"area\"", name));
+}
+
+Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                           double min_depth_m, const ProgressFn& progress) {
+  check_depth(min_depth_m);
+  const double threshold = -min_depth_m;  // wet: d <= -h (at h = 0 exactly 0 m is wet)
+  const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
+  Bitmap wv(nx, nv);
+  if (!rot.identity()) {
+    sample_rotated(bathy, lattice, rot, threshold, progress, wv);
+    return wv;
+  }
+  std::vector<double> lons(static_cast<std::size_t>(nx));
+  for (std::int64_t I = 0; I < nx; ++I) lons[static_cast<std::size_t>(I)] = vertex_lattice_deg(lattice, I, 0).lon_deg;
+  const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), nx);
+  RowProgress rp(progress, nv, "vertices");
+#pragma omp parallel default(none) shared(bathy, lattice, cols, wv, rp, nv, nx, threshold) if (nx * nv >= kParallelMinSamples)
+  {
+    std::vector<float> buf(static_cast<std::size_t>(nx));
+#pragma omp for schedule(static)
+    for (std::int64_t J = 0; J < nv; ++J) {
+      bathy.sample_row(cols, vertex_lattice_deg(lattice, 0, J).lat_deg, buf.data());
+      threshold_row(buf.data(), nx, threshold, wv.row(J));
+      rp.row_done();
+    }
+  }
+  rp.finish();
+  return wv;
+}
+
+void classify_from_vertices(const Bitmap& wet_vertices, Bitmap& wet, Bitmap& coastal) {
+  const std::int64_t nx = wet_vertices.nx(), ny = wet_vertices.ny() - 1;
+  wet = Bitmap(nx, std::max<std::int64_t>(ny, 0));
+  coastal = Bitmap(nx, std::max<std::int64_t>(ny, 0));
+  const std::int64_t nw = wet_vertices.words_per_row();
+#pragma omp parallel default(none) shared(wet_vertices, wet, coastal, nx, ny, nw) if (ny * nw >= bits::kParallelMinWords)
+  {
+    // east0/east1: vertex rows J and J+1 shifted so that bit i holds vertex i+1 (periodic).
+    std::vector<std::uint64_t> east0(static_cast<std::size_t>(nw)), east1(east0.size());
+#pragma omp for schedule(static)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      const std::uint64_t* v0 = wet_vertices.row(j);
+      const std::uint64_t* v1 = wet_vertices.row(j + 1);
+      bits::rotate_row(v0, east0.data(), nx, 1, bits::Combine::kCopy);
+      bits::rotate_row(v1, east1.data(), nx, 1, bits::Combine::kCopy);
+      std::uint64_t* w = wet.row(j);
+      std::uint64_t* c = coastal.row(j);
+      for (std::int64_t k = 0; k < nw; ++k) {
+        const auto s = static_cast<std::size_t>(k);
+        const std::uint64_t all = v0[k] & east0[s] & v1[k] & east1[s];
+        const std::uint64_t any = v0[k] | east0[s] | v1[k] | east1[s];
+        w[k] = all;
+        c[k] = any & ~all;
+      }
+    }
+  }
+}
+
+PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                             const ClassifyOptions& options) {
+  check_depth(options.min_depth_m);
+  PixelClasses pc;
+  const bool area = options.sampling == Sampling::kArea;
+  ProgressFn vertex_progress;
+  if (options.progress) {
+    const ProgressFn& p = options.progress;
+    vertex_progress = [&p, area](double f, std::string_view label) { p(area ? 0.3 * f : f, label); };
+  }
+  pc.wet_vertices = sample_wet_vertices(bathy, lattice, rot, options.min_depth_m, vertex_progress);
+  classify_from_vertices(pc.wet_vertices, pc.wet, pc.coastal);
+  if (area) {
+    ProgressFn area_progress;
+    if (options.progress) {
+      const ProgressFn& p = options.progress;
+      area_progress = [&p](double f, std::string_view label) { p(0.3 + 0.7 * f, label); };
+    }
+    if (rot.identity())
+      classify_area_aligned(bathy, lattice, -options.min_depth_m, area_progress, pc.wet, pc.coastal);
+    else
+      classify_area_rotated(bathy, lattice, rot, -options.min_depth_m, area_progress, pc.wet, pc.coastal);
+  }
+  pc.wet_vertex_count = pc.wet_vertices.count();
+  pc.wet_count = pc.wet.count();
+  pc.coastal_count = pc.coastal.count();
+  pc.dry_count = lattice.pixel_count() - pc.wet_count - pc.coastal_count;
+  return pc;
+}
+
+}  // namespace aq::mask
