@@ -1,0 +1,280 @@
+// Critical passages: the built-in table and the box-restricted connectivity test (passages.hpp).
+#include "mask/passages.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/types.hpp"
+#include "mask/lattice_coords.hpp"
+
+namespace aq::mask {
+
+namespace {
+
+// Boxes are {lon_min, lon_max, lat_min, lat_max} in geographic degrees (east and north positive).
+// Each box spans the strait; sides A and B are open water at its two ends. Inside each box the
+// only water route between the sides is the strait itself (alternative routes, e.g. around
+// Iceland, Newfoundland, Taiwan or Sicily, leave the box). Checked on ETOPO5: every 5' sample
+// point of every side box is water (<= 0 m), and on the ETOPO5 wet pixels at 1.875' every passage
+// is open except the Bosphorus, which ETOPO5 does not have (+2..+6 m across 28.7-29.5°E at
+// 41.08-41.17°N); see tests/integration/mask_etopo5_test.cpp.
+constexpr std::array<Passage, 30> kPassages{{
+    {"Gibraltar", "Gulf of Cadiz", "Alboran Sea",
+     {-7.0, -4.0, 35.0, 37.0}, {-7.0, -6.4, 35.6, 36.4}, {-4.8, -4.0, 35.6, 36.3}},
+    {"Bosphorus", "Sea of Marmara", "Black Sea",
+     {28.3, 29.6, 40.6, 41.6}, {28.3, 28.9, 40.65, 40.9}, {29.0, 29.6, 41.35, 41.6}},
+    {"Bering", "Bering Sea", "Chukchi Sea",
+     {-171.0, -167.0, 64.0, 67.3}, {-170.5, -168.0, 64.2, 64.8}, {-170.5, -167.5, 66.5, 67.2}},
+    {"Bab-el-Mandeb", "Red Sea", "Gulf of Aden",
+     {42.0, 44.5, 11.7, 14.9}, {42.2, 42.9, 13.9, 14.5}, {43.6, 44.4, 11.8, 12.3}},
+    {"Hormuz", "Persian Gulf", "Gulf of Oman",
+     {54.8, 57.8, 24.8, 27.0}, {54.8, 55.6, 26.0, 26.4}, {57.0, 57.8, 24.8, 25.4}},
+    {"Malacca/Singapore", "Strait of Malacca", "South China Sea",
+     {100.3, 105.3, 0.8, 3.3}, {100.3, 101.0, 2.7, 3.3}, {104.6, 105.3, 1.5, 2.2}},
+    {"Lombok", "Indian Ocean", "Bali Sea",
+     {115.2, 116.3, -9.6, -7.6}, {115.3, 116.2, -9.6, -9.1}, {115.3, 116.2, -8.0, -7.6}},
+    {"Torres", "Arafura Sea", "Coral Sea",
+     {140.5, 144.0, -11.0, -9.0}, {140.5, 141.3, -10.8, -10.0}, {143.3, 144.0, -10.5, -9.8}},
+    {"Bass", "Indian Ocean", "Tasman Sea",
+     {142.0, 149.8, -41.0, -38.9}, {142.0, 142.8, -40.3, -39.4}, {149.0, 149.8, -40.3, -39.2}},
+    {"Fram", "Greenland Sea", "Arctic Ocean",
+     {-10.0, 8.0, 76.0, 82.5}, {-5.0, 5.0, 76.0, 77.0}, {-5.0, 5.0, 81.5, 82.5}},
+    {"Nares", "Baffin Bay", "Lincoln Sea",
+     {-78.0, -50.0, 76.5, 83.2}, {-76.0, -72.0, 76.5, 77.2}, {-60.0, -54.0, 82.6, 83.2}},
+    {"Davis", "Labrador Sea", "Baffin Bay",
+     {-64.0, -54.0, 63.5, 70.0}, {-60.0, -56.0, 63.5, 64.5}, {-62.0, -58.0, 69.0, 70.0}},
+    {"Belle Isle", "Gulf of St. Lawrence", "Labrador Sea",
+     {-58.6, -54.2, 50.4, 52.4}, {-58.6, -57.9, 50.4, 50.9}, {-55.0, -54.2, 51.8, 52.3}},
+    {"Florida", "Gulf of Mexico", "Atlantic Ocean",
+     {-84.5, -79.4, 22.8, 26.5}, {-84.5, -83.5, 23.5, 24.3}, {-79.9, -79.5, 25.2, 26.3}},
+    {"Yucatan", "Caribbean Sea", "Gulf of Mexico",
+     {-87.0, -84.8, 20.2, 23.8}, {-86.5, -85.5, 20.2, 20.8}, {-86.5, -85.5, 23.0, 23.8}},
+    {"Drake", "Pacific Ocean", "Scotia Sea",
+     {-72.0, -56.0, -61.0, -56.2}, {-72.0, -70.0, -60.0, -57.0}, {-58.0, -56.0, -59.0, -57.0}},
+    {"Denmark", "Irminger Sea", "Iceland Sea",
+     {-33.0, -17.0, 64.0, 68.5}, {-33.0, -28.0, 64.0, 65.0}, {-22.0, -17.0, 67.5, 68.5}},
+    {"Dover", "English Channel", "North Sea",
+     {0.0, 2.8, 50.2, 51.8}, {0.0, 0.8, 50.2, 50.6}, {2.0, 2.8, 51.4, 51.8}},
+    {"Danish straits", "Kattegat", "Baltic Sea",
+     {9.5, 13.6, 54.3, 57.0}, {11.0, 11.8, 56.5, 57.0}, {12.8, 13.6, 54.75, 55.2}},
+    {"Kerch", "Black Sea", "Sea of Azov",
+     {35.8, 37.2, 44.5, 46.0}, {36.2, 37.0, 44.5, 44.85}, {36.0, 36.8, 45.6, 46.0}},
+    {"Tsugaru", "Sea of Japan", "Pacific Ocean",
+     {138.8, 142.6, 40.9, 41.9}, {138.8, 139.6, 41.0, 41.6}, {141.8, 142.6, 41.0, 41.6}},
+    {"Korea", "East China Sea", "Sea of Japan",
+     {127.8, 131.2, 33.3, 35.8}, {127.8, 128.8, 33.5, 34.2}, {130.3, 131.2, 35.2, 35.8}},
+    {"La Perouse", "Sea of Japan", "Sea of Okhotsk",
+     {140.3, 143.4, 45.1, 46.2}, {140.3, 141.0, 45.6, 46.2}, {142.7, 143.4, 45.2, 45.8}},
+    {"Taiwan", "East China Sea", "South China Sea",
+     {118.5, 121.4, 22.3, 26.2}, {120.4, 121.2, 25.6, 26.2}, {118.5, 119.5, 22.3, 22.9}},
+    {"Messina", "Tyrrhenian Sea", "Ionian Sea",
+     {15.2, 16.0, 37.55, 38.7}, {15.3, 15.75, 38.35, 38.7}, {15.35, 15.9, 37.55, 37.85}},
+    {"Sicily", "Western Mediterranean", "Eastern Mediterranean",
+     {10.0, 14.0, 35.5, 38.4}, {10.0, 11.0, 37.6, 38.4}, {13.0, 14.0, 35.9, 36.6}},
+    {"Luzon", "South China Sea", "Philippine Sea",
+     {118.5, 123.5, 18.8, 21.8}, {118.5, 119.5, 19.5, 21.0}, {122.5, 123.5, 19.5, 21.0}},
+    {"Hudson", "Hudson Bay", "Labrador Sea",
+     {-82.0, -62.5, 60.0, 64.0}, {-82.0, -80.8, 61.0, 61.5}, {-63.8, -62.5, 60.8, 61.5}},
+    {"Barrow", "Lancaster Sound", "Viscount Melville Sound",
+     {-104.0, -83.0, 73.5, 75.0}, {-85.0, -83.0, 74.0, 74.4}, {-104.0, -101.0, 74.2, 74.6}},
+    {"Juan de Fuca", "Pacific Ocean", "Salish Sea",
+     {-126.0, -122.8, 47.9, 48.7}, {-126.0, -125.2, 47.9, 48.4}, {-123.3, -122.8, 48.15, 48.35}},
+}};
+
+// Cell flags of the local grid.
+enum : unsigned char { kInBox = 1, kSideA = 2, kSideB = 4, kFilled = 8, kSeen = 16 };
+
+// Largest great-circle distance from the box centre to its outline (degrees).
+double box_radius_deg(const GeoBox& b, LonLat c) {
+  double r = 0.0;
+  constexpr int kSteps = 16;
+  for (int s = 0; s <= kSteps; ++s) {
+    const double t = static_cast<double>(s) / kSteps;
+    const double lon = b.lon_min_deg + t * (b.lon_max_deg - b.lon_min_deg);
+    const double lat = b.lat_min_deg + t * (b.lat_max_deg - b.lat_min_deg);
+    for (const LonLat q : {LonLat{lon, b.lat_min_deg}, LonLat{lon, b.lat_max_deg}, LonLat{b.lon_min_deg, lat},
+                           LonLat{b.lon_max_deg, lat}})
+      r = std::max(r, angular_distance_deg(c, q));
+  }
+  return r;
+}
+
+}  // namespace
+
+bool GeoBox::contains(double lon_deg, double lat_deg) const {
+  if (lat_deg < lat_min_deg || lat_deg > lat_max_deg) return false;
+  return wrap_lon_deg(lon_deg, lon_min_deg) <= lon_max_deg;
+}
+
+std::span<const Passage> critical_passages() { return kPassages; }
+
+const char* passage_status_name(PassageStatus s) {
+  switch (s) {
+    case PassageStatus::kOpen: return "open";
+    case PassageStatus::kClosed: return "closed";
+    case PassageStatus::kNotResolvable: return "not resolvable";
+  }
+  return "?";
+}
+
+PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattice& lattice,
+                            const PoleRotation& rot) {
+  PassageResult res;
+  res.name = p.name;
+  res.box = p.box;
+  const double dpx = lattice.pixel_deg();
+  const GeoBox& b = p.box;
+  const double mid_lat = 0.5 * (b.lat_min_deg + b.lat_max_deg);
+  const double width = (b.lon_max_deg - b.lon_min_deg) * std::cos(mid_lat * kDegToRad);
+  const double height = b.lat_max_deg - b.lat_min_deg;
+  if (width < dpx || height < dpx) {
+    res.status = PassageStatus::kNotResolvable;
+    res.note = fmt::format("box {:.2f}° × {:.2f}° (great-circle) is smaller than a pixel of {:g}°", width, height,
+                           dpx);
+    return res;
+  }
+  // Local grid of lattice pixels around the box: rows by latitude, columns by the cap's λ extent.
+  const LonLat centre{b.lon_min_deg + 0.5 * (b.lon_max_deg - b.lon_min_deg), mid_lat};
+  const LonLat rc = geographic_to_lattice(rot, centre);
+  const double radius = box_radius_deg(b, centre) + dpx;
+  const std::int64_t nx = lattice.nx, ny = lattice.ny;
+  const std::int64_t j0 = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((rc.lat_deg - radius + 90.0) / dpx)) - 1);
+  const std::int64_t j1 =
+      std::min<std::int64_t>(ny - 1, static_cast<std::int64_t>(std::ceil((rc.lat_deg + radius + 90.0) / dpx)) + 1);
+  std::int64_t i0 = 0, cols = nx;
+  bool wrap = true;
+  const double clat = std::cos(rc.lat_deg * kDegToRad), srad = std::sin(std::min(radius, 90.0) * kDegToRad);
+  if (std::abs(rc.lat_deg) + radius < 89.0 && srad < clat) {
+    const auto w = static_cast<std::int64_t>(std::ceil(std::asin(srad / clat) * kRadToDeg / dpx)) + 2;
+    if (2 * w + 1 < nx) {
+      double x = 0.0, y = 0.0;
+      deg_to_lattice_xy(lattice, rc, x, y);
+      i0 = static_cast<std::int64_t>(std::floor(x)) - w;
+      cols = 2 * w + 1;
+      wrap = false;
+    }
+  }
+  const std::int64_t rows = j1 - j0 + 1;
+  std::vector<unsigned char> cell(static_cast<std::size_t>(std::max<std::int64_t>(rows, 0) * cols), 0);
+  const auto at = [cols](std::int64_t x, std::int64_t y) { return static_cast<std::size_t>(y * cols + x); };
+  std::int64_t in_a = 0, in_b = 0;
+  for (std::int64_t y = 0; y < rows; ++y) {
+    for (std::int64_t x = 0; x < cols; ++x) {
+      const PixelIJ px{wrap_index(i0 + x, nx), j0 + y};
+      const LonLat g = lattice_to_geographic(rot, pixel_center_lattice_deg(lattice, px));
+      if (!b.contains(g.lon_deg, g.lat_deg)) continue;
+      unsigned char f = kInBox;
+      if (p.side_a.contains(g.lon_deg, g.lat_deg)) {
+        f |= kSideA;
+        ++in_a;
+      }
+      if (p.side_b.contains(g.lon_deg, g.lat_deg)) {
+        f |= kSideB;
+        ++in_b;
+      }
+      ++res.pixels_in_box;
+      if (filled.get(px.i, px.j)) {
+        f |= kFilled;
+        ++res.filled_in_box;
+        if ((f & kSideA) != 0) ++res.filled_side_a;
+        if ((f & kSideB) != 0) ++res.filled_side_b;
+      }
+      cell[at(x, y)] = f;
+    }
+  }
+  if (in_a == 0 || in_b == 0) {
+    res.status = PassageStatus::kNotResolvable;
+    res.note = fmt::format("side {} ({}) holds no pixel centre", in_a == 0 ? "A" : "B",
+                           in_a == 0 ? p.side_a_name : p.side_b_name);
+    return res;
+  }
+  // 4-connected search through filled in-box pixels from side A.
+  std::vector<std::int64_t> stack;
+  for (std::int64_t q = 0; q < rows * cols; ++q) {
+    auto& f = cell[static_cast<std::size_t>(q)];
+    if ((f & (kSideA | kFilled)) == (kSideA | kFilled)) {
+      f |= kSeen;
+      stack.push_back(q);
+    }
+  }
+  bool open = false;
+  while (!stack.empty() && !open) {
+    const std::int64_t q = stack.back();
+    stack.pop_back();
+    if ((cell[static_cast<std::size_t>(q)] & kSideB) != 0) {
+      open = true;
+      break;
+    }
+    const std::int64_t x = q % cols, y = q / cols;
+    std::int64_t xl = x - 1, xr = x + 1;
+    if (wrap) {
+      xl = wrap_index(xl, cols);
+      xr = wrap_index(xr, cols);
+    }
+    const std::int64_t nb[4][2] = {{xl, y}, {xr, y}, {x, y - 1}, {x, y + 1}};
+    for (const auto& n : nb) {
+      if (n[0] < 0 || n[0] >= cols || n[1] < 0 || n[1] >= rows) continue;
+      auto& f = cell[at(n[0], n[1])];
+      if ((f & (kInBox | kFilled)) != (kInBox | kFilled) || (f & kSeen) != 0) continue;
+      f |= kSeen;
+      stack.push_back(n[1] * cols + n[0]);
+    }
+  }
+  if (open) {
+    res.status = PassageStatus::kOpen;
+  } else {
+    res.status = PassageStatus::kClosed;
+    if (res.filled_side_a == 0 || res.filled_side_b == 0)
+      res.note = fmt::format("no filled pixel on side {} ({})", res.filled_side_a == 0 ? "A" : "B",
+                             res.filled_side_a == 0 ? p.side_a_name : p.side_b_name);
+    else
+      res.note = fmt::format("{} and {} not connected inside the box", p.side_a_name, p.side_b_name);
+  }
+  return res;
+}
+
+std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const Bitmap& filled,
+                                          const Lattice& lattice, const PoleRotation& rot) {
+  std::vector<PassageResult> out;
+  out.reserve(passages.size());
+  for (const Passage& p : passages) out.push_back(judge_passage(p, filled, lattice, rot));
+  return out;
+}
+
+Json to_json(std::span<const PassageResult> results) {
+  Json arr = Json::array();
+  for (const PassageResult& r : results) {
+    arr.push_back(Json{{"name", r.name},
+                       {"status", passage_status_name(r.status)},
+                       {"box", {r.box.lon_min_deg, r.box.lon_max_deg, r.box.lat_min_deg, r.box.lat_max_deg}},
+                       {"pixels_in_box", r.pixels_in_box},
+                       {"filled_in_box", r.filled_in_box},
+                       {"filled_side_a", r.filled_side_a},
+                       {"filled_side_b", r.filled_side_b},
+                       {"note", r.note}});
+  }
+  return arr;
+}
+
+std::vector<std::string> format_passage_table(std::span<const PassageResult> results) {
+  std::vector<std::string> lines;
+  lines.push_back(fmt::format("{:<18} {:<14} {:<34} {:>13}  {}", "passage", "status", "box lon x lat (deg)",
+                              "filled/pixels", "note"));
+  int n_open = 0, n_closed = 0, n_nr = 0;
+  for (const PassageResult& r : results) {
+    if (r.status == PassageStatus::kOpen) ++n_open;
+    if (r.status == PassageStatus::kClosed) ++n_closed;
+    if (r.status == PassageStatus::kNotResolvable) ++n_nr;
+    const std::string box = fmt::format("[{:.2f}, {:.2f}] x [{:.2f}, {:.2f}]", r.box.lon_min_deg, r.box.lon_max_deg,
+                                        r.box.lat_min_deg, r.box.lat_max_deg);
+    lines.push_back(fmt::format("{:<18} {:<14} {:<34} {:>13}  {}", r.name, passage_status_name(r.status), box,
+                                fmt::format("{}/{}", r.filled_in_box, r.pixels_in_box), r.note));
+  }
+  lines.push_back(fmt::format("passages: {} open, {} closed, {} not resolvable", n_open, n_closed, n_nr));
+  return lines;
+}
+
+}  // namespace aq::mask
