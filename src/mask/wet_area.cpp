@@ -1,0 +1,155 @@
+// The mask stage entry point: classify -> K-fill -> pinches -> passages, with stage lines,
+// progress and the "mask" report section.
+#include "mask/wet_area.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace aq::mask {
+
+namespace {
+
+void validate(const config::MaskOptions& o) {
+  if (!std::isfinite(o.min_depth_m) || o.min_depth_m < 0.0)
+    throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", o.min_depth_m));
+  if (o.cursor < 1 || o.cursor > 64)
+    throw ConfigError(fmt::format("mask.cursor = {}: K must be between 1 and 64", o.cursor));
+  (void)parse_sampling(o.sampling);
+  if (!std::isfinite(o.seed_radius_deg) || o.seed_radius_deg < 0.0)
+    throw ConfigError(fmt::format("mask.seed_radius_deg = {}: must be a finite number >= 0", o.seed_radius_deg));
+  if (o.seeds.empty()) throw ConfigError("mask.seeds = []: give at least one [lon, lat] point in the ocean");
+}
+
+Json lonlat_json(LonLat p) { return Json::array({p.lon_deg, p.lat_deg}); }
+
+}  // namespace
+
+WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                         const config::MaskOptions& options, const Logger& log, Report* report) {
+  validate(options);
+  WetArea area;
+  {
+    StageScope stage("classify", report, log);
+    ClassifyOptions co;
+    co.min_depth_m = options.min_depth_m;
+    co.sampling = parse_sampling(options.sampling);
+    co.progress = log.progress("classify");
+    PixelClasses pc = classify_pixels(bathy, lattice, rot, co);
+    area.wet_vertices = std::move(pc.wet_vertices);
+    area.wet = std::move(pc.wet);
+    area.coastal = std::move(pc.coastal);
+    area.classes = {pc.wet_vertex_count, pc.wet_count, pc.coastal_count, pc.dry_count};
+    stage.done(fmt::format("{}×{} pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule)", lattice.nx,
+                           lattice.ny, lattice.pixel_deg(), pc.wet_count, pc.coastal_count, pc.dry_count,
+                           options.min_depth_m, options.sampling));
+  }
+  {
+    StageScope stage("fill", report, log);
+    KFillResult kf = k_cursor_fill(area.wet, lattice, rot, options.cursor, options.seeds, options.seed_radius_deg, log);
+    area.filled = std::move(kf.filled);
+    area.fill = kf.stats;
+    area.seeds = std::move(kf.seeds);
+    area.filled_pixels = area.fill.filled_pixels;
+    stage.done(fmt::format("K = {}: {} filled pixels ({:.1f}% of wet), {} wet pixels left out, {} wet components",
+                           options.cursor, area.fill.filled_pixels,
+                           area.fill.wet_pixels > 0 ? 100.0 * static_cast<double>(area.fill.filled_pixels) /
+                                                          static_cast<double>(area.fill.wet_pixels)
+                                                    : 0.0,
+                           area.fill.wet_left_out, area.fill.wet_components));
+  }
+  {
+    StageScope stage("pinches", report, log);
+    area.pinches.removal_requested = options.remove_pinches;
+    if (options.remove_pinches) {
+      std::vector<PixelIJ> seed_windows;
+      for (const SeedInfo& s : area.seeds) seed_windows.push_back(s.window);
+      area.pinches.removal = remove_pinches(area.filled, options.cursor, seed_windows);
+      area.filled_pixels = area.filled.count();
+    }
+    area.pinches.pinches = find_pinches(area.filled);
+    locate_pinches(area.pinches.pinches, lattice, rot);
+    area.pinches.total = static_cast<std::int64_t>(area.pinches.pinches.size());
+    if (options.remove_pinches) {
+      const PinchRemovalStats& r = area.pinches.removal;
+      stage.done(fmt::format("{} pinch vertices found, {} pixels removed in {} rounds, {} left",
+                             r.pinches_found, r.pixels_removed, r.rounds, area.pinches.total));
+    } else {
+      stage.done(fmt::format("{} pinch vertices (mask.remove_pinches = false)", area.pinches.total));
+    }
+  }
+  if (options.passages) {
+    StageScope stage("passages", report, log);
+    area.passages = judge_passages(critical_passages(), area.filled, lattice, rot);
+    int open = 0, closed = 0;
+    for (const PassageResult& p : area.passages) {
+      open += p.status == PassageStatus::kOpen ? 1 : 0;
+      closed += p.status == PassageStatus::kClosed ? 1 : 0;
+    }
+    stage.done(fmt::format("{} open, {} closed, {} not resolvable", open, closed,
+                           static_cast<int>(area.passages.size()) - open - closed));
+  }
+  if (report != nullptr) (*report)["mask"] = wet_area_json(area, options);
+  return area;
+}
+
+Json wet_area_json(const WetArea& area, const config::MaskOptions& options, std::size_t max_pinches) {
+  Json j;
+  j["min_depth_m"] = options.min_depth_m;
+  j["cursor"] = options.cursor;
+  j["sampling"] = options.sampling;
+  j["lattice"] = {{"nx", area.wet.nx()}, {"ny", area.wet.ny()}};
+  j["classes"] = {{"wet_vertices", area.classes.wet_vertices},
+                  {"wet", area.classes.wet},
+                  {"coastal", area.classes.coastal},
+                  {"dry", area.classes.dry}};
+  const FillStats& f = area.fill;
+  j["fill"] = {{"all_wet_windows", f.all_wet_windows},
+               {"reached_windows", f.reached_windows},
+               {"filled_pixels", f.filled_pixels},
+               {"filled_pixels_final", area.filled_pixels},
+               {"wet_pixels", f.wet_pixels},
+               {"wet_left_out", f.wet_left_out},
+               {"wet_components", f.wet_components},
+               {"wet_components_filled", f.wet_components_filled},
+               {"largest_wet_component", f.largest_wet_component}};
+  Json seeds = Json::array();
+  for (const SeedInfo& s : area.seeds) {
+    seeds.push_back(Json{{"index", s.index},
+                         {"requested", lonlat_json(s.requested)},
+                         {"moved", s.moved},
+                         {"moved_deg", s.moved_deg},
+                         {"window", {s.window.i, s.window.j}},
+                         {"window_center", lonlat_json(s.window_center)},
+                         {"windows_reached", s.windows_reached},
+                         {"same_fill_as", s.same_fill_as}});
+  }
+  j["seeds"] = seeds;
+  Json pin;
+  pin["total"] = area.pinches.total;
+  Json list = Json::array();
+  for (std::size_t k = 0; k < area.pinches.pinches.size() && k < max_pinches; ++k) {
+    const Pinch& p = area.pinches.pinches[k];
+    list.push_back(Json{{"vertex", {p.vertex.i, p.vertex.j}},
+                        {"pattern", pinch_pattern_name(p.pattern)},
+                        {"lattice", lonlat_json(p.lattice_pos)},
+                        {"geographic", lonlat_json(p.geographic)}});
+  }
+  pin["listed"] = list;
+  pin["remove_pinches"] = area.pinches.removal_requested;
+  if (area.pinches.removal_requested) {
+    const PinchRemovalStats& r = area.pinches.removal;
+    pin["removal"] = {{"pinches_found", r.pinches_found},
+                      {"rounds", r.rounds},
+                      {"pixels_chosen", r.pixels_chosen},
+                      {"pixels_removed", r.pixels_removed},
+                      {"unresolved", r.unresolved}};
+  }
+  j["pinches"] = pin;
+  j["passages"] = to_json(area.passages);
+  return j;
+}
+
+}  // namespace aq::mask
