@@ -94,7 +94,7 @@ BalanceStats balance(LevelMasks& m, BalanceMode mode) {
         bits::reduce_rows(&mid[0], &mid[static_cast<std::size_t>(words1)], words1, g.data(), true);
         std::uint64_t* t = target.row(c);
         for (std::int64_t w = 0; w < words2; ++w) {
-          cleared += std::popcount(t[w] & g[static_cast<std::size_t>(w)]);
+          cleared += bits::popcount64(t[w] & g[static_cast<std::size_t>(w)]);
           t[w] &= ~g[static_cast<std::size_t>(w)];
         }
       }
@@ -139,7 +139,7 @@ std::int64_t count_balance_violations(const LevelMasks& m, BalanceMode mode) {
             if (!corner && dx != 0 && dy != 0) continue;
             // B = N - (dx, dy) is a leaf of level k: row b - dy, column a - dx.
             bits::rotate_row(&leaf[static_cast<std::size_t>(dy + 1) * ws], rot.data(), n, dx);
-            for (std::size_t w = 0; w < ws; ++w) count += std::popcount(rot[w] & up[w]);
+            for (std::size_t w = 0; w < ws; ++w) count += bits::popcount64(rot[w] & up[w]);
           }
         }
       }

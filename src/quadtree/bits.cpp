@@ -124,7 +124,7 @@ std::int64_t count_and_not(const Bitmap& a, const Bitmap& b) {
   std::int64_t total = 0;
 #pragma omp parallel for default(none) shared(wa, wb, n) reduction(+ : total) schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
-    total += std::popcount(wa[static_cast<std::size_t>(k)] & ~wb[static_cast<std::size_t>(k)]);
+    total += popcount64(wa[static_cast<std::size_t>(k)] & ~wb[static_cast<std::size_t>(k)]);
   }
   return total;
 }

@@ -285,7 +285,7 @@ std::vector<std::int64_t> count_leaves_per_level(const LevelMasks& masks) {
       for (std::int64_t b = 0; b < rows; ++b) {
         bits::expand_row(parent.row(b / 2), up.data(), words);
         const std::uint64_t* row = om.row(b);
-        for (std::int64_t w = 0; w < words; ++w) n += std::popcount(row[w] & ~up[static_cast<std::size_t>(w)]);
+        for (std::int64_t w = 0; w < words; ++w) n += bits::popcount64(row[w] & ~up[static_cast<std::size_t>(w)]);
       }
     }
     counts[static_cast<std::size_t>(l)] = n;

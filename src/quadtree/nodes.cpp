@@ -35,7 +35,7 @@ public:
       std::uint32_t run = 0;
       for (std::int64_t w = 0; w < words; ++w) {
         prefix_[static_cast<std::size_t>(j * words + w)] = run;
-        run += static_cast<std::uint32_t>(std::popcount(r[w]));
+        run += static_cast<std::uint32_t>(bits::popcount64(r[w]));
       }
       row_base_[static_cast<std::size_t>(j)] = run;
     }
@@ -47,7 +47,7 @@ public:
     const std::int64_t w = i >> 6;
     const std::uint64_t below = vb_.row(j)[w] & ((1ULL << (i & 63)) - 1ULL);
     return row_base_[static_cast<std::size_t>(j)] +
-           prefix_[static_cast<std::size_t>(j * vb_.words_per_row() + w)] + std::popcount(below);
+           prefix_[static_cast<std::size_t>(j * vb_.words_per_row() + w)] + bits::popcount64(below);
   }
   [[nodiscard]] std::int64_t row_base(std::int64_t j) const { return row_base_[static_cast<std::size_t>(j)]; }
 
@@ -294,7 +294,6 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
       }
     });
   }
-  std::sort(edges.begin(), edges.end());
   for (const auto& e : edges) {
     out.node_flags[static_cast<std::size_t>(e[0])] |= kBoundaryNode;
     out.node_flags[static_cast<std::size_t>(e[1])] |= kBoundaryNode;
@@ -311,22 +310,41 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
     const std::int64_t dy = out.node_j[static_cast<std::size_t>(e[1])] - out.node_j[static_cast<std::size_t>(e[0])];
     return std::array<int, 2>{sign(delta_i(e)), sign(dy)};
   };
+  // Outgoing boundary edges of every node: one, or two at a pinch (kept in the order of their end node).
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  if (edges.size() >= kNone) throw InternalError("quadtree nodes: too many boundary edges");
+  std::vector<std::uint32_t> out1(static_cast<std::size_t>(nnodes), kNone), out2(static_cast<std::size_t>(nnodes), kNone);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto a = static_cast<std::size_t>(edges[e][0]);
+    if (out1[a] == kNone) {
+      out1[a] = static_cast<std::uint32_t>(e);
+    } else if (out2[a] == kNone) {
+      out2[a] = static_cast<std::uint32_t>(e);
+      if (edges[out2[a]][1] < edges[out1[a]][1]) std::swap(out1[a], out2[a]);
+    } else {
+      throw InternalError(fmt::format("quadtree nodes: node {} has more than two outgoing boundary edges", a));
+    }
+  }
   const auto successor = [&](std::size_t e) -> std::size_t {
-    const NodeId b = edges[e][1];
-    const auto lo = std::lower_bound(edges.begin(), edges.end(), std::array<NodeId, 2>{b, std::numeric_limits<NodeId>::min()});
-    auto hi = lo;
-    while (hi != edges.end() && (*hi)[0] == b) ++hi;
-    if (hi - lo == 1) return static_cast<std::size_t>(lo - edges.begin());
-    if (hi - lo == 2) {
+    const auto b = static_cast<std::size_t>(edges[e][1]);
+    if (out1[b] != kNone && out2[b] == kNone) return out1[b];
+    if (out2[b] != kNone) {
       const std::array<int, 2> in = direction(edges[e]);
       const std::array<int, 2> left{-in[1], in[0]};
-      for (auto it = lo; it != hi; ++it)
-        if (direction(*it) == left) return static_cast<std::size_t>(it - edges.begin());
+      if (direction(edges[out1[b]]) == left) return out1[b];
+      if (direction(edges[out2[b]]) == left) return out2[b];
     }
     throw InternalError(fmt::format(
         "quadtree nodes: boundary at node {} (I {}, J {}) has {} outgoing edges and no left turn (leaves not balanced?)",
-        b, out.node_i[static_cast<std::size_t>(b)], out.node_j[static_cast<std::size_t>(b)], hi - lo));
+        b, out.node_i[b], out.node_j[b], (out1[b] != kNone) + (out2[b] != kNone)));
   };
+  // Loops start from the unused edge with the smallest (a, b).
+  std::vector<std::uint32_t> order;
+  order.reserve(edges.size());
+  for (std::size_t v = 0; v < out1.size(); ++v) {
+    if (out1[v] != kNone) order.push_back(out1[v]);
+    if (out2[v] != kNone) order.push_back(out2[v]);
+  }
   std::vector<std::uint8_t> used(edges.size(), 0);
   out.boundary_edges.reserve(edges.size());
   out.boundary_edge_loop.reserve(edges.size());
@@ -334,7 +352,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
     std::int64_t area = 0, edges = 0;
   };
   std::vector<Extent> extents;
-  for (std::size_t e0 = 0; e0 < edges.size(); ++e0) {
+  for (const std::uint32_t first : order) {
+    const std::size_t e0 = first;
     if (used[e0] != 0) continue;
     const auto id = static_cast<std::int32_t>(out.loops.size());
     LoopInfo info;

@@ -41,6 +41,13 @@ TEST(Bits, CompactSpreadMorton) {
   EXPECT_EQ(bits::morton(1, 0), 1ULL);
   EXPECT_EQ(bits::morton(0, 1), 2ULL);
   EXPECT_EQ(bits::morton(3, 5), 0b100111ULL);  // i = 011, j = 101 -> j2 i2 j1 i1 j0 i0 = 1 0 0 1 1 1
+  std::mt19937_64 rng(5);
+  for (int k = 0; k < 1000; ++k) {
+    const std::uint64_t x = rng() & rng();
+    ASSERT_EQ(bits::popcount64(x), std::popcount(x));
+    ASSERT_EQ(bits::compact_even(bits::spread_even(x)), x & 0xffffffffULL);
+  }
+  EXPECT_EQ(bits::popcount64(~0ULL), 64);
 }
 
 TEST(Bits, RotateAndDilatePeriodicRows) {

@@ -1,0 +1,462 @@
+// Mesh statistics and checks (see statistics.hpp).
+#include "mesh/statistics.hpp"
+
+#include <GeographicLib/Ellipsoid.hpp>
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/PolygonArea.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "core/rotation.hpp"
+#include "core/types.hpp"
+#include "quadtree/parallel.hpp"
+
+namespace aq::mesh {
+
+namespace {
+
+std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t x) {
+  while (parent[static_cast<std::size_t>(x)] != x) {
+    parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    x = parent[static_cast<std::size_t>(x)];
+  }
+  return x;
+}
+
+/// Min, lower median and max of `v` (reorders it); zeros when empty.
+std::array<double, 3> min_median_max(std::vector<double>& v) {
+  if (v.empty()) return {0.0, 0.0, 0.0};
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  const double mn = *lo, mx = *hi;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>((v.size() - 1) / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return {mn, *mid, mx};
+}
+
+/// Geodesic area (m², signed: anticlockwise positive) of a triangle given in lattice coordinates.
+double triangle_area_m2(const Lattice& lat, const PoleRotation& rot, const std::array<double, 3>& ui,
+                        const std::array<double, 3>& uj) {
+  GeographicLib::PolygonArea poly(GeographicLib::Geodesic::WGS84());
+  for (int v = 0; v < 3; ++v) {
+    double lon = 0.0, la = 0.0;
+    rot.to_geographic(lat.lon0_deg + ui[static_cast<std::size_t>(v)] * lat.pixel_deg(),
+                      -90.0 + uj[static_cast<std::size_t>(v)] * lat.pixel_deg(), lon, la);
+    poly.AddPoint(la, lon);
+  }
+  double perimeter = 0.0, area = 0.0;
+  poly.Compute(false, true, perimeter, area);
+  return area;
+}
+
+/// Geodesic distance (m) between two nodes given by geographic coordinates.
+double distance_m(double lat1, double lon1, double lat2, double lon2) {
+  double s12 = 0.0;
+  GeographicLib::Geodesic::WGS84().Inverse(lat1, lon1, lat2, lon2, s12);
+  return s12;
+}
+
+}  // namespace
+
+std::vector<std::string> MeshStatistics::failed_checks() const {
+  std::vector<std::string> f;
+  if (euler != euler_expected) f.push_back(fmt::format("Euler: V - E + F = {} but 2c - b - p = {}", euler, euler_expected));
+  if (bad_edges != 0) f.push_back(fmt::format("{} edges not shared by exactly two oppositely oriented triangles", bad_edges));
+  if (boundary_mismatch != 0) f.push_back(fmt::format("{} boundary edges differ from the triangles' boundary", boundary_mismatch));
+  if (used_nodes != nodes) f.push_back(fmt::format("{} nodes are in no triangle", nodes - used_nodes));
+  if (not_right_isosceles != 0) f.push_back(fmt::format("{} triangles are not right isosceles of a similarity class", not_right_isosceles));
+  if (clockwise != 0) f.push_back(fmt::format("{} triangles are clockwise or degenerate", clockwise));
+  if (twice_triangle_area_px2 != 2 * filled_pixels) {
+    f.push_back(fmt::format("triangle area {} px² differs from the filled area {} px²",
+                            static_cast<double>(twice_triangle_area_px2) / 2.0, filled_pixels));
+  }
+  if (geodesic && triangles > 0 && !(area_relative_difference <= area_tolerance)) {
+    f.push_back(fmt::format("triangle area {:.1f} km² differs from the filled area {:.1f} km² by {:.2e} (> {:.1e})",
+                            triangle_area_km2, filled_area_km2, area_relative_difference, area_tolerance));
+  }
+  return f;
+}
+
+MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& options) {
+  MeshStatistics s;
+  const Lattice& lat = m.lattice;
+  const std::int64_t nx = lat.nx;
+  const int levels = lat.levels;
+  s.nodes = m.node_count();
+  s.triangles = m.triangle_count();
+  s.boundary_loops = static_cast<std::int64_t>(m.loops.size());
+  s.pinch_nodes = static_cast<std::int64_t>(m.pinch_nodes.size());
+  s.area_tolerance = options.area_tolerance > 0.0 ? options.area_tolerance : 0.05 * lat.pixel_deg() * kDegToRad;
+  if (s.nodes >= (std::int64_t{1} << 32)) throw InternalError("mesh statistics: 2^32 nodes or more");
+  for (const std::uint8_t l : m.square_level) {
+    const std::int64_t side = lat.pixels_per_square(l);
+    s.filled_pixels += side * side;
+  }
+  const std::int64_t ntri = s.triangles;
+  const bool have_squares = static_cast<std::int64_t>(m.triangle_square.size()) == ntri &&
+                            static_cast<std::int64_t>(m.triangle_level.size()) == ntri;
+  if (!have_squares) throw InternalError("mesh statistics: triangle_level / triangle_square missing");
+  for (const auto& t : m.triangles)
+    for (const NodeId v : t)
+      if (v < 0 || v >= s.nodes) throw InternalError(fmt::format("mesh statistics: node id {} out of range", v));
+
+  // Unwrapped lattice coordinates of a triangle's vertices: I below its square's SW corner wrapped.
+  const auto vertex_ij = [&](std::int64_t t, int v, std::int64_t& i, std::int64_t& j) {
+    const auto tt = static_cast<std::size_t>(t);
+    const auto n = static_cast<std::size_t>(m.triangles[tt][static_cast<std::size_t>(v)]);
+    const auto sq = static_cast<std::size_t>(m.triangle_square[tt]);
+    const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
+    i = m.node_i[n];
+    if (i < i0) i += nx;
+    j = m.node_j[n];
+  };
+
+  // Geometry in lattice units.
+  s.similarity.assign(static_cast<std::size_t>(2 * levels) + 1, 0);
+  {
+    const int nt = quadtree::max_threads();
+    std::vector<std::vector<std::int64_t>> sim(static_cast<std::size_t>(nt), s.similarity);
+    std::vector<std::array<std::int64_t, 3>> sums(static_cast<std::size_t>(nt), {0, 0, 0});
+    quadtree::parallel_blocks(ntri, [&](int th, std::int64_t begin, std::int64_t end) {
+      std::array<std::int64_t, 3>& acc = sums[static_cast<std::size_t>(th)];
+      std::vector<std::int64_t>& hist = sim[static_cast<std::size_t>(th)];
+      for (std::int64_t t = begin; t < end; ++t) {
+        std::array<std::int64_t, 3> x{}, y{};
+        for (int v = 0; v < 3; ++v) vertex_ij(t, v, x[static_cast<std::size_t>(v)], y[static_cast<std::size_t>(v)]);
+        const std::int64_t cross = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+        acc[0] += cross;
+        if (cross <= 0) ++acc[1];
+        std::array<std::int64_t, 3> d2{};
+        for (int e = 0; e < 3; ++e) {
+          const auto a = static_cast<std::size_t>(e), b = static_cast<std::size_t>((e + 1) % 3);
+          d2[a] = (x[b] - x[a]) * (x[b] - x[a]) + (y[b] - y[a]) * (y[b] - y[a]);
+        }
+        std::sort(d2.begin(), d2.end());
+        const std::int64_t leg2 = d2[0];
+        bool ok = leg2 > 0 && d2[1] == leg2 && d2[2] == 2 * leg2 && std::has_single_bit(static_cast<std::uint64_t>(leg2));
+        if (ok) {
+          const int k = 2 * levels - std::countr_zero(static_cast<std::uint64_t>(leg2));
+          ok = k >= 0 && k <= 2 * levels;
+          if (ok) ++hist[static_cast<std::size_t>(k)];
+        }
+        if (!ok) ++acc[2];
+      }
+    });
+    for (int th = 0; th < nt; ++th) {
+      s.twice_triangle_area_px2 += sums[static_cast<std::size_t>(th)][0];
+      s.clockwise += sums[static_cast<std::size_t>(th)][1];
+      s.not_right_isosceles += sums[static_cast<std::size_t>(th)][2];
+      for (std::size_t k = 0; k < s.similarity.size(); ++k) s.similarity[k] += sim[static_cast<std::size_t>(th)][k];
+    }
+  }
+
+  // Edges: half-edges bucketed by their smaller node (counting sort), each bucket sorted by the
+  // other node; a group of 1 is a boundary edge, of 2 (opposite directions) an interior one.
+  if (ntri >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 triangles or more");
+  const auto nn = static_cast<std::size_t>(s.nodes);
+  std::vector<std::int64_t> start(nn + 1, 0);
+  for (const auto& tr : m.triangles)
+    for (int e = 0; e < 3; ++e) ++start[static_cast<std::size_t>(std::min(tr[static_cast<std::size_t>(e)], tr[static_cast<std::size_t>((e + 1) % 3)])) + 1];
+  for (std::size_t v = 0; v < nn; ++v) start[v + 1] += start[v];
+  // rec = other node << 32 | triangle << 1 | (half-edge runs from the larger node to the smaller).
+  std::vector<std::uint64_t> rec(static_cast<std::size_t>(3 * ntri));
+  for (std::int64_t t = 0; t < ntri; ++t) {
+    const auto& tr = m.triangles[static_cast<std::size_t>(t)];
+    for (int e = 0; e < 3; ++e) {
+      const NodeId a = tr[static_cast<std::size_t>(e)], b = tr[static_cast<std::size_t>((e + 1) % 3)];
+      const auto lo = static_cast<std::size_t>(std::min(a, b));
+      rec[static_cast<std::size_t>(start[lo]++)] = static_cast<std::uint64_t>(std::max(a, b)) << 32 |
+                                                   static_cast<std::uint64_t>(t) << 1 | (a > b ? 1U : 0U);
+    }
+  }
+  for (std::size_t v = nn; v > 0; --v) start[v] = start[v - 1];
+  start[0] = 0;
+  const auto nbuckets = static_cast<std::int64_t>(nn);
+#pragma omp parallel for default(none) shared(rec, start, nbuckets) schedule(static)
+  for (std::int64_t v = 0; v < nbuckets; ++v) {
+    std::sort(rec.begin() + start[static_cast<std::size_t>(v)], rec.begin() + start[static_cast<std::size_t>(v) + 1]);
+  }
+  std::vector<std::int64_t> parent(static_cast<std::size_t>(ntri));
+  for (std::int64_t t = 0; t < ntri; ++t) parent[static_cast<std::size_t>(t)] = t;
+  std::vector<std::array<NodeId, 2>> tri_boundary;
+  std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
+  std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
+  const auto tri_of = [](std::uint64_t r) { return static_cast<std::int64_t>((r & 0xffffffffULL) >> 1); };
+  for (std::size_t v = 0; v < nn; ++v) {
+    const auto end = static_cast<std::size_t>(start[v + 1]);
+    for (auto k = static_cast<std::size_t>(start[v]); k < end;) {
+      std::size_t e = k + 1;
+      while (e < end && (rec[e] >> 32) == (rec[k] >> 32)) ++e;
+      const auto a = static_cast<NodeId>(v), b = static_cast<NodeId>(rec[k] >> 32);
+      const std::int64_t t0 = tri_of(rec[k]);
+      edge_a.push_back(static_cast<std::uint32_t>(a));
+      edge_b.push_back(static_cast<std::uint32_t>(b));
+      edge_t.push_back(static_cast<std::uint32_t>(t0));
+      std::uint8_t level = m.triangle_level[static_cast<std::size_t>(t0)];
+      if (e - k == 1) {
+        ++s.boundary_edges;
+        tri_boundary.push_back((rec[k] & 1U) ? std::array<NodeId, 2>{b, a} : std::array<NodeId, 2>{a, b});
+      } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {
+        ++s.interior_edges;
+        const std::int64_t t1 = tri_of(rec[k + 1]);
+        level = std::max(level, m.triangle_level[static_cast<std::size_t>(t1)]);
+        const std::int64_t r1 = find_root(parent, t0), r2 = find_root(parent, t1);
+        if (r1 != r2) parent[static_cast<std::size_t>(std::max(r1, r2))] = std::min(r1, r2);
+      } else {
+        ++s.bad_edges;
+      }
+      edge_level.push_back(level);
+      k = e;
+    }
+  }
+  std::vector<std::uint64_t>().swap(rec);
+  std::vector<std::int64_t>().swap(start);
+  s.edges = static_cast<std::int64_t>(edge_a.size());
+  for (std::int64_t t = 0; t < ntri; ++t) s.components += find_root(parent, t) == t;
+  std::vector<std::int64_t>().swap(parent);
+  std::vector<char> used(static_cast<std::size_t>(s.nodes), 0);
+  for (const auto& t : m.triangles)
+    for (const NodeId v : t) used[static_cast<std::size_t>(v)] = 1;
+  for (const char u : used) s.used_nodes += u;
+  if (ntri > 0) {
+    std::vector<std::array<NodeId, 2>> mb = m.boundary_edges;
+    std::sort(mb.begin(), mb.end());
+    std::sort(tri_boundary.begin(), tri_boundary.end());
+    std::vector<std::array<NodeId, 2>> diff;
+    std::set_symmetric_difference(mb.begin(), mb.end(), tri_boundary.begin(), tri_boundary.end(), std::back_inserter(diff));
+    s.boundary_mismatch = static_cast<std::int64_t>(diff.size());
+    s.euler = s.used_nodes - s.edges + ntri;
+    s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
+  }
+
+  if (!options.geodesic) return s;
+  s.geodesic = true;
+
+  // Filled area of the squares: lattice cells between parallels (authalic latitude on WGS84).
+  const GeographicLib::Ellipsoid& ell = GeographicLib::Ellipsoid::WGS84();
+  const double rq2 = ell.Area() / (4.0 * kPi);
+  std::vector<double> sin_xi(static_cast<std::size_t>(lat.ny) + 1);
+  for (std::int64_t j = 0; j <= lat.ny; ++j) {
+    const double phi = lat.lat_of(j);
+    sin_xi[static_cast<std::size_t>(j)] = std::sin((m.rotation.enabled ? phi : ell.AuthalicLatitude(phi)) * kDegToRad);
+  }
+  double filled_m2 = 0.0;
+  for (std::size_t q = 0; q < m.squares.size(); ++q) {
+    const std::int64_t side = lat.pixels_per_square(m.square_level[q]);
+    const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[q][0])];
+    filled_m2 += rq2 * static_cast<double>(side) * lat.pixel_deg() * kDegToRad *
+                 (sin_xi[static_cast<std::size_t>(j0 + side)] - sin_xi[static_cast<std::size_t>(j0)]);
+  }
+  s.filled_area_km2 = filled_m2 * 1e-6;
+
+  // Shape of a triangle / edge inside its square: vertex positions in half sides (0..2, 0..2).
+  const auto local_pos = [&](std::int64_t t, int v) {
+    const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
+    const std::int64_t side = lat.pixels_per_square(m.square_level[sq]);
+    const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
+    const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[sq][0])];
+    std::int64_t i = 0, j = 0;
+    vertex_ij(t, v, i, j);
+    const std::int64_t px = 2 * (i - i0), py = 2 * (j - j0);
+    if (px % side != 0 || py % side != 0 || px < 0 || py < 0 || px > 2 * side || py > 2 * side) return -1;
+    return static_cast<int>((py / side) * 3 + px / side);
+  };
+  // Row offsets of the (level, row) memo tables.
+  std::vector<std::int64_t> row_offset(static_cast<std::size_t>(levels) + 2, 0);
+  for (int l = 0; l <= levels; ++l) {
+    row_offset[static_cast<std::size_t>(l) + 1] = row_offset[static_cast<std::size_t>(l)] + (lat.ny >> (levels - l));
+  }
+  const bool memo = !m.rotation.enabled;
+  const PoleRotation rot = m.rotation.enabled ? PoleRotation(m.rotation.pole_lon_deg, m.rotation.pole_lat_deg)
+                                              : PoleRotation();
+  const auto row_of = [&](std::int64_t t) {
+    const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
+    const int l = m.square_level[sq];
+    return row_offset[static_cast<std::size_t>(l)] +
+           m.node_j[static_cast<std::size_t>(m.squares[sq][0])] / lat.pixels_per_square(l);
+  };
+  const auto lattice_area = [&](std::int64_t t) {
+    std::array<double, 3> ui{}, uj{};
+    for (int v = 0; v < 3; ++v) {
+      std::int64_t i = 0, j = 0;
+      vertex_ij(t, v, i, j);
+      ui[static_cast<std::size_t>(v)] = static_cast<double>(i);
+      uj[static_cast<std::size_t>(v)] = static_cast<double>(j);
+    }
+    return triangle_area_m2(lat, rot, ui, uj);
+  };
+
+  // Triangle areas.
+  std::vector<double> area(static_cast<std::size_t>(ntri));
+  if (memo) {
+    std::vector<std::int32_t> shape(static_cast<std::size_t>(ntri));
+#pragma omp parallel for default(none) shared(shape, ntri, local_pos) schedule(static)
+    for (std::int64_t t = 0; t < ntri; ++t) {
+      const int p0 = local_pos(t, 0), p1 = local_pos(t, 1), p2 = local_pos(t, 2);
+      shape[static_cast<std::size_t>(t)] = (p0 < 0 || p1 < 0 || p2 < 0) ? -1 : p0 * 81 + p1 * 9 + p2;
+    }
+    std::vector<std::int32_t> shape_id(729, -1);
+    std::vector<std::int32_t> shapes;
+    for (const std::int32_t c : shape) {
+      if (c >= 0 && shape_id[static_cast<std::size_t>(c)] < 0) {
+        shape_id[static_cast<std::size_t>(c)] = static_cast<std::int32_t>(shapes.size());
+        shapes.push_back(c);
+      }
+    }
+    const auto nshapes = static_cast<std::int64_t>(shapes.size());
+    const std::int64_t cells = row_offset.back() * nshapes;
+    std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
+    std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
+    for (std::int64_t t = 0; t < ntri; ++t) {
+      const std::int32_t c = shape[static_cast<std::size_t>(t)];
+      if (c < 0) continue;
+      const std::int64_t cell = row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)];
+      if (example[static_cast<std::size_t>(cell)] < 0) example[static_cast<std::size_t>(cell)] = t;
+    }
+#pragma omp parallel for default(none) shared(table, example, cells, lattice_area) schedule(dynamic, 64)
+    for (std::int64_t cell = 0; cell < cells; ++cell) {
+      const std::int64_t t = example[static_cast<std::size_t>(cell)];
+      if (t >= 0) table[static_cast<std::size_t>(cell)] = lattice_area(t);
+    }
+#pragma omp parallel for default(none) shared(area, shape, shape_id, table, ntri, nshapes, row_of, lattice_area) \
+    schedule(static)
+    for (std::int64_t t = 0; t < ntri; ++t) {
+      const std::int32_t c = shape[static_cast<std::size_t>(t)];
+      area[static_cast<std::size_t>(t)] =
+          c < 0 ? lattice_area(t)
+                : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
+    }
+  } else {
+#pragma omp parallel for default(none) shared(area, ntri, lattice_area) schedule(dynamic, 256)
+    for (std::int64_t t = 0; t < ntri; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
+  }
+  double total_m2 = 0.0;
+  for (const double a : area) total_m2 += a;  // serial: the same sum for any thread count
+  s.triangle_area_km2 = total_m2 * 1e-6;
+  s.area_relative_difference =
+      s.filled_area_km2 > 0.0 ? std::abs(s.triangle_area_km2 - s.filled_area_km2) / s.filled_area_km2 : 0.0;
+
+  // Edge lengths, memoised by (level, row, shape) of a triangle holding the edge.
+  const auto nedges = s.edges;
+  std::vector<double> length(static_cast<std::size_t>(nedges));
+  const auto direct_length = [&](std::int64_t e) {
+    const auto a = static_cast<std::size_t>(edge_a[static_cast<std::size_t>(e)]);
+    const auto b = static_cast<std::size_t>(edge_b[static_cast<std::size_t>(e)]);
+    return distance_m(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b]);
+  };
+  if (memo) {
+    const std::int64_t cells = row_offset.back() * 81;
+    std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
+    std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
+    std::vector<std::int64_t> cell_of(static_cast<std::size_t>(nedges), -1);
+#pragma omp parallel for default(none) shared(m, edge_a, edge_b, edge_t, cell_of, nedges, local_pos, row_of) \
+    schedule(static)
+    for (std::int64_t e = 0; e < nedges; ++e) {
+      const auto k = static_cast<std::size_t>(e);
+      const std::int64_t t = edge_t[k];
+      const auto& tr = m.triangles[static_cast<std::size_t>(t)];
+      int v0 = 0, v1 = 0;
+      for (int v = 0; v < 3; ++v) {
+        if (tr[static_cast<std::size_t>(v)] == static_cast<NodeId>(edge_a[k])) v0 = v;
+        if (tr[static_cast<std::size_t>(v)] == static_cast<NodeId>(edge_b[k])) v1 = v;
+      }
+      const int p0 = local_pos(t, v0), p1 = local_pos(t, v1);
+      if (p0 >= 0 && p1 >= 0) cell_of[k] = row_of(t) * 81 + std::min(p0, p1) * 9 + std::max(p0, p1);
+    }
+    for (std::int64_t e = 0; e < nedges; ++e) {
+      const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
+      if (cell >= 0 && example[static_cast<std::size_t>(cell)] < 0) example[static_cast<std::size_t>(cell)] = e;
+    }
+#pragma omp parallel for default(none) shared(table, example, cells, direct_length) schedule(dynamic, 64)
+    for (std::int64_t cell = 0; cell < cells; ++cell) {
+      const std::int64_t e = example[static_cast<std::size_t>(cell)];
+      if (e >= 0) table[static_cast<std::size_t>(cell)] = direct_length(e);
+    }
+#pragma omp parallel for default(none) shared(length, cell_of, table, nedges, direct_length) schedule(static)
+    for (std::int64_t e = 0; e < nedges; ++e) {
+      const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
+      length[static_cast<std::size_t>(e)] = cell < 0 ? direct_length(e) : table[static_cast<std::size_t>(cell)];
+    }
+  } else {
+#pragma omp parallel for default(none) shared(length, nedges, direct_length) schedule(dynamic, 256)
+    for (std::int64_t e = 0; e < nedges; ++e) length[static_cast<std::size_t>(e)] = direct_length(e);
+  }
+
+  // Per level.
+  for (int l = 0; l <= levels; ++l) {
+    std::vector<double> a, len;
+    for (std::int64_t t = 0; t < ntri; ++t)
+      if (m.triangle_level[static_cast<std::size_t>(t)] == l) a.push_back(area[static_cast<std::size_t>(t)]);
+    if (a.empty()) continue;
+    for (std::int64_t e = 0; e < nedges; ++e)
+      if (edge_level[static_cast<std::size_t>(e)] == l) len.push_back(length[static_cast<std::size_t>(e)]);
+    LevelStatistics ls;
+    ls.level = l;
+    ls.triangles = static_cast<std::int64_t>(a.size());
+    ls.edges = static_cast<std::int64_t>(len.size());
+    const auto am = min_median_max(a);
+    const auto lm = min_median_max(len);
+    ls.area_min_m2 = am[0];
+    ls.area_median_m2 = am[1];
+    ls.area_max_m2 = am[2];
+    ls.edge_min_m = lm[0];
+    ls.edge_median_m = lm[1];
+    ls.edge_max_m = lm[2];
+    s.levels.push_back(ls);
+  }
+  return s;
+}
+
+Json statistics_json(const MeshStatistics& s) {
+  Json j;
+  j["nodes"] = s.nodes;
+  j["triangles"] = s.triangles;
+  j["edges"] = s.edges;
+  j["interior_edges"] = s.interior_edges;
+  j["boundary_edges"] = s.boundary_edges;
+  j["boundary_loops"] = s.boundary_loops;
+  j["pinch_nodes"] = s.pinch_nodes;
+  j["components"] = s.components;
+  j["euler"] = Json{{"v_minus_e_plus_f", s.euler}, {"expected_2c_minus_b_minus_p", s.euler_expected},
+                    {"ok", s.euler == s.euler_expected}};
+  j["conforming"] = Json{{"bad_edges", s.bad_edges}, {"boundary_mismatch", s.boundary_mismatch},
+                         {"unused_nodes", s.nodes - s.used_nodes},
+                         {"ok", s.bad_edges == 0 && s.boundary_mismatch == 0 && s.nodes == s.used_nodes}};
+  j["right_isosceles"] = Json{{"not_right_isosceles", s.not_right_isosceles}, {"clockwise_or_degenerate", s.clockwise},
+                              {"min_angle_deg", s.not_right_isosceles == 0 ? 45.0 : 0.0}};
+  Json sim = Json::array();
+  for (std::size_t k = 0; k < s.similarity.size(); ++k) {
+    if (s.similarity[k] == 0) continue;
+    sim.push_back(Json{{"k", k}, {"ratio", std::pow(std::sqrt(0.5), static_cast<double>(k))}, {"triangles", s.similarity[k]}});
+  }
+  j["similarity"] = sim;
+  j["area"] = Json{{"triangles_px2", static_cast<double>(s.twice_triangle_area_px2) / 2.0},
+                   {"filled_px2", s.filled_pixels},
+                   {"lattice_ok", s.twice_triangle_area_px2 == 2 * s.filled_pixels}};
+  if (s.geodesic) {
+    j["area"]["triangles_km2"] = s.triangle_area_km2;
+    j["area"]["filled_km2"] = s.filled_area_km2;
+    j["area"]["relative_difference"] = s.area_relative_difference;
+    j["total_wet_area_km2"] = s.triangle_area_km2;
+    Json lv = Json::array();
+    for (const LevelStatistics& l : s.levels) {
+      lv.push_back(Json{{"level", l.level},
+                        {"triangles", l.triangles},
+                        {"area_m2", Json{{"min", l.area_min_m2}, {"median", l.area_median_m2}, {"max", l.area_max_m2}}},
+                        {"edges", l.edges},
+                        {"edge_m", Json{{"min", l.edge_min_m}, {"median", l.edge_median_m}, {"max", l.edge_max_m}}}});
+    }
+    j["levels"] = lv;
+  }
+  const std::vector<std::string> failed = s.failed_checks();
+  j["ok"] = failed.empty();
+  j["failed_checks"] = failed;
+  return j;
+}
+
+}  // namespace aq::mesh
