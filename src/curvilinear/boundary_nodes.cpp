@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 
@@ -86,7 +87,7 @@ double next_node(const SplineContour& c, double s_prev, double h, double ds_gues
   }
   // Safeguarded Newton in [lo, hi].
   double s = 0.5 * (lo + hi);
-  const double tol = 1e-15 * c.period();
+  constexpr double kUlp = std::numeric_limits<double>::epsilon();
   for (int it = 0; it < 200; ++it) {
     const PlanePoint p = c.point(s);
     const PlanePoint d = c.derivative(s, 1);
@@ -95,11 +96,11 @@ double next_node(const SplineContour& c, double s_prev, double h, double ds_gues
     const double gv = r - h;
     if (gv < 0.0) lo = s; else hi = s;
     const double gd = r > 0.0 ? (dx * d.x + dy * d.y) / r : 0.0;
+    const double small = 4.0 * kUlp * std::fabs(s);
     double sn = gd > 0.0 ? s - gv / gd : 0.5 * (lo + hi);
+    if (gv == 0.0 || std::fabs(sn - s) <= small || hi - lo <= small) break;  // converged at s
     if (!(sn > lo && sn < hi)) sn = 0.5 * (lo + hi);
-    const double change = std::fabs(sn - s);
     s = sn;
-    if (change <= tol || hi - lo <= tol) break;
   }
   return s;
 }
@@ -157,13 +158,18 @@ BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, i
       h1 = h0 + f0 / (n - 1);
       double f1 = march(h1);
       it = 2;
-      const double tol = options.tolerance * std::max(h1, 1e-300);
-      while (std::fabs(f1) > tol) {
+      // The miss is only computable to ~ulp(s)·|C'|·√n (each node carries its own round-off),
+      // so besides the tolerance the correction also stops when it no longer improves.
+      double best_h = std::fabs(f1) < std::fabs(f0) ? h1 : h0;
+      double best_f = std::min(std::fabs(f0), std::fabs(f1));
+      int stalled = 0;
+      while (best_f > options.tolerance * best_h) {
+        if (stalled >= 3 && best_f <= 1e-9 * best_h) break;  // round-off floor
         if (it >= options.max_iterations)
           throw NumericalError(fmt::format(
               "uniform boundary nodes: the {} side did not close in {} step corrections (the last step misses "
               "by {:.3g} plane units)",
-              side_name(side), options.max_iterations, f1));
+              side_name(side), options.max_iterations, best_f));
         double h2 = (f1 != f0) ? h1 - f1 * (h1 - h0) / (f1 - f0) : h1;
         if (!(h2 > 0.0) || !std::isfinite(h2)) h2 = 0.5 * h1;
         if (h2 == h1) break;
@@ -172,6 +178,17 @@ BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, i
         h1 = h2;
         f1 = march(h1);
         ++it;
+        if (std::fabs(f1) < best_f) {
+          best_f = std::fabs(f1);
+          best_h = h1;
+          stalled = 0;
+        } else {
+          ++stalled;
+        }
+      }
+      if (h1 != best_h) {
+        h1 = best_h;
+        march(h1);
       }
       if (!(s[static_cast<std::size_t>(n) - 2] < b))
         throw NumericalError(fmt::format("uniform boundary nodes: the {} side could not be filled with {} nodes",

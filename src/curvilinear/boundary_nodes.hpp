@@ -60,7 +60,8 @@ void set_grid_boundary(const SplineContour& contour, const BoundaryNodes& nodes,
 
 struct UniformOptions {
   /// Stop the step correction when the last chord differs from the step h by less than
-  /// tolerance × h (dimensionless).
+  /// tolerance × h (dimensionless), or when it stops improving below 1e-9·h (the round-off
+  /// floor: every node carries ~1 ulp of its parameter, ~1e-13·h for 100 nodes).
   double tolerance = 1e-14;
   /// Step corrections per side before NumericalError.
   int max_iterations = 60;

@@ -132,6 +132,19 @@ SplineContour::SplineContour(std::vector<double> x, std::vector<double> y, const
       throw InputError(fmt::format("{}: points {} and {} coincide at ({}, {})", source_, k + 1,
                                    static_cast<int>(k1) + 1, x_[ku], y_[ku]));
   }
+  // Orientation of the control polygon first: a clockwise list unfolds into loops.
+  {
+    double area2 = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const auto ku = static_cast<std::size_t>(k), k1 = static_cast<std::size_t>((k + 1) % n);
+      area2 += x_[ku] * y_[k1] - y_[ku] * x_[k1];
+    }
+    if (!(area2 > 0.0))
+      throw InputError(fmt::format(
+          "{}: the control points run clockwise (signed area {:.4g}); list them counter-clockwise starting at "
+          "the south-west corner",
+          source_, 0.5 * area2));
+  }
   side_.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
     int s = 0;
@@ -381,6 +394,11 @@ void SplineContour::check_geometry(const ContourOptions& options) const {
       const int sj = static_cast<int>(std::max(i, j) / static_cast<std::size_t>(m));
       const int n = num_points();
       const PlanePoint& at = pts[std::min(i, j)];
+      if (si == sj)
+        throw InputError(fmt::format(
+            "{}: the contour loops on itself on the {} side between points {} and {} near ({:.4g}, {:.4g}); move "
+            "these points apart or add a point between them",
+            source_, side_name(side_of_segment(si)), si + 1, (si + 1) % n + 1, at.x, at.y));
       throw InputError(fmt::format(
           "{}: the contour intersects itself: the {} side between points {} and {} crosses the {} side between "
           "points {} and {} near ({:.4g}, {:.4g}); move the control points so the contour is a simple closed "

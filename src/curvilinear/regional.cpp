@@ -1,0 +1,203 @@
+// The regional izogrid pipeline; see regional.hpp (seed 000 Sec. 1–2.5, modes 0–4).
+#include "curvilinear/regional.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/timer.hpp"
+
+namespace aq::curvilinear {
+
+Stage stage_from_mode(int mode) {
+  if (mode < 0 || mode > 5) throw ConfigError(fmt::format("mode = {} must be 0..5", mode));
+  return mode >= 4 ? Stage::kGrid : static_cast<Stage>(mode);
+}
+
+const char* stage_name(Stage stage) {
+  switch (stage) {
+    case Stage::kMap: return "map";
+    case Stage::kContour: return "contour";
+    case Stage::kUniform: return "uniform";
+    case Stage::kConformal: return "conformal";
+    case Stage::kGrid: return "grid";
+  }
+  return "?";
+}
+
+Stage parse_stage(std::string_view text) {
+  for (int m = 0; m <= 4; ++m)
+    if (text == stage_name(static_cast<Stage>(m))) return static_cast<Stage>(m);
+  if (text.size() == 1 && text[0] >= '0' && text[0] <= '5') return stage_from_mode(text[0] - '0');
+  throw ConfigError(fmt::format("stage '{}' is unknown (use map, contour, uniform, conformal, grid or 0..5)", text));
+}
+
+std::vector<PlanePoint> RegionalResult::node_points(const BoundaryNodes& n) const {
+  std::vector<PlanePoint> out;
+  if (!contour) return out;
+  out.reserve(n.s.size());
+  for (double s : n.s) out.push_back(contour->point(s));
+  return out;
+}
+
+RegionalResult run_regional(const RegionalParams& params, Stage stop_after, const Logger& log, Report* report) {
+  validate_regional_params(params);
+  RegionalResult r;
+  r.params = params;
+  const RegionalParams& p = r.params;
+  Json* section = nullptr;
+  if (report != nullptr) {
+    section = &(*report)["regional"];
+    *section = Json{{"source", p.source},
+                    {"proj", projection_code(p.proj)},
+                    {"rlat", p.rlat},
+                    {"rlon", p.rlon},
+                    {"rota", p.rota},
+                    {"uscale", p.uscale},
+                    {"spline_type", p.spline_type},
+                    {"param", p.param == Parametrisation::kIndex ? "index" : "arclength"},
+                    {"npass", p.npass},
+                    {"ny", p.ny},
+                    {"schedule", inner_schedule_name(p.schedule)},
+                    {"control_points", p.x.size()}};
+  }
+
+  // Stage 0: map. Project the control points if they are geographic.
+  {
+    StageScope scope("regional map", report, log);
+    const Timer t;
+    r.projection.emplace(projection_params(p));
+    r.control_corner = p.corner;
+    if (p.points_lonlat) {
+      for (std::size_t k = 0; k < p.x.size(); ++k) {
+        const PlanePoint q = r.projection->forward(p.x[k], p.y[k]);
+        if (!std::isfinite(q.x) || !std::isfinite(q.y))
+          throw InputError(fmt::format("{}: control point {} ({}, {}) lies where the {} projection is singular",
+                                       p.source, k + 1, p.x[k], p.y[k], projection_code(p.proj)));
+        r.control_x.push_back(q.x);
+        r.control_y.push_back(q.y);
+      }
+    } else {
+      r.control_x = p.x;
+      r.control_y = p.y;
+    }
+    r.stage_seconds[0] = t.wall_s();
+    r.completed = Stage::kMap;
+    scope.done(fmt::format("{} projection at ({}, {}), rota {}, {} control points", projection_code(p.proj), p.rlat,
+                           p.rlon, p.rota, r.control_x.size()));
+  }
+  if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
+  if (stop_after == Stage::kMap) return r;
+
+  // Stage 1: contour.
+  {
+    StageScope scope("regional contour", report, log);
+    const Timer t;
+    ContourOptions co;
+    co.degree = p.spline_type == 3 ? 3 : 5;
+    co.parametrisation = p.param;
+    co.source = p.source;
+    r.contour.emplace(r.control_x, r.control_y, r.control_corner, co);
+    if (p.spline_type == 4) {
+      co.degree = 3;
+      r.cubic_contour.emplace(r.control_x, r.control_y, r.control_corner, co);
+    }
+    r.contour_samples = r.contour->sample(32);
+    for (int s = 0; s < 4; ++s) r.side_length[static_cast<std::size_t>(s)] = r.contour->side_length(static_cast<Side>(s));
+    r.stage_seconds[1] = t.wall_s();
+    r.completed = Stage::kContour;
+    if (section != nullptr) (*section)["side_lengths"] = r.side_length;
+    scope.done(fmt::format("{} spline through {} points, sides S {:.4g}, E {:.4g}, N {:.4g}, W {:.4g}",
+                           co.degree == 3 && p.spline_type == 3 ? "cubic" : "quintic", r.control_x.size(),
+                           r.side_length[0], r.side_length[1], r.side_length[2], r.side_length[3]));
+  }
+  if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
+  if (stop_after == Stage::kContour) return r;
+
+  // Stage 2: uniform boundary nodes of the (2nx0+1) × (2ny+1) supergrid.
+  {
+    StageScope scope("regional uniform", report, log);
+    const Timer t;
+    r.ny = p.ny;
+    r.nx_initial = p.nx;
+    if (r.nx_initial <= 0) {
+      const double ratio = (r.side_length[0] + r.side_length[2]) / (r.side_length[1] + r.side_length[3]);
+      r.nx_initial = std::max(1, static_cast<int>(std::lround(p.ny * ratio)));
+    }
+    r.uniform_nodes = uniform_boundary_nodes(*r.contour, 2 * r.nx_initial + 1, 2 * p.ny + 1, {}, &r.uniform_stats);
+    r.stage_seconds[2] = t.wall_s();
+    r.completed = Stage::kUniform;
+    scope.done(fmt::format("{} boundary nodes of a {} x {} supergrid", r.uniform_nodes.count(),
+                           r.uniform_nodes.nx_pts, r.uniform_nodes.ny_pts));
+  }
+  if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
+  if (stop_after == Stage::kUniform) return r;
+
+  // Stage 3: inverse problem.
+  {
+    StageScope scope("regional conformal", report, log);
+    const Timer t;
+    InverseOptions io;
+    io.schedule = p.schedule;
+    io.tolerance = p.tolerance;
+    io.max_outer_iterations = p.max_outer;
+    io.max_inner_passes = p.max_inner;
+    io.interpolation_points = p.interp_points;
+    io.inner_relative_tolerance = p.inner_rtol;
+    io.acceleration_depth = p.anderson;
+    io.auto_nx = p.auto_nx;
+    io.cell_multiple = 2;
+    io.threads = p.threads;
+    r.inverse = solve_inverse_problem(*r.contour, r.uniform_nodes, io, log);
+    r.nodes = r.inverse.nodes;
+    r.aspect_ratio = r.inverse.aspect_ratio;
+    r.nx = (r.nodes.nx_pts - 1) / 2;
+    r.dxi_over_deta = r.aspect_ratio * (r.nodes.ny_pts - 1) / (r.nodes.nx_pts - 1);
+    r.stage_seconds[3] = t.wall_s();
+    r.completed = Stage::kConformal;
+    int passes = 0;
+    for (int q : r.inverse.inner_passes) passes += q;
+    if (section != nullptr) {
+      (*section)["nx"] = r.nx;
+      (*section)["aspect_ratio"] = r.aspect_ratio;
+      (*section)["dxi_over_deta"] = r.dxi_over_deta;
+      (*section)["supergrid"] = {r.nodes.nx_pts, r.nodes.ny_pts};
+      (*section)["residual_history"] = r.inverse.residual_history;
+      (*section)["aspect_history"] = r.inverse.aspect_history;
+      (*section)["iz89_passes"] = r.inverse.inner_passes;
+      (*section)["residual"] = r.inverse.residual;
+      (*section)["tolerance"] = r.inverse.tolerance;
+    }
+    scope.done(fmt::format("W/H = {:.7f}, nx = {} for ny = {} (supergrid {} x {}), residual {:.2e} after {} outer "
+                           "iterations, {} IZ89 passes",
+                           r.aspect_ratio, r.nx, r.ny, r.nodes.nx_pts, r.nodes.ny_pts, r.inverse.residual,
+                           r.inverse.outer_iterations, passes));
+  }
+  if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
+  if (stop_after == Stage::kConformal) return r;
+
+  // Stage 4: Laplace fill of the supergrid.
+  {
+    StageScope scope("regional grid", report, log);
+    const Timer t;
+    r.grid = Grid2D(r.nodes.nx_pts, r.nodes.ny_pts);
+    set_grid_boundary(*r.contour, r.nodes, r.grid);
+    LaplaceOptions lo;
+    lo.solver = p.solver;
+    r.laplace = laplace_fill(r.grid, r.aspect_ratio / (r.nodes.nx_pts - 1), 1.0 / (r.nodes.ny_pts - 1), lo);
+    r.stage_seconds[4] = t.wall_s();
+    r.completed = Stage::kGrid;
+    if (section != nullptr) {
+      (*section)["laplace_solver"] = p.solver == LaplaceOptions::Solver::kDst ? "dst" : "sor";
+      (*section)["laplace_residual"] = r.laplace.residual;
+      (*section)["laplace_iterations"] = r.laplace.iterations;
+    }
+    scope.done(fmt::format("{} x {} supergrid filled ({} solver, residual {:.1e})", r.grid.nx_pts, r.grid.ny_pts,
+                           p.solver == LaplaceOptions::Solver::kDst ? "DST" : "SOR", r.laplace.residual));
+  }
+  if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
+  return r;
+}
+
+}  // namespace aq::curvilinear

@@ -1,0 +1,81 @@
+// Validation of RegionalParams (seed 000 Appendix 1 ranges; digest izogrid.md §2.2).
+#include "curvilinear/regional_params.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace aq::curvilinear {
+
+ProjectionParams projection_params(const RegionalParams& p) {
+  ProjectionParams q;
+  q.kind = p.proj;
+  q.rlat_deg = p.rlat;
+  q.rlon_deg = p.rlon;
+  q.rota_deg = p.rota;
+  q.lat1_deg = p.lat1;
+  q.lat2_deg = p.lat2;
+  q.uscale = p.uscale;
+  q.radius_m = p.radius;
+  return q;
+}
+
+std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p) {
+  std::vector<std::pair<std::string, std::string>> bad;
+  auto check = [&](bool ok, const char* key, const std::string& value, const char* what) {
+    if (!ok) bad.emplace_back(key, fmt::format("{} = {}: {}", key, value, what));
+  };
+  auto num = [](double v) { return fmt::format("{}", v); };
+  check(p.mode >= 0 && p.mode <= 5, "mode", std::to_string(p.mode), "must be 0..5");
+  check(p.npass >= 1, "npass", std::to_string(p.npass), "must be >= 1");
+  check(std::isfinite(p.rlat) && std::fabs(p.rlat) <= 90.0, "rlat", num(p.rlat), "must be within [-90, 90]");
+  check(std::isfinite(p.rlon), "rlon", num(p.rlon), "must be a finite longitude");
+  check(std::isfinite(p.rota), "rota", num(p.rota), "must be a finite angle");
+  check(p.uscale > 0.0 && std::isfinite(p.uscale), "uscale", num(p.uscale), "must be positive");
+  check(p.radius > 0.0 && std::isfinite(p.radius), "radius", num(p.radius), "must be positive (metres)");
+  check(p.latlongrid > 0.0 && std::isfinite(p.latlongrid), "latlongrid", num(p.latlongrid), "must be positive");
+  check(p.lwidth > 0.0 && std::isfinite(p.lwidth), "lwidth", num(p.lwidth), "must be positive");
+  check(p.spline_type >= 3 && p.spline_type <= 5, "spline_type", std::to_string(p.spline_type),
+        "must be 3 (cubic), 4 (both, quintic used) or 5 (quintic)");
+  check(p.nx >= 0, "nx", std::to_string(p.nx), "must be >= 0 (0 = guess)");
+  check(p.ny >= 1, "ny", std::to_string(p.ny), "must be >= 1");
+  check(p.tolerance > 0.0 && p.tolerance < 1.0, "tolerance", num(p.tolerance), "must be within (0, 1)");
+  check(p.max_outer >= 1, "max_outer", std::to_string(p.max_outer), "must be >= 1");
+  check(p.max_inner >= 1, "max_inner", std::to_string(p.max_inner), "must be >= 1");
+  check(p.interp_points >= 2 && p.interp_points <= 8, "interp_points", std::to_string(p.interp_points),
+        "must be within 2..8");
+  check(p.inner_rtol >= 0.0 && p.inner_rtol <= 1.0, "inner_rtol", num(p.inner_rtol), "must be within [0, 1]");
+  check(p.anderson >= 0 && p.anderson <= 8, "anderson", std::to_string(p.anderson), "must be within 0..8");
+  check(p.threads >= 0, "threads", std::to_string(p.threads), "must be >= 0 (0 = default)");
+  check(!p.xygrid.empty(), "xygrid", "''", "must name a file");
+  for (const auto& [key, v] : {std::pair{"west_edge", p.west_edge}, std::pair{"east_edge", p.east_edge},
+                               std::pair{"south_edge", p.south_edge}, std::pair{"north_edge", p.north_edge}})
+    check(std::isnan(v) || std::isfinite(v), key, num(v), "must be a finite number");
+  if (std::isfinite(p.south_edge) && std::isfinite(p.north_edge))
+    check(p.south_edge < p.north_edge, "south_edge", num(p.south_edge), "must be below north_edge");
+  if (p.proj == ProjectionKind::kMercator)
+    check(std::fabs(p.rlat) < 90.0, "rlat", num(p.rlat), "a Mercator centre cannot be a pole (use proj = ST)");
+  // Control points.
+  if (p.x.size() != p.y.size() || p.corner.size() != p.x.size()) {
+    bad.emplace_back("points", fmt::format("control points: {} x, {} y and {} corner marks differ in number",
+                                           p.x.size(), p.y.size(), p.corner.size()));
+  } else {
+    if (p.points_lonlat)
+      for (std::size_t k = 0; k < p.y.size(); ++k)
+        if (std::fabs(p.y[k]) > 90.0)
+          bad.emplace_back("points", fmt::format("control point {}: latitude {} outside [-90, 90]", k + 1, p.y[k]));
+  }
+  return bad;
+}
+
+void validate_regional_params(const RegionalParams& p) {
+  const auto bad = regional_params_problems(p);
+  if (bad.empty()) return;
+  std::string msg = fmt::format("{}: invalid regional parameters:", p.source);
+  for (const auto& b : bad) msg += "\n  " + b.second;
+  throw ConfigError(msg);
+}
+
+}  // namespace aq::curvilinear

@@ -1,0 +1,132 @@
+// Parameters of a regional izogrid run (seed 000 Appendix 1; digest izogrid.md §2.2). One plain
+// struct with a default for every field; the izogrid-file parser (izogrid_file.hpp) and the TOML
+// config fill it. Field names follow the seed's input-file keys where it has them (the izogrid
+// key is given in brackets); the rest are aquatoria extensions with the key named likewise.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "curvilinear/inverse_problem.hpp"
+#include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/projection.hpp"
+#include "curvilinear/spline_contour.hpp"
+
+namespace aq::curvilinear {
+
+struct RegionalParams {
+  static constexpr double kAuto = std::numeric_limits<double>::quiet_NaN();
+
+  // --- run control ---------------------------------------------------------------------------
+  /// [mode] stage after which to stop: 0 map, 1 contour, 2 uniform nodes, 3 inverse problem,
+  /// 4 grid (with picture), 5 grid (no picture). 0..5.
+  int mode = 4;
+  /// [npass] the seed's iteration multiplier (empirically 4..10). aquatoria iterates to
+  /// `tolerance` instead, so this is accepted, range-checked (≥ 1) and echoed only.
+  int npass = 4;
+
+  // --- map (mode 0) --------------------------------------------------------------------------
+  /// [proj] conformal projection: ME (rotated Mercator), LC (Lambert conic), ST (stereographic).
+  ProjectionKind proj = ProjectionKind::kMercator;
+  /// [rlat] latitude of the projection centre = plane origin, degrees, [-90, 90] (not ±90 for ME).
+  double rlat = 0.0;
+  /// [rlon] longitude of the projection centre (LC: central meridian), degrees.
+  double rlon = 0.0;
+  /// [rota] azimuth of the plane's +y axis, degrees clockwise from north at the centre.
+  double rota = 0.0;
+  /// [lat1], [lat2] LC standard parallels, degrees in (-90, 90); NaN = rlat (tangent cone).
+  double lat1 = kAuto;
+  double lat2 = kAuto;
+  /// [uscale] plane units are unit-sphere radians divided by uscale; > 0 (seed: 0.001).
+  double uscale = 0.001;
+  /// [radius] sphere radius, metres, > 0.
+  double radius = 6371000.0;
+  /// [west_edge], [east_edge], [south_edge], [north_edge] geographic limits of the pictures
+  /// only, degrees; NaN = fit the contour. They never change the grid.
+  double west_edge = kAuto;
+  double east_edge = kAuto;
+  double south_edge = kAuto;
+  double north_edge = kAuto;
+  /// [latlongrid] graticule spacing of the pictures, degrees, > 0.
+  double latlongrid = 2.0;
+  /// [gshhs_data] the seed's coastline source (a GSHHS file or c/l/i/h/f). aquatoria draws the
+  /// coastline from the bathymetry; accepted and echoed only.
+  std::string gshhs_data = "i";
+  /// [lwidth] line-width multiplier of the pictures, > 0.
+  double lwidth = 1.0;
+
+  // --- contour (mode 1) ----------------------------------------------------------------------
+  /// [spline_type] 3 = cubic, 5 = quintic, 4 = both drawn and the quintic used for the grid.
+  int spline_type = 5;
+  /// [param] curve parameter: "index" (σ = k, default) or "arclength" (iterated, §4.6).
+  Parametrisation param = Parametrisation::kIndex;
+  /// [points] what the control points are: false = plane units (the seed's files), true =
+  /// longitude/latitude in degrees (projected in stage 0).
+  bool points_lonlat = false;
+  /// Control points counter-clockwise from the SW corner: x (or longitude), y (or latitude).
+  std::vector<double> x;
+  std::vector<double> y;
+  /// Corner marks (point 0 is the SW corner whether marked or not; exactly 3 more).
+  std::vector<bool> corner;
+
+  // --- grid size and boundary nodes (modes 2, 3) ---------------------------------------------
+  /// [nx] cells along ξ of the final (ρ-point) grid; the supergrid has 2nx+1 points. Only a
+  /// first guess when auto_nx (re-chosen from the rectangle's aspect ratio). 0 = guess from the
+  /// contour's side lengths. ≥ 0.
+  int nx = 0;
+  /// [ny] cells along η of the final grid (kept; pick one divisible by many processor counts);
+  /// the supergrid has 2ny+1 points. ≥ 1.
+  int ny = 50;
+  /// [auto_nx] re-choose nx so the cells are square (the seed always does).
+  bool auto_nx = true;
+
+  // --- inverse problem (mode 3) --------------------------------------------------------------
+  /// [schedule] IZ89 passes per outer iteration: "exponential" 2^((m+5)/2) (default) or "sqrt"
+  /// √(2m+5) — the two readings of the paper's garbled formula (see inverse_problem.hpp).
+  InnerSchedule schedule = InnerSchedule::kExponential;
+  /// [tolerance] outer convergence, max |t' − t'∞| as a fraction of the side, > 0.
+  double tolerance = 1e-12;
+  /// [max_outer] outer iterations before NumericalError, ≥ 1.
+  int max_outer = 40;
+  /// [max_inner] cap on the IZ89 passes of one outer iteration, ≥ 1.
+  int max_inner = 64;
+  /// [interp_points] Lagrange points in the node update (26): 2 (linear) .. 8; default 4.
+  int interp_points = 4;
+  /// [inner_rtol] inexact inner solves: IZ89 angle tolerance relative to the last residual,
+  /// ≥ 0 (0 = always converge IZ89 fully).
+  double inner_rtol = 1e-2;
+  /// [anderson] Anderson acceleration depth of the outer loop, 0..8 (0 = the paper's plain loop).
+  int anderson = 0;
+
+  // --- fill (mode 4) -------------------------------------------------------------------------
+  /// [solver] Laplace solver: "dst" (direct, default) or "sor" (the paper's 4-colour SOR).
+  LaplaceOptions::Solver solver = LaplaceOptions::Solver::kDst;
+  /// [xygrid] output netCDF file name of the planar grid.
+  std::string xygrid = "xygrid.nc";
+
+  // --- execution and provenance --------------------------------------------------------------
+  /// [threads] OpenMP threads for IZ89 and the fill; 0 = the OpenMP default. Results do not
+  /// depend on it.
+  int threads = 0;
+  /// Where the parameters came from (file name), used in messages.
+  std::string source = "regional";
+  /// The input file's text, for provenance in output files (may be empty).
+  std::string input_text;
+};
+
+/// Checks every field's range and throws one ConfigError listing all problems ("<source>: <key> =
+/// <value>: why"). The control points are checked when the contour is built (InputError: corner
+/// count, repeated or non-finite points, orientation, self-intersection); here only that x, y and
+/// corner have equal lengths and that latitudes are within ±90 when points_lonlat.
+void validate_regional_params(const RegionalParams& p);
+
+/// The problems validate_regional_params() reports, as (key, message) pairs (key as in the
+/// izogrid file, "points" for the control points), for callers that add file:line.
+std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p);
+
+/// The projection parameters of `p`.
+ProjectionParams projection_params(const RegionalParams& p);
+
+}  // namespace aq::curvilinear
