@@ -43,13 +43,13 @@ void emit_triangles(const std::vector<quadtree::Leaf>& leaves, const std::vector
       static_cast<std::int64_t>(centres.size()) != n || static_cast<std::int64_t>(mesh.square_midside.size()) != n) {
     throw InternalError("emit_triangles: leaves, codes, centres and squares differ in size");
   }
-  std::vector<std::int64_t> offset(static_cast<std::size_t>(quadtree::max_threads()), 0);
-  const int blocks = quadtree::parallel_blocks(n, [&](int t, std::int64_t begin, std::int64_t end) {
+  const int blocks = quadtree::block_count(n, 8);
+  std::vector<std::int64_t> offset(static_cast<std::size_t>(blocks), 0);
+  quadtree::for_each_block(n, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
     std::int64_t c = 0;
     for (std::int64_t k = begin; k < end; ++k) c += triangle_count(codes[static_cast<std::size_t>(k)]);
     offset[static_cast<std::size_t>(t)] = c;
   });
-  offset.resize(static_cast<std::size_t>(blocks));
   const auto base = static_cast<std::int64_t>(mesh.triangles.size());
   const std::int64_t total = quadtree::exclusive_scan_in_place(offset);
   mesh.triangles.resize(static_cast<std::size_t>(base + total));
@@ -58,7 +58,7 @@ void emit_triangles(const std::vector<quadtree::Leaf>& leaves, const std::vector
   std::array<NodeId, 3>* tri = mesh.triangles.data();
   std::uint8_t* level = mesh.triangle_level.data();
   ElementId* square = mesh.triangle_square.data();
-  quadtree::parallel_blocks(n, [&](int t, std::int64_t begin, std::int64_t end) {
+  quadtree::for_each_block(n, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
     std::int64_t pos = base + offset[static_cast<std::size_t>(t)];
     for (std::int64_t k = begin; k < end; ++k) {
       const auto kk = static_cast<std::size_t>(k);
@@ -112,7 +112,7 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   mesh.rlat_deg.resize(static_cast<std::size_t>(n));
   mesh.depth_m.resize(static_cast<std::size_t>(n));
   const bool rotated = mesh.rotation.enabled;
-#pragma omp parallel for default(none) shared(mesh, lat, rotation, n, rotated) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n * 8)) shared(mesh, lat, rotation, n, rotated) schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto p = static_cast<std::size_t>(k);
     const double rlon = lat.lon_of(mesh.node_i[p]);

@@ -116,18 +116,33 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     j = m.node_j[n];
   };
 
-  // Geometry in lattice units.
+  // Geometry in lattice units. shape[t] = p0·81 + p1·9 + p2 with p the vertex positions inside
+  // the triangle's square in half sides (row·3 + column, 0..8), -1 if not on that grid.
   s.similarity.assign(static_cast<std::size_t>(2 * levels) + 1, 0);
+  std::vector<std::int16_t> shape(static_cast<std::size_t>(ntri));
   {
-    const int nt = quadtree::max_threads();
+    const int nt = quadtree::block_count(ntri, 16);
     std::vector<std::vector<std::int64_t>> sim(static_cast<std::size_t>(nt), s.similarity);
     std::vector<std::array<std::int64_t, 3>> sums(static_cast<std::size_t>(nt), {0, 0, 0});
-    quadtree::parallel_blocks(ntri, [&](int th, std::int64_t begin, std::int64_t end) {
+    quadtree::for_each_block(ntri, nt, [&](int th, std::int64_t begin, std::int64_t end) {
       std::array<std::int64_t, 3>& acc = sums[static_cast<std::size_t>(th)];
       std::vector<std::int64_t>& hist = sim[static_cast<std::size_t>(th)];
       for (std::int64_t t = begin; t < end; ++t) {
         std::array<std::int64_t, 3> x{}, y{};
         for (int v = 0; v < 3; ++v) vertex_ij(t, v, x[static_cast<std::size_t>(v)], y[static_cast<std::size_t>(v)]);
+        {
+          const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
+          const std::int64_t side = lat.pixels_per_square(m.square_level[sq]);
+          const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
+          const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[sq][0])];
+          int code = 0;
+          for (std::size_t v = 0; v < 3 && code >= 0; ++v) {
+            const std::int64_t px = 2 * (x[v] - i0), py = 2 * (y[v] - j0);
+            const bool on = px % side == 0 && py % side == 0 && px >= 0 && py >= 0 && px <= 2 * side && py <= 2 * side;
+            code = on ? code * 9 + static_cast<int>((py / side) * 3 + px / side) : -1;
+          }
+          shape[static_cast<std::size_t>(t)] = static_cast<std::int16_t>(code);
+        }
         const std::int64_t cross = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
         acc[0] += cross;
         if (cross <= 0) ++acc[1];
@@ -177,13 +192,12 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (std::size_t v = nn; v > 0; --v) start[v] = start[v - 1];
   start[0] = 0;
   const auto nbuckets = static_cast<std::int64_t>(nn);
-#pragma omp parallel for default(none) shared(rec, start, nbuckets) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, nbuckets) schedule(static)
   for (std::int64_t v = 0; v < nbuckets; ++v) {
     std::sort(rec.begin() + start[static_cast<std::size_t>(v)], rec.begin() + start[static_cast<std::size_t>(v) + 1]);
   }
   std::vector<std::int64_t> parent(static_cast<std::size_t>(ntri));
   for (std::int64_t t = 0; t < ntri; ++t) parent[static_cast<std::size_t>(t)] = t;
-  std::vector<std::array<NodeId, 2>> tri_boundary;
   std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
   std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
   const auto tri_of = [](std::uint64_t r) { return static_cast<std::int64_t>((r & 0xffffffffULL) >> 1); };
@@ -200,7 +214,6 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       std::uint8_t level = m.triangle_level[static_cast<std::size_t>(t0)];
       if (e - k == 1) {
         ++s.boundary_edges;
-        tri_boundary.push_back((rec[k] & 1U) ? std::array<NodeId, 2>{b, a} : std::array<NodeId, 2>{a, b});
       } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {
         ++s.interior_edges;
         const std::int64_t t1 = tri_of(rec[k + 1]);
@@ -214,8 +227,6 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       k = e;
     }
   }
-  std::vector<std::uint64_t>().swap(rec);
-  std::vector<std::int64_t>().swap(start);
   s.edges = static_cast<std::int64_t>(edge_a.size());
   for (std::int64_t t = 0; t < ntri; ++t) s.components += find_root(parent, t) == t;
   std::vector<std::int64_t>().swap(parent);
@@ -224,15 +235,28 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     for (const NodeId v : t) used[static_cast<std::size_t>(v)] = 1;
   for (const char u : used) s.used_nodes += u;
   if (ntri > 0) {
-    std::vector<std::array<NodeId, 2>> mb = m.boundary_edges;
-    std::sort(mb.begin(), mb.end());
-    std::sort(tri_boundary.begin(), tri_boundary.end());
-    std::vector<std::array<NodeId, 2>> diff;
-    std::set_symmetric_difference(mb.begin(), mb.end(), tri_boundary.begin(), tri_boundary.end(), std::back_inserter(diff));
-    s.boundary_mismatch = static_cast<std::int64_t>(diff.size());
+    // Every Mesh boundary edge a -> b must be a triangle edge used once, in the same direction.
+    std::int64_t matched = 0;
+    for (const auto& be : m.boundary_edges) {
+      if (be[0] < 0 || be[1] < 0 || be[0] >= s.nodes || be[1] >= s.nodes || be[0] == be[1]) continue;
+      const auto lo = static_cast<std::size_t>(std::min(be[0], be[1]));
+      const auto hi = static_cast<std::uint64_t>(std::max(be[0], be[1]));
+      const std::uint64_t dir = be[0] > be[1] ? 1U : 0U;
+      std::int64_t count = 0;
+      bool same_direction = false;
+      for (auto k = static_cast<std::size_t>(start[lo]); k < static_cast<std::size_t>(start[lo + 1]); ++k) {
+        if ((rec[k] >> 32) != hi) continue;
+        ++count;
+        same_direction = (rec[k] & 1U) == dir;
+      }
+      matched += (count == 1 && same_direction);
+    }
+    s.boundary_mismatch = std::abs(s.boundary_edges - matched) + (static_cast<std::int64_t>(m.boundary_edges.size()) - matched);
     s.euler = s.used_nodes - s.edges + ntri;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
+  std::vector<std::uint64_t>().swap(rec);
+  std::vector<std::int64_t>().swap(start);
 
   if (!options.geodesic) return s;
   s.geodesic = true;
@@ -254,17 +278,11 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   }
   s.filled_area_km2 = filled_m2 * 1e-6;
 
-  // Shape of a triangle / edge inside its square: vertex positions in half sides (0..2, 0..2).
+  // Position (0..8) of vertex v of triangle t inside its square, from shape[t]; -1 if unknown.
   const auto local_pos = [&](std::int64_t t, int v) {
-    const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
-    const std::int64_t side = lat.pixels_per_square(m.square_level[sq]);
-    const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
-    const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[sq][0])];
-    std::int64_t i = 0, j = 0;
-    vertex_ij(t, v, i, j);
-    const std::int64_t px = 2 * (i - i0), py = 2 * (j - j0);
-    if (px % side != 0 || py % side != 0 || px < 0 || py < 0 || px > 2 * side || py > 2 * side) return -1;
-    return static_cast<int>((py / side) * 3 + px / side);
+    const int code = shape[static_cast<std::size_t>(t)];
+    if (code < 0) return -1;
+    return v == 0 ? code / 81 : v == 1 ? (code / 9) % 9 : code % 9;
   };
   // Row offsets of the (level, row) memo tables.
   std::vector<std::int64_t> row_offset(static_cast<std::size_t>(levels) + 2, 0);
@@ -294,15 +312,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // Triangle areas.
   std::vector<double> area(static_cast<std::size_t>(ntri));
   if (memo) {
-    std::vector<std::int32_t> shape(static_cast<std::size_t>(ntri));
-#pragma omp parallel for default(none) shared(shape, ntri, local_pos) schedule(static)
-    for (std::int64_t t = 0; t < ntri; ++t) {
-      const int p0 = local_pos(t, 0), p1 = local_pos(t, 1), p2 = local_pos(t, 2);
-      shape[static_cast<std::size_t>(t)] = (p0 < 0 || p1 < 0 || p2 < 0) ? -1 : p0 * 81 + p1 * 9 + p2;
-    }
     std::vector<std::int32_t> shape_id(729, -1);
     std::vector<std::int32_t> shapes;
-    for (const std::int32_t c : shape) {
+    for (const std::int16_t c : shape) {
       if (c >= 0 && shape_id[static_cast<std::size_t>(c)] < 0) {
         shape_id[static_cast<std::size_t>(c)] = static_cast<std::int32_t>(shapes.size());
         shapes.push_back(c);
@@ -318,12 +330,12 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t cell = row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)];
       if (example[static_cast<std::size_t>(cell)] < 0) example[static_cast<std::size_t>(cell)] = t;
     }
-#pragma omp parallel for default(none) shared(table, example, cells, lattice_area) schedule(dynamic, 64)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) shared(table, example, cells, lattice_area) schedule(dynamic, 64)
     for (std::int64_t cell = 0; cell < cells; ++cell) {
       const std::int64_t t = example[static_cast<std::size_t>(cell)];
       if (t >= 0) table[static_cast<std::size_t>(cell)] = lattice_area(t);
     }
-#pragma omp parallel for default(none) shared(area, shape, shape_id, table, ntri, nshapes, row_of, lattice_area) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 4)) shared(area, shape, shape_id, table, ntri, nshapes, row_of, lattice_area) \
     schedule(static)
     for (std::int64_t t = 0; t < ntri; ++t) {
       const std::int32_t c = shape[static_cast<std::size_t>(t)];
@@ -332,7 +344,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                 : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
     }
   } else {
-#pragma omp parallel for default(none) shared(area, ntri, lattice_area) schedule(dynamic, 256)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 256)) shared(area, ntri, lattice_area) schedule(dynamic, 256)
     for (std::int64_t t = 0; t < ntri; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
   }
   double total_m2 = 0.0;
@@ -354,7 +366,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
     std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
     std::vector<std::int64_t> cell_of(static_cast<std::size_t>(nedges), -1);
-#pragma omp parallel for default(none) shared(m, edge_a, edge_b, edge_t, cell_of, nedges, local_pos, row_of) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 8)) shared(m, edge_a, edge_b, edge_t, cell_of, nedges, local_pos, row_of) \
     schedule(static)
     for (std::int64_t e = 0; e < nedges; ++e) {
       const auto k = static_cast<std::size_t>(e);
@@ -372,18 +384,18 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
       if (cell >= 0 && example[static_cast<std::size_t>(cell)] < 0) example[static_cast<std::size_t>(cell)] = e;
     }
-#pragma omp parallel for default(none) shared(table, example, cells, direct_length) schedule(dynamic, 64)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) shared(table, example, cells, direct_length) schedule(dynamic, 64)
     for (std::int64_t cell = 0; cell < cells; ++cell) {
       const std::int64_t e = example[static_cast<std::size_t>(cell)];
       if (e >= 0) table[static_cast<std::size_t>(cell)] = direct_length(e);
     }
-#pragma omp parallel for default(none) shared(length, cell_of, table, nedges, direct_length) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 2)) shared(length, cell_of, table, nedges, direct_length) schedule(static)
     for (std::int64_t e = 0; e < nedges; ++e) {
       const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
       length[static_cast<std::size_t>(e)] = cell < 0 ? direct_length(e) : table[static_cast<std::size_t>(cell)];
     }
   } else {
-#pragma omp parallel for default(none) shared(length, nedges, direct_length) schedule(dynamic, 256)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 256)) shared(length, nedges, direct_length) schedule(dynamic, 256)
     for (std::int64_t e = 0; e < nedges; ++e) length[static_cast<std::size_t>(e)] = direct_length(e);
   }
 

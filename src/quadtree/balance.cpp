@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "quadtree/bits.hpp"
+#include "quadtree/parallel.hpp"
 
 namespace aq::quadtree {
 
@@ -69,7 +70,7 @@ BalanceStats balance(LevelMasks& m, BalanceMode mode) {
     const std::int64_t rows2 = target.ny();
     const std::int64_t words2 = target.words_per_row();
     std::int64_t cleared = 0;
-#pragma omp parallel default(none) shared(fine, parent, target, n, words, words1, rows2, words2, corner) \
+#pragma omp parallel default(none) if (quadtree::parallel_worth(rows2 * words * 8)) shared(fine, parent, target, n, words, words1, rows2, words2, corner) \
     reduction(+ : cleared)
     {
       const auto ws = static_cast<std::size_t>(words);
@@ -121,7 +122,7 @@ std::int64_t count_balance_violations(const LevelMasks& m, BalanceMode mode) {
     const std::int64_t words = fine.words_per_row();
     const std::int64_t words1 = parent.words_per_row();
     std::int64_t count = 0;
-#pragma omp parallel default(none) shared(fine, parent, coarse, n, rows, words, words1, corner) reduction(+ : count)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * 8)) shared(fine, parent, coarse, n, rows, words, words1, corner) reduction(+ : count)
     {
       const auto ws = static_cast<std::size_t>(words);
       Words leaf(3 * ws), up(ws), up1(static_cast<std::size_t>(words1)), rot(ws);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "quadtree/parallel.hpp"
 
 namespace aq::quadtree::bits {
 
@@ -103,7 +104,7 @@ Bitmap reduce(const Bitmap& fine, bool use_or) {
   Bitmap coarse(fine.nx() / 2, fine.ny() / 2);
   const std::int64_t rows = coarse.ny();
   const std::int64_t child_words = fine.words_per_row();
-#pragma omp parallel for default(none) shared(fine, coarse, rows, child_words, use_or) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * child_words * 2)) shared(fine, coarse, rows, child_words, use_or) schedule(static)
   for (std::int64_t b = 0; b < rows; ++b) {
     reduce_rows(fine.row(2 * b), fine.row(2 * b + 1), child_words, coarse.row(b), use_or);
   }
@@ -122,7 +123,7 @@ std::int64_t count_and_not(const Bitmap& a, const Bitmap& b) {
   const std::vector<std::uint64_t>& wb = b.words();
   const auto n = static_cast<std::int64_t>(wa.size());
   std::int64_t total = 0;
-#pragma omp parallel for default(none) shared(wa, wb, n) reduction(+ : total) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n)) shared(wa, wb, n) reduction(+ : total) schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     total += popcount64(wa[static_cast<std::size_t>(k)] & ~wb[static_cast<std::size_t>(k)]);
   }

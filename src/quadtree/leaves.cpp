@@ -33,7 +33,7 @@ Bitmap dry_dilation(const Bitmap& filled, std::int64_t r) {
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
   const std::uint64_t last = bits::last_word_mask(nx);
-#pragma omp parallel default(none) shared(filled, h, nx, ny, words, last, r)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * 8)) shared(filled, h, nx, ny, words, last, r)
   {
     Words comp(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
@@ -128,7 +128,7 @@ Bitmap coastal_band(const Bitmap& filled, int band) {
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
   const std::int64_t r = band;
-#pragma omp parallel default(none) shared(filled, h, out, ny, words, r)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * (2 * r + 1))) shared(filled, h, out, ny, words, r)
   {
     Words inner(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
@@ -164,7 +164,7 @@ LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_
     dst = Bitmap(filled.nx() / 2, filled.ny() / 2);
     const std::int64_t rows = dst.ny();
     const std::int64_t words = filled.words_per_row();
-#pragma omp parallel default(none) shared(filled, h, dst, rows, words, r)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * (4 * r + 2))) shared(filled, h, dst, rows, words, r)
     {
       Words lo(static_cast<std::size_t>(words)), hi(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
@@ -215,7 +215,7 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     const double lon0 = lat.lon0_deg;
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
-#pragma omp parallel for default(none) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
     shared(om, rows, words, step, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
     schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
@@ -251,8 +251,9 @@ std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat) {
   const std::int64_t nx0 = lat.nx >> lat.levels;
   const std::int64_t ny0 = lat.ny >> lat.levels;
   const std::int64_t roots = nx0 * ny0;
-  std::vector<std::vector<Leaf>> parts(static_cast<std::size_t>(max_threads()));
-  const int blocks = parallel_blocks(roots, [&](int t, std::int64_t begin, std::int64_t end) {
+  const int blocks = block_count(roots, 16);
+  std::vector<std::vector<Leaf>> parts(static_cast<std::size_t>(blocks));
+  for_each_block(roots, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
     std::vector<Leaf>& out = parts[static_cast<std::size_t>(t)];
     for (std::int64_t r = begin; r < end; ++r) collect_leaves(masks, levels, 0, r % nx0, r / nx0, out);
   });
@@ -278,7 +279,7 @@ std::vector<std::int64_t> count_leaves_per_level(const LevelMasks& masks) {
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
     std::int64_t n = 0;
-#pragma omp parallel default(none) shared(om, parent, rows, words) reduction(+ : n)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * 2)) shared(om, parent, rows, words) reduction(+ : n)
     {
       Words up(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)

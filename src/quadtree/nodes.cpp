@@ -29,7 +29,7 @@ public:
     const std::int64_t words = vb_.words_per_row();
     prefix_.assign(static_cast<std::size_t>(rows * words), 0U);
     row_base_.assign(static_cast<std::size_t>(rows), 0);
-#pragma omp parallel for default(none) shared(rows, words) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words)) shared(rows, words) schedule(static)
     for (std::int64_t j = 0; j < rows; ++j) {
       const std::uint64_t* r = vb_.row(j);
       std::uint32_t run = 0;
@@ -126,9 +126,10 @@ std::vector<std::array<std::int64_t, 2>> find_pinches(const Bitmap& filled) {
   const std::int64_t nx = filled.nx();
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
-  std::vector<std::vector<std::array<std::int64_t, 2>>> parts(static_cast<std::size_t>(max_threads()));
   const std::int64_t rows = ny > 1 ? ny - 1 : 0;
-  const int blocks = parallel_blocks(rows, [&](int t, std::int64_t begin, std::int64_t end) {
+  const int blocks = block_count(rows, 4 * words);
+  std::vector<std::vector<std::array<std::int64_t, 2>>> parts(static_cast<std::size_t>(blocks));
+  for_each_block(rows, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
     std::vector<std::uint64_t> aw(static_cast<std::size_t>(words)), bw(static_cast<std::size_t>(words));
     std::vector<std::array<std::int64_t, 2>>& out = parts[static_cast<std::size_t>(t)];
     for (std::int64_t jj = begin; jj < end; ++jj) {
@@ -174,7 +175,7 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   Bitmap& vb = vr.bitmap();
   for (std::int64_t phase = 0; phase < 2; ++phase) {
     const std::int64_t count = (ny0 - phase + 1) / 2;
-#pragma omp parallel for default(none) shared(leaves, lat, vb, starts, phase, count, nx) schedule(dynamic, 1)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(static_cast<std::int64_t>(leaves.size()) * 4)) shared(leaves, lat, vb, starts, phase, count, nx) schedule(dynamic, 1)
     for (std::int64_t k = 0; k < count; ++k) {
       const std::int64_t b0 = 2 * k + phase;
       for (std::int64_t f = starts[static_cast<std::size_t>(b0)]; f < starts[static_cast<std::size_t>(b0) + 1]; ++f) {
@@ -191,7 +192,7 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   // 2. Midside codes: the midpoint of a side is a node exactly when a finer neighbour has a corner there.
   QuadNodes out;
   out.midside_code.assign(static_cast<std::size_t>(nleaves), 0);
-#pragma omp parallel for default(none) shared(leaves, lat, vb, out, nleaves, nx) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 4)) shared(leaves, lat, vb, out, nleaves, nx) schedule(static)
   for (std::int64_t f = 0; f < nleaves; ++f) {
     const Box q = box_of(lat, leaves[static_cast<std::size_t>(f)]);
     if (q.s < 2) continue;
@@ -206,7 +207,7 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
 
   // 3. Centres (strictly inside their leaf, so inside their level-0 row: no write conflicts).
   if (options.centres) {
-#pragma omp parallel for default(none) shared(leaves, lat, vb, out, starts, ny0) schedule(dynamic, 1)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves)) shared(leaves, lat, vb, out, starts, ny0) schedule(dynamic, 1)
     for (std::int64_t b0 = 0; b0 < ny0; ++b0) {
       for (std::int64_t f = starts[static_cast<std::size_t>(b0)]; f < starts[static_cast<std::size_t>(b0) + 1]; ++f) {
         if (out.midside_code[static_cast<std::size_t>(f)] == 0) continue;
@@ -223,7 +224,7 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   out.node_flags.resize(static_cast<std::size_t>(nnodes));
   const std::int64_t vrows = ny + 1;
   const std::int64_t vwords = vb.words_per_row();
-#pragma omp parallel for default(none) shared(vr, vb, out, vrows, vwords, ny) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(vrows * vwords + nnodes)) shared(vr, vb, out, vrows, vwords, ny) schedule(static)
   for (std::int64_t j = 0; j < vrows; ++j) {
     auto id = static_cast<std::size_t>(vr.row_base(j));
     const std::uint64_t* r = vb.row(j);
@@ -245,7 +246,7 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   out.midside.resize(static_cast<std::size_t>(nleaves));
   out.centre.resize(static_cast<std::size_t>(nleaves));
   const bool centres = options.centres;
-#pragma omp parallel for default(none) shared(leaves, lat, vr, out, nleaves, nx, centres) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 8)) shared(leaves, lat, vr, out, nleaves, nx, centres) schedule(static)
   for (std::int64_t f = 0; f < nleaves; ++f) {
     const auto k = static_cast<std::size_t>(f);
     const Box q = box_of(lat, leaves[k]);
@@ -266,11 +267,12 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   }
 
   // 6. Boundary edges: count per block, prefix sums, fill in leaf order.
-  std::vector<std::int64_t> block_count(static_cast<std::size_t>(max_threads()) + 1, 0);
   std::vector<std::array<NodeId, 2>> edges;
   {
+    const int blocks = block_count(nleaves, 8);
+    std::vector<std::int64_t> block_edges(static_cast<std::size_t>(blocks), 0);
     std::vector<std::uint8_t> per_leaf(static_cast<std::size_t>(nleaves));
-    const int blocks = parallel_blocks(nleaves, [&](int t, std::int64_t begin, std::int64_t end) {
+    for_each_block(nleaves, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
       std::array<std::array<NodeId, 2>, 8> buf{};
       std::int64_t n = 0;
       for (std::int64_t f = begin; f < end; ++f) {
@@ -279,13 +281,12 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
         per_leaf[k] = static_cast<std::uint8_t>(c);
         n += c;
       }
-      block_count[static_cast<std::size_t>(t)] = n;
+      block_edges[static_cast<std::size_t>(t)] = n;
     });
-    block_count.resize(static_cast<std::size_t>(blocks));
-    const std::int64_t total = exclusive_scan_in_place(block_count);
+    const std::int64_t total = exclusive_scan_in_place(block_edges);
     edges.resize(static_cast<std::size_t>(total));
-    parallel_blocks(nleaves, [&](int t, std::int64_t begin, std::int64_t end) {
-      auto pos = static_cast<std::size_t>(block_count[static_cast<std::size_t>(t)]);
+    for_each_block(nleaves, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
+      auto pos = static_cast<std::size_t>(block_edges[static_cast<std::size_t>(t)]);
       for (std::int64_t f = begin; f < end; ++f) {
         const auto k = static_cast<std::size_t>(f);
         if (per_leaf[k] == 0) continue;
