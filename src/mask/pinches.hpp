@@ -62,10 +62,14 @@ struct PinchRemovalStats {
 
 /// Resolves every pinch of a K-fill result, in rounds:
 ///   1. list the pinches (J, I order); for each one still present, take out one of its two
-///      filled pixels, chosen by, in order: not inside a seed window; removal does not split the
-///      all-filled K-windows of the surrounding (3K+1)² window box into more 4-connected pieces;
-///      fewer pixels lost (the pixel plus neighbours no longer covered by any all-filled K-window);
-///      smaller pixel index j·nx + i. The uncovered neighbours leave the set with it.
+///      filled pixels: never one inside a seed window; otherwise the one of smaller cost, then of
+///      smaller pixel index j·nx + i. Cost = pixels lost locally (the pixel and the neighbours no
+///      longer covered by any all-filled K-window, which leave the set with it) + an estimate of
+///      the windows cut off, computed only when the removal splits the all-filled windows of the
+///      surrounding (3K+1)² window box into more 4-connected pieces: breadth-first searches of at
+///      most 4096 windows per piece; a fully explored piece without a seed window counts its
+///      size, cutting a seed's small piece off a large one costs 64·4096, an undecided large piece
+///      4096 ("keep the larger area").
 ///   2. refill: filled = k_fill(filled, k, seed_windows) keeps only windows still reachable.
 /// until no pinch is left (or a round removes nothing).
 /// Guarantees on return: filled ⊆ its input; filled == k_fill(filled, k, seed_windows), i.e.
@@ -73,7 +77,8 @@ struct PinchRemovalStats {
 /// all-filled windows (the K-cursor property holds exactly: no channel narrower than K pixels is
 /// created, Ω_L stays 4-connected from the seeds); count_pinches(filled) == unresolved (0 for
 /// K >= 2). Not guaranteed: maximality — a region whose only K-wide connection ran through the
-/// removed pixel leaves with it (counted in pixels_removed); the local split test makes this rare.
+/// removed pixel leaves with it (counted in pixels_removed); the cost makes this rare (ETOPO5
+/// upsampled to 1', K = 2: 4658 pinches resolved by removing 4670 pixels in one round).
 /// `seed_windows` are the lower-left pixels of the seed windows (from place_seeds).
 PinchRemovalStats remove_pinches(Bitmap& filled, int k, std::span<const PixelIJ> seed_windows);
 
