@@ -35,7 +35,7 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   Timer t_masks;
   LevelMasks masks = make_level_masks(filled, lat, 0);
   const std::vector<std::int64_t> bare = count_leaves_per_level(masks);
-  if (options.coast_band != 0) masks = make_level_masks(filled, lat, options.coast_band);
+  if (options.coast_band != 0) apply_coast_band(masks, options.coast_band);
   const std::vector<std::int64_t> banded = count_leaves_per_level(masks);
   const double masks_s = t_masks.wall_s();
 

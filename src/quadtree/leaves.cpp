@@ -144,16 +144,29 @@ Bitmap coastal_band(const Bitmap& filled, int band) {
 
 LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band) {
   check_shape(filled, lat);
-  if (coast_band < 0) {
-    throw ConfigError(fmt::format("quadtree.coast_band = {}: must be >= 0 (pixels)", coast_band));
-  }
   const int levels = lat.levels;
   LevelMasks m;
   m.omega.resize(static_cast<std::size_t>(levels) + 1);
   m.any.resize(static_cast<std::size_t>(levels) + 1);
   m.omega.back() = filled;
-  if (levels == 0) return m;
+  if (levels > 0) {
+    const auto top = static_cast<std::size_t>(levels - 1);
+    m.any[top] = bits::reduce(filled, true);
+    for (int l = levels - 2; l >= 0; --l) {
+      m.any[static_cast<std::size_t>(l)] = bits::reduce(m.any[static_cast<std::size_t>(l) + 1], true);
+    }
+  }
+  apply_coast_band(m, coast_band);
+  return m;
+}
 
+void apply_coast_band(LevelMasks& m, int coast_band) {
+  if (coast_band < 0) {
+    throw ConfigError(fmt::format("quadtree.coast_band = {}: must be >= 0 (pixels)", coast_band));
+  }
+  const int levels = m.levels();
+  if (levels == 0) return;
+  const Bitmap& filled = m.filled();
   const auto top = static_cast<std::size_t>(levels - 1);
   if (coast_band == 0) {
     m.omega[top] = bits::reduce(filled, false);
@@ -178,11 +191,6 @@ LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_
   for (int l = levels - 2; l >= 0; --l) {
     m.omega[static_cast<std::size_t>(l)] = bits::reduce(m.omega[static_cast<std::size_t>(l) + 1], false);
   }
-  m.any[top] = bits::reduce(filled, true);
-  for (int l = levels - 2; l >= 0; --l) {
-    m.any[static_cast<std::size_t>(l)] = bits::reduce(m.any[static_cast<std::size_t>(l) + 1], true);
-  }
-  return m;
 }
 
 void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
@@ -295,25 +303,67 @@ std::vector<std::int64_t> count_leaves_per_level(const LevelMasks& masks) {
 }
 
 bool leaves_sorted(const std::vector<Leaf>& leaves, const Lattice& lat) {
-  for (std::size_t k = 1; k < leaves.size(); ++k) {
-    if (!(leaf_key(lat, leaves[k - 1]) < leaf_key(lat, leaves[k]))) return false;
-  }
-  return true;
+  const auto n = static_cast<std::int64_t>(leaves.size());
+  const int blocks = block_count(n, 8);
+  std::vector<char> ok(static_cast<std::size_t>(blocks), 1);
+  for_each_block(n, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
+    for (std::int64_t k = std::max<std::int64_t>(begin, 1); k < end; ++k) {
+      if (!(leaf_key(lat, leaves[static_cast<std::size_t>(k) - 1]) < leaf_key(lat, leaves[static_cast<std::size_t>(k)]))) {
+        ok[static_cast<std::size_t>(t)] = 0;
+        return;
+      }
+    }
+  });
+  return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
 }
+
+std::vector<std::int64_t> root_row_starts(const std::vector<Leaf>& leaves, const Lattice& lat) {
+  const std::int64_t ny0 = lat.ny >> lat.levels;
+  std::vector<std::int64_t> start(static_cast<std::size_t>(ny0) + 1, static_cast<std::int64_t>(leaves.size()));
+  std::int64_t next = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    const std::int64_t b0 = leaf_j0(lat, leaves[k]) >> lat.levels;
+    while (next <= b0) start[static_cast<std::size_t>(next++)] = static_cast<std::int64_t>(k);
+  }
+  return start;
+}
+
+namespace {
+
+/// Calls fn(leaf) for every leaf: in parallel by level-0 rows when the leaves are sorted (the
+/// leaves of a level-0 row touch only the rows of their band at every level), else serially.
+template <class Fn>
+void for_leaves_by_band(const std::vector<Leaf>& leaves, const Lattice& lat, const Fn& fn) {
+  for (const Leaf& f : leaves) check_leaf_range(f, lat);
+  if (!leaves_sorted(leaves, lat)) {
+    for (const Leaf& f : leaves) fn(f);
+    return;
+  }
+  const std::vector<std::int64_t> starts = root_row_starts(leaves, lat);
+  const auto ny0 = static_cast<std::int64_t>(starts.size()) - 1;
+  const int blocks = block_count(static_cast<std::int64_t>(leaves.size()), 16);
+  for_each_block(ny0, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+    for (std::int64_t k = starts[static_cast<std::size_t>(begin)]; k < starts[static_cast<std::size_t>(end)]; ++k) {
+      fn(leaves[static_cast<std::size_t>(k)]);
+    }
+  });
+}
+
+}  // namespace
 
 Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat) {
   Bitmap cov(lat.nx, lat.ny);
   std::int64_t area = 0;
-  for (const Leaf& f : leaves) {
-    check_leaf_range(f, lat);
+  for (const Leaf& f : leaves) area += leaf_size(lat, f) * leaf_size(lat, f);
+  for_leaves_by_band(leaves, lat, [&](const Leaf& f) {
     const std::int64_t s = leaf_size(lat, f);
     const std::int64_t i0 = leaf_i0(lat, f);
     const std::int64_t j0 = leaf_j0(lat, f);
     for (std::int64_t j = j0; j < j0 + s; ++j) bits::set_range(cov.row(j), i0, i0 + s);
-    area += s * s;
-  }
-  if (cov.count() != area) {
-    throw InternalError(fmt::format("quadtree: leaves overlap ({} pixels in leaves, {} covered)", area, cov.count()));
+  });
+  const std::int64_t covered = cov.count();
+  if (covered != area) {
+    throw InternalError(fmt::format("quadtree: leaves overlap ({} pixels in leaves, {} covered)", area, covered));
   }
   return cov;
 }
@@ -325,14 +375,15 @@ LevelMasks masks_from_leaves(const std::vector<Leaf>& leaves, const Lattice& lat
   m.any.resize(static_cast<std::size_t>(levels) + 1);
   m.omega.back() = leaf_coverage(leaves, lat);
   for (int l = 0; l < levels; ++l) {
-    Bitmap& om = m.omega[static_cast<std::size_t>(l)];
-    om = Bitmap(lat.nx >> (levels - l), lat.ny >> (levels - l));
-    for (const Leaf& f : leaves) {
-      if (f.level > l) continue;
+    m.omega[static_cast<std::size_t>(l)] = Bitmap(lat.nx >> (levels - l), lat.ny >> (levels - l));
+  }
+  for_leaves_by_band(leaves, lat, [&](const Leaf& f) {
+    for (int l = f.level; l < levels; ++l) {
+      Bitmap& om = m.omega[static_cast<std::size_t>(l)];
       const int k = l - f.level;
       for (std::int64_t b = f.b << k; b < (f.b + 1) << k; ++b) bits::set_range(om.row(b), f.a << k, (f.a + 1) << k);
     }
-  }
+  });
   for (int l = levels - 1; l >= 0; --l) {
     m.any[static_cast<std::size_t>(l)] = bits::reduce(m.any_at(l + 1), true);
   }

@@ -99,6 +99,11 @@ Bitmap coastal_band(const Bitmap& filled, int band);
 /// (naming quadtree.coast_band) for a negative band. O(N / 64) word operations, parallel.
 LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band);
 
+/// Recomputes omega[0..L-1] of `masks` from its filled set with the coastal band of radius
+/// `coast_band` split to level L (0: the bare rule); the `any` pyramid is unchanged. Undoes any
+/// earlier refinement. Throws ConfigError (naming quadtree.coast_band) for a negative band.
+void apply_coast_band(LevelMasks& masks, int coast_band);
+
 /// Applies the depth and box rules of `options` in place (see the file comment). `bathy` may be
 /// null when there are no depth rules. Throws ConfigError naming quadtree.depth_rules[k] /
 /// quadtree.box_rules[k] for a level outside 0..L, an empty depth range or an inverted latitude
@@ -115,12 +120,16 @@ std::vector<std::int64_t> count_leaves_per_level(const LevelMasks& masks);
 /// Whether `leaves` are in the deterministic order with strictly increasing keys.
 bool leaves_sorted(const std::vector<Leaf>& leaves, const Lattice& lat);
 
-/// The filled pixels covered by `leaves` (any order). Throws InternalError when leaves overlap
+/// Index of the first leaf of every level-0 row b0 (ny_0 + 1 entries, the last = leaves.size())
+/// of leaves in the deterministic order.
+std::vector<std::int64_t> root_row_starts(const std::vector<Leaf>& leaves, const Lattice& lat);
+
+/// The filled pixels covered by `leaves` (any order; parallel when sorted). Throws InternalError when leaves overlap
 /// (their pixel count differs from the covered count) or lie outside the lattice.
 Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat);
 
-/// The pyramid of a leaf set (inverse of extract_leaves for sorted, non-overlapping leaves).
-/// Throws InternalError when the leaves are not sorted or overlap.
+/// The pyramid of a leaf set (inverse of extract_leaves for non-overlapping leaves, any order;
+/// parallel when sorted). Throws InternalError when the leaves overlap or lie outside the lattice.
 LevelMasks masks_from_leaves(const std::vector<Leaf>& leaves, const Lattice& lat);
 
 /// Finds the leaf holding a pixel by binary search on the leaf order, O(log n).

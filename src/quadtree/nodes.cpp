@@ -63,18 +63,6 @@ struct Box {
 };
 Box box_of(const Lattice& lat, const Leaf& f) { return Box{leaf_i0(lat, f), leaf_j0(lat, f), leaf_size(lat, f)}; }
 
-/// Index ranges of the leaves of each level-0 row (leaves sorted: root rows are nondecreasing).
-std::vector<std::int64_t> root_row_starts(const std::vector<Leaf>& leaves, const Lattice& lat) {
-  const std::int64_t ny0 = lat.ny >> lat.levels;
-  std::vector<std::int64_t> start(static_cast<std::size_t>(ny0) + 1, static_cast<std::int64_t>(leaves.size()));
-  std::int64_t next = 0;
-  for (std::size_t k = 0; k < leaves.size(); ++k) {
-    const std::int64_t b0 = leaf_j0(lat, leaves[k]) >> lat.levels;
-    while (next <= b0) start[static_cast<std::size_t>(next++)] = static_cast<std::int64_t>(k);
-  }
-  return start;
-}
-
 /// Whether pixel (i mod nx, j) is filled; rows outside [0, ny) are not.
 bool covered(const Bitmap& cov, std::int64_t i, std::int64_t j) {
   if (j < 0 || j >= cov.ny()) return false;
