@@ -17,12 +17,14 @@ int main(int argc, char** argv) {
   CLI::App app{"aquatoria: global finite-element ocean meshes and regional orthogonal grids from bathymetry"};
   app.set_version_flag("--version", std::string("aquatoria ") + AQ_VERSION);
   app.require_subcommand(1);
+  app.fallthrough();  // -v/-q may follow the subcommand
   bool verbose = false;
   bool quiet = false;
   app.add_flag("-v,--verbose", verbose, "More detail on stderr");
   app.add_flag("-q,--quiet", quiet, "Only warnings and errors on stderr");
 
   aq::app::add_info_command(app, ctx);
+  aq::app::add_mesh_command(app, ctx);
   // SUBCOMMANDS: one line each (keep this list in the order of `aquatoria --help`).
   aq::app::add_check_command(app, ctx);
 

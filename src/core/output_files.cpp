@@ -65,6 +65,13 @@ fs::path OutputSet::temp_path(const std::string& name) {
   return tmp;
 }
 
+fs::path OutputSet::pending_path(const std::string& name) const {
+  const fs::path fin = dir_ / name;
+  for (const auto& [tmp, f] : files_)
+    if (f == fin) return tmp;
+  throw InternalError(fmt::format("output {} was never reserved", fin.string()));
+}
+
 std::vector<fs::path> OutputSet::commit() {
   std::vector<fs::path> out;
   for (const auto& [tmp, fin] : files_) {

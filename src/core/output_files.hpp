@@ -29,6 +29,9 @@ public:
   /// Renames every temporary to its final name. Returns the final paths in reservation order.
   std::vector<std::filesystem::path> commit();
   [[nodiscard]] const std::filesystem::path& dir() const { return dir_; }
+  /// Temporary path of a reserved name (where its writer wrote it, before commit); throws
+  /// InternalError if `name` was not reserved.
+  [[nodiscard]] std::filesystem::path pending_path(const std::string& name) const;
   /// Final path of a reserved name (valid before and after commit).
   [[nodiscard]] std::filesystem::path final_path(const std::string& name) const { return dir_ / name; }
 

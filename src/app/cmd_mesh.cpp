@@ -1,0 +1,232 @@
+// `aquatoria mesh`: the global discretizer end to end (ARCHITECTURE §4): bathymetry → wet
+// pixels → K-cursor fill → quadtree leaves → 2:1 smoothing → nodes → triangle templates →
+// depths → statistics → mesh files, pictures and the run report. With no -c it runs the seed's
+// reference configuration (Δ0 = 4°, L = 3, K = 2, h = 0) on the installed ETOPO5.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "config/load.hpp"
+#include "core/error.hpp"
+#include "core/lattice.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "core/rotation.hpp"
+#include "io/mesh_outputs.hpp"
+#include "mask/passages.hpp"
+#include "mask/wet_area.hpp"
+#include "mesh/build_mesh.hpp"
+#include "mesh/statistics.hpp"
+#include "quadtree/build_leaves.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::app {
+
+namespace {
+
+struct MeshArgs {
+  std::optional<std::string> config;
+  std::vector<std::string> sets;
+  std::string out_dir;
+};
+
+// The seed's published counts for its reference runs on ETOPO2 (seed 002 Figs. 6, 7, 10).
+struct SeedFigure {
+  bool rotated;
+  double h;
+  std::int64_t triangles, nodes;
+  const char* figure;
+};
+constexpr SeedFigure kSeedFigures[] = {{false, 0.0, 65777, 36834, "Fig. 6"},
+                                       {false, 30.0, 70365, 39046, "Fig. 7"},
+                                       {true, 0.0, 66714, 37284, "Fig. 10"},
+                                       {true, 200.0, 69480, 38650, "Fig. 10"}};
+
+std::optional<SeedFigure> seed_figure(const config::GlobalConfig& c) {
+  if (c.quadtree.step_deg != 4.0 || c.quadtree.levels != 3 || c.mask.cursor != 2) return std::nullopt;
+  for (const auto& f : kSeedFigures)
+    if (f.rotated == c.rotation.enabled && f.h == c.mask.min_depth_m) return f;
+  return std::nullopt;
+}
+
+// Bytes the bitmaps of the mask and quadtree stages need (about 12 full-lattice bitmaps at peak).
+std::int64_t estimate_lattice_bytes(const Lattice& l) { return 12 * (l.nx / 8 + 8) * (l.ny + 1); }
+
+int run_mesh(const MeshArgs& a, const Logger& log) {
+  Timer total;
+  auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
+  if (!a.config) {
+    // The seed's reference run: base name says so.
+    bool name_set = false;
+    for (const auto& s : a.sets) name_set = name_set || s.rfind("output.name=", 0) == 0;
+    if (!name_set) loaded.options.output.name = "seed_4deg_L3";
+  }
+  if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
+  const config::GlobalConfig& c = loaded.options;
+
+  Report report;
+  report["command"] = "mesh";
+  report["config_source"] = loaded.source;
+  report["config"] = loaded.echo;
+  report["config"]["output"]["name"] = c.output.name;
+  report["config"]["output"]["dir"] = c.output.dir;
+
+  const Lattice lat = Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
+  const PoleRotation rot = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
+                                              : PoleRotation();
+  log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
+           loaded.source, c.input.path, lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
+           c.mask.cursor, c.mask.min_depth_m,
+           c.rotation.enabled ? fmt::format(", pole at ({}, {})", c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
+                              : std::string());
+
+  // Refuse early when the lattice cannot fit.
+  const std::int64_t limit = c.input.max_memory_gb > 0
+                                 ? static_cast<std::int64_t>(c.input.max_memory_gb * 1e9)
+                                 : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
+  const std::int64_t need = estimate_lattice_bytes(lat);
+  if (limit > 0 && need > limit) {
+    throw ConfigError(fmt::format(
+        "quadtree.levels = {} with quadtree.step_deg = {}: the {} x {} pixel lattice needs about {:.1f} GB of "
+        "bitmaps, more than the {:.1f} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
+        lat.levels, lat.step0_deg, lat.nx, lat.ny, static_cast<double>(need) / 1e9, static_cast<double>(limit) / 1e9));
+  }
+
+  // Fail on an unwritable output folder before the work, not after.
+  OutputSet out(c.output.dir);
+
+  raster::OpenOptions ro;
+  ro.path = c.input.path;
+  ro.variable = c.input.variable;
+  ro.band = c.input.band;
+  ro.positive_down = c.input.positive_down;
+  ro.interpolation = c.input.interpolation == "bicubic" ? raster::Interpolation::kBicubic
+                                                        : raster::Interpolation::kBilinear;
+  ro.max_memory_bytes = limit > need ? limit - need : limit;
+  StageScope read_stage("read", &report, log);
+  const auto bathy = raster::Bathymetry::open(ro, log);
+  const auto& ri = bathy.info();
+  read_stage.done(fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
+                              ri.memory_bytes >> 20));
+  report["input"] = Json{{"path", ri.path}, {"driver", ri.driver}, {"variable", ri.variable},
+                         {"columns", ri.ncols}, {"rows", ri.nrows}, {"resolution_deg", ri.dlon},
+                         {"min_m", ri.min_m}, {"max_m", ri.max_m}};
+  report["lattice"] = Json{{"nx", lat.nx}, {"ny", lat.ny}, {"pixel_deg", lat.pixel_deg()},
+                           {"step0_deg", lat.step0_deg}, {"levels", lat.levels}, {"lon0_deg", lat.lon0_deg}};
+
+  const mask::WetArea area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, &report);
+  if (c.mask.passages && !area.passages.empty()) {
+    log.info("critical passages (open = the filled ocean connects both sides):");
+    for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
+  }
+  if (!area.pinches.pinches.empty() && !c.mask.remove_pinches) {
+    log.warn("{} pinch vertices (the ocean touches itself at a single corner; some models reject them); "
+             "set mask.remove_pinches = true to resolve them",
+             area.pinches.total);
+  }
+
+  const auto leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, &report);
+  const mesh::Mesh m = mesh::build_mesh(leaves, lat, rot, bathy, c.mesh, log, &report);
+
+  StageScope stat_stage("statistics", &report, log);
+  const mesh::MeshStatistics st = mesh::compute_statistics(m);
+  report["statistics"] = mesh::statistics_json(st);
+  const auto failed = st.failed_checks();
+  if (!failed.empty()) {
+    std::string list;
+    for (const auto& f : failed) list += " " + f;
+    throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
+  }
+  stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
+  if (!c.rotation.enabled && area.filled.ny() > 0) {
+    bool top = false;
+    for (std::int64_t w = 0; w < area.filled.words_per_row() && !top; ++w) top = area.filled.row(lat.ny - 1)[w] != 0;
+    if (top) {
+      log.warn("the ocean reaches the lattice's North pole row: φ = 90° is a boundary loop of coincident nodes; "
+               "consider [rotation] enabled = true (pole on land)");
+    }
+  }
+
+  // Outputs.
+  StageScope write_stage("write", &report, log);
+  io::MeshOutputInfo oinfo;
+  oinfo.elements = io::parse_element_kinds(c.mesh.elements);
+  oinfo.source = fmt::format("aquatoria {} from {}", AQ_VERSION, ri.path);
+  const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo);
+  Json outputs = Json::array();
+  for (const auto& f : files) {
+    outputs.push_back(Json{{"file", f.name},
+                           {"format", f.format},
+                           {"bytes", f.stats.bytes},
+                           {"checksum_fnv1a64", file_checksum(out.pending_path(f.name))},
+                           {"seconds", std::round(f.seconds * 1000.0) / 1000.0}});
+  }
+  report["outputs"] = outputs;
+  write_stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
+
+  Json mesh_counts = Json{{"nodes", m.node_count()}, {"triangles", m.triangle_count()}, {"squares", m.square_count()},
+                          {"boundary_loops", m.loops.size()}, {"pinch_nodes", m.pinch_nodes.size()}};
+  report["mesh_counts"] = mesh_counts;
+  const auto seed = seed_figure(c);
+  if (seed) {
+    report["seed_reference"] = Json{{"figure", seed->figure},
+                                    {"data", "ETOPO2 (ours: " + ri.path + ")"},
+                                    {"triangles", seed->triangles},
+                                    {"nodes", seed->nodes},
+                                    {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
+                                    {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
+  }
+  report.finish();
+  report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
+  const std::string report_name = c.output.name + "_report.json";
+  {
+    std::ofstream rf(out.temp_path(report_name));
+    rf << report.dump() << '\n';
+    if (!rf) throw OutputError(fmt::format("{}: cannot write the report", out.final_path(report_name).string()));
+  }
+  out.commit();
+
+  // Summary.
+  log.info("");
+  log.info("mesh: {} nodes, {} triangles, {} squares, {} boundary loops, {} pinch vertices", m.node_count(),
+           m.triangle_count(), m.square_count(), m.loops.size(), m.pinch_nodes.size());
+  std::vector<std::int64_t> sq(static_cast<std::size_t>(lat.levels + 1), 0), tr(sq.size(), 0);
+  for (const auto l : m.square_level) ++sq[l];
+  for (const auto l : m.triangle_level) ++tr[l];
+  for (int l = 0; l <= lat.levels; ++l) {
+    log.info("  level {} ({:>7.4g}°): {:>9} squares {:>10} triangles", l, lat.step0_deg / static_cast<double>(1 << l),
+             sq[static_cast<std::size_t>(l)], tr[static_cast<std::size_t>(l)]);
+  }
+  log.info("wet area {:.4g} million km² (WGS84); filled {} of {} wet pixels ({} left out: lakes, cut-off seas)",
+           st.triangle_area_km2 / 1e6, area.filled_pixels, area.classes.wet, area.fill.wet_left_out);
+  if (seed) {
+    log.info("seed ({}, ETOPO2): {} triangles / {} nodes; ours on ETOPO5: {} / {} ({:+.1f}% / {:+.1f}%)",
+             seed->figure, seed->triangles, seed->nodes, m.triangle_count(), m.node_count(),
+             100.0 * (static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles) - 1.0),
+             100.0 * (static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes) - 1.0));
+  }
+  log.info("outputs in {}/: {} files + {} ({:.2f} s, peak {:.0f} MB)", c.output.dir, files.size(), report_name,
+           total.wall_s(), static_cast<double>(peak_rss_bytes()) / 1048576.0);
+  return 0;
+}
+
+}  // namespace
+
+void add_mesh_command(CLI::App& app, Context& ctx) {
+  auto args = std::make_shared<MeshArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "mesh", "Build a global finite-element mesh (with no -c: the seed's reference run on ETOPO5)");
+  cmd->add_option_function<std::string>("-c,--config", [args](const std::string& s) { args->config = s; },
+                                        "Configuration file (TOML); see configs/example.toml");
+  cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
+  cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
+  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_mesh(*args, ctx.log); }; });
+}
+
+}  // namespace aq::app
