@@ -11,8 +11,10 @@
 // With a PoleRotation the λ, φ above are rotated coordinates; `to_geographic` maps them back.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
@@ -80,6 +82,25 @@ inline void deg_to_lattice_xy(const Lattice& lat, LonLat p, double& x, double& y
   rot.to_rotated(p.lon_deg, p.lat_deg, r.lon_deg, r.lat_deg);
   return r;
 }
+
+/// Maps whole rows of lattice points to geographic coordinates, for sampling rotated lattices:
+/// one sin/cos per column and per row instead of per point. The rotation matrix is recovered from
+/// PoleRotation's images of the rotated x, y, z axes (only its public interface is used);
+/// results agree with PoleRotation::to_geographic to about 1e-13° (tested to 1e-10°).
+class LatticeRowMapper {
+public:
+  /// Columns at fractional pixel positions x_k (λ' = λ0 + x_k·Δ).
+  LatticeRowMapper(const Lattice& lattice, const PoleRotation& rot, const std::vector<double>& x);
+  /// Geographic λ (-180, 180] and φ of the columns on the lattice row at fractional position y
+  /// (φ' = -90 + y·Δ); lon and lat hold x.size() values.
+  void map_row(double y, double* lon_deg, double* lat_deg) const;
+  [[nodiscard]] std::size_t size() const { return cos_lon_.size(); }
+
+private:
+  Lattice lattice_;
+  std::array<double, 9> m_{};  ///< rotated xyz -> geographic xyz, row-major
+  std::vector<double> cos_lon_, sin_lon_;
+};
 
 /// Great-circle angle between two points, degrees in [0, 180] (haversine form, accurate for
 /// small angles).

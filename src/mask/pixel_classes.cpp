@@ -83,17 +83,16 @@ void check_depth(double h) {
 void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                     double threshold, const ProgressFn& progress, Bitmap& wv) {
   const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
+  std::vector<double> xs(static_cast<std::size_t>(nx));
+  for (std::int64_t I = 0; I < nx; ++I) xs[static_cast<std::size_t>(I)] = static_cast<double>(I);
+  const LatticeRowMapper mapper(lattice, rot, xs);
   RowProgress rp(progress, nv, "vertices");
-#pragma omp parallel default(none) shared(bathy, lattice, rot, wv, rp, nx, nv, threshold) if (nx * nv >= kParallelMinSamples)
+#pragma omp parallel default(none) shared(bathy, mapper, wv, rp, nx, nv, threshold) if (nx * nv >= kParallelMinSamples)
   {
     std::vector<double> lon(static_cast<std::size_t>(nx)), lat(lon.size()), val(lon.size());
 #pragma omp for schedule(static)
     for (std::int64_t J = 0; J < nv; ++J) {
-      for (std::int64_t I = 0; I < nx; ++I) {
-        const LonLat g = lattice_to_geographic(rot, vertex_lattice_deg(lattice, I, J));
-        lon[static_cast<std::size_t>(I)] = g.lon_deg;
-        lat[static_cast<std::size_t>(I)] = g.lat_deg;
-      }
+      mapper.map_row(static_cast<double>(J), lon.data(), lat.data());
       bathy.sample_points(lon.data(), lat.data(), nx, val.data());
       threshold_row(val.data(), nx, threshold, wv.row(J));
       rp.row_done();
@@ -189,8 +188,12 @@ void classify_area_rotated(const raster::Bathymetry& bathy, const Lattice& latti
       1, static_cast<std::int64_t>(std::ceil(lattice.pixel_deg() / std::min(in.dlon, in.dlat) - 1e-9)));
   const std::int64_t cols = nx * n;  // sample columns along the row (periodic)
   const auto dn = static_cast<double>(n);
+  // Sample (a, b) of pixel row j sits at fractional pixel coordinates (a/n, j + b/n).
+  std::vector<double> xs(static_cast<std::size_t>(cols));
+  for (std::int64_t a = 0; a < cols; ++a) xs[static_cast<std::size_t>(a)] = static_cast<double>(a) / dn;
+  const LatticeRowMapper mapper(lattice, rot, xs);
   RowProgress rp(progress, ny, "pixels (area)");
-#pragma omp parallel default(none) shared(bathy, lattice, rot, wet, coastal, rp, nx, ny, n, dn, cols, threshold) \
+#pragma omp parallel default(none) shared(bathy, mapper, wet, coastal, rp, nx, ny, n, dn, cols, threshold) \
     if (nx * ny >= kParallelMinSamples)
   {
     std::vector<double> lon(static_cast<std::size_t>(cols)), lat(lon.size()), val(lon.size());
@@ -199,13 +202,7 @@ void classify_area_rotated(const raster::Bathymetry& bathy, const Lattice& latti
     for (std::int64_t j = 0; j < ny; ++j) {
       flags.reset();
       for (std::int64_t b = 0; b <= n; ++b) {
-        for (std::int64_t a = 0; a < cols; ++a) {
-          // Sample (a, b) of pixel row j sits at fractional pixel coordinates (a/n, j + b/n).
-          const LonLat p = lattice_xy_to_deg(lattice, static_cast<double>(a) / dn, static_cast<double>(j * n + b) / dn);
-          const LonLat g = lattice_to_geographic(rot, p);
-          lon[static_cast<std::size_t>(a)] = g.lon_deg;
-          lat[static_cast<std::size_t>(a)] = g.lat_deg;
-        }
+        mapper.map_row(static_cast<double>(j * n + b) / dn, lon.data(), lat.data());
         bathy.sample_points(lon.data(), lat.data(), cols, val.data());
         for (std::int64_t i = 0; i < nx; ++i)
           for (std::int64_t a = i * n; a <= (i + 1) * n; ++a)
