@@ -112,7 +112,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   mesh.rlat_deg.resize(static_cast<std::size_t>(n));
   mesh.depth_m.resize(static_cast<std::size_t>(n));
   const bool rotated = mesh.rotation.enabled;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(n * 8)) shared(mesh, lat, rotation, n, rotated) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n * 8)) shared(mesh, lat, rotation, n, rotated) \
+    schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto p = static_cast<std::size_t>(k);
     const double rlon = lat.lon_of(mesh.node_i[p]);
@@ -179,14 +180,16 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
     boundary_nodes += (f & kNodeBoundary) != 0;
   }
   if (pole_loops > 0) {
-    log.warn("mesh: the filled set reaches the lattice edge at φ = ±90°: {} pole loop(s) whose nodes are one "
-             "physical point each; consider rotation.enabled = true to put the poles on land",
-             pole_loops);
+    log.warn(
+        "mesh: the filled set reaches the lattice edge at φ = ±90°: {} pole loop(s) whose nodes are one "
+        "physical point each; consider rotation.enabled = true to put the poles on land",
+        pole_loops);
   }
   if (!mesh.pinch_nodes.empty()) {
-    log.warn("mesh: {} pinch vertices (the wet area touches itself at a single corner); mask.remove_pinches = true "
-             "removes them",
-             mesh.pinch_nodes.size());
+    log.warn(
+        "mesh: {} pinch vertices (the wet area touches itself at a single corner); mask.remove_pinches = true "
+        "removes them",
+        mesh.pinch_nodes.size());
   }
   if (report != nullptr) {
     Json& j = (*report)["mesh"];
@@ -208,7 +211,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
     Json pinches = Json::array();
     for (std::size_t k = 0; k < mesh.pinch_nodes.size() && k < 100; ++k) {
       const auto p = static_cast<std::size_t>(mesh.pinch_nodes[k]);
-      pinches.push_back(Json{{"node", mesh.pinch_nodes[k]}, {"lon_deg", mesh.lon_deg[p]}, {"lat_deg", mesh.lat_deg[p]}});
+      pinches.push_back(
+          Json{{"node", mesh.pinch_nodes[k]}, {"lon_deg", mesh.lon_deg[p]}, {"lat_deg", mesh.lat_deg[p]}});
     }
     j["pinch_nodes"] = mesh.pinch_nodes.size();
     j["pinch_positions"] = pinches;

@@ -40,8 +40,7 @@ namespace aq::mesh {
 /// Throws ConfigError for a bad mesh.elements / mesh.diagonal, InternalError when `leaves` are
 /// not sorted, overlap or are not face-balanced.
 Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, const PoleRotation& rotation,
-                const raster::Bathymetry& bathy, const config::MeshOptions& options, const Logger& log,
-                Report* report);
+                const raster::Bathymetry& bathy, const config::MeshOptions& options, const Logger& log, Report* report);
 
 /// Appends the template triangles of every square to mesh.triangles / triangle_level /
 /// triangle_square, from mesh.squares and mesh.square_midside, the squares' midside `codes`

@@ -1,10 +1,10 @@
 // Mesh statistics and checks (see statistics.hpp).
 #include "mesh/statistics.hpp"
 
+#include <fmt/format.h>
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/PolygonArea.hpp>
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -65,11 +65,15 @@ double distance_m(double lat1, double lon1, double lat2, double lon2) {
 
 std::vector<std::string> MeshStatistics::failed_checks() const {
   std::vector<std::string> f;
-  if (euler != euler_expected) f.push_back(fmt::format("Euler: V - E + F = {} but 2c - b - p = {}", euler, euler_expected));
-  if (bad_edges != 0) f.push_back(fmt::format("{} edges not shared by exactly two oppositely oriented triangles", bad_edges));
-  if (boundary_mismatch != 0) f.push_back(fmt::format("{} boundary edges differ from the triangles' boundary", boundary_mismatch));
+  if (euler != euler_expected)
+    f.push_back(fmt::format("Euler: V - E + F = {} but 2c - b - p = {}", euler, euler_expected));
+  if (bad_edges != 0)
+    f.push_back(fmt::format("{} edges not shared by exactly two oppositely oriented triangles", bad_edges));
+  if (boundary_mismatch != 0)
+    f.push_back(fmt::format("{} boundary edges differ from the triangles' boundary", boundary_mismatch));
   if (used_nodes != nodes) f.push_back(fmt::format("{} nodes are in no triangle", nodes - used_nodes));
-  if (not_right_isosceles != 0) f.push_back(fmt::format("{} triangles are not right isosceles of a similarity class", not_right_isosceles));
+  if (not_right_isosceles != 0)
+    f.push_back(fmt::format("{} triangles are not right isosceles of a similarity class", not_right_isosceles));
   if (clockwise != 0) f.push_back(fmt::format("{} triangles are clockwise or degenerate", clockwise));
   if (twice_triangle_area_px2 != 2 * filled_pixels) {
     f.push_back(fmt::format("triangle area {} px² differs from the filled area {} px²",
@@ -153,7 +157,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
         }
         std::sort(d2.begin(), d2.end());
         const std::int64_t leg2 = d2[0];
-        bool ok = leg2 > 0 && d2[1] == leg2 && d2[2] == 2 * leg2 && std::has_single_bit(static_cast<std::uint64_t>(leg2));
+        bool ok =
+            leg2 > 0 && d2[1] == leg2 && d2[2] == 2 * leg2 && std::has_single_bit(static_cast<std::uint64_t>(leg2));
         if (ok) {
           const int k = 2 * levels - std::countr_zero(static_cast<std::uint64_t>(leg2));
           ok = k >= 0 && k <= 2 * levels;
@@ -176,7 +181,10 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   const auto nn = static_cast<std::size_t>(s.nodes);
   std::vector<std::int64_t> start(nn + 1, 0);
   for (const auto& tr : m.triangles)
-    for (int e = 0; e < 3; ++e) ++start[static_cast<std::size_t>(std::min(tr[static_cast<std::size_t>(e)], tr[static_cast<std::size_t>((e + 1) % 3)])) + 1];
+    for (int e = 0; e < 3; ++e)
+      ++start[static_cast<std::size_t>(
+                  std::min(tr[static_cast<std::size_t>(e)], tr[static_cast<std::size_t>((e + 1) % 3)])) +
+              1];
   for (std::size_t v = 0; v < nn; ++v) start[v + 1] += start[v];
   // rec = other node << 32 | triangle << 1 | (half-edge runs from the larger node to the smaller).
   std::vector<std::uint64_t> rec(static_cast<std::size_t>(3 * ntri));
@@ -185,14 +193,15 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     for (int e = 0; e < 3; ++e) {
       const NodeId a = tr[static_cast<std::size_t>(e)], b = tr[static_cast<std::size_t>((e + 1) % 3)];
       const auto lo = static_cast<std::size_t>(std::min(a, b));
-      rec[static_cast<std::size_t>(start[lo]++)] = static_cast<std::uint64_t>(std::max(a, b)) << 32 |
-                                                   static_cast<std::uint64_t>(t) << 1 | (a > b ? 1U : 0U);
+      rec[static_cast<std::size_t>(start[lo]++)] =
+          static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint64_t>(t) << 1 | (a > b ? 1U : 0U);
     }
   }
   for (std::size_t v = nn; v > 0; --v) start[v] = start[v - 1];
   start[0] = 0;
   const auto nbuckets = static_cast<std::int64_t>(nn);
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, nbuckets) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, nbuckets) \
+    schedule(static)
   for (std::int64_t v = 0; v < nbuckets; ++v) {
     std::sort(rec.begin() + start[static_cast<std::size_t>(v)], rec.begin() + start[static_cast<std::size_t>(v) + 1]);
   }
@@ -251,7 +260,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       }
       matched += (count == 1 && same_direction);
     }
-    s.boundary_mismatch = std::abs(s.boundary_edges - matched) + (static_cast<std::int64_t>(m.boundary_edges.size()) - matched);
+    s.boundary_mismatch =
+        std::abs(s.boundary_edges - matched) + (static_cast<std::int64_t>(m.boundary_edges.size()) - matched);
     s.euler = s.used_nodes - s.edges + ntri;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
@@ -290,8 +300,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     row_offset[static_cast<std::size_t>(l) + 1] = row_offset[static_cast<std::size_t>(l)] + (lat.ny >> (levels - l));
   }
   const bool memo = !m.rotation.enabled;
-  const PoleRotation rot = m.rotation.enabled ? PoleRotation(m.rotation.pole_lon_deg, m.rotation.pole_lat_deg)
-                                              : PoleRotation();
+  const PoleRotation rot =
+      m.rotation.enabled ? PoleRotation(m.rotation.pole_lon_deg, m.rotation.pole_lat_deg) : PoleRotation();
   const auto row_of = [&](std::int64_t t) {
     const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
     const int l = m.square_level[sq];
@@ -330,13 +340,14 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t cell = row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)];
       if (example[static_cast<std::size_t>(cell)] < 0) example[static_cast<std::size_t>(cell)] = t;
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) shared(table, example, cells, lattice_area) schedule(dynamic, 64)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) \
+    shared(table, example, cells, lattice_area) schedule(dynamic, 64)
     for (std::int64_t cell = 0; cell < cells; ++cell) {
       const std::int64_t t = example[static_cast<std::size_t>(cell)];
       if (t >= 0) table[static_cast<std::size_t>(cell)] = lattice_area(t);
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 4)) shared(area, shape, shape_id, table, ntri, nshapes, row_of, lattice_area) \
-    schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 4)) \
+    shared(area, shape, shape_id, table, ntri, nshapes, row_of, lattice_area) schedule(static)
     for (std::int64_t t = 0; t < ntri; ++t) {
       const std::int32_t c = shape[static_cast<std::size_t>(t)];
       area[static_cast<std::size_t>(t)] =
@@ -344,7 +355,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                 : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
     }
   } else {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 256)) shared(area, ntri, lattice_area) schedule(dynamic, 256)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 256)) shared(area, ntri, lattice_area) \
+    schedule(dynamic, 256)
     for (std::int64_t t = 0; t < ntri; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
   }
   double total_m2 = 0.0;
@@ -366,8 +378,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
     std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
     std::vector<std::int64_t> cell_of(static_cast<std::size_t>(nedges), -1);
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 8)) shared(m, edge_a, edge_b, edge_t, cell_of, nedges, local_pos, row_of) \
-    schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 8)) \
+    shared(m, edge_a, edge_b, edge_t, cell_of, nedges, local_pos, row_of) schedule(static)
     for (std::int64_t e = 0; e < nedges; ++e) {
       const auto k = static_cast<std::size_t>(e);
       const std::int64_t t = edge_t[k];
@@ -384,18 +396,21 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
       if (cell >= 0 && example[static_cast<std::size_t>(cell)] < 0) example[static_cast<std::size_t>(cell)] = e;
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) shared(table, example, cells, direct_length) schedule(dynamic, 64)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) \
+    shared(table, example, cells, direct_length) schedule(dynamic, 64)
     for (std::int64_t cell = 0; cell < cells; ++cell) {
       const std::int64_t e = example[static_cast<std::size_t>(cell)];
       if (e >= 0) table[static_cast<std::size_t>(cell)] = direct_length(e);
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 2)) shared(length, cell_of, table, nedges, direct_length) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 2)) \
+    shared(length, cell_of, table, nedges, direct_length) schedule(static)
     for (std::int64_t e = 0; e < nedges; ++e) {
       const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
       length[static_cast<std::size_t>(e)] = cell < 0 ? direct_length(e) : table[static_cast<std::size_t>(cell)];
     }
   } else {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 256)) shared(length, nedges, direct_length) schedule(dynamic, 256)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 256)) \
+    shared(length, nedges, direct_length) schedule(dynamic, 256)
     for (std::int64_t e = 0; e < nedges; ++e) length[static_cast<std::size_t>(e)] = direct_length(e);
   }
 
@@ -434,17 +449,21 @@ Json statistics_json(const MeshStatistics& s) {
   j["boundary_loops"] = s.boundary_loops;
   j["pinch_nodes"] = s.pinch_nodes;
   j["components"] = s.components;
-  j["euler"] = Json{{"v_minus_e_plus_f", s.euler}, {"expected_2c_minus_b_minus_p", s.euler_expected},
+  j["euler"] = Json{{"v_minus_e_plus_f", s.euler},
+                    {"expected_2c_minus_b_minus_p", s.euler_expected},
                     {"ok", s.euler == s.euler_expected}};
-  j["conforming"] = Json{{"bad_edges", s.bad_edges}, {"boundary_mismatch", s.boundary_mismatch},
+  j["conforming"] = Json{{"bad_edges", s.bad_edges},
+                         {"boundary_mismatch", s.boundary_mismatch},
                          {"unused_nodes", s.nodes - s.used_nodes},
                          {"ok", s.bad_edges == 0 && s.boundary_mismatch == 0 && s.nodes == s.used_nodes}};
-  j["right_isosceles"] = Json{{"not_right_isosceles", s.not_right_isosceles}, {"clockwise_or_degenerate", s.clockwise},
+  j["right_isosceles"] = Json{{"not_right_isosceles", s.not_right_isosceles},
+                              {"clockwise_or_degenerate", s.clockwise},
                               {"min_angle_deg", s.not_right_isosceles == 0 ? 45.0 : 0.0}};
   Json sim = Json::array();
   for (std::size_t k = 0; k < s.similarity.size(); ++k) {
     if (s.similarity[k] == 0) continue;
-    sim.push_back(Json{{"k", k}, {"ratio", std::pow(std::sqrt(0.5), static_cast<double>(k))}, {"triangles", s.similarity[k]}});
+    sim.push_back(
+        Json{{"k", k}, {"ratio", std::pow(std::sqrt(0.5), static_cast<double>(k))}, {"triangles", s.similarity[k]}});
   }
   j["similarity"] = sim;
   j["area"] = Json{{"triangles_px2", static_cast<double>(s.twice_triangle_area_px2) / 2.0},

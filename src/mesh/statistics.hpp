@@ -41,30 +41,30 @@ struct MeshStatistics {
   // Topology.
   std::int64_t nodes = 0, used_nodes = 0, triangles = 0, edges = 0, interior_edges = 0, boundary_edges = 0;
   std::int64_t boundary_loops = 0, pinch_nodes = 0, components = 0;
-  std::int64_t euler = 0;           ///< V − E + F (V = nodes used by triangles)
-  std::int64_t euler_expected = 0;  ///< 2c − b − p
-  std::int64_t bad_edges = 0;       ///< edges in more than 2 triangles, or in 2 with the same direction
+  std::int64_t euler = 0;              ///< V − E + F (V = nodes used by triangles)
+  std::int64_t euler_expected = 0;     ///< 2c − b − p
+  std::int64_t bad_edges = 0;          ///< edges in more than 2 triangles, or in 2 with the same direction
   std::int64_t boundary_mismatch = 0;  ///< edges in exactly one of {triangle boundary, Mesh::boundary_edges}
   // Geometry in lattice units.
   std::int64_t not_right_isosceles = 0;
-  std::int64_t clockwise = 0;                 ///< clockwise or degenerate triangles
-  std::int64_t twice_triangle_area_px2 = 0;   ///< Σ 2·area, pixel² units
-  std::int64_t filled_pixels = 0;             ///< Σ side² over the squares
-  std::vector<std::int64_t> similarity;       ///< triangles per k (legs Δ0·(√2)^-k), k = 0..2L
+  std::int64_t clockwise = 0;                ///< clockwise or degenerate triangles
+  std::int64_t twice_triangle_area_px2 = 0;  ///< Σ 2·area, pixel² units
+  std::int64_t filled_pixels = 0;            ///< Σ side² over the squares
+  std::vector<std::int64_t> similarity;      ///< triangles per k (legs Δ0·(√2)^-k), k = 0..2L
   // On WGS84.
-  bool geodesic = false;                      ///< the physical sizes below were computed
-  double triangle_area_km2 = 0.0;             ///< Σ geodesic triangle areas (the total wet area)
-  double filled_area_km2 = 0.0;               ///< Σ lattice cell areas of the squares
-  double area_relative_difference = 0.0;      ///< |triangle − filled| / filled
-  double area_tolerance = 0.0;                ///< the tolerance used
-  std::vector<LevelStatistics> levels;        ///< levels that have triangles
+  bool geodesic = false;                  ///< the physical sizes below were computed
+  double triangle_area_km2 = 0.0;         ///< Σ geodesic triangle areas (the total wet area)
+  double filled_area_km2 = 0.0;           ///< Σ lattice cell areas of the squares
+  double area_relative_difference = 0.0;  ///< |triangle − filled| / filled
+  double area_tolerance = 0.0;            ///< the tolerance used
+  std::vector<LevelStatistics> levels;    ///< levels that have triangles
 
   /// Names of the failed checks (empty when the mesh passes all of them).
   [[nodiscard]] std::vector<std::string> failed_checks() const;
 };
 
 struct StatisticsOptions {
-  bool geodesic = true;           ///< compute areas and lengths on WGS84 (GeographicLib)
+  bool geodesic = true;  ///< compute areas and lengths on WGS84 (GeographicLib)
   /// Accepted relative difference of the two areas on WGS84; 0 = automatic: 0.05 × the pixel
   /// side in radians (the difference is a boundary effect of first order in the pixel size:
   /// 1.3e-3 at 5.6° pixels, 7.5e-3 at 22.5° pixels in the tests).

@@ -47,7 +47,17 @@
 namespace aq::mesh {
 
 /// Local vertex numbers of a square (see the file comment).
-enum LocalVertex : std::uint8_t { kSW = 0, kSE = 1, kNE = 2, kNW = 3, kMidS = 4, kMidE = 5, kMidN = 6, kMidW = 7, kCentre = 8 };
+enum LocalVertex : std::uint8_t {
+  kSW = 0,
+  kSE = 1,
+  kNE = 2,
+  kNW = 3,
+  kMidS = 4,
+  kMidE = 5,
+  kMidN = 6,
+  kMidW = 7,
+  kCentre = 8
+};
 
 /// Choice of the diagonal of squares without midside nodes (`mesh.diagonal`).
 enum class Diagonal {
@@ -119,7 +129,8 @@ constexpr const Template& template_for(unsigned code, bool nw_diagonal) {
 
 /// Position of a local vertex in units of half a side: (0..2, 0..2), SW corner at (0, 0).
 constexpr std::array<int, 2> local_position(unsigned v) {
-  constexpr std::array<std::array<int, 2>, 9> p{{{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1}, {1, 2}, {0, 1}, {1, 1}}};
+  constexpr std::array<std::array<int, 2>, 9> p{
+      {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1}, {1, 2}, {0, 1}, {1, 1}}};
   return p[v];
 }
 

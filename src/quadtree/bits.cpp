@@ -53,8 +53,7 @@ void rotate_row(const std::uint64_t* in, std::uint64_t* out, std::int64_t n, std
   out[words - 1] &= last_word_mask(n);
 }
 
-void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, std::int64_t n,
-                std::int64_t r) {
+void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, std::int64_t n, std::int64_t r) {
   const std::int64_t words = (n + 63) / 64;
   std::copy(in, in + words, out);
   // One-sided dilations by doubling: after `c` covered, out[i] = OR in[i-c .. i]; OR-ing the
@@ -85,8 +84,8 @@ void set_range(std::uint64_t* row, std::int64_t x0, std::int64_t x1) {
   row[w1] |= m1;
 }
 
-void reduce_rows(const std::uint64_t* lo, const std::uint64_t* hi, std::int64_t child_words,
-                 std::uint64_t* out, bool use_or) {
+void reduce_rows(const std::uint64_t* lo, const std::uint64_t* hi, std::int64_t child_words, std::uint64_t* out,
+                 bool use_or) {
   const std::int64_t out_words = (child_words + 1) / 2;
   for (std::int64_t w = 0; w < out_words; ++w) {
     std::uint64_t half[2] = {0, 0};
@@ -104,7 +103,8 @@ Bitmap reduce(const Bitmap& fine, bool use_or) {
   Bitmap coarse(fine.nx() / 2, fine.ny() / 2);
   const std::int64_t rows = coarse.ny();
   const std::int64_t child_words = fine.words_per_row();
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * child_words * 2)) shared(fine, coarse, rows, child_words, use_or) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * child_words * 2)) \
+    shared(fine, coarse, rows, child_words, use_or) schedule(static)
   for (std::int64_t b = 0; b < rows; ++b) {
     reduce_rows(fine.row(2 * b), fine.row(2 * b + 1), child_words, coarse.row(b), use_or);
   }

@@ -51,9 +51,7 @@ constexpr int popcount64(std::uint64_t x) {
 }
 
 /// Morton (z-order) key of (i, j), i, j < 2^32: bit k of i -> bit 2k, bit k of j -> bit 2k+1.
-constexpr std::uint64_t morton(std::uint64_t i, std::uint64_t j) {
-  return spread_even(i) | (spread_even(j) << 1);
-}
+constexpr std::uint64_t morton(std::uint64_t i, std::uint64_t j) { return spread_even(i) | (spread_even(j) << 1); }
 
 /// Mask of the valid bits of the last word of a row of n >= 1 bits.
 constexpr std::uint64_t last_word_mask(std::int64_t n) {
@@ -71,8 +69,7 @@ void rotate_row(const std::uint64_t* in, std::uint64_t* out, std::int64_t n, std
 
 /// Dilation of a periodic row by radius r >= 0 (out[i] = OR of in[i-r .. i+r], indices mod n),
 /// in O(log r) rotations. `tmp` must hold words_per_row words; none of the three may alias.
-void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, std::int64_t n,
-                std::int64_t r);
+void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, std::int64_t n, std::int64_t r);
 
 /// Sets bits [x0, x1) of a row (0 <= x0 <= x1 <= row length; no wrap).
 void set_range(std::uint64_t* row, std::int64_t x0, std::int64_t x1);
@@ -80,8 +77,8 @@ void set_range(std::uint64_t* row, std::int64_t x0, std::int64_t x1);
 /// Parent row from two child rows of a pyramid: bit a of `out` = AND (or OR when `use_or`) of the
 /// 2×2 children bits (2a, 2a+1) of `lo` and `hi`. `child_words` is the words per child row;
 /// `out` gets (child_words + 1) / 2 words.
-void reduce_rows(const std::uint64_t* lo, const std::uint64_t* hi, std::int64_t child_words,
-                 std::uint64_t* out, bool use_or);
+void reduce_rows(const std::uint64_t* lo, const std::uint64_t* hi, std::int64_t child_words, std::uint64_t* out,
+                 bool use_or);
 
 /// Level l-1 bitmap from level l: AND of the 4 children ("all filled") or OR ("any filled").
 /// Requires even nx and ny. Parallel over rows.

@@ -57,14 +57,14 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   Timer t_check;
   for (const std::vector<std::int64_t>* c : {&bare, &banded, &refined, &balanced}) {
     if (pixels_of(*c, lat.levels) != filled_pixels) {
-      throw InternalError(fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*c, lat.levels),
-                                      filled_pixels));
+      throw InternalError(
+          fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*c, lat.levels), filled_pixels));
     }
   }
   const std::int64_t violations = count_balance_violations(leaves, lat, mode);
   if (violations != 0) {
-    throw InternalError(fmt::format("quadtree: {} {}-balance violations left after smoothing", violations,
-                                    balance_mode_name(mode)));
+    throw InternalError(
+        fmt::format("quadtree: {} {}-balance violations left after smoothing", violations, balance_mode_name(mode)));
   }
   const double check_s = t_check.wall_s();
 

@@ -33,7 +33,8 @@ Bitmap dry_dilation(const Bitmap& filled, std::int64_t r) {
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
   const std::uint64_t last = bits::last_word_mask(nx);
-#pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * 8)) shared(filled, h, nx, ny, words, last, r)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * 8)) \
+    shared(filled, h, nx, ny, words, last, r)
   {
     Words comp(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
@@ -74,8 +75,8 @@ void validate_rules(const config::QuadtreeOptions& o, int levels) {
                                     k, r.level, levels));
     }
     if (!(r.max_depth_m > r.min_depth_m)) {
-      throw ConfigError(fmt::format("quadtree.depth_rules[{}]: empty depth range [{}, {}) m", k, r.min_depth_m,
-                                    r.max_depth_m));
+      throw ConfigError(
+          fmt::format("quadtree.depth_rules[{}]: empty depth range [{}, {}) m", k, r.min_depth_m, r.max_depth_m));
     }
   }
   for (std::size_t k = 0; k < o.box_rules.size(); ++k) {
@@ -128,7 +129,8 @@ Bitmap coastal_band(const Bitmap& filled, int band) {
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
   const std::int64_t r = band;
-#pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * (2 * r + 1))) shared(filled, h, out, ny, words, r)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * (2 * r + 1))) \
+    shared(filled, h, out, ny, words, r)
   {
     Words inner(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
@@ -177,7 +179,8 @@ void apply_coast_band(LevelMasks& m, int coast_band) {
     dst = Bitmap(filled.nx() / 2, filled.ny() / 2);
     const std::int64_t rows = dst.ny();
     const std::int64_t words = filled.words_per_row();
-#pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * (4 * r + 2))) shared(filled, h, dst, rows, words, r)
+#pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * (4 * r + 2))) \
+    shared(filled, h, dst, rows, words, r)
     {
       Words lo(static_cast<std::size_t>(words)), hi(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
@@ -223,9 +226,9 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     const double lon0 = lat.lon0_deg;
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64))                      \
     shared(om, rows, words, step, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
-    schedule(dynamic, 16)
+        schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
       const double rlat = -90.0 + (static_cast<double>(b) + 0.5) * step;
       std::uint64_t* row = om.row(b);
@@ -308,7 +311,8 @@ bool leaves_sorted(const std::vector<Leaf>& leaves, const Lattice& lat) {
   std::vector<char> ok(static_cast<std::size_t>(blocks), 1);
   for_each_block(n, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
     for (std::int64_t k = std::max<std::int64_t>(begin, 1); k < end; ++k) {
-      if (!(leaf_key(lat, leaves[static_cast<std::size_t>(k) - 1]) < leaf_key(lat, leaves[static_cast<std::size_t>(k)]))) {
+      if (!(leaf_key(lat, leaves[static_cast<std::size_t>(k) - 1]) <
+            leaf_key(lat, leaves[static_cast<std::size_t>(k)]))) {
         ok[static_cast<std::size_t>(t)] = 0;
         return;
       }

@@ -86,7 +86,9 @@ struct LevelMasks {
   std::vector<Bitmap> omega;
   std::vector<Bitmap> any;
   [[nodiscard]] int levels() const { return static_cast<int>(omega.size()) - 1; }
-  [[nodiscard]] const Bitmap& any_at(int l) const { return l == levels() ? omega.back() : any[static_cast<std::size_t>(l)]; }
+  [[nodiscard]] const Bitmap& any_at(int l) const {
+    return l == levels() ? omega.back() : any[static_cast<std::size_t>(l)];
+  }
   [[nodiscard]] const Bitmap& filled() const { return omega.back(); }
 };
 
@@ -134,7 +136,7 @@ LevelMasks masks_from_leaves(const std::vector<Leaf>& leaves, const Lattice& lat
 
 /// Finds the leaf holding a pixel by binary search on the leaf order, O(log n).
 class LeafLocator {
-public:
+ public:
   /// Keeps a reference to `leaves`, which must outlive the locator. Throws InternalError when
   /// the leaves are not in the deterministic order.
   LeafLocator(const std::vector<Leaf>& leaves, const Lattice& lat);
@@ -142,7 +144,7 @@ public:
   /// j is outside [0, ny).
   [[nodiscard]] std::int64_t find(std::int64_t i, std::int64_t j) const;
 
-private:
+ private:
   const std::vector<Leaf>& leaves_;
   Lattice lat_;
   std::vector<LeafKey> keys_;

@@ -17,7 +17,7 @@ namespace {
 
 /// Row-major vertex bitmap (nx × (ny+1) vertices) with O(1) rank: the node id of a marked vertex.
 class VertexRank {
-public:
+ public:
   VertexRank(std::int64_t nx, std::int64_t ny) : vb_(nx, ny + 1) {}
 
   Bitmap& bitmap() { return vb_; }
@@ -46,14 +46,14 @@ public:
   [[nodiscard]] NodeId rank(std::int64_t i, std::int64_t j) const {
     const std::int64_t w = i >> 6;
     const std::uint64_t below = vb_.row(j)[w] & ((1ULL << (i & 63)) - 1ULL);
-    return row_base_[static_cast<std::size_t>(j)] +
-           prefix_[static_cast<std::size_t>(j * vb_.words_per_row() + w)] + bits::popcount64(below);
+    return row_base_[static_cast<std::size_t>(j)] + prefix_[static_cast<std::size_t>(j * vb_.words_per_row() + w)] +
+           bits::popcount64(below);
   }
   [[nodiscard]] std::int64_t row_base(std::int64_t j) const { return row_base_[static_cast<std::size_t>(j)]; }
 
-private:
+ private:
   Bitmap vb_;
-  std::vector<std::uint32_t> prefix_;  ///< set bits in the row before each word
+  std::vector<std::uint32_t> prefix_;   ///< set bits in the row before each word
   std::vector<std::int64_t> row_base_;  ///< set bits before each row
 };
 
@@ -163,7 +163,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   Bitmap& vb = vr.bitmap();
   for (std::int64_t phase = 0; phase < 2; ++phase) {
     const std::int64_t count = (ny0 - phase + 1) / 2;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(static_cast<std::int64_t>(leaves.size()) * 4)) shared(leaves, lat, vb, starts, phase, count, nx) schedule(dynamic, 1)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(static_cast <std::int64_t>(leaves.size()) * 4)) \
+    shared(leaves, lat, vb, starts, phase, count, nx) schedule(dynamic, 1)
     for (std::int64_t k = 0; k < count; ++k) {
       const std::int64_t b0 = 2 * k + phase;
       for (std::int64_t f = starts[static_cast<std::size_t>(b0)]; f < starts[static_cast<std::size_t>(b0) + 1]; ++f) {
@@ -180,7 +181,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   // 2. Midside codes: the midpoint of a side is a node exactly when a finer neighbour has a corner there.
   QuadNodes out;
   out.midside_code.assign(static_cast<std::size_t>(nleaves), 0);
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 4)) shared(leaves, lat, vb, out, nleaves, nx) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 4)) \
+    shared(leaves, lat, vb, out, nleaves, nx) schedule(static)
   for (std::int64_t f = 0; f < nleaves; ++f) {
     const Box q = box_of(lat, leaves[static_cast<std::size_t>(f)]);
     if (q.s < 2) continue;
@@ -195,7 +197,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
 
   // 3. Centres (strictly inside their leaf, so inside their level-0 row: no write conflicts).
   if (options.centres) {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves)) shared(leaves, lat, vb, out, starts, ny0) schedule(dynamic, 1)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves)) \
+    shared(leaves, lat, vb, out, starts, ny0) schedule(dynamic, 1)
     for (std::int64_t b0 = 0; b0 < ny0; ++b0) {
       for (std::int64_t f = starts[static_cast<std::size_t>(b0)]; f < starts[static_cast<std::size_t>(b0) + 1]; ++f) {
         if (out.midside_code[static_cast<std::size_t>(f)] == 0) continue;
@@ -212,7 +215,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   out.node_flags.resize(static_cast<std::size_t>(nnodes));
   const std::int64_t vrows = ny + 1;
   const std::int64_t vwords = vb.words_per_row();
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(vrows * vwords + nnodes)) shared(vr, vb, out, vrows, vwords, ny) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(vrows * vwords + nnodes)) \
+    shared(vr, vb, out, vrows, vwords, ny) schedule(static)
   for (std::int64_t j = 0; j < vrows; ++j) {
     auto id = static_cast<std::size_t>(vr.row_base(j));
     const std::uint64_t* r = vb.row(j);
@@ -223,7 +227,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
         x &= x - 1;
         out.node_i[id] = i;
         out.node_j[id] = j;
-        out.node_flags[id] = static_cast<std::uint8_t>(((j == 0 || j == ny) ? kPoleNode : 0) | (i == 0 ? kSeamNode : 0));
+        out.node_flags[id] =
+            static_cast<std::uint8_t>(((j == 0 || j == ny) ? kPoleNode : 0) | (i == 0 ? kSeamNode : 0));
         ++id;
       }
     }
@@ -234,7 +239,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   out.midside.resize(static_cast<std::size_t>(nleaves));
   out.centre.resize(static_cast<std::size_t>(nleaves));
   const bool centres = options.centres;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 8)) shared(leaves, lat, vr, out, nleaves, nx, centres) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 8)) \
+    shared(leaves, lat, vr, out, nleaves, nx, centres) schedule(static)
   for (std::int64_t f = 0; f < nleaves; ++f) {
     const auto k = static_cast<std::size_t>(f);
     const Box q = box_of(lat, leaves[k]);
@@ -302,7 +308,8 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   // Outgoing boundary edges of every node: one, or two at a pinch (kept in the order of their end node).
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   if (edges.size() >= kNone) throw InternalError("quadtree nodes: too many boundary edges");
-  std::vector<std::uint32_t> out1(static_cast<std::size_t>(nnodes), kNone), out2(static_cast<std::size_t>(nnodes), kNone);
+  std::vector<std::uint32_t> out1(static_cast<std::size_t>(nnodes), kNone),
+      out2(static_cast<std::size_t>(nnodes), kNone);
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto a = static_cast<std::size_t>(edges[e][0]);
     if (out1[a] == kNone) {
@@ -323,9 +330,10 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
       if (direction(edges[out1[b]]) == left) return out1[b];
       if (direction(edges[out2[b]]) == left) return out2[b];
     }
-    throw InternalError(fmt::format(
-        "quadtree nodes: boundary at node {} (I {}, J {}) has {} outgoing edges and no left turn (leaves not balanced?)",
-        b, out.node_i[b], out.node_j[b], (out1[b] != kNone) + (out2[b] != kNone)));
+    throw InternalError(
+        fmt::format("quadtree nodes: boundary at node {} (I {}, J {}) has {} outgoing edges and no left turn (leaves "
+                    "not balanced?)",
+                    b, out.node_i[b], out.node_j[b], (out1[b] != kNone) + (out2[b] != kNone)));
   };
   // Loops start from the unused edge with the smallest (a, b).
   std::vector<std::uint32_t> order;

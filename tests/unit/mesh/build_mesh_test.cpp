@@ -87,6 +87,7 @@ INSTANTIATE_TEST_SUITE_P(Seeds, MeshRandom,
 TEST(Mesh, DrawnPinchAndSeamCrossing) {
   // 16 × 8 pixels (L = 2): a region across the seam (columns 13..15 and 0..5), and a pinch at
   // vertex (6, 4) between it and a block to the north-east. rows[0] is the north.
+  // clang-format off
   const Bitmap m = draw({"................",
                          "................",
                          "......###.......",
@@ -95,6 +96,7 @@ TEST(Mesh, DrawnPinchAndSeamCrossing) {
                          "####.........###",
                          "###...........##",
                          "................"});
+  // clang-format on
   const Lattice lat = make_lattice(90.0, 2);
   config::QuadtreeOptions q;
   q.coast_band = 0;
@@ -147,7 +149,9 @@ TEST(Mesh, CoordinatesDepthsAndRotation) {
       EXPECT_NEAR(mesh.lat_deg[p], la, 1e-12);
       EXPECT_GE(mesh.lon_deg[p], -30.0);
       EXPECT_LT(mesh.lon_deg[p], 330.0);
-      if (std::abs(la) < 89.999) { EXPECT_NEAR(std::remainder(mesh.lon_deg[p] - lon, 360.0), 0.0, 1e-9); }
+      if (std::abs(la) < 89.999) {
+        EXPECT_NEAR(std::remainder(mesh.lon_deg[p] - lon, 360.0), 0.0, 1e-9);
+      }
       const double d = bathy.sample(mesh.lon_deg[p], mesh.lat_deg[p]);
       EXPECT_EQ(mesh.depth_m[p], d);
     }
@@ -210,7 +214,9 @@ TEST(Mesh, SquaresOnlyAndBoth) {
     EXPECT_EQ(I(c[2]), I(c[1]));
     EXPECT_EQ(J(c[2]), J(c[3]));
     const NodeId ms = s.mesh.square_midside[k][0];
-    if (ms >= 0) { EXPECT_EQ(J(ms), J(c[0])); }
+    if (ms >= 0) {
+      EXPECT_EQ(J(ms), J(c[0]));
+    }
   }
   config::MeshOptions bad;
   bad.elements = "quads";
@@ -265,7 +271,8 @@ TEST(MeshPerf, TenMillionTriangles) {
   const raster::Bathymetry bathy = testing::synthetic_bathymetry();
   config::QuadtreeOptions q;
   auto t0 = clock::now();
-  const std::vector<quadtree::Leaf> leaves = quadtree::build_leaves(m, lat, q, PoleRotation(), &bathy, Logger::null(), nullptr);
+  const std::vector<quadtree::Leaf> leaves =
+      quadtree::build_leaves(m, lat, q, PoleRotation(), &bathy, Logger::null(), nullptr);
   const double leaves_s = secs(t0);
   t0 = clock::now();
   quadtree::LevelMasks masks = quadtree::make_level_masks(m, lat, q.coast_band);

@@ -23,7 +23,8 @@ inline raster::Bathymetry synthetic_bathymetry() {
   for (std::int64_t r = 0; r < nr; ++r) {
     for (std::int64_t c = 0; c < nc; ++c) {
       const double lon = -180.0 + static_cast<double>(c), lat = -90.0 + static_cast<double>(r);
-      v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(-1000.0 - 20.0 * lat + 300.0 * std::sin(lon * 3.14159265358979 / 180.0));
+      v[static_cast<std::size_t>(r * nc + c)] =
+          static_cast<float>(-1000.0 - 20.0 * lat + 300.0 * std::sin(lon * 3.14159265358979 / 180.0));
     }
   }
   return raster::Bathymetry::from_grid(std::move(v), nc, nr, -180.0, -90.0, 1.0, 1.0);

@@ -52,15 +52,16 @@ TEST_P(RotationRoundTrip, Within1e12Degrees) {
   double lon = 0, lat = 0;
   rot.to_geographic(0.0, 90.0, lon, lat);
   EXPECT_NEAR(lat, p.lat, 1e-12);
-  if (p.lat < 90.0 - 1e-9) { EXPECT_LT(lon_diff(lon, p.lon), 1e-12); }
+  if (p.lat < 90.0 - 1e-9) {
+    EXPECT_LT(lon_diff(lon, p.lon), 1e-12);
+  }
   rot.to_rotated(p.lon, p.lat, lon, lat);
   EXPECT_NEAR(lat, 90.0, 1e-12);
 }
 
 INSTANTIATE_TEST_SUITE_P(Poles, RotationRoundTrip,
                          ::testing::Values(Pole{-44.858333, 78.141667},  // the seed's Greenland pole
-                                           Pole{0.0, 90.0}, Pole{120.0, 10.0}, Pole{-170.0, -45.0},
-                                           Pole{30.0, 0.0}));
+                                           Pole{0.0, 90.0}, Pole{120.0, 10.0}, Pole{-170.0, -45.0}, Pole{30.0, 0.0}));
 
 TEST(Rotation, GreenlandPoleMovesTheGeographicNorthPoleOffTheLatticePole) {
   const PoleRotation rot(-44.858333, 78.141667);

@@ -2,10 +2,10 @@
 // GeographicLib computations, and every check fails on a deliberately broken mesh.
 #include "mesh/statistics.hpp"
 
+#include <gtest/gtest.h>
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/PolygonArea.hpp>
-#include <gtest/gtest.h>
 
 #include <algorithm>
 

@@ -125,17 +125,53 @@ INSTANTIATE_TEST_SUITE_P(AllCodes, TemplateCode, ::testing::ValuesIn(all_codes()
                          [](const ::testing::TestParamInfo<Code>& i) { return PrintToString(i.param); });
 
 TEST(Templates, DrawingsMatchTheHeaderComment) {
-  const std::vector<std::string> ne{"*-------*", "|      /|", "|     / |", "|    /  |", "|   /   |",
-                                    "|  /    |", "| /     |", "|/      |", "*-------*"};
+  // clang-format off
+  const std::vector<std::string> ne{"*-------*",
+                                    "|      /|",
+                                    "|     / |",
+                                    "|    /  |",
+                                    "|   /   |",
+                                    "|  /    |",
+                                    "| /     |",
+                                    "|/      |",
+                                    "*-------*"};
+  // clang-format on
   EXPECT_EQ(draw(template_for(0, false)), ne);
-  const std::vector<std::string> nw{"*-------*", "|\\      |", "| \\     |", "|  \\    |", "|   \\   |",
-                                    "|    \\  |", "|     \\ |", "|      \\|", "*-------*"};
+  // clang-format off
+  const std::vector<std::string> nw{"*-------*",
+                                    "|\\      |",
+                                    "| \\     |",
+                                    "|  \\    |",
+                                    "|   \\   |",
+                                    "|    \\  |",
+                                    "|     \\ |",
+                                    "|      \\|",
+                                    "*-------*"};
+  // clang-format on
   EXPECT_EQ(draw(template_for(0, true)), nw);
-  const std::vector<std::string> s{"*-------*", "|\\     /|", "| \\   / |", "|  \\ /  |", "|   *   |",
-                                   "|  /|\\  |", "| / | \\ |", "|/  |  \\|", "*---*---*"};
+  // clang-format off
+  const std::vector<std::string> s{"*-------*",
+                                   "|\\     /|",
+                                   "| \\   / |",
+                                   "|  \\ /  |",
+                                   "|   *   |",
+                                   "|  /|\\  |",
+                                   "| / | \\ |",
+                                   "|/  |  \\|",
+                                   "*---*---*"};
+  // clang-format on
   EXPECT_EQ(draw(template_for(1, false)), s);
-  const std::vector<std::string> all{"*---*---*", "|\\  |  /|", "| \\ | / |", "|  \\|/  |", "*---*---*",
-                                     "|  /|\\  |", "| / | \\ |", "|/  |  \\|", "*---*---*"};
+  // clang-format off
+  const std::vector<std::string> all{"*---*---*",
+                                     "|\\  |  /|",
+                                     "| \\ | / |",
+                                     "|  \\|/  |",
+                                     "*---*---*",
+                                     "|  /|\\  |",
+                                     "| / | \\ |",
+                                     "|/  |  \\|",
+                                     "*---*---*"};
+  // clang-format on
   EXPECT_EQ(draw(template_for(15, false)), all);
 }
 

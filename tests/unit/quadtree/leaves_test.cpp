@@ -112,7 +112,9 @@ TEST(Leaves, BareRulePartitionsTheFilledSetIntoDl) {
     // D_l: each leaf is filled, and (l >= 1) its parent square is not entirely filled.
     for (const Leaf& f : leaves) {
       ASSERT_TRUE(naive_all(m, lat, f.level, f.a, f.b));
-      if (f.level > 0) { ASSERT_FALSE(naive_all(m, lat, f.level - 1, f.a / 2, f.b / 2)) << f.level; }
+      if (f.level > 0) {
+        ASSERT_FALSE(naive_all(m, lat, f.level - 1, f.a / 2, f.b / 2)) << f.level;
+      }
     }
     // Several levels occur (the test would be vacuous otherwise).
     EXPECT_GT(per_level[0], 0);
@@ -132,10 +134,9 @@ TEST(Leaves, OrderIsRootRowMajorThenMorton) {
   for (std::int64_t j = 4; j < 8; ++j)
     for (std::int64_t i = 0; i < 4; ++i) m.set(i, j);
   const std::vector<Leaf> leaves = extract_leaves(make_level_masks(m, lat, 0), lat);
-  const std::vector<Leaf> expect{
-      {1, 2, 0}, {1, 3, 0}, {1, 2, 1},             // SW, SE, NW quarters of root (1,0)
-      {2, 6, 2}, {2, 7, 2}, {2, 6, 3},             // NE quarter split: its SW, SE, NW pixels
-      {0, 0, 1}};                                  // root (0, 1), after the whole root row 0
+  const std::vector<Leaf> expect{{1, 2, 0}, {1, 3, 0}, {1, 2, 1},  // SW, SE, NW quarters of root (1,0)
+                                 {2, 6, 2}, {2, 7, 2}, {2, 6, 3},  // NE quarter split: its SW, SE, NW pixels
+                                 {0, 0, 1}};                       // root (0, 1), after the whole root row 0
   EXPECT_EQ(leaves, expect);
   EXPECT_TRUE(leaves_sorted(leaves, lat));
 }
@@ -176,7 +177,8 @@ TEST(Leaves, CoastalBandLeavesAreFinestAndOthersMaximal) {
     // A coarser leaf holds no band pixel, and its parent holds one or is not entirely filled.
     ASSERT_FALSE(naive_any(cb, lat, f.level, f.a, f.b));
     if (f.level > 0) {
-      ASSERT_TRUE(naive_any(cb, lat, f.level - 1, f.a / 2, f.b / 2) || !naive_all(m, lat, f.level - 1, f.a / 2, f.b / 2));
+      ASSERT_TRUE(naive_any(cb, lat, f.level - 1, f.a / 2, f.b / 2) ||
+                  !naive_all(m, lat, f.level - 1, f.a / 2, f.b / 2));
     }
   }
   EXPECT_GT(coarse, 0);
@@ -197,7 +199,9 @@ TEST(Leaves, SeamSquaresSeeTheCoastAcrossTheSeam) {
   }
   const std::vector<Leaf> leaves = extract_leaves(make_level_masks(m, lat, 1), lat);
   for (const Leaf& f : leaves) {
-    if (leaf_i0(lat, f) == 0) { EXPECT_EQ(f.level, lat.levels) << "a leaf on the western seam column"; }
+    if (leaf_i0(lat, f) == 0) {
+      EXPECT_EQ(f.level, lat.levels) << "a leaf on the western seam column";
+    }
   }
 }
 
@@ -300,7 +304,9 @@ TEST(Leaves, LocatorFindsTheLeafOfEveryPixel) {
     for (std::int64_t i = 0; i < lat.nx; ++i) {
       const std::int64_t k = loc.find(i, j);
       ASSERT_EQ(k >= 0, m.get(i, j));
-      if (k >= 0) { ASSERT_EQ(leaves[static_cast<std::size_t>(k)].level, lev[static_cast<std::size_t>(j * lat.nx + i)]); }
+      if (k >= 0) {
+        ASSERT_EQ(leaves[static_cast<std::size_t>(k)].level, lev[static_cast<std::size_t>(j * lat.nx + i)]);
+      }
     }
   }
   EXPECT_EQ(loc.find(-1, 0), loc.find(lat.nx - 1, 0));

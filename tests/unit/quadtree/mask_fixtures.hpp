@@ -24,8 +24,8 @@ inline Lattice make_lattice(double step_deg, int levels, double lon0 = -180.0) {
 
 /// A seeded random filled set made of blobs: a coarse random field upsampled and thresholded,
 /// plus pixel noise, so that it has big wet areas (coarse leaves) and a ragged coast.
-inline Bitmap random_mask(std::int64_t nx, std::int64_t ny, std::uint32_t seed, double wet = 0.6,
-                          double noise = 0.03, int cell = 6) {
+inline Bitmap random_mask(std::int64_t nx, std::int64_t ny, std::uint32_t seed, double wet = 0.6, double noise = 0.03,
+                          int cell = 6) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const std::int64_t cx = nx / cell + 2, cy = ny / cell + 2;
@@ -155,10 +155,8 @@ inline std::int64_t components4(const Bitmap& m) {
       const std::int64_t p = stack.back();
       stack.pop_back();
       const std::int64_t i = p % nx, j = p / nx;
-      const std::array<std::array<std::int64_t, 2>, 4> nb{{{wrap_index(i + 1, nx), j},
-                                                           {wrap_index(i - 1, nx), j},
-                                                           {i, j + 1},
-                                                           {i, j - 1}}};
+      const std::array<std::array<std::int64_t, 2>, 4> nb{
+          {{wrap_index(i + 1, nx), j}, {wrap_index(i - 1, nx), j}, {i, j + 1}, {i, j - 1}}};
       for (const auto& q : nb) {
         if (q[1] < 0 || q[1] >= ny || !m.get(q[0], q[1])) continue;
         const std::int64_t id = q[1] * nx + q[0];

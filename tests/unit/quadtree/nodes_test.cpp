@@ -52,7 +52,8 @@ void check_invariants(const QuadNodes& q, const std::vector<Leaf>& leaves, const
     const std::int64_t s = leaf_size(lat, f), i0 = leaf_i0(lat, f), j0 = leaf_j0(lat, f);
     const std::array<std::array<std::int64_t, 2>, 4> c{{{i0, j0}, {i0 + s, j0}, {i0 + s, j0 + s}, {i0, j0 + s}}};
     for (int v = 0; v < 4; ++v) {
-      const std::int64_t i = wrap_index(c[static_cast<std::size_t>(v)][0], lat.nx), j = c[static_cast<std::size_t>(v)][1];
+      const std::int64_t i = wrap_index(c[static_cast<std::size_t>(v)][0], lat.nx),
+                         j = c[static_cast<std::size_t>(v)][1];
       corners.insert({j, i});
       ASSERT_EQ(q.corners[k][static_cast<std::size_t>(v)], find_node(q, lat, i, j));
     }
@@ -64,7 +65,8 @@ void check_invariants(const QuadNodes& q, const std::vector<Leaf>& leaves, const
   for (std::size_t k = 0; k < leaves.size(); ++k) {
     const Leaf& f = leaves[k];
     const std::int64_t s = leaf_size(lat, f), i0 = leaf_i0(lat, f), j0 = leaf_j0(lat, f), h = s / 2;
-    const std::array<std::array<std::int64_t, 2>, 4> mid{{{i0 + h, j0}, {i0 + s, j0 + h}, {i0 + h, j0 + s}, {i0, j0 + h}}};
+    const std::array<std::array<std::int64_t, 2>, 4> mid{
+        {{i0 + h, j0}, {i0 + s, j0 + h}, {i0 + h, j0 + s}, {i0, j0 + h}}};
     for (int side = 0; side < 4; ++side) {
       const auto& p = mid[static_cast<std::size_t>(side)];
       const bool expect = s >= 2 && corners.count({p[1], wrap_index(p[0], lat.nx)}) > 0;
@@ -164,6 +166,7 @@ TEST(Nodes, PinchLoopsTurnLeftAndDoNotCross) {
 TEST(Nodes, PinchClosingARingMakesOneLoop) {
   // A ring of pixels around a hole, closed by a diagonal touch at its SW corner (left turns
   // join the hole's boundary and the outer boundary into one loop). rows[0] is the north.
+  // clang-format off
   const Bitmap m = draw({"................",
                          "................",
                          "...###..........",
@@ -172,6 +175,7 @@ TEST(Nodes, PinchClosingARingMakesOneLoop) {
                          "................",
                          "................",
                          "................"});
+  // clang-format on
   const Lattice lat = make_lattice(90.0, 2);
   const std::vector<Leaf> leaves = balanced_leaves(m, lat);
   const QuadNodes q = build_nodes(leaves, lat);
