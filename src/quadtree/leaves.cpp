@@ -310,12 +310,16 @@ bool leaves_sorted(const std::vector<Leaf>& leaves, const Lattice& lat) {
   const int blocks = block_count(n, 8);
   std::vector<char> ok(static_cast<std::size_t>(blocks), 1);
   for_each_block(n, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
-    for (std::int64_t k = std::max<std::int64_t>(begin, 1); k < end; ++k) {
-      if (!(leaf_key(lat, leaves[static_cast<std::size_t>(k) - 1]) <
-            leaf_key(lat, leaves[static_cast<std::size_t>(k)]))) {
+    if (begin >= end) return;
+    const std::int64_t first = std::max<std::int64_t>(begin, 1);
+    LeafKey prev = leaf_key(lat, leaves[static_cast<std::size_t>(first - 1)]);
+    for (std::int64_t k = first; k < end; ++k) {
+      const LeafKey key = leaf_key(lat, leaves[static_cast<std::size_t>(k)]);
+      if (!(prev < key)) {
         ok[static_cast<std::size_t>(t)] = 0;
         return;
       }
+      prev = key;
     }
   });
   return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
@@ -337,9 +341,8 @@ namespace {
 /// Calls fn(leaf) for every leaf: in parallel by level-0 rows when the leaves are sorted (the
 /// leaves of a level-0 row touch only the rows of their band at every level), else serially.
 template <class Fn>
-void for_leaves_by_band(const std::vector<Leaf>& leaves, const Lattice& lat, const Fn& fn) {
-  for (const Leaf& f : leaves) check_leaf_range(f, lat);
-  if (!leaves_sorted(leaves, lat)) {
+void for_leaves_by_band(const std::vector<Leaf>& leaves, const Lattice& lat, bool sorted, const Fn& fn) {
+  if (!sorted) {
     for (const Leaf& f : leaves) fn(f);
     return;
   }
@@ -355,11 +358,16 @@ void for_leaves_by_band(const std::vector<Leaf>& leaves, const Lattice& lat, con
 
 }  // namespace
 
-Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat) {
+Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat, bool* sorted_out) {
   Bitmap cov(lat.nx, lat.ny);
   std::int64_t area = 0;
-  for (const Leaf& f : leaves) area += leaf_size(lat, f) * leaf_size(lat, f);
-  for_leaves_by_band(leaves, lat, [&](const Leaf& f) {
+  for (const Leaf& f : leaves) {
+    check_leaf_range(f, lat);
+    area += leaf_size(lat, f) * leaf_size(lat, f);
+  }
+  const bool sorted = leaves_sorted(leaves, lat);
+  if (sorted_out != nullptr) *sorted_out = sorted;
+  for_leaves_by_band(leaves, lat, sorted, [&](const Leaf& f) {
     const std::int64_t s = leaf_size(lat, f);
     const std::int64_t i0 = leaf_i0(lat, f);
     const std::int64_t j0 = leaf_j0(lat, f);
@@ -377,11 +385,12 @@ LevelMasks masks_from_leaves(const std::vector<Leaf>& leaves, const Lattice& lat
   LevelMasks m;
   m.omega.resize(static_cast<std::size_t>(levels) + 1);
   m.any.resize(static_cast<std::size_t>(levels) + 1);
-  m.omega.back() = leaf_coverage(leaves, lat);
+  bool sorted = false;
+  m.omega.back() = leaf_coverage(leaves, lat, &sorted);
   for (int l = 0; l < levels; ++l) {
     m.omega[static_cast<std::size_t>(l)] = Bitmap(lat.nx >> (levels - l), lat.ny >> (levels - l));
   }
-  for_leaves_by_band(leaves, lat, [&](const Leaf& f) {
+  for_leaves_by_band(leaves, lat, sorted, [&](const Leaf& f) {
     for (int l = f.level; l < levels; ++l) {
       Bitmap& om = m.omega[static_cast<std::size_t>(l)];
       const int k = l - f.level;

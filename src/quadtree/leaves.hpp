@@ -128,7 +128,8 @@ std::vector<std::int64_t> root_row_starts(const std::vector<Leaf>& leaves, const
 
 /// The filled pixels covered by `leaves` (any order; parallel when sorted). Throws InternalError when leaves overlap
 /// (their pixel count differs from the covered count) or lie outside the lattice.
-Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat);
+/// When `sorted` is given it receives leaves_sorted(leaves, lat).
+Bitmap leaf_coverage(const std::vector<Leaf>& leaves, const Lattice& lat, bool* sorted = nullptr);
 
 /// The pyramid of a leaf set (inverse of extract_leaves for non-overlapping leaves, any order;
 /// parallel when sorted). Throws InternalError when the leaves overlap or lie outside the lattice.

@@ -147,10 +147,9 @@ std::vector<std::array<std::int64_t, 2>> find_pinches(const Bitmap& filled) {
 }
 
 QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const NodeOptions& options) {
-  if (!leaves_sorted(leaves, lat)) {
-    throw InternalError("quadtree nodes: leaves are not in the deterministic order");
-  }
-  const Bitmap cov = leaf_coverage(leaves, lat);
+  bool sorted = false;
+  const Bitmap cov = leaf_coverage(leaves, lat, &sorted);
+  if (!sorted) throw InternalError("quadtree nodes: leaves are not in the deterministic order");
   const std::int64_t nx = lat.nx;
   const std::int64_t ny = lat.ny;
   const auto nleaves = static_cast<std::int64_t>(leaves.size());
