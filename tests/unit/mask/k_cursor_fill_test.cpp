@@ -293,6 +293,41 @@ TEST(KFillSeeds, BadSeedsAndCursorAreConfigErrors) {
   EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {{-33.75, 11.25}}, -1.0, Logger::null()), ConfigError);
 }
 
+TEST(KFillSeeds, NearestWindowAcrossTheSeamAndOverThePole) {
+  const Lattice lat = coarse_lattice();
+  // Across the seam: windows (0, 3) and (1, 3) only; the seed at pixel (14, 3), centre
+  // (146.25, -11.25), is 56.98° from window (0, 3) (centre (-157.5, 0), 56.25° of λ over the seam).
+  const Bitmap seam = draw({
+      "................",
+      "................",
+      "................",
+      "###.............",
+      "###.............",
+      "................",
+      "................",
+      "................",
+  });
+  KFillResult r = k_cursor_fill(seam, lat, PoleRotation(), 2, {{146.25, -11.25}}, 60.0, Logger::null());
+  EXPECT_EQ(r.seeds[0].window, (PixelIJ{0, 3}));
+  EXPECT_NEAR(r.seeds[0].moved_deg, 56.98, 0.01);
+  // Over the pole: the only window (8, 6), centre (22.5, 67.5), seen from (-168.75, 78.75):
+  // cos d = sin 78.75° sin 67.5° + cos 78.75° cos 67.5° cos 191.25°, d = 33.60°.
+  const Bitmap polar = draw({
+      "........##......",
+      "........##......",
+      "................",
+      "................",
+      "................",
+      "................",
+      "................",
+      "................",
+  });
+  r = k_cursor_fill(polar, lat, PoleRotation(), 2, {{-168.75, 78.75}}, 40.0, Logger::null());
+  EXPECT_EQ(r.seeds[0].window, (PixelIJ{8, 6}));
+  EXPECT_NEAR(r.seeds[0].moved_deg, 33.60, 0.01);
+  EXPECT_EQ(r.stats.filled_pixels, 4);
+}
+
 TEST(KFillSeeds, SecondSeedInTheSameFillIsReportedAsSuch) {
   const Lattice lat = coarse_lattice();
   const Bitmap wet = draw(kBlock);
