@@ -127,6 +127,21 @@ TEST(Mesh, DrawnPinchAndSeamCrossing) {
   EXPECT_EQ(b.mesh.loops.size(), 2u);
 }
 
+TEST(Mesh, LevelZeroAndOneLattices) {
+  const raster::Bathymetry bathy = testing::synthetic_bathymetry();
+  for (const int levels : {0, 1}) {
+    const Lattice lat = make_lattice(30.0, levels);  // 12 × 6 or 24 × 12 pixels
+    const Bitmap m = random_mask(lat.nx, lat.ny, 31u, 0.6, 0.0, 3);
+    const testing::Built b = build_all(m, lat, {}, {}, PoleRotation(), bathy);
+    check_mesh(b.mesh, m);
+    if (levels == 0) {
+      EXPECT_EQ(b.mesh.triangle_count(), 2 * b.mesh.square_count());  // no midside nodes anywhere
+    } else {
+      EXPECT_GT(b.mesh.triangle_count(), 2 * b.mesh.square_count());
+    }
+  }
+}
+
 TEST(Mesh, CoordinatesDepthsAndRotation) {
   const Lattice lat = make_lattice(45.0, 3, -30.0);
   const Bitmap m = random_mask(lat.nx, lat.ny, 8u, 0.6, 0.01, 8);
