@@ -30,6 +30,8 @@ void gdal_init() {
   std::call_once(once, [] {
     GDALAllRegister();
     CPLSetErrorHandler(CPLQuietErrorHandler);  // GDAL errors become exceptions with the message
+    // A small block cache: rows are copied into our array once, so GDAL need not keep them too.
+    if (CPLGetConfigOption("GDAL_CACHEMAX", nullptr) == nullptr) GDALSetCacheMax64(64LL << 20);
   });
 }
 
