@@ -39,7 +39,7 @@ struct CheckArgs {
 
 /// One OutputSet per destination folder; committed together at the end.
 class Outputs {
-public:
+ public:
   fs::path reserve(const fs::path& final_path) {
     const fs::path dir = final_path.parent_path().empty() ? fs::path(".") : final_path.parent_path();
     auto& set = sets_[dir];
@@ -50,7 +50,7 @@ public:
     for (auto& [dir, set] : sets_) set->commit();
   }
 
-private:
+ private:
   std::map<fs::path, std::unique_ptr<OutputSet>> sets_;
 };
 
@@ -86,7 +86,9 @@ nlohmann::ordered_json to_json(const std::string& path, const curvilinear::GridQ
   j["nx_pts"] = q.nx_pts;
   j["ny_pts"] = q.ny_pts;
   j["dxi_over_deta"] = q.dxi_over_deta;
-  auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
+  auto finite_or_null = [](double v) {
+    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+  };
   for (const curvilinear::QualityField* f : q.fields()) {
     nlohmann::ordered_json c;
     c["long_name"] = f->long_name;
@@ -139,8 +141,8 @@ int run_check(const CheckArgs& a, const Logger& log) {
     if (!out) throw OutputError(fmt::format("{}: cannot write", a.json));
   }
   outputs.commit();
-  log.info("check: done {}x{} grid, worst orthogonality error (50) {:.3e} ({:.2f} s); wrote {}{}{}", q.nx_pts,
-           q.ny_pts, q.ortho_50.worst, timer.wall_s(), nc_path.string(), a.no_png ? "" : ", " + png_path.string(),
+  log.info("check: done {}x{} grid, worst orthogonality error (50) {:.3e} ({:.2f} s); wrote {}{}{}", q.nx_pts, q.ny_pts,
+           q.ortho_50.worst, timer.wall_s(), nc_path.string(), a.no_png ? "" : ", " + png_path.string(),
            a.json.empty() ? "" : ", " + a.json);
   return 0;
 }
@@ -153,7 +155,8 @@ void add_check_command(CLI::App& app, Context& ctx) {
       "check", "Orthogonality, isotropy, Laplace residual and seed-004 cell criteria of a planar grid file");
   cmd->add_option("grid", args->grid, "Planar grid netCDF (xygrid: variables x, y)")->required();
   cmd->add_option("-o,--output", args->out_nc, "Per-cell/per-node quality netCDF (default GRID_check.nc)");
-  CLI::Option* png = cmd->add_option("--png", args->png, "Heat map of the orthogonality error (default GRID_check.png)");
+  CLI::Option* png =
+      cmd->add_option("--png", args->png, "Heat map of the orthogonality error (default GRID_check.png)");
   cmd->add_flag("--no-png", args->no_png, "Do not draw the heat map")->excludes(png);
   cmd->add_option("--json", args->json, "Also write the statistics as JSON");
   cmd->add_flag("--five-point", args->five_point, "Laplace residual of the 5-point instead of the 9-point operator");

@@ -210,17 +210,17 @@ std::vector<Complex> perimeter_dz_dxi(const Grid2D& g, double rho, std::vector<s
   const int nx = g.nx_pts;
   const int ny = g.ny_pts;
   ij.clear();
-  std::vector<Complex> rot;   // rotation of the segment starting at node k (unfolding, digest §4.2)
-  std::vector<double> step;   // its length in computational units (Δη = 1, Δξ = ρ)
+  std::vector<Complex> rot;  // rotation of the segment starting at node k (unfolding, digest §4.2)
+  std::vector<double> step;  // its length in computational units (Δη = 1, Δξ = ρ)
   auto add = [&](int i, int j, Complex r, double h) {
     ij.emplace_back(i, j);
     rot.push_back(r);
     step.push_back(h);
   };
-  for (int i = 0; i < nx - 1; ++i) add(i, 0, {1.0, 0.0}, rho);            // south, unrotated
-  for (int j = 0; j < ny - 1; ++j) add(nx - 1, j, {0.0, -1.0}, 1.0);      // east, 90° clockwise
-  for (int i = nx - 1; i > 0; --i) add(i, ny - 1, {-1.0, 0.0}, rho);      // north, 180°
-  for (int j = ny - 1; j > 0; --j) add(0, j, {0.0, 1.0}, 1.0);            // west, 270° clockwise
+  for (int i = 0; i < nx - 1; ++i) add(i, 0, {1.0, 0.0}, rho);        // south, unrotated
+  for (int j = 0; j < ny - 1; ++j) add(nx - 1, j, {0.0, -1.0}, 1.0);  // east, 90° clockwise
+  for (int i = nx - 1; i > 0; --i) add(i, ny - 1, {-1.0, 0.0}, rho);  // north, 180°
+  for (int j = ny - 1; j > 0; --j) add(0, j, {0.0, 1.0}, 1.0);        // west, 270° clockwise
   const std::size_t n = ij.size();
   auto z_at = [&](std::size_t k) {
     const std::size_t p = g.at(ij[k].first, ij[k].second);
@@ -386,8 +386,8 @@ GridQuality check_grid(const Grid2D& g, const CheckOptions& options) {
   }
   for (std::size_t p = 0; p < n_nodes; ++p) {
     if (!std::isfinite(g.x[p]) || !std::isfinite(g.y[p])) {
-      throw InputError(fmt::format("check_grid: node ({}, {}) is not finite: ({}, {})", p % static_cast<std::size_t>(nx),
-                                   p / static_cast<std::size_t>(nx), g.x[p], g.y[p]));
+      throw InputError(fmt::format("check_grid: node ({}, {}) is not finite: ({}, {})",
+                                   p % static_cast<std::size_t>(nx), p / static_cast<std::size_t>(nx), g.x[p], g.y[p]));
     }
   }
   const double rho = options.dxi_over_deta > 0.0 ? options.dxi_over_deta : estimate_step_ratio(g);
@@ -399,10 +399,10 @@ GridQuality check_grid(const Grid2D& g, const CheckOptions& options) {
   q.nx_pts = nx;
   q.ny_pts = ny;
   q.dxi_over_deta = rho;
-  q.ortho_46 = make_field("ortho_err_46", "orthogonality error, equal-diagonal form (46)", FieldLocation::kCell, true,
-                          n_cells);
-  q.ortho_50 = make_field("ortho_err_50", "orthogonality error, length-weighted form (50)", FieldLocation::kCell, true,
-                          n_cells);
+  q.ortho_46 =
+      make_field("ortho_err_46", "orthogonality error, equal-diagonal form (46)", FieldLocation::kCell, true, n_cells);
+  q.ortho_50 =
+      make_field("ortho_err_50", "orthogonality error, length-weighted form (50)", FieldLocation::kCell, true, n_cells);
   q.ortho_52 = make_field("ortho_err_52", "orthogonality error, spline form (52), interior nodes", FieldLocation::kNode,
                           true, n_nodes);
   q.isotropy_51 = make_field("isotropy_51", "isotropy error |l_xi|/(rho |l_eta|) - 1, harmonic means (51)",
@@ -411,7 +411,8 @@ GridQuality check_grid(const Grid2D& g, const CheckOptions& options) {
                                   FieldLocation::kNode, true, n_nodes);
   q.f1 = make_field("f1", "seed-004 f1 convexity: min triangle area / half cell area", FieldLocation::kCell, false,
                     n_cells);
-  q.f2 = make_field("f2", "seed-004 f2 orthogonality: min sine of interior angles", FieldLocation::kCell, false, n_cells);
+  q.f2 =
+      make_field("f2", "seed-004 f2 orthogonality: min sine of interior angles", FieldLocation::kCell, false, n_cells);
   q.f3 = make_field("f3", "seed-004 f3 area law: min(wS/C, C/wS)", FieldLocation::kCell, false, n_cells);
   q.f4 = make_field("f4", "seed-004 f4 aspect ratio: shortest / longest side", FieldLocation::kCell, false, n_cells);
 
@@ -465,7 +466,8 @@ GridQuality check_grid(const Grid2D& g, const CheckOptions& options) {
         const double yc = 0.25 * (g.y[p] + g.y[p + 1] + g.y[p + stride] + g.y[p + stride + 1]);
         w = options.weight(xc, yc);
         if (!(w > 0.0) || !std::isfinite(w)) {
-          throw InputError(fmt::format("check_grid: weight w = {} at cell ({}, {}) is not positive and finite", w, i, j));
+          throw InputError(
+              fmt::format("check_grid: weight w = {} at cell ({}, {}) is not positive and finite", w, i, j));
         }
       }
       ws[c] = w * area[c];

@@ -56,19 +56,19 @@ struct CheckOptions {
 struct GridQuality {
   int nx_pts = 0;
   int ny_pts = 0;
-  double dxi_over_deta = 1.0;  ///< the ρ used (given or estimated)
-  QualityField ortho_46;       ///< cells: equal-diagonal form (46)
-  QualityField ortho_50;       ///< cells: length-weighted form (50)
-  QualityField ortho_52;       ///< nodes: spline form (52); interior nodes only (NaN on the boundary)
-  QualityField isotropy_51;    ///< cells: |ℓξ|/(ρ|ℓη|) − 1 with harmonic-mean lengths (51)
-  QualityField laplace_residual;  ///< nodes: |L z|/|δ| / local spacing; interior nodes only
-  QualityField f1;             ///< cells: convexity, min triangle area / (½ cell area), ≤ 1
-  QualityField f2;             ///< cells: orthogonality, min sin(interior angle), ≤ 1
-  QualityField f3;             ///< cells: area law min(wS/C, C/wS), ≤ 1
-  QualityField f4;             ///< cells: aspect ratio, shortest/longest side, ≤ 1
+  double dxi_over_deta = 1.0;       ///< the ρ used (given or estimated)
+  QualityField ortho_46;            ///< cells: equal-diagonal form (46)
+  QualityField ortho_50;            ///< cells: length-weighted form (50)
+  QualityField ortho_52;            ///< nodes: spline form (52); interior nodes only (NaN on the boundary)
+  QualityField isotropy_51;         ///< cells: |ℓξ|/(ρ|ℓη|) − 1 with harmonic-mean lengths (51)
+  QualityField laplace_residual;    ///< nodes: |L z|/|δ| / local spacing; interior nodes only
+  QualityField f1;                  ///< cells: convexity, min triangle area / (½ cell area), ≤ 1
+  QualityField f2;                  ///< cells: orthogonality, min sin(interior angle), ≤ 1
+  QualityField f3;                  ///< cells: area law min(wS/C, C/wS), ≤ 1
+  QualityField f4;                  ///< cells: aspect ratio, shortest/longest side, ≤ 1
   double isotropy_ratio_min = 0.0;  ///< range of |ℓξ|/|ℓη| (51), unnormalised (target ρ)
   double isotropy_ratio_max = 0.0;
-  int non_convex_cells = 0;   ///< cells with f1 ≤ 0 (degenerate, non-convex, inverted)
+  int non_convex_cells = 0;  ///< cells with f1 ≤ 0 (degenerate, non-convex, inverted)
 
   /// All fields in table order.
   [[nodiscard]] std::vector<const QualityField*> fields() const;

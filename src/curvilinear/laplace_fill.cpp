@@ -107,8 +107,9 @@ double sor_half_sweep(double* u, double* v, int nx, int ny, int cj, StencilWeigh
   const std::size_t stride = static_cast<std::size_t>(nx);
   const double scale = -omega / w.delta;
   double max_dq = 0.0;
-#pragma omp parallel for default(none) shared(u, v) firstprivate(nx, j0, nrows, stride, w, scale) \
-    reduction(max : max_dq) schedule(static)
+#pragma omp parallel for default(none) shared(u, v) firstprivate(nx, j0, nrows, stride, w, scale) reduction(max       \
+                                                                                                            : max_dq) \
+    schedule(static)
   for (int k = 0; k < nrows; ++k) {
     const std::size_t row = static_cast<std::size_t>(j0 + 2 * k) * stride;
     const double even = sor_row_colour(u, v, row, 2, nx, stride, w, scale);
@@ -132,17 +133,17 @@ void solve_sor(std::vector<double>& u, std::vector<double>& v, int nx, int ny, c
   for (int m = 1; m <= opt.max_iterations; ++m) {
     if (m >= 2) omega = 1.0 / (1.0 - 0.25 * omega * r2);
     max_dq = 0.0;
-    max_dq = sor_half_sweep(u.data(), v.data(), nx, ny, 0, w, omega);  // colours 0, 1
+    max_dq = sor_half_sweep(u.data(), v.data(), nx, ny, 0, w, omega);                    // colours 0, 1
     max_dq = std::max(max_dq, sor_half_sweep(u.data(), v.data(), nx, ny, 1, w, omega));  // colours 2, 3
     result.residual_history.push_back(max_dq / extent);
     result.iterations = m;
     if (!std::isfinite(max_dq)) break;
     if (max_dq <= stop) return;
   }
-  throw NumericalError(fmt::format(
-      "laplace_fill: SOR did not converge on the {}x{} grid: max |dq|/extent = {:.3e} after {} iterations "
-      "(tolerance {:.1e})",
-      nx, ny, max_dq / extent, result.iterations, opt.tolerance));
+  throw NumericalError(
+      fmt::format("laplace_fill: SOR did not converge on the {}x{} grid: max |dq|/extent = {:.3e} after {} iterations "
+                  "(tolerance {:.1e})",
+                  nx, ny, max_dq / extent, result.iterations, opt.tolerance));
 }
 
 struct FftwFree {
@@ -250,10 +251,11 @@ double max_residual(const Grid2D& g, const StencilWeights& w) {
 }
 
 void check_shape(const Grid2D& g, const char* who) {
-  const std::size_t n = static_cast<std::size_t>(std::max(g.nx_pts, 0)) * static_cast<std::size_t>(std::max(g.ny_pts, 0));
+  const std::size_t n =
+      static_cast<std::size_t>(std::max(g.nx_pts, 0)) * static_cast<std::size_t>(std::max(g.ny_pts, 0));
   if (g.nx_pts < 0 || g.ny_pts < 0 || g.x.size() != n || g.y.size() != n) {
-    throw InternalError(fmt::format("{}: grid {}x{} has {} x and {} y values", who, g.nx_pts, g.ny_pts, g.x.size(),
-                                    g.y.size()));
+    throw InternalError(
+        fmt::format("{}: grid {}x{} has {} x and {} y values", who, g.nx_pts, g.ny_pts, g.x.size(), g.y.size()));
   }
 }
 
@@ -345,8 +347,7 @@ void laplace_residual(const Grid2D& grid, double dxi_over_deta, bool five_point,
   double* out_x = rx.data();
   double* out_y = ry.data();
   const double inv = 1.0 / std::fabs(w.delta);
-#pragma omp parallel for default(none) shared(x, y, out_x, out_y) firstprivate(nx, ny, stride, w, inv) \
-    schedule(static)
+#pragma omp parallel for default(none) shared(x, y, out_x, out_y) firstprivate(nx, ny, stride, w, inv) schedule(static)
   for (int j = 1; j < ny - 1; ++j) {
     for (int i = 1; i < nx - 1; ++i) {
       const std::size_t p = static_cast<std::size_t>(j) * stride + static_cast<std::size_t>(i);

@@ -39,9 +39,9 @@ struct LaplaceOptions {
 };
 
 struct LaplaceResult {
-  int iterations = 0;      ///< SOR iterations; 1 for the direct solver
-  double residual = 0.0;   ///< final max |L q|/|δ| over interior nodes and x, y, divided by extent
-  double seconds = 0.0;    ///< wall time of the solve
+  int iterations = 0;     ///< SOR iterations; 1 for the direct solver
+  double residual = 0.0;  ///< final max |L q|/|δ| over interior nodes and x, y, divided by extent
+  double seconds = 0.0;   ///< wall time of the solve
   /// SOR: max |Δq|/extent of each iteration; direct solver: the single final residual.
   std::vector<double> residual_history;
 };

@@ -72,7 +72,8 @@ void write_quality_png(const std::filesystem::path& path, const curvilinear::Gri
                        const std::vector<double>& cell_values, const QualityPngOptions& options) {
   const int cx = g.nx_pts - 1;
   const int cy = g.ny_pts - 1;
-  const std::size_t n_nodes = static_cast<std::size_t>(std::max(g.nx_pts, 0)) * static_cast<std::size_t>(std::max(g.ny_pts, 0));
+  const std::size_t n_nodes =
+      static_cast<std::size_t>(std::max(g.nx_pts, 0)) * static_cast<std::size_t>(std::max(g.ny_pts, 0));
   if (cx < 1 || cy < 1 || g.x.size() != n_nodes || g.y.size() != n_nodes ||
       cell_values.size() != static_cast<std::size_t>(cx) * static_cast<std::size_t>(cy)) {
     throw InternalError(fmt::format("write_quality_png {}: grid {}x{} ({} nodes) with {} cell values", path.string(),
@@ -112,7 +113,8 @@ void write_quality_png(const std::filesystem::path& path, const curvilinear::Gri
     return viridis((l - bottom) / (top - bottom));
   };
 
-  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
+  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
     throw OutputError(fmt::format("{}: cannot create a {}x{} image: {}", path.string(), width, height,
                                   cairo_status_to_string(cairo_surface_status(surface.get()))));
@@ -166,8 +168,10 @@ void write_quality_png(const std::filesystem::path& path, const curvilinear::Gri
     if (j % mj != 0 && j != cy) continue;
     for (int i = 0; i <= cx; ++i) {
       const auto p = node(i, j);
-      if (i == 0) cairo_move_to(cr, p.first, p.second);
-      else cairo_line_to(cr, p.first, p.second);
+      if (i == 0)
+        cairo_move_to(cr, p.first, p.second);
+      else
+        cairo_line_to(cr, p.first, p.second);
     }
     cairo_stroke(cr);
   }
@@ -175,8 +179,10 @@ void write_quality_png(const std::filesystem::path& path, const curvilinear::Gri
     if (i % mi != 0 && i != cx) continue;
     for (int j = 0; j <= cy; ++j) {
       const auto p = node(i, j);
-      if (j == 0) cairo_move_to(cr, p.first, p.second);
-      else cairo_line_to(cr, p.first, p.second);
+      if (j == 0)
+        cairo_move_to(cr, p.first, p.second);
+      else
+        cairo_line_to(cr, p.first, p.second);
     }
     cairo_stroke(cr);
   }
@@ -190,7 +196,8 @@ void write_quality_png(const std::filesystem::path& path, const curvilinear::Gri
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12.0);
   cairo_move_to(cr, kLeft, 44.0);
-  const std::string subtitle = fmt::format("colour: {}; grid lines: every {} (xi) x {} (eta)", options.value_label, mi, mj);
+  const std::string subtitle =
+      fmt::format("colour: {}; grid lines: every {} (xi) x {} (eta)", options.value_label, mi, mj);
   cairo_show_text(cr, subtitle.c_str());
 
   // Colour bar with a tick per decade (at most ~12 labels).

@@ -12,12 +12,12 @@
 namespace aq::io {
 
 struct QualityPngOptions {
-  int width_px = 1200;      ///< image width in pixels (200..20000); the height follows the grid
-  std::string title;        ///< drawn above the map
+  int width_px = 1200;  ///< image width in pixels (200..20000); the height follows the grid
+  std::string title;    ///< drawn above the map
   std::string value_label = "log10 |orthogonality error|";  ///< colour bar caption
   /// Colour range in decades: [max(floor(log10 min), ceil(log10 max) − decades), ceil(log10 max)].
   int decades = 10;
-  int max_lines = 60;       ///< at most this many grid lines per direction (every k-th line)
+  int max_lines = 60;  ///< at most this many grid lines per direction (every k-th line)
 };
 
 /// Writes the heat map of `cell_values` ((nx_pts−1)·(ny_pts−1) values, cell (i, j) at

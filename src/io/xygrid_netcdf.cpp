@@ -36,7 +36,7 @@ void nc_check(int status, const fs::path& path, const std::string& what) {
 /// An open netCDF file, closed on scope exit (errors on that close are ignored: it only runs
 /// when another error is already propagating, or after an explicit close()).
 class NcFile {
-public:
+ public:
   NcFile() = default;
   NcFile(const NcFile&) = delete;
   NcFile& operator=(const NcFile&) = delete;
@@ -52,7 +52,7 @@ public:
     return status;
   }
 
-private:
+ private:
   int id_ = -1;
 };
 
@@ -96,8 +96,8 @@ AttributeValue read_attribute(int nc, const char* name, const fs::path& path) {
     nc_free_string(len, strings.data());
     return text;
   }
-  const bool integer = type == NC_BYTE || type == NC_SHORT || type == NC_INT || type == NC_INT64 ||
-                       type == NC_UBYTE || type == NC_USHORT || type == NC_UINT || type == NC_UINT64;
+  const bool integer = type == NC_BYTE || type == NC_SHORT || type == NC_INT || type == NC_INT64 || type == NC_UBYTE ||
+                       type == NC_USHORT || type == NC_UINT || type == NC_UINT64;
   if (integer) {
     std::vector<long long> v(len);
     nc_check<InputError>(nc_get_att_longlong(nc, NC_GLOBAL, name, v.data()), path, name);
@@ -140,7 +140,8 @@ std::string global_text(int nc, const char* name) {
 
 void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::GridQuality* quality) {
   const curvilinear::Grid2D& g = data.grid;
-  const std::size_t n_nodes = static_cast<std::size_t>(std::max(g.nx_pts, 0)) * static_cast<std::size_t>(std::max(g.ny_pts, 0));
+  const std::size_t n_nodes =
+      static_cast<std::size_t>(std::max(g.nx_pts, 0)) * static_cast<std::size_t>(std::max(g.ny_pts, 0));
   if (g.nx_pts < 2 || g.ny_pts < 2 || g.x.size() != n_nodes || g.y.size() != n_nodes) {
     throw InternalError(fmt::format("write_xygrid {}: grid {}x{} with {} x and {} y values", path.string(), g.nx_pts,
                                     g.ny_pts, g.x.size(), g.y.size()));
@@ -194,15 +195,15 @@ void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::G
                           "dimension eta_c");
     for (const curvilinear::QualityField* f : quality->fields()) {
       const bool cell = f->location == curvilinear::FieldLocation::kCell;
-      const std::size_t expect = cell ? static_cast<std::size_t>(g.nx_pts - 1) * static_cast<std::size_t>(g.ny_pts - 1)
-                                      : n_nodes;
+      const std::size_t expect =
+          cell ? static_cast<std::size_t>(g.nx_pts - 1) * static_cast<std::size_t>(g.ny_pts - 1) : n_nodes;
       if (f->values.empty()) continue;  // e.g. the spline form of a grid with no interior
       if (f->values.size() != expect) {
         throw InternalError(fmt::format("write_xygrid {}: field {} has {} values, expected {}", path.string(), f->name,
                                         f->values.size(), expect));
       }
-      const int var = def_var(id, f->name.c_str(), cell ? std::vector<int>{dim_yc, dim_xc} : std::vector<int>{dim_eta, dim_xi},
-                              path);
+      const int var = def_var(id, f->name.c_str(),
+                              cell ? std::vector<int>{dim_yc, dim_xc} : std::vector<int>{dim_eta, dim_xi}, path);
       put_text(id, var, "long_name", f->long_name, path);
       put_text(id, var, "units", "1", path);
       put_double(id, var, "_FillValue", std::numeric_limits<double>::quiet_NaN(), path);
@@ -322,7 +323,8 @@ XyGrid read_xygrid(const fs::path& path) {
     int hdim[NC_MAX_VAR_DIMS];
     nc_check<InputError>(nc_inq_var(id, var_hist, nullptr, nullptr, &ndims, hdim, nullptr), path, "residual_history");
     if (ndims != 1) {
-      throw InputError(fmt::format("{}: variable 'residual_history' has {} dimensions, expected 1", path.string(), ndims));
+      throw InputError(
+          fmt::format("{}: variable 'residual_history' has {} dimensions, expected 1", path.string(), ndims));
     }
     std::size_t n = 0;
     nc_check<InputError>(nc_inq_dimlen(id, hdim[0], &n), path, "residual_history length");

@@ -91,8 +91,8 @@ TEST(CheckCli, PrintsTheTableAndWritesNetcdfPngAndJson) {
 TEST(CheckCli, ShearedGridShowsTheKnownErrorAndWhere) {
   const aq::testing::TempDir dir;
   aq::io::write_xygrid(dir / "shear.nc", sheared_grid());
-  const auto r = run_aquatoria("check " + (dir / "shear.nc").string() + " -o " + (dir / "out" / "q.nc").string() +
-                               " --no-png");
+  const auto r =
+      run_aquatoria("check " + (dir / "shear.nc").string() + " -o " + (dir / "out" / "q.nc").string() + " --no-png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // (46), (50): worst = average = rms = 0.5; f2 = sin 60°, f1 = 1 (parallelograms).
   EXPECT_THAT(r.out, MatchesRegex(".*\northo_err_46 +orthogonality error[^\n]+ 5.000e-01   5.000e-01   5.000e-01  "

@@ -122,7 +122,7 @@ TEST(GridChecks, F1DetectsANonConvexCellAndWhereItIs) {
   EXPECT_EQ(q.f1.worst_j, 1);
   EXPECT_GE(q.non_convex_cells, 1);
   EXPECT_LT(q.f2.values[1 * 5 + 2], 0.0);  // a reflex angle has a negative sine
-  EXPECT_GT(q.f1.values[0], 0.99);          // far cells unaffected
+  EXPECT_GT(q.f1.values[0], 0.99);         // far cells unaffected
   // The other cells touching (3, 2) are convex but distorted.
   EXPECT_GT(q.f1.values[2 * 5 + 3], 0.0);
   EXPECT_LT(q.f1.values[2 * 5 + 3], 1.0);

@@ -52,7 +52,8 @@ Grid2D sample(const Map& f, const Rect& r, bool boundary_only) {
 
 double max_node_difference(const Grid2D& a, const Grid2D& b) {
   double d = 0.0;
-  for (std::size_t p = 0; p < a.x.size(); ++p) d = std::max({d, std::fabs(a.x[p] - b.x[p]), std::fabs(a.y[p] - b.y[p])});
+  for (std::size_t p = 0; p < a.x.size(); ++p)
+    d = std::max({d, std::fabs(a.x[p] - b.x[p]), std::fabs(a.y[p] - b.y[p])});
   return d;
 }
 
@@ -138,9 +139,10 @@ TEST(LaplaceFill, SorAndDstAgreeOnAConformalBoundary) {
   const LaplaceResult rd = laplace_fill(dst, r.dxi(), r.deta());
   const LaplaceResult rs = laplace_fill(sor, r.dxi(), r.deta(), sor_options());
   const double rel = max_node_difference(dst, sor) / extent(dst);
-  std::printf("131x101 rho=%.6f: |SOR - DST|/extent = %.2e; DST %.4f s (residual %.1e); SOR %.3f s, %d iterations "
-              "(residual %.1e)\n",
-              r.dxi() / r.deta(), rel, rd.seconds, rd.residual, rs.seconds, rs.iterations, rs.residual);
+  std::printf(
+      "131x101 rho=%.6f: |SOR - DST|/extent = %.2e; DST %.4f s (residual %.1e); SOR %.3f s, %d iterations "
+      "(residual %.1e)\n",
+      r.dxi() / r.deta(), rel, rd.seconds, rd.residual, rs.seconds, rs.iterations, rs.residual);
   EXPECT_LT(rel, 1e-12);
   EXPECT_LT(rd.residual, 1e-14);
   EXPECT_EQ(rd.iterations, 1);

@@ -284,7 +284,7 @@ TEST(GridQualityPng, DrawsTheCellsColouredAndIsReproducible) {
   const auto right = pixel(dir / "a.png", 16 + 3 * 454 / 4 + 3, 56 + 454 / 2 + 3);
   EXPECT_EQ(w, 600);
   EXPECT_GE(h, 56 + 454);
-  EXPECT_GT(left[0], 200);   // yellow: red and green high, blue low
+  EXPECT_GT(left[0], 200);  // yellow: red and green high, blue low
   EXPECT_GT(left[1], 180);
   EXPECT_LT(left[2], 90);
   EXPECT_LT(right[0], 100);  // purple: low green
