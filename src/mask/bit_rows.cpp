@@ -146,9 +146,15 @@ void rotate_row(const std::uint64_t* src, std::uint64_t* dst, std::int64_t n, st
       v = read_bits(src, start, first) | (read_bits(src, 0, len - first) << first);
     }
     switch (op) {
-      case Combine::kCopy: dst[w] = v; break;
-      case Combine::kAnd: dst[w] &= v; break;
-      case Combine::kOr: dst[w] |= v; break;
+      case Combine::kCopy:
+        dst[w] = v;
+        break;
+      case Combine::kAnd:
+        dst[w] &= v;
+        break;
+      case Combine::kOr:
+        dst[w] |= v;
+        break;
     }
   }
 }

@@ -27,8 +27,8 @@ struct Run {
 Run run_containing(const std::uint64_t* row, std::int64_t nx, std::int64_t p) {
   const std::int64_t r = bits::find_first_clear(row, p, nx);  // first clear bit east of p
   const std::int64_t l = bits::find_last_clear(row, 0, p);    // last clear bit west of p
-  if (r == nx && l == -1) return {0, nx};                       // the whole row
-  if (r == nx) {                                                // continues east over the seam
+  if (r == nx && l == -1) return {0, nx};                     // the whole row
+  if (r == nx) {                                              // continues east over the seam
     const std::int64_t r2 = bits::find_first_clear(row, 0, l + 1);
     return {l + 1, nx - (l + 1) + r2};
   }
@@ -55,7 +55,7 @@ void for_each_piece(Run run, std::int64_t nx, F&& f) {
 // Span flood fill that consumes set bits of a bitmap. One instance reuses its stack over many
 // fills (component counting).
 class SpanFiller {
-public:
+ public:
   FloodCount fill(Bitmap& rem, PixelIJ s, Bitmap* reached, const Bitmap* probe) {
     FloodCount fc;
     if (s.j < 0 || s.j >= rem.ny() || s.i < 0 || s.i >= rem.nx() || !rem.get(s.i, s.j)) return fc;
@@ -78,7 +78,7 @@ public:
     return fc;
   }
 
-private:
+ private:
   struct Span {
     std::int64_t j;
     Run run;
@@ -228,8 +228,8 @@ std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& l
   for (std::size_t n = 0; n < seeds.size(); ++n) {
     const auto& s = seeds[n];
     if (!std::isfinite(s[0]) || !std::isfinite(s[1]) || s[1] < -90.0 || s[1] > 90.0)
-      throw ConfigError(fmt::format("{}: not a valid point (longitude, latitude in [-90, 90] degrees)",
-                                    seed_name(n, s)));
+      throw ConfigError(
+          fmt::format("{}: not a valid point (longitude, latitude in [-90, 90] degrees)", seed_name(n, s)));
     const LonLat r = geographic_to_lattice(rot, {s[0], s[1]});
     double x = 0.0, y = 0.0;
     deg_to_lattice_xy(lattice, r, x, y);

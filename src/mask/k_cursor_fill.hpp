@@ -42,24 +42,23 @@ Bitmap dilate_windows(const Bitmap& windows, int k);
 
 /// Counts of one flood fill.
 struct FloodCount {
-  std::int64_t cells = 0;        ///< cells newly reached
-  std::int64_t probe_hits = 0;   ///< of those, cells set in the probe bitmap
+  std::int64_t cells = 0;       ///< cells newly reached
+  std::int64_t probe_hits = 0;  ///< of those, cells set in the probe bitmap
 };
 
 /// 4-connected flood fill (periodic in i, bounded in j) in `remaining` from cell (i, j):
 /// every reached cell is cleared in `remaining` and, when given, set in `reached`; hits of
 /// `probe` are counted. A start cell that is clear in `remaining` gives a zero count.
-FloodCount flood_consume(Bitmap& remaining, PixelIJ start, Bitmap* reached = nullptr,
-                         const Bitmap* probe = nullptr);
+FloodCount flood_consume(Bitmap& remaining, PixelIJ start, Bitmap* reached = nullptr, const Bitmap* probe = nullptr);
 
 /// The cells of `mask` 4-connected (periodic in i) to any of the start cells.
 Bitmap flood_fill(const Bitmap& mask, std::span<const PixelIJ> starts);
 
 /// 4-connected components of a bitmap (periodic in i).
 struct ComponentStats {
-  std::int64_t count = 0;              ///< number of components
-  std::int64_t largest = 0;            ///< cells in the largest component
-  std::int64_t touching_probe = 0;     ///< components with at least one cell set in the probe
+  std::int64_t count = 0;                 ///< number of components
+  std::int64_t largest = 0;               ///< cells in the largest component
+  std::int64_t touching_probe = 0;        ///< components with at least one cell set in the probe
   std::int64_t cells_touching_probe = 0;  ///< cells of those components
 };
 ComponentStats count_components(const Bitmap& mask, const Bitmap* probe = nullptr);
@@ -73,14 +72,14 @@ Bitmap k_fill(const Bitmap& wet, int k, std::span<const PixelIJ> seed_windows,
 
 /// Where a seed was put and what it filled.
 struct SeedInfo {
-  int index = 0;               ///< position in mask.seeds
-  LonLat requested;            ///< the seed as configured (geographic degrees)
-  bool moved = false;          ///< not inside an all-wet window: moved to the nearest one
-  double moved_deg = 0.0;      ///< great-circle distance from the seed to the window centre
-  PixelIJ window;              ///< lower-left pixel of the seed window
-  LonLat window_center;        ///< geographic centre of the seed window
+  int index = 0;                     ///< position in mask.seeds
+  LonLat requested;                  ///< the seed as configured (geographic degrees)
+  bool moved = false;                ///< not inside an all-wet window: moved to the nearest one
+  double moved_deg = 0.0;            ///< great-circle distance from the seed to the window centre
+  PixelIJ window;                    ///< lower-left pixel of the seed window
+  LonLat window_center;              ///< geographic centre of the seed window
   std::int64_t windows_reached = 0;  ///< windows newly reached from this seed
-  int same_fill_as = -1;       ///< an earlier seed whose fill already held this window, or -1
+  int same_fill_as = -1;             ///< an earlier seed whose fill already held this window, or -1
 };
 
 /// Places each geographic seed (lon, lat) on an all-wet K window of `windows` (= W). A seed whose
@@ -95,19 +94,19 @@ std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& l
 
 /// Statistics of the fill (report §4.3).
 struct FillStats {
-  int cursor = 1;                        ///< K
-  std::int64_t wet_pixels = 0;           ///< wet pixels of the lattice
-  std::int64_t all_wet_windows = 0;      ///< |W|
-  std::int64_t reached_windows = 0;      ///< windows reached from the seeds
-  std::int64_t filled_pixels = 0;        ///< |Ω_L|
-  std::int64_t wet_left_out = 0;         ///< wet pixels not in Ω_L (lakes, Caspian, cut-off bays, narrows)
-  std::int64_t wet_components = 0;       ///< 4-connected components of the wet pixels (K = 1 sense)
+  int cursor = 1;                          ///< K
+  std::int64_t wet_pixels = 0;             ///< wet pixels of the lattice
+  std::int64_t all_wet_windows = 0;        ///< |W|
+  std::int64_t reached_windows = 0;        ///< windows reached from the seeds
+  std::int64_t filled_pixels = 0;          ///< |Ω_L|
+  std::int64_t wet_left_out = 0;           ///< wet pixels not in Ω_L (lakes, Caspian, cut-off bays, narrows)
+  std::int64_t wet_components = 0;         ///< 4-connected components of the wet pixels (K = 1 sense)
   std::int64_t wet_components_filled = 0;  ///< of those, components holding filled pixels
   std::int64_t largest_wet_component = 0;  ///< pixels of the largest wet component
 };
 
 struct KFillResult {
-  Bitmap filled;                ///< Ω_L, nx × ny
+  Bitmap filled;  ///< Ω_L, nx × ny
   std::vector<SeedInfo> seeds;
   FillStats stats;
 };

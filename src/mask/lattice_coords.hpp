@@ -88,7 +88,7 @@ inline void deg_to_lattice_xy(const Lattice& lat, LonLat p, double& x, double& y
 /// PoleRotation's images of the rotated x, y, z axes (only its public interface is used);
 /// results agree with PoleRotation::to_geographic to about 1e-13° (tested to 1e-10°).
 class LatticeRowMapper {
-public:
+ public:
   /// Columns at fractional pixel positions x_k (λ' = λ0 + x_k·Δ).
   LatticeRowMapper(const Lattice& lattice, const PoleRotation& rot, const std::vector<double>& x);
   /// Geographic λ (-180, 180] and φ of the columns on the lattice row at fractional position y
@@ -96,7 +96,7 @@ public:
   void map_row(double y, double* lon_deg, double* lat_deg) const;
   [[nodiscard]] std::size_t size() const { return cos_lon_.size(); }
 
-private:
+ private:
   Lattice lattice_;
   std::array<double, 9> m_{};  ///< rotated xyz -> geographic xyz, row-major
   std::vector<double> cos_lon_, sin_lon_;

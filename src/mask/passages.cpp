@@ -21,6 +21,7 @@ namespace {
 // point of every side box is water (<= 0 m), and on the ETOPO5 wet pixels at 1.875' every passage
 // is open except the Bosphorus, which ETOPO5 does not have (+2..+6 m across 28.7-29.5°E at
 // 41.08-41.17°N); see tests/integration/mask_etopo5_test.cpp.
+// clang-format off
 constexpr std::array<Passage, 30> kPassages{{
     {"Gibraltar", "Gulf of Cadiz", "Alboran Sea",
      {-7.0, -4.0, 35.0, 37.0}, {-7.0, -6.4, 35.6, 36.4}, {-4.8, -4.0, 35.6, 36.3}},
@@ -83,6 +84,7 @@ constexpr std::array<Passage, 30> kPassages{{
     {"Juan de Fuca", "Pacific Ocean", "Salish Sea",
      {-126.0, -122.8, 47.9, 48.7}, {-126.0, -125.2, 47.9, 48.4}, {-123.3, -122.8, 48.15, 48.35}},
 }};
+// clang-format on
 
 // Cell flags of the local grid.
 enum : unsigned char { kInBox = 1, kSideA = 2, kSideB = 4, kFilled = 8, kSeen = 16 };
@@ -113,15 +115,17 @@ std::span<const Passage> critical_passages() { return kPassages; }
 
 const char* passage_status_name(PassageStatus s) {
   switch (s) {
-    case PassageStatus::kOpen: return "open";
-    case PassageStatus::kClosed: return "closed";
-    case PassageStatus::kNotResolvable: return "not resolvable";
+    case PassageStatus::kOpen:
+      return "open";
+    case PassageStatus::kClosed:
+      return "closed";
+    case PassageStatus::kNotResolvable:
+      return "not resolvable";
   }
   return "?";
 }
 
-PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattice& lattice,
-                            const PoleRotation& rot) {
+PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattice& lattice, const PoleRotation& rot) {
   PassageResult res;
   res.name = p.name;
   res.box = p.box;
@@ -132,8 +136,7 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
   const double height = b.lat_max_deg - b.lat_min_deg;
   if (width < dpx || height < dpx) {
     res.status = PassageStatus::kNotResolvable;
-    res.note = fmt::format("box {:.2f}° × {:.2f}° (great-circle) is smaller than a pixel of {:g}°", width, height,
-                           dpx);
+    res.note = fmt::format("box {:.2f}° × {:.2f}° (great-circle) is smaller than a pixel of {:g}°", width, height, dpx);
     return res;
   }
   // Local grid of lattice pixels around the box: rows by latitude, columns by the cap's λ extent.
@@ -141,7 +144,8 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
   const LonLat rc = geographic_to_lattice(rot, centre);
   const double radius = box_radius_deg(b, centre) + dpx;
   const std::int64_t nx = lattice.nx, ny = lattice.ny;
-  const std::int64_t j0 = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((rc.lat_deg - radius + 90.0) / dpx)) - 1);
+  const std::int64_t j0 =
+      std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((rc.lat_deg - radius + 90.0) / dpx)) - 1);
   const std::int64_t j1 =
       std::min<std::int64_t>(ny - 1, static_cast<std::int64_t>(std::ceil((rc.lat_deg + radius + 90.0) / dpx)) + 1);
   std::int64_t i0 = 0, cols = nx;

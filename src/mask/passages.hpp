@@ -35,8 +35,8 @@ struct Passage {
   const char* name = "";
   const char* side_a_name = "";  ///< the water body of side A
   const char* side_b_name = "";
-  GeoBox box;                    ///< across the strait, holding both sides
-  GeoBox side_a, side_b;         ///< open water at the two ends, inside the box
+  GeoBox box;             ///< across the strait, holding both sides
+  GeoBox side_a, side_b;  ///< open water at the two ends, inside the box
 };
 
 /// The built-in table of the 30 critical passages of ARCHITECTURE §4.3, boxes checked on ETOPO5.
@@ -50,11 +50,11 @@ struct PassageResult {
   std::string name;
   PassageStatus status = PassageStatus::kClosed;
   GeoBox box;
-  std::int64_t pixels_in_box = 0;   ///< pixel centres inside the box
-  std::int64_t filled_in_box = 0;   ///< of those, filled
-  std::int64_t filled_side_a = 0;   ///< filled pixels with centre in side A
+  std::int64_t pixels_in_box = 0;  ///< pixel centres inside the box
+  std::int64_t filled_in_box = 0;  ///< of those, filled
+  std::int64_t filled_side_a = 0;  ///< filled pixels with centre in side A
   std::int64_t filled_side_b = 0;
-  std::string note;                 ///< why closed / not resolvable; empty when open
+  std::string note;  ///< why closed / not resolvable; empty when open
 };
 
 /// Judges one passage on the filled bitmap (nx × ny of the lattice).

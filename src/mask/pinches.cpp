@@ -178,8 +178,8 @@ std::int64_t cut_cost(const Bitmap& f, int k, PixelIJ c, std::span<const PixelIJ
             pc.large = true;
             break;
           }
-          const PixelIJ next[4] = {{wrap_index(w.i - 1, nx), w.j}, {wrap_index(w.i + 1, nx), w.j}, {w.i, w.j - 1},
-                                   {w.i, w.j + 1}};
+          const PixelIJ next[4] = {
+              {wrap_index(w.i - 1, nx), w.j}, {wrap_index(w.i + 1, nx), w.j}, {w.i, w.j - 1}, {w.i, w.j + 1}};
           for (const PixelIJ& v : next) {
             if (!survivor(v.i, v.j)) continue;
             const auto it = owner.find(pixel_index(v, nx));
@@ -240,9 +240,7 @@ bool still_pinch(const Bitmap& f, const Pinch& p) {
 
 }  // namespace
 
-const char* pinch_pattern_name(PinchPattern p) {
-  return p == PinchPattern::kNwSe ? "1001 (NW-SE)" : "0110 (NE-SW)";
-}
+const char* pinch_pattern_name(PinchPattern p) { return p == PinchPattern::kNwSe ? "1001 (NW-SE)" : "0110 (NE-SW)"; }
 
 std::vector<Pinch> find_pinches(const Bitmap& f) {
   const std::int64_t ny = f.ny(), nw = f.words_per_row();
@@ -348,7 +346,8 @@ PinchRemovalStats remove_pinches(Bitmap& filled, int k, std::span<const PixelIJ>
       if (!pa) ra = evaluate(a);
       if (!pb) rb = evaluate(b);
       bool take_a = !pa;
-      if (!pa && !pb) take_a = std::make_pair(ra.cost, pixel_index(a, nx)) < std::make_pair(rb.cost, pixel_index(b, nx));
+      if (!pa && !pb)
+        take_a = std::make_pair(ra.cost, pixel_index(a, nx)) < std::make_pair(rb.cost, pixel_index(b, nx));
       for (const PixelIJ& q : (take_a ? ra : rb).lost) filled.clear(q.i, q.j);
       ++chosen;
     }

@@ -35,10 +35,10 @@ enum class PinchPattern : std::uint8_t {
 const char* pinch_pattern_name(PinchPattern p);
 
 struct Pinch {
-  PixelIJ vertex;        ///< lattice vertex (I, J)
+  PixelIJ vertex;  ///< lattice vertex (I, J)
   PinchPattern pattern = PinchPattern::kNwSe;
-  LonLat lattice_pos;    ///< lattice (rotated) degrees of the vertex
-  LonLat geographic;     ///< geographic degrees of the vertex
+  LonLat lattice_pos;  ///< lattice (rotated) degrees of the vertex
+  LonLat geographic;   ///< geographic degrees of the vertex
 };
 
 /// All pinch vertices of `filled` (nx × ny), sorted by (J, I); positions are left zero (see

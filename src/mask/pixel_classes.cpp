@@ -25,7 +25,7 @@ namespace {
 // loop; the owner calls finish() after the loop. One parallel region per pass keeps the cost of
 // barriers out of the loop (they are expensive when the cores are shared).
 class RowProgress {
-public:
+ public:
   RowProgress(const ProgressFn& fn, std::int64_t rows, const char* label) : fn_(fn), rows_(rows), label_(label) {}
   // Call once per row from inside the loop.
   void row_done() {
@@ -48,7 +48,7 @@ public:
     if (fn_) fn_(1.0, label_);
   }
 
-private:
+ private:
   const ProgressFn& fn_;
   std::int64_t rows_;
   const char* label_;
@@ -80,8 +80,8 @@ void check_depth(double h) {
 
 // Vertex rule through the pole rotation: per row, lattice -> geographic, sample_points (which
 // runs serially inside this parallel region).
-void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
-                    double threshold, const ProgressFn& progress, Bitmap& wv) {
+void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot, double threshold,
+                    const ProgressFn& progress, Bitmap& wv) {
   const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
   std::vector<double> xs(static_cast<std::size_t>(nx));
   for (std::int64_t I = 0; I < nx; ++I) xs[static_cast<std::size_t>(I)] = static_cast<double>(I);
@@ -104,8 +104,7 @@ void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, con
 // Per-row accumulation of the area rule: has a point, all points wet, some point wet.
 struct AreaFlags {
   std::vector<unsigned char> has, all_wet, any_wet;
-  explicit AreaFlags(std::int64_t n)
-      : has(static_cast<std::size_t>(n)), all_wet(has.size()), any_wet(has.size()) {}
+  explicit AreaFlags(std::int64_t n) : has(static_cast<std::size_t>(n)), all_wet(has.size()), any_wet(has.size()) {}
   void reset() {
     std::fill(has.begin(), has.end(), 0);
     std::fill(all_wet.begin(), all_wet.end(), 1);
@@ -153,8 +152,8 @@ void classify_area_aligned(const raster::Bathymetry& bathy, const Lattice& latti
     c_hi[static_cast<std::size_t>(i)] = hi;
   }
   RowProgress rp(progress, ny, "pixels (area)");
-#pragma omp parallel default(none) shared(bathy, lattice, in, c_lo, c_hi, wet, coastal, rp, ny, nx, d, eps, threshold) \
-    if (nx * ny >= kParallelMinSamples)
+#pragma omp parallel default(none) shared(bathy, lattice, in, c_lo, c_hi, wet, coastal, rp, ny, nx, d, eps, \
+                                          threshold) if (nx * ny >= kParallelMinSamples)
   {
     AreaFlags flags(nx);
 #pragma omp for schedule(static)
@@ -193,8 +192,8 @@ void classify_area_rotated(const raster::Bathymetry& bathy, const Lattice& latti
   for (std::int64_t a = 0; a < cols; ++a) xs[static_cast<std::size_t>(a)] = static_cast<double>(a) / dn;
   const LatticeRowMapper mapper(lattice, rot, xs);
   RowProgress rp(progress, ny, "pixels (area)");
-#pragma omp parallel default(none) shared(bathy, mapper, wet, coastal, rp, nx, ny, n, dn, cols, threshold) \
-    if (nx * ny >= kParallelMinSamples)
+#pragma omp parallel default(none) \
+    shared(bathy, mapper, wet, coastal, rp, nx, ny, n, dn, cols, threshold) if (nx * ny >= kParallelMinSamples)
   {
     std::vector<double> lon(static_cast<std::size_t>(cols)), lat(lon.size()), val(lon.size());
     AreaFlags flags(nx);
@@ -237,7 +236,8 @@ Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& latti
   for (std::int64_t I = 0; I < nx; ++I) lons[static_cast<std::size_t>(I)] = vertex_lattice_deg(lattice, I, 0).lon_deg;
   const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), nx);
   RowProgress rp(progress, nv, "vertices");
-#pragma omp parallel default(none) shared(bathy, lattice, cols, wv, rp, nv, nx, threshold) if (nx * nv >= kParallelMinSamples)
+#pragma omp parallel default(none) \
+    shared(bathy, lattice, cols, wv, rp, nv, nx, threshold) if (nx * nv >= kParallelMinSamples)
   {
     std::vector<float> buf(static_cast<std::size_t>(nx));
 #pragma omp for schedule(static)
@@ -256,7 +256,8 @@ void classify_from_vertices(const Bitmap& wet_vertices, Bitmap& wet, Bitmap& coa
   wet = Bitmap(nx, std::max<std::int64_t>(ny, 0));
   coastal = Bitmap(nx, std::max<std::int64_t>(ny, 0));
   const std::int64_t nw = wet_vertices.words_per_row();
-#pragma omp parallel default(none) shared(wet_vertices, wet, coastal, nx, ny, nw) if (ny * nw >= bits::kParallelMinWords)
+#pragma omp parallel default(none) \
+    shared(wet_vertices, wet, coastal, nx, ny, nw) if (ny * nw >= bits::kParallelMinWords)
   {
     // east0/east1: vertex rows J and J+1 shifted so that bit i holds vertex i+1 (periodic).
     std::vector<std::uint64_t> east0(static_cast<std::size_t>(nw)), east1(east0.size());

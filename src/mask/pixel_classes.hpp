@@ -40,9 +40,9 @@ enum class Sampling { kVertex, kArea };
 Sampling parse_sampling(const std::string& name);
 
 struct ClassifyOptions {
-  double min_depth_m = 0.0;             ///< h >= 0 (metres); wet means elevation <= -h
+  double min_depth_m = 0.0;  ///< h >= 0 (metres); wet means elevation <= -h
   Sampling sampling = Sampling::kVertex;
-  ProgressFn progress;                  ///< optional; called from the calling thread, fraction in [0,1]
+  ProgressFn progress;  ///< optional; called from the calling thread, fraction in [0,1]
 };
 
 /// The three pixel classes as bitmaps; dry = neither wet nor coastal.

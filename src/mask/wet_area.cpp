@@ -74,8 +74,8 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     area.pinches.total = static_cast<std::int64_t>(area.pinches.pinches.size());
     if (options.remove_pinches) {
       const PinchRemovalStats& r = area.pinches.removal;
-      stage.done(fmt::format("{} pinch vertices found, {} pixels removed in {} rounds, {} left",
-                             r.pinches_found, r.pixels_removed, r.rounds, area.pinches.total));
+      stage.done(fmt::format("{} pinch vertices found, {} pixels removed in {} rounds, {} left", r.pinches_found,
+                             r.pixels_removed, r.rounds, area.pinches.total));
     } else {
       stage.done(fmt::format("{} pinch vertices (mask.remove_pinches = false)", area.pinches.total));
     }

@@ -28,10 +28,10 @@ struct ClassCounts {
 
 /// Pinch vertices of the final Ω_L and, when mask.remove_pinches, what their removal did.
 struct PinchReport {
-  std::int64_t total = 0;       ///< pinch vertices of the final filled set
-  std::vector<Pinch> pinches;   ///< all of them, (J, I) order, with positions
+  std::int64_t total = 0;      ///< pinch vertices of the final filled set
+  std::vector<Pinch> pinches;  ///< all of them, (J, I) order, with positions
   bool removal_requested = false;
-  PinchRemovalStats removal;    ///< meaningful when removal_requested
+  PinchRemovalStats removal;  ///< meaningful when removal_requested
 };
 
 struct WetArea {
@@ -40,8 +40,8 @@ struct WetArea {
   Bitmap coastal;       ///< nx × ny: neither wet nor dry
   Bitmap filled;        ///< nx × ny: Ω_L, the K-cursor fill from the seeds (pinch-free when asked)
   ClassCounts classes;
-  FillStats fill;                       ///< statistics of the fill (before pinch removal)
-  std::int64_t filled_pixels = 0;       ///< |Ω_L| as returned (after pinch removal)
+  FillStats fill;                  ///< statistics of the fill (before pinch removal)
+  std::int64_t filled_pixels = 0;  ///< |Ω_L| as returned (after pinch removal)
   std::vector<SeedInfo> seeds;
   PinchReport pinches;
   std::vector<PassageResult> passages;  ///< empty unless mask.passages

@@ -60,7 +60,7 @@ std::int64_t filled_in_row(const MaskRun& r, std::int64_t j) {
 }
 
 class MaskEtopo5 : public testing::Test {
-protected:
+ protected:
   void SetUp() override {
     if (!std::filesystem::exists(kEtopo5)) GTEST_SKIP() << kEtopo5 << " not installed (ferret-datasets)";
   }
@@ -92,8 +92,8 @@ TEST_F(MaskEtopo5, SeedReferenceParameters) {
   // and is left out, together with the Black Sea, Baltic, Red Sea, Persian Gulf and Hudson Bay
   // (their straits are narrower than 2 pixels). At 3.75' it is connected (test below).
   EXPECT_EQ(status(r, "Gibraltar"), PassageStatus::kClosed);
-  for (const auto& [lon, lat] : {std::pair{18.0, 35.0}, {5.0, 39.0}, {34.0, 43.5}, {19.0, 57.0}, {38.0, 21.0},
-                                 {-86.0, 60.0}, {51.0, 27.0}}) {
+  for (const auto& [lon, lat] :
+       {std::pair{18.0, 35.0}, {5.0, 39.0}, {34.0, 43.5}, {19.0, 57.0}, {38.0, 21.0}, {-86.0, 60.0}, {51.0, 27.0}}) {
     EXPECT_TRUE(at(r, lon, lat).first) << lon << "," << lat;
     EXPECT_FALSE(at(r, lon, lat).second) << lon << "," << lat;
   }
@@ -140,7 +140,7 @@ TEST_F(MaskEtopo5, FinerLatticeConnectsTheMediterranean) {
   // Δ0 = 1°, L = 4: 5760×2880 pixels of 3.75'.
   const MaskRun r = run(1.0, 4, 2);
   EXPECT_EQ(status(r, "Gibraltar"), PassageStatus::kOpen);
-  EXPECT_TRUE(at(r, 18.0, 35.0).second);  // Ionian Sea filled
+  EXPECT_TRUE(at(r, 18.0, 35.0).second);   // Ionian Sea filled
   EXPECT_TRUE(at(r, -86.0, 60.0).second);  // Hudson Bay filled
   // ETOPO5 has no Bosphorus: +2..+6 m across 28.7-29.5°E at 41.08-41.17°N. The Black Sea stays out.
   EXPECT_EQ(status(r, "Bosphorus"), PassageStatus::kClosed);

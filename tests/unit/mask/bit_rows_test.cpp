@@ -84,7 +84,9 @@ TEST(BitRows, RotateIsPeriodicShiftForAllShiftsAndOps) {
         for (std::int64_t i = 0; i < n; ++i) {
           const std::int64_t k = (((i + shift) % n) + n) % n;
           const bool s = src.get(k);
-          const bool expect = op == Combine::kCopy ? s : op == Combine::kAnd ? (s && before.get(i)) : (s || before.get(i));
+          const bool expect = op == Combine::kCopy  ? s
+                              : op == Combine::kAnd ? (s && before.get(i))
+                                                    : (s || before.get(i));
           ASSERT_EQ(dst.get(i), expect) << "n=" << n << " shift=" << shift << " i=" << i;
         }
         if ((n & 63) != 0) {

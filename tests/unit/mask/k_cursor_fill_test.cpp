@@ -32,6 +32,7 @@ std::string join(const std::vector<std::string_view>& rows) {
 // A 1-pixel channel (one row high) between two basins. 'S' marks the seed window's lower-left
 // pixel (a K-window extends up and to the east from it).
 const std::vector<std::string_view> kOnePixelChannel = {
+    // clang-format off
     "............",
     ".###....###.",
     ".###....###.",
@@ -39,10 +40,12 @@ const std::vector<std::string_view> kOnePixelChannel = {
     ".###....###.",
     ".S##....###.",
     "............",
+    // clang-format on
 };
 
 TEST(KFill, OnePixelChannelIsCrossedAtK1) {
   EXPECT_EQ(fill_drawing(kOnePixelChannel, 1), join({
+                                                   // clang-format off
                                                    "............",
                                                    ".###....###.",
                                                    ".###....###.",
@@ -50,11 +53,13 @@ TEST(KFill, OnePixelChannelIsCrossedAtK1) {
                                                    ".###....###.",
                                                    ".###....###.",
                                                    "............",
+                                                   // clang-format on
                                                }));
 }
 
 TEST(KFill, OnePixelChannelIsNotCrossedAtK2) {
   EXPECT_EQ(fill_drawing(kOnePixelChannel, 2), join({
+                                                   // clang-format off
                                                    "............",
                                                    ".###........",
                                                    ".###........",
@@ -62,11 +67,13 @@ TEST(KFill, OnePixelChannelIsNotCrossedAtK2) {
                                                    ".###........",
                                                    ".###........",
                                                    "............",
+                                                   // clang-format on
                                                }));
 }
 
 // A 2-pixel channel between two 4-pixel-wide basins.
 const std::vector<std::string_view> kTwoPixelChannel = {
+    // clang-format off
     "..............",
     ".####....####.",
     ".####....####.",
@@ -74,67 +81,83 @@ const std::vector<std::string_view> kTwoPixelChannel = {
     ".############.",
     ".S###....####.",
     "..............",
+    // clang-format on
 };
 
 TEST(KFill, TwoPixelChannelIsCrossedAtK2) {
-  EXPECT_EQ(fill_drawing(kTwoPixelChannel, 2), join({
-                                                   "..............",
-                                                   ".####....####.",
-                                                   ".####....####.",
-                                                   ".############.",
-                                                   ".############.",
-                                                   ".####....####.",
-                                                   "..............",
-                                               }));
+  EXPECT_EQ(fill_drawing(kTwoPixelChannel, 2),
+            join({
+                // clang-format off
+                "..............",
+                ".####....####.",
+                ".####....####.",
+                ".############.",
+                ".############.",
+                ".####....####.",
+                "..............",
+                // clang-format on
+            }));
 }
 
 TEST(KFill, TwoPixelChannelIsNotCrossedAtK3) {
-  EXPECT_EQ(fill_drawing(kTwoPixelChannel, 3), join({
-                                                   "..............",
-                                                   ".####.........",
-                                                   ".####.........",
-                                                   ".####.........",
-                                                   ".####.........",
-                                                   ".####.........",
-                                                   "..............",
-                                               }));
+  EXPECT_EQ(fill_drawing(kTwoPixelChannel, 3),
+            join({
+                // clang-format off
+                "..............",
+                ".####.........",
+                ".####.........",
+                ".####.........",
+                ".####.........",
+                ".####.........",
+                "..............",
+                // clang-format on
+            }));
 }
 
 TEST(KFill, ChannelAcrossTheSeamConnectsBothBasins) {
   // The basins touch nothing inside the drawing; the only link is the 2-pixel channel that leaves
   // the east edge and comes back from the west edge.
   const std::vector<std::string_view> rows = {
+      // clang-format off
       "............",
       "..###..###..",
       "#####..#####",
       "#####..#####",
       "..S##..###..",
       "............",
+      // clang-format on
   };
-  EXPECT_EQ(fill_drawing(rows, 2), join({
-                                       "............",
-                                       "..###..###..",
-                                       "#####..#####",
-                                       "#####..#####",
-                                       "..###..###..",
-                                       "............",
-                                   }));
+  EXPECT_EQ(fill_drawing(rows, 2),
+            join({
+                // clang-format off
+                "............",
+                "..###..###..",
+                "#####..#####",
+                "#####..#####",
+                "..###..###..",
+                "............",
+                // clang-format on
+            }));
   // Cut the channel just east of the seam: the K=2 fill can no longer leave the west basin.
   std::vector<std::string_view> cut = rows;
   cut[2] = "#####..####.";
   cut[3] = "#####..####.";
-  EXPECT_EQ(fill_drawing(cut, 2), join({
-                                      "............",
-                                      "..###.......",
-                                      "#####.......",
-                                      "#####.......",
-                                      "..###.......",
-                                      "............",
-                                  }));
+  EXPECT_EQ(fill_drawing(cut, 2),
+            join({
+                // clang-format off
+                "............",
+                "..###.......",
+                "#####.......",
+                "#####.......",
+                "..###.......",
+                "............",
+                // clang-format on
+            }));
 }
 
 TEST(KFill, LakeStaysOut) {
   const std::vector<std::string_view> rows = {
+      // clang-format off
       "##########",
       "#S#######.",
       "###.....##",
@@ -142,16 +165,20 @@ TEST(KFill, LakeStaysOut) {
       "###.###.##",
       "###.....##",
       "##########",
+      // clang-format on
   };
-  EXPECT_EQ(fill_drawing(rows, 1), join({
-                                       "##########",
-                                       "#########.",
-                                       "###.....##",
-                                       "###.....##",
-                                       "###.....##",
-                                       "###.....##",
-                                       "##########",
-                                   }));
+  EXPECT_EQ(fill_drawing(rows, 1),
+            join({
+                // clang-format off
+                "##########",
+                "#########.",
+                "###.....##",
+                "###.....##",
+                "###.....##",
+                "###.....##",
+                "##########",
+                // clang-format on
+            }));
 }
 
 TEST(KFill, WindowsNeverCrossThePoles) {
@@ -165,10 +192,12 @@ TEST(KFill, WindowsNeverCrossThePoles) {
 
 TEST(KFill, DiagonalNeighboursAreNotConnected) {
   const std::vector<std::string_view> rows = {
+      // clang-format off
       ".....",
       "..#..",
       ".S...",
       ".....",
+      // clang-format on
   };
   EXPECT_EQ(fill_drawing(rows, 1), join({".....", ".....", ".#...", "....."}));
   const ComponentStats cs = count_components(draw(rows));
@@ -178,16 +207,20 @@ TEST(KFill, DiagonalNeighboursAreNotConnected) {
 
 TEST(KFill, ComponentsWrapAcrossTheSeamAndCountProbeHits) {
   const Bitmap m = draw({
+      // clang-format off
       "#..#..##",
       "#..#....",
       "........",
       "##.....#",
+      // clang-format on
   });
   const Bitmap probe = draw({
+      // clang-format off
       "........",
       "........",
       "........",
       "#.......",
+      // clang-format on
   });
   const ComponentStats cs = count_components(m, &probe);
   // {(0,3),(0,2),(6,3),(7,3)} via the seam, {(3,3),(3,2)}, {(0,0),(1,0),(7,0)} via the seam.
@@ -210,6 +243,7 @@ TEST(KFill, FullRowRunAndRepeatedSeedsCountOnce) {
 
 // Geographic seeds on a 16×8 lattice of 22.5° pixels.
 const std::vector<std::string_view> kBlock = {
+    // clang-format off
     "................",
     "................",
     "....######......",
@@ -218,6 +252,7 @@ const std::vector<std::string_view> kBlock = {
     "................",
     "................",
     "................",
+    // clang-format on
 };
 
 Lattice coarse_lattice() { return Lattice::make(22.5, 0, -180.0); }
@@ -298,6 +333,7 @@ TEST(KFillSeeds, NearestWindowAcrossTheSeamAndOverThePole) {
   // Across the seam: windows (0, 3) and (1, 3) only; the seed at pixel (14, 3), centre
   // (146.25, -11.25), is 56.98° from window (0, 3) (centre (-157.5, 0), 56.25° of λ over the seam).
   const Bitmap seam = draw({
+      // clang-format off
       "................",
       "................",
       "................",
@@ -306,6 +342,7 @@ TEST(KFillSeeds, NearestWindowAcrossTheSeamAndOverThePole) {
       "................",
       "................",
       "................",
+      // clang-format on
   });
   KFillResult r = k_cursor_fill(seam, lat, PoleRotation(), 2, {{146.25, -11.25}}, 60.0, Logger::null());
   EXPECT_EQ(r.seeds[0].window, (PixelIJ{0, 3}));
@@ -313,6 +350,7 @@ TEST(KFillSeeds, NearestWindowAcrossTheSeamAndOverThePole) {
   // Over the pole: the only window (8, 6), centre (22.5, 67.5), seen from (-168.75, 78.75):
   // cos d = sin 78.75° sin 67.5° + cos 78.75° cos 67.5° cos 191.25°, d = 33.60°.
   const Bitmap polar = draw({
+      // clang-format off
       "........##......",
       "........##......",
       "................",
@@ -321,6 +359,7 @@ TEST(KFillSeeds, NearestWindowAcrossTheSeamAndOverThePole) {
       "................",
       "................",
       "................",
+      // clang-format on
   });
   r = k_cursor_fill(polar, lat, PoleRotation(), 2, {{-168.75, 78.75}}, 40.0, Logger::null());
   EXPECT_EQ(r.seeds[0].window, (PixelIJ{8, 6}));

@@ -63,8 +63,9 @@ TEST(KFillReference, EqualsLiteralCursorOn200RandomMasks) {
     const int k = 1 + (m / 5) % 4;
     // Denser masks for larger K so that windows exist and channels of all widths occur.
     const double p = 0.45 + 0.1 * k + 0.05 * static_cast<double>(m % 3);
-    const Bitmap wet = (m % 2 == 0) ? test::random_bitmap(sz.nx, sz.ny, p, static_cast<std::uint32_t>(m))
-                                    : test::smooth_random_bitmap(sz.nx, sz.ny, 0.3 * (m % 5), static_cast<std::uint32_t>(m));
+    const Bitmap wet = (m % 2 == 0)
+                           ? test::random_bitmap(sz.nx, sz.ny, p, static_cast<std::uint32_t>(m))
+                           : test::smooth_random_bitmap(sz.nx, sz.ny, 0.3 * (m % 5), static_cast<std::uint32_t>(m));
     std::uniform_int_distribution<std::int64_t> ui(0, sz.nx - 1), uj(0, sz.ny - 1);
     std::vector<PixelIJ> seeds;
     for (int s = 0; s < 3; ++s) seeds.push_back({ui(rng), uj(rng)});

@@ -37,9 +37,10 @@ raster::Bathymetry one_minute_raster() {
     std::vector<float> s(360 * 181);
     for (std::int64_t r = 0; r < 181; ++r)
       for (std::int64_t c = 0; c < 360; ++c)
-        s[static_cast<std::size_t>(r * 360 + c)] = static_cast<float>(
-            3000.0 * std::sin(3.0 * static_cast<double>(c) * kDegToRad) * std::cos(2.0 * static_cast<double>(r) * kDegToRad) -
-            1500.0);
+        s[static_cast<std::size_t>(r * 360 + c)] =
+            static_cast<float>(3000.0 * std::sin(3.0 * static_cast<double>(c) * kDegToRad) *
+                                   std::cos(2.0 * static_cast<double>(r) * kDegToRad) -
+                               1500.0);
     return raster::Bathymetry::from_grid(std::move(s), 360, 181, -180.0, -90.0, 1.0, 1.0);
   }();
   std::vector<double> lons(static_cast<std::size_t>(nc));
@@ -98,12 +99,14 @@ TEST(MaskPerf, OneMinuteGlobalLattice) {
         "threads %d: classify %.3f s (cpu %.3f), erosion alone %.3f s, k_cursor_fill K=2 (erosion + seeds + span fill "
         "+ dilation + wet components) %.3f s (cpu %.3f), pinches %.3f s, passages %.3f s\n",
         threads, t_classify, c_classify, t_windows, t_fill, c_fill, t_pinch, t_pass);
-    std::printf("  wet %lld, coastal %lld, filled %lld (%.3f of the globe), wet components %lld, pinches %zu, peak RSS %.0f MB\n",
-                static_cast<long long>(pc.wet_count), static_cast<long long>(pc.coastal_count),
-                static_cast<long long>(kf.stats.filled_pixels),
-                static_cast<double>(kf.stats.filled_pixels) / static_cast<double>(lat.pixel_count()),
-                static_cast<long long>(kf.stats.wet_components), pinches.size(),
-                static_cast<double>(peak_rss_bytes()) / 1048576.0);
+    std::printf(
+        "  wet %lld, coastal %lld, filled %lld (%.3f of the globe), wet components %lld, pinches %zu, peak RSS %.0f "
+        "MB\n",
+        static_cast<long long>(pc.wet_count), static_cast<long long>(pc.coastal_count),
+        static_cast<long long>(kf.stats.filled_pixels),
+        static_cast<double>(kf.stats.filled_pixels) / static_cast<double>(lat.pixel_count()),
+        static_cast<long long>(kf.stats.wet_components), pinches.size(),
+        static_cast<double>(peak_rss_bytes()) / 1048576.0);
     EXPECT_GT(kf.stats.filled_pixels, lat.pixel_count() / 2);
     if (filled_first < 0) filled_first = kf.stats.filled_pixels;
     EXPECT_EQ(kf.stats.filled_pixels, filled_first);

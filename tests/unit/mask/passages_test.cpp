@@ -25,16 +25,19 @@ Bitmap pasted(const std::vector<std::string_view>& rows) {
 }
 
 // Box across the drawing; side A = its westernmost pixel column, side B = its easternmost.
-const Passage kStrait{"Test strait", "West Sea", "East Sea",
-                      {20.0, 28.0, 10.0, 15.0}, {20.0, 21.0, 10.0, 15.0}, {27.0, 28.0, 10.0, 15.0}};
+const Passage kStrait{
+    "Test strait",           "West Sea", "East Sea", {20.0, 28.0, 10.0, 15.0}, {20.0, 21.0, 10.0, 15.0},
+    {27.0, 28.0, 10.0, 15.0}};
 
 TEST(Passages, OpenWhenFilledPixelsJoinTheSidesInsideTheBox) {
   const Bitmap f = pasted({
+      // clang-format off
       "........",
       "###.....",
       "..#.....",
       "..######",
       "........",
+      // clang-format on
   });
   const PassageResult r = judge_passage(kStrait, f, kLat, PoleRotation());
   EXPECT_EQ(r.status, PassageStatus::kOpen);
@@ -47,29 +50,35 @@ TEST(Passages, OpenWhenFilledPixelsJoinTheSidesInsideTheBox) {
 
 TEST(Passages, ClosedByAGapOrACornerTouch) {
   const Bitmap gap = pasted({
+      // clang-format off
       "........",
       "###.....",
       "..#.....",
       "..###.##",
       "........",
+      // clang-format on
   });
   PassageResult r = judge_passage(kStrait, gap, kLat, PoleRotation());
   EXPECT_EQ(r.status, PassageStatus::kClosed);
   EXPECT_THAT(r.note, testing::HasSubstr("not connected"));
   const Bitmap corner = pasted({
+      // clang-format off
       "........",
       "###.....",
       "...#####",
       "........",
       "........",
+      // clang-format on
   });
   EXPECT_EQ(judge_passage(kStrait, corner, kLat, PoleRotation()).status, PassageStatus::kClosed);
   const Bitmap dry_side = pasted({
+      // clang-format off
       "........",
       ".#######",
       "........",
       "........",
       "........",
+      // clang-format on
   });
   r = judge_passage(kStrait, dry_side, kLat, PoleRotation());
   EXPECT_EQ(r.status, PassageStatus::kClosed);
@@ -79,12 +88,14 @@ TEST(Passages, ClosedByAGapOrACornerTouch) {
 TEST(Passages, PathsOutsideTheBoxDoNotCount) {
   // The pixels join the sides only through row 5 of the drawing, which is north of the box.
   Bitmap f = pasted({
+      // clang-format off
       "########",
       "#......#",
       "#......#",
       "#......#",
       "#......#",
       "#......#",
+      // clang-format on
   });
   EXPECT_EQ(judge_passage(kStrait, f, kLat, PoleRotation()).status, PassageStatus::kClosed);
   f.set(kI0 + 3, kJ0 + 2);  // not enough: a single pixel in the middle
@@ -100,7 +111,8 @@ TEST(Passages, NotResolvableBelowAPixel) {
   EXPECT_EQ(r.status, PassageStatus::kNotResolvable);
   EXPECT_THAT(r.note, testing::HasSubstr("smaller than a pixel"));
   // A box of two pixels whose side A holds no pixel centre.
-  const Passage thin_side{"Thin", "a", "b", {20.0, 22.0, 10.0, 12.0}, {20.0, 20.4, 10.0, 12.0}, {21.0, 22.0, 10.0, 12.0}};
+  const Passage thin_side{
+      "Thin", "a", "b", {20.0, 22.0, 10.0, 12.0}, {20.0, 20.4, 10.0, 12.0}, {21.0, 22.0, 10.0, 12.0}};
   const PassageResult r2 = judge_passage(thin_side, f, kLat, PoleRotation());
   EXPECT_EQ(r2.status, PassageStatus::kNotResolvable);
   EXPECT_THAT(r2.note, testing::HasSubstr("side A"));
@@ -111,7 +123,11 @@ TEST(Passages, WorkOnARotatedLatticeAndAcrossTheSeam) {
   // is geographic and straddles λ = 180.
   const PoleRotation rot(-44.858333, 78.141667);
   const Lattice l = Lattice::make(1.0, 2, -180.0);  // 0.25° pixels
-  const Passage p{"Seam strait", "west", "east", {176.0, 184.0, -42.0, -38.0}, {176.0, 177.0, -42.0, -38.0},
+  const Passage p{"Seam strait",
+                  "west",
+                  "east",
+                  {176.0, 184.0, -42.0, -38.0},
+                  {176.0, 177.0, -42.0, -38.0},
                   {183.0, 184.0, -42.0, -38.0}};
   const auto channel = [](double lon, double lat, bool cut) {
     const double x = wrap_lon_deg(lon, 170.0);
@@ -153,10 +169,11 @@ TEST(Passages, TableHasTheThirtyNamedStraitsWithSidesInsideTheirBoxes) {
     const bool lat_apart = p.side_a.lat_max_deg <= p.side_b.lat_min_deg || p.side_b.lat_max_deg <= p.side_a.lat_min_deg;
     EXPECT_TRUE(lon_apart || lat_apart) << p.name;
   }
-  for (const char* n : {"Gibraltar", "Bosphorus", "Bering", "Bab-el-Mandeb", "Hormuz", "Malacca/Singapore", "Lombok",
-                        "Torres", "Bass", "Fram", "Nares", "Davis", "Belle Isle", "Florida", "Yucatan", "Drake",
-                        "Denmark", "Dover", "Danish straits", "Kerch", "Tsugaru", "Korea", "La Perouse", "Taiwan",
-                        "Messina", "Sicily", "Luzon", "Hudson", "Barrow", "Juan de Fuca"})
+  for (const char* n : {"Gibraltar",      "Bosphorus", "Bering",  "Bab-el-Mandeb", "Hormuz",     "Malacca/Singapore",
+                        "Lombok",         "Torres",    "Bass",    "Fram",          "Nares",      "Davis",
+                        "Belle Isle",     "Florida",   "Yucatan", "Drake",         "Denmark",    "Dover",
+                        "Danish straits", "Kerch",     "Tsugaru", "Korea",         "La Perouse", "Taiwan",
+                        "Messina",        "Sicily",    "Luzon",   "Hudson",        "Barrow",     "Juan de Fuca"})
     EXPECT_EQ(names.count(n), 1U) << n;
 }
 

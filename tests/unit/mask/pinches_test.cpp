@@ -16,10 +16,12 @@ using test::render;
 
 TEST(Pinches, BothPatternsAndTheSeamAreFound) {
   const Bitmap f = draw({
+      // clang-format off
       "#.....",  // j = 3: (0,3) touches (5,2) at vertex (0,3) across the seam
       ".....#",  // j = 2
       "..#...",  // j = 1
       ".#.#..",  // j = 0
+      // clang-format on
   });
   const std::vector<Pinch> p = find_pinches(f);
   ASSERT_EQ(p.size(), 3U);
@@ -74,10 +76,12 @@ TEST(Pinches, LocatedThroughTheLattice) {
 
 TEST(PinchRemoval, TieGoesToTheSmallerPixelIndex) {
   Bitmap f = draw({
+      // clang-format off
       ".####.",
       ".#..#.",
       ".#.#..",  // pinch at vertex (4, 2): NE (4, 2) and SW (3, 1), both dead ends
       ".###..",
+      // clang-format on
   });
   const std::vector<PixelIJ> seeds = {{1, 0}};
   ASSERT_EQ(k_fill(f, 1, seeds), f);
@@ -94,10 +98,12 @@ TEST(PinchRemoval, NeverCutsTheOnlyLinkWhenTheOtherPixelIsADeadEnd) {
   // Pinch at vertex (2, 2): SW (1, 1) is the only link of (0, 1), (0, 2) to the rest; NE (2, 2)
   // hangs below the top row. Index order alone would take (1, 1) and cut off two pixels.
   Bitmap f = draw({
+      // clang-format off
       "..####.",
       "#.#..#.",
       "##...#.",
       ".#####.",
+      // clang-format on
   });
   const std::vector<PixelIJ> seeds = {{1, 0}};
   ASSERT_EQ(k_fill(f, 1, seeds), f);
@@ -108,10 +114,12 @@ TEST(PinchRemoval, NeverCutsTheOnlyLinkWhenTheOtherPixelIsADeadEnd) {
 
 TEST(PinchRemoval, NeverTakesASeedWindowPixel) {
   Bitmap f = draw({
+      // clang-format off
       ".####.",
       ".#..#.",
       ".#.#..",
       ".###..",
+      // clang-format on
   });
   const std::vector<PixelIJ> seeds = {{3, 1}};  // the pixel the tie-break would take
   ASSERT_EQ(k_fill(f, 1, seeds), f);
@@ -142,8 +150,8 @@ TEST(PinchRemoval, ResultIsAPinchFreeKFillOfItselfOnRandomMasks) {
     const int k = 1 + static_cast<int>(s % 3);
     const std::int64_t nx = 40 + 3 * s, ny = 20 + s;
     const bool smooth = (s / 3) % 2 == 0;
-    const Bitmap wet = smooth ? test::smooth_random_bitmap(nx, ny, 0.2 * (s % 4), s)
-                              : test::random_bitmap(nx, ny, 0.65 + 0.1 * k, s);
+    const Bitmap wet =
+        smooth ? test::smooth_random_bitmap(nx, ny, 0.2 * (s % 4), s) : test::random_bitmap(nx, ny, 0.65 + 0.1 * k, s);
     const PixelIJ seed = seed_in_largest_component(wet, k);
     if (seed.i < 0) continue;
     const std::vector<PixelIJ> seeds = {seed};

@@ -67,9 +67,8 @@ TEST(PixelClasses, LinearInLatitudeGivesExactRows) {
 
 TEST(PixelClasses, ExactlyZeroMetresIsWetAtHZeroOnly) {
   // +100 m land with a block of exactly 0 m at λ in [-40, 40], φ in [-20, 20] (grid points).
-  const auto b = global_raster(1.0, [](double lon, double lat) {
-    return (std::abs(lon) <= 40.0 && std::abs(lat) <= 20.0) ? 0.0 : 100.0;
-  });
+  const auto b = global_raster(
+      1.0, [](double lon, double lat) { return (std::abs(lon) <= 40.0 && std::abs(lat) <= 20.0) ? 0.0 : 100.0; });
   const Lattice l = Lattice::make(10.0, 0, -180.0);
   const PixelClasses at0 = classify(b, l, 0.0);
   EXPECT_EQ(at0.wet_vertex_count, 9 * 5);  // λ = -40..40 step 10, φ = -20..20 step 10
@@ -78,22 +77,20 @@ TEST(PixelClasses, ExactlyZeroMetresIsWetAtHZeroOnly) {
   EXPECT_EQ(above.wet_vertex_count, 0);
   EXPECT_EQ(above.wet_count, 0);
   // -0.5 m at h = 0.5 is wet (d <= -h), at h = 0.5001 it is not.
-  const auto b2 = global_raster(1.0, [](double lon, double lat) {
-    return (std::abs(lon) <= 40.0 && std::abs(lat) <= 20.0) ? -0.5 : 100.0;
-  });
+  const auto b2 = global_raster(
+      1.0, [](double lon, double lat) { return (std::abs(lon) <= 40.0 && std::abs(lat) <= 20.0) ? -0.5 : 100.0; });
   EXPECT_EQ(classify(b2, l, 0.5).wet_vertex_count, 45);
   EXPECT_EQ(classify(b2, l, 0.5001).wet_vertex_count, 0);
 }
 
 TEST(PixelClasses, NoDataIsDry) {
-  const auto b = global_raster(1.0, [](double lon, double) {
-    return lon < 0.0 ? std::numeric_limits<double>::quiet_NaN() : -1000.0;
-  });
+  const auto b = global_raster(
+      1.0, [](double lon, double) { return lon < 0.0 ? std::numeric_limits<double>::quiet_NaN() : -1000.0; });
   const Lattice l = Lattice::make(10.0, 0, -180.0);
   const PixelClasses pc = classify(b, l, 0.0);
   // Vertices with λ >= 0 are wet: I = 18..35 (18 columns) on 19 rows; λ = -180 (I = 0) is NaN.
   EXPECT_EQ(pc.wet_vertex_count, 18 * 19);
-  EXPECT_EQ(pc.wet_count, 17 * 18);   // pixel 35 spans λ 170..180 = vertex I=0 (NaN): coastal
+  EXPECT_EQ(pc.wet_count, 17 * 18);     // pixel 35 spans λ 170..180 = vertex I=0 (NaN): coastal
   EXPECT_EQ(pc.coastal_count, 2 * 18);  // pixels 17 (λ -10..0) and 35
 }
 
@@ -181,7 +178,8 @@ TEST(PixelClasses, AreaRuleMatchesABruteForceOfItsDefinition) {
 
 // Large-scale basins plus ripples of 3-4° wavelength (finer than a 5° pixel, resolved by 1°).
 double wavy(double lon, double lat) {
-  return 1000.0 * std::sin(2.0 * lon * kDegToRad) * std::cos(lat * kDegToRad) - 300.0 * std::sin(3.0 * lat * kDegToRad) +
+  return 1000.0 * std::sin(2.0 * lon * kDegToRad) * std::cos(lat * kDegToRad) -
+         300.0 * std::sin(3.0 * lat * kDegToRad) +
          250.0 * std::sin(120.0 * lon * kDegToRad) * std::cos(100.0 * lat * kDegToRad);
 }
 
@@ -202,14 +200,14 @@ TEST(PixelClasses, RotatedLatticeSamplesGeographicPoints) {
   // Area rule through the rotation: 6×6 samples per 5° pixel of a 1° raster, which include the
   // vertices, so area-wet ⊆ vertex-wet, and a spot check of one pixel's samples.
   const PixelClasses area = classify(b, l, 100.0, Sampling::kArea, rot);
-  for (std::size_t w = 0; w < area.wet.words().size(); ++w)
-    ASSERT_EQ(area.wet.words()[w] & ~pc.wet.words()[w], 0U);
+  for (std::size_t w = 0; w < area.wet.words().size(); ++w) ASSERT_EQ(area.wet.words()[w] & ~pc.wet.words()[w], 0U);
   EXPECT_LT(area.wet_count, pc.wet_count);
   for (const PixelIJ p : {PixelIJ{10, 7}, PixelIJ{40, 20}, PixelIJ{70, 35}}) {
     bool all = true, any = false;
     for (int bb = 0; bb <= 5; ++bb)
       for (int a = 0; a <= 5; ++a) {
-        const LonLat q = lattice_xy_to_deg(l, static_cast<double>(p.i * 5 + a) / 5.0, static_cast<double>(p.j * 5 + bb) / 5.0);
+        const LonLat q =
+            lattice_xy_to_deg(l, static_cast<double>(p.i * 5 + a) / 5.0, static_cast<double>(p.j * 5 + bb) / 5.0);
         const LonLat g = lattice_to_geographic(rot, q);
         const bool wet = b.sample(g.lon_deg, g.lat_deg) <= -100.0;
         all = all && wet;
