@@ -142,6 +142,17 @@ void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& 
   cairo_surface_mark_dirty(surface);
 }
 
+// p + (c - p) * alpha / 256 per channel of an RGB24 pixel.
+inline std::uint32_t blend(std::uint32_t p, const std::array<int, 3>& c, int alpha256) {
+  std::uint32_t out = 0xff000000u;
+  for (int k = 0; k < 3; ++k) {
+    const int sh = 16 - 8 * k;
+    const int old = static_cast<int>((p >> sh) & 0xff);
+    out |= static_cast<std::uint32_t>(old + (((c[static_cast<std::size_t>(k)] - old) * alpha256) >> 8)) << sh;
+  }
+  return out;
+}
+
 // Draws the mesh at horizontal shifts of 0 and ±360° that reach into the view.
 class MeshPainter {
 public:
@@ -158,31 +169,46 @@ public:
   }
   [[nodiscard]] bool rows_visible(double y0, double y1) const { return y1 >= v_.lat_min && y0 <= v_.lat_max; }
 
-  void fill_squares(int levels, std::int64_t& drawn) const {
+  // Side of a level-l square on the picture, in pixels.
+  [[nodiscard]] double side_px(int level) const {
+    return static_cast<double>(m_.lattice.pixels_per_square(level)) * m_.lattice.pixel_deg() * v_.sx();
+  }
+  // Edges of elements smaller than this are not drawn: they would only grey the picture out.
+  static constexpr double kMinEdgePx = 2.5;
+
+  // Blends every square's level colour into the pixels whose centres it contains. The squares
+  // tile the wet area, so each pixel is filled once however small the squares are.
+  void fill_squares(cairo_surface_t* surface, int levels, std::int64_t& drawn) const {
+    unsigned char* data = cairo_image_surface_get_data(surface);
+    const int stride = cairo_image_surface_get_stride(surface);
+    std::vector<std::array<int, 3>> colour(static_cast<std::size_t>(levels + 1));
+    for (int l = 0; l <= levels; ++l) {
+      const auto c = level_colour(l, levels);
+      colour[static_cast<std::size_t>(l)] = {static_cast<int>(std::lround(255 * c[0])),
+                                             static_cast<int>(std::lround(255 * c[1])),
+                                             static_cast<int>(std::lround(255 * c[2]))};
+    }
+    constexpr int kAlpha = 108;  // of 256
     const double pix = m_.lattice.pixel_deg();
-    for (int level = 0; level <= levels; ++level) {
-      const auto c = level_colour(level, levels);
-      cairo_set_source_rgba(cr_, c[0], c[1], c[2], 0.42);
-      std::int64_t in_path = 0;
-      for (std::size_t s = 0; s < m_.squares.size(); ++s) {
-        if (m_.square_level[s] != level) continue;
-        const NodeId sw = m_.squares[s][0];
-        const double side = static_cast<double>(m_.lattice.pixels_per_square(level)) * pix;
-        const double x0 = x(m_.node_i[sw]), y0 = y(m_.node_j[sw]);
-        if (!rows_visible(y0, y0 + side)) continue;
-        at_shifts(x0, x0 + side, [&](double sh) {
-          const double ax = v_.px(x0 + sh), bx = v_.px(x0 + side + sh);
-          const double ay = v_.py(y0 + side), by = v_.py(y0);
-          cairo_rectangle(cr_, ax, ay, bx - ax, by - ay);
-          ++in_path;
-        });
-        if (in_path > 20000) {
-          cairo_fill(cr_);
-          in_path = 0;
+    for (std::size_t s = 0; s < m_.squares.size(); ++s) {
+      const int level = m_.square_level[s];
+      const NodeId sw = m_.squares[s][0];
+      const double side = static_cast<double>(m_.lattice.pixels_per_square(level)) * pix;
+      const double x0 = x(m_.node_i[sw]), y0 = y(m_.node_j[sw]);
+      ++drawn;
+      if (!rows_visible(y0, y0 + side)) continue;
+      const auto& c = colour[static_cast<std::size_t>(std::min(level, levels))];
+      at_shifts(x0, x0 + side, [&](double sh) {
+        // Pixel k covers [k, k+1): its centre k + 0.5 is inside [a, b) for ceil(a - 0.5) <= k < ceil(b - 0.5).
+        const int xa = std::max(0, static_cast<int>(std::ceil(v_.px(x0 + sh) - 0.5)));
+        const int xb = std::min(v_.width, static_cast<int>(std::ceil(v_.px(x0 + side + sh) - 0.5)));
+        const int ya = std::max(v_.band, static_cast<int>(std::ceil(v_.py(y0 + side) - 0.5)));
+        const int yb = std::min(v_.band + v_.map_h, static_cast<int>(std::ceil(v_.py(y0) - 0.5)));
+        for (int yy = ya; yy < yb; ++yy) {
+          auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(yy) * stride);
+          for (int xx = xa; xx < xb; ++xx) row[xx] = blend(row[xx], c, kAlpha);
         }
-        ++drawn;
-      }
-      cairo_fill(cr_);
+      });
     }
   }
 
@@ -190,7 +216,9 @@ public:
   // with a > b are drawn as coast).
   template <typename Seg>
   void triangle_edges(Seg&& seg) const {
-    for (const auto& t : m_.triangles) {
+    for (std::size_t k = 0; k < m_.triangles.size(); ++k) {
+      if (side_px(m_.triangle_level[k]) < kMinEdgePx) continue;
+      const auto& t = m_.triangles[k];
       std::array<double, 3> tx{}, ty{};
       for (int a = 0; a < 3; ++a) {
         tx[a] = x(m_.unwrapped_i(t, t[a]));
@@ -212,6 +240,7 @@ public:
   void square_edges(Seg&& seg) const {
     const double pix = m_.lattice.pixel_deg();
     for (std::size_t s = 0; s < m_.squares.size(); ++s) {
+      if (side_px(m_.square_level[s]) < kMinEdgePx) continue;
       const NodeId sw = m_.squares[s][0];
       const double side = static_cast<double>(m_.lattice.pixels_per_square(m_.square_level[s])) * pix;
       const double x0 = x(m_.node_i[sw]), y0 = y(m_.node_j[sw]);
@@ -267,13 +296,7 @@ public:
       const int iy = static_cast<int>(std::floor(y0 + dy * k / n));
       if (ix < 0 || ix >= w_ || iy < y_lo_ || iy >= y_hi_) continue;
       auto* p = reinterpret_cast<std::uint32_t*>(data_ + static_cast<std::ptrdiff_t>(iy) * stride_) + ix;
-      std::uint32_t out = 0xff000000u;
-      for (int c = 0; c < 3; ++c) {
-        const int sh = 16 - 8 * c;
-        const int old = static_cast<int>((*p >> sh) & 0xff);
-        out |= static_cast<std::uint32_t>(old + (((rgb_[static_cast<std::size_t>(c)] - old) * a_) >> 8)) << sh;
-      }
-      *p = out;
+      *p = blend(*p, rgb_, a_);
     }
   }
 
@@ -317,56 +340,69 @@ void draw_text(cairo_t* cr, double x, double y, const std::string& s) {
   cairo_show_text(cr, s.c_str());
 }
 
+// Draws `text` with its left end at x and returns its advance.
+double text_advance(cairo_t* cr, const std::string& text) {
+  cairo_text_extents_t ext;
+  cairo_text_extents(cr, text.c_str(), &ext);
+  return ext.x_advance;
+}
+
+// Sets the font size to `size`, shrunk so that `width` (measured at `size`) fits in `room`.
+void fit_font(cairo_t* cr, double size, double width, double room) {
+  cairo_set_font_size(cr, width > room ? std::max(6.0, size * room / width) : size);
+}
+
 void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOptions& o, const std::string& title) {
-  const double font = v.band * 0.62;
+  const double font = v.band * 0.62, margin = font * 0.5, room = v.width - 2 * margin;
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, 0, 0, v.width, v.band);
   cairo_rectangle(cr, 0, v.band + v.map_h, v.width, v.band);
   cairo_fill(cr);
   cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, font);
+  fit_font(cr, font, text_advance(cr, title), room);
   cairo_set_source_rgb(cr, 0, 0, 0);
-  draw_text(cr, font * 0.5, v.band * 0.72, title);
+  draw_text(cr, margin, v.band * 0.72, title);
 
-  // Legend: one swatch per level with its element count, then sea and land.
+  // Legend: a swatch per level with its element count, then depth classes, land and the coast.
   const int levels = m.lattice.levels;
   std::vector<std::int64_t> count(static_cast<std::size_t>(levels + 1), 0);
   const bool tri = has_triangles(o.elements) && !m.triangles.empty();
   for (const auto l : tri ? m.triangle_level : m.square_level)
     if (l <= levels) ++count[l];
-  const double y0 = v.band + v.map_h, sw = v.band * 0.6;
-  double x = font * 0.5;
-  for (int l = 0; l <= levels; ++l) {
-    const auto c = level_colour(l, levels);
-    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
-    cairo_rectangle(cr, x, y0 + v.band * 0.2, sw, sw);
-    cairo_fill(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    const std::string label = fmt::format("level {}: {} {}", l, count[static_cast<std::size_t>(l)],
-                                          tri ? "triangles" : "squares");
-    draw_text(cr, x + sw * 1.3, y0 + v.band * 0.72, label);
-    cairo_text_extents_t ext;
-    cairo_text_extents(cr, label.c_str(), &ext);
-    x += sw * 1.3 + ext.x_advance + font;
-  }
-  auto swatch = [&](float elevation, const char* label) {
-    const std::uint32_t p = shade_exact(elevation);
-    cairo_set_source_rgb(cr, ((p >> 16) & 0xff) / 255.0, ((p >> 8) & 0xff) / 255.0, (p & 0xff) / 255.0);
-    cairo_rectangle(cr, x, y0 + v.band * 0.2, sw, sw);
-    cairo_fill(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, x + sw * 1.3, y0 + v.band * 0.72, label);
-    cairo_text_extents_t ext;
-    cairo_text_extents(cr, label, &ext);
-    x += sw * 1.3 + ext.x_advance + font;
+  struct Item {
+    std::array<double, 3> rgb;
+    std::string label;
   };
-  swatch(-100.0f, "sea 0-200 m");
-  swatch(-1500.0f, "1000-2000 m");
-  swatch(-4500.0f, "4000-5000 m");
-  swatch(-7000.0f, ">6000 m");
-  swatch(100.0f, "land");
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  draw_text(cr, x, y0 + v.band * 0.72, "coast: black");
+  std::vector<Item> items;
+  for (int l = 0; l <= levels; ++l) {
+    items.push_back({level_colour(l, levels),
+                     fmt::format("level {}: {}{}", l, count[static_cast<std::size_t>(l)],
+                                 l == 0 ? (tri ? " triangles" : " squares") : "")});
+  }
+  for (const auto& [e, label] : std::vector<std::pair<float, const char*>>{
+           {-100.0f, "0-200 m"}, {-1500.0f, "1000-2000 m"}, {-4500.0f, "4000-5000 m"}, {-7000.0f, "> 6000 m"},
+           {100.0f, "land"}, {std::nanf(""), "no data"}}) {
+    const std::uint32_t p = shade_exact(e);
+    items.push_back({{((p >> 16) & 0xff) / 255.0, ((p >> 8) & 0xff) / 255.0, (p & 0xff) / 255.0}, label});
+  }
+  items.push_back({{0.0, 0.0, 0.0}, "coast"});
+  const double sw = v.band * 0.6;
+  cairo_set_font_size(cr, font);
+  double need = 0.0;
+  for (const auto& it : items) need += sw * 1.3 + text_advance(cr, it.label) + font;
+  fit_font(cr, font, need, room);
+  const double scale = need > room ? room / need : 1.0;
+  const double y0 = v.band + v.map_h;
+  double x = margin;
+  for (const auto& it : items) {
+    cairo_set_source_rgb(cr, it.rgb[0], it.rgb[1], it.rgb[2]);
+    cairo_rectangle(cr, x, y0 + v.band * 0.2, sw * scale, sw);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    draw_text(cr, x + sw * 1.3 * scale, y0 + v.band * 0.72, it.label);
+    x += (sw * 1.3 + font) * scale + text_advance(cr, it.label);
+  }
 }
 
 WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const std::filesystem::path& path,
@@ -394,9 +430,9 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
   const MeshPainter paint(cr, v, mesh);
   WriteStats stats;
   std::int64_t squares = 0;
-  paint.fill_squares(mesh.lattice.levels, squares);
-  // Mesh edges straight into the pixels, then the coast with Cairo on top.
+  // Fills and mesh edges straight into the pixels, then the coast with Cairo on top.
   cairo_surface_flush(surface);
+  paint.fill_squares(surface, mesh.lattice.levels, squares);
   const bool tri = has_triangles(o.elements) && !mesh.triangles.empty();
   if (tri) paint.triangle_edges(PixelPen(surface, v, {30, 30, 40}, 140));
   if (!tri || has_squares(o.elements)) {

@@ -212,4 +212,66 @@ inline mesh::Mesh band_mesh(const Lattice& lattice, std::int64_t j0, std::int64_
   return make_leaf_mesh(lattice, leaves);
 }
 
+/// A large regular mesh built straight into the arrays (for timing writers on ~10^7 triangles):
+/// every level-L pixel of rows j0 <= J < j1 around the globe, split by the "ne" diagonal. Two
+/// boundary loops (the row J = j0, outer, and the row J = j1, the pole loop when j1 = ny).
+inline mesh::Mesh regular_band_mesh(const Lattice& lattice, std::int64_t j0, std::int64_t j1) {
+  mesh::Mesh m;
+  m.lattice = lattice;
+  const std::int64_t nx = lattice.nx, rows = j1 - j0 + 1;
+  auto id = [&](std::int64_t i, std::int64_t j) { return (j - j0) * nx + ((i % nx) + nx) % nx; };
+  const auto n = static_cast<std::size_t>(rows * nx);
+  m.node_i.resize(n);
+  m.node_j.resize(n);
+  m.lon_deg.resize(n);
+  m.lat_deg.resize(n);
+  m.depth_m.resize(n);
+  m.node_flags.resize(n);
+  for (std::int64_t j = j0; j <= j1; ++j)
+    for (std::int64_t i = 0; i < nx; ++i) {
+      const auto k = static_cast<std::size_t>(id(i, j));
+      m.node_i[k] = i;
+      m.node_j[k] = j;
+      m.lon_deg[k] = lattice.lon_of(i);
+      m.lat_deg[k] = lattice.lat_of(j);
+      m.depth_m[k] = test_elevation_m(i, j);
+      m.node_flags[k] = static_cast<std::uint8_t>((j == j0 || j == j1 ? mesh::kNodeBoundary : 0) |
+                                                  (j == 0 || j == lattice.ny ? mesh::kNodePole : 0) |
+                                                  (i == 0 ? mesh::kNodeSeam : 0));
+    }
+  m.rlon_deg = m.lon_deg;
+  m.rlat_deg = m.lat_deg;
+  const auto level = static_cast<std::uint8_t>(lattice.levels);
+  const auto sq = static_cast<std::size_t>((j1 - j0) * nx);
+  m.squares.reserve(sq);
+  m.triangles.reserve(2 * sq);
+  for (std::int64_t j = j0; j < j1; ++j)
+    for (std::int64_t i = 0; i < nx; ++i) {
+      const std::array<NodeId, 4> c{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+      m.triangles.push_back({c[0], c[1], c[2]});
+      m.triangles.push_back({c[0], c[2], c[3]});
+      m.triangle_square.push_back(static_cast<ElementId>(m.squares.size()));
+      m.triangle_square.push_back(static_cast<ElementId>(m.squares.size()));
+      m.squares.push_back(c);
+    }
+  m.square_level.assign(sq, level);
+  m.square_midside.assign(sq, {-1, -1, -1, -1});
+  m.triangle_level.assign(2 * sq, level);
+  mesh::BoundaryLoop bottom, top;
+  bottom.outer = true;
+  top.pole = j1 == lattice.ny;
+  for (std::int64_t i = 0; i < nx; ++i) {
+    m.boundary_edges.push_back({id(i, j0), id(i + 1, j0)});
+    m.boundary_edge_loop.push_back(0);
+    bottom.nodes.push_back(id(i, j0));
+  }
+  for (std::int64_t i = nx; i > 0; --i) {
+    m.boundary_edges.push_back({id(i, j1), id(i - 1, j1)});
+    m.boundary_edge_loop.push_back(1);
+    top.nodes.push_back(id(i, j1));
+  }
+  m.loops = {bottom, top};
+  return m;
+}
+
 }  // namespace aq::testing
