@@ -80,6 +80,9 @@ void coons_fill(std::vector<double>& q, int nx, int ny) {
   }
 }
 
+/// Half sweeps over fewer nodes than this run on one thread.
+constexpr long kMinParallelNodes = 1L << 16;
+
 /// Updates the nodes i0, i0+2, ... of one interior row of both fields; returns the largest
 /// |update|.
 inline double sor_row_colour(double* u, double* v, std::size_t row, int i0, int nx, std::size_t stride,
@@ -106,10 +109,14 @@ double sor_half_sweep(double* u, double* v, int nx, int ny, int cj, StencilWeigh
   const int nrows = j0 <= ny - 2 ? (ny - 2 - j0) / 2 + 1 : 0;
   const std::size_t stride = static_cast<std::size_t>(nx);
   const double scale = -omega / w.delta;
+  // Small grids run serially: there a fork/join per half sweep costs more than the sweep (and a
+  // lot more on a loaded machine). The result is the same either way.
+  const bool parallel = static_cast<long>(nrows) * nx >= kMinParallelNodes;
   double max_dq = 0.0;
-#pragma omp parallel for default(none) shared(u, v) firstprivate(nx, j0, nrows, stride, w, scale) reduction(max       \
-                                                                                                            : max_dq) \
-    schedule(static)
+  // clang-format off
+#pragma omp parallel for default(none) shared(u, v) firstprivate(nx, j0, nrows, stride, w, scale) \
+    reduction(max : max_dq) schedule(static) if (parallel)
+  // clang-format on
   for (int k = 0; k < nrows; ++k) {
     const std::size_t row = static_cast<std::size_t>(j0 + 2 * k) * stride;
     const double even = sor_row_colour(u, v, row, 2, nx, stride, w, scale);
