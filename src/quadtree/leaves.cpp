@@ -348,7 +348,7 @@ void for_leaves_by_band(const std::vector<Leaf>& leaves, const Lattice& lat, boo
   }
   const std::vector<std::int64_t> starts = root_row_starts(leaves, lat);
   const auto ny0 = static_cast<std::int64_t>(starts.size()) - 1;
-  const int blocks = block_count(static_cast<std::int64_t>(leaves.size()), 16);
+  const int blocks = block_count(static_cast<std::int64_t>(leaves.size()), 4);
   for_each_block(ny0, blocks, [&](int, std::int64_t begin, std::int64_t end) {
     for (std::int64_t k = starts[static_cast<std::size_t>(begin)]; k < starts[static_cast<std::size_t>(end)]; ++k) {
       fn(leaves[static_cast<std::size_t>(k)]);
