@@ -13,6 +13,7 @@
 #endif
 
 #include "core/error.hpp"
+#include "core/timer.hpp"
 #include "mesh/statistics.hpp"
 #include "quadtree/balance.hpp"
 #include "quadtree/nodes.hpp"
@@ -303,8 +304,16 @@ TEST(MeshPerf, TenMillionTriangles) {
   mesh.squares = nodes.corners;
   mesh.square_midside = nodes.midside;
   t0 = clock::now();
+  const double cpu0 = process_cpu_seconds();
   emit_triangles(leaves, nodes.midside_code, nodes.centre, Diagonal::kNE, mesh);
-  const double emit_s = secs(t0);
+  const double emit_s = secs(t0), emit_cpu_s = process_cpu_seconds() - cpu0;
+  // Again into memory already touched: the emission itself, without first-touch page faults.
+  t0 = clock::now();
+  mesh.triangles.clear();
+  mesh.triangle_level.clear();
+  mesh.triangle_square.clear();
+  emit_triangles(leaves, nodes.midside_code, nodes.centre, Diagonal::kNE, mesh);
+  const double warm_s = secs(t0);
   t0 = clock::now();
   const Mesh full = build_mesh(leaves, lat, PoleRotation(), bathy, {}, Logger::null(), nullptr);
   const double build_s = secs(t0);
@@ -316,8 +325,12 @@ TEST(MeshPerf, TenMillionTriangles) {
               static_cast<long long>(full.triangle_count()));
   std::printf("  build_leaves %.3f s (masks %.3f s, balance %.3f s); build_nodes %.3f s\n", leaves_s, masks_s,
               balance_s, nodes_s);
-  std::printf("  emit_triangles %.3f s = %.1f million triangles/s; build_mesh %.3f s; statistics %.3f s\n", emit_s,
-              static_cast<double>(mesh.triangle_count()) / emit_s * 1e-6, build_s, stats_s);
+  const double mt = static_cast<double>(mesh.triangle_count()) * 1e-6;
+  std::printf(
+      "  emit_triangles %.3f s wall (%.3f s CPU) = %.1f million triangles/s; into touched memory %.3f s = %.1f "
+      "million triangles/s\n",
+      emit_s, emit_cpu_s, mt / emit_s, warm_s, mt / warm_s);
+  std::printf("  build_mesh %.3f s; statistics %.3f s (WGS84 sizes included)\n", build_s, stats_s);
   EXPECT_EQ(mesh.triangles, full.triangles);
   EXPECT_TRUE(st.failed_checks().empty()) << fmt::format("{}", fmt::join(st.failed_checks(), "; "));
 }
