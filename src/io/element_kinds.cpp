@@ -16,9 +16,12 @@ ElementKinds parse_element_kinds(std::string_view value) {
 
 std::string_view element_kinds_name(ElementKinds kinds) {
   switch (kinds) {
-    case ElementKinds::kTriangles: return "triangles";
-    case ElementKinds::kSquares: return "squares";
-    case ElementKinds::kBoth: return "both";
+    case ElementKinds::kTriangles:
+      return "triangles";
+    case ElementKinds::kSquares:
+      return "squares";
+    case ElementKinds::kBoth:
+      return "both";
   }
   return "triangles";
 }
@@ -29,15 +32,15 @@ ElementKinds default_element_kinds(const mesh::Mesh& mesh) {
 
 void check_elements(const mesh::Mesh& mesh, ElementKinds kinds) {
   const auto n = static_cast<std::size_t>(mesh.node_count());
-  if (mesh.node_j.size() != n || mesh.lon_deg.size() != n || mesh.lat_deg.size() != n ||
-      mesh.depth_m.size() != n || mesh.node_flags.size() != n) {
+  if (mesh.node_j.size() != n || mesh.lon_deg.size() != n || mesh.lat_deg.size() != n || mesh.depth_m.size() != n ||
+      mesh.node_flags.size() != n) {
     throw InternalError(fmt::format("mesh node arrays have inconsistent sizes ({} nodes)", n));
   }
   if (has_triangles(kinds)) {
     if (mesh.triangles.empty() && !mesh.squares.empty()) {
-      throw InternalError(fmt::format(
-          "writer asked for triangles (mesh.elements = \"{}\") but the mesh has only squares",
-          element_kinds_name(kinds)));
+      throw InternalError(
+          fmt::format("writer asked for triangles (mesh.elements = \"{}\") but the mesh has only squares",
+                      element_kinds_name(kinds)));
     }
     if (mesh.triangle_level.size() != mesh.triangles.size()) {
       throw InternalError("mesh.triangle_level has a different size than mesh.triangles");

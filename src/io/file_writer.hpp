@@ -15,7 +15,7 @@
 namespace aq::io {
 
 class FileWriter {
-public:
+ public:
   /// Creates (truncates) `path`. Throws OutputError naming it when it cannot be opened.
   explicit FileWriter(std::filesystem::path path);
   /// Closes without reporting errors if `close()` was not called (an exception is unwinding).
@@ -58,7 +58,7 @@ public:
 
   static constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
 
-private:
+ private:
   [[noreturn]] void fail(const char* what, int err) const;
 
   std::filesystem::path path_;

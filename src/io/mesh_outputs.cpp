@@ -68,8 +68,8 @@ void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elem
 }
 
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
-                                            const config::OutputOptions& options, OutputSet& outputs,
-                                            const Logger& log, const MeshOutputInfo& info) {
+                                            const config::OutputOptions& options, OutputSet& outputs, const Logger& log,
+                                            const MeshOutputInfo& info) {
   check_mesh_output_options(options, info.elements);
   check_elements(mesh, info.elements);
   std::vector<WrittenFile> written;
@@ -110,7 +110,9 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.history = fmt::format("written by aquatoria ({})", info.source);
       write(
           format, name + ".nc", [&](const auto& p) { return write_ugrid(mesh, p, o); },
-          [](const WriteStats& s) { return Facts{{"nodes", s.nodes}, {"faces", s.elements}}; });
+          [](const WriteStats& s) {
+            return Facts{{"nodes", s.nodes}, {"faces", s.elements}};
+          });
     } else if (format == "vtu") {
       VtuOptions o;
       o.coordinates = parse_vtu_coordinates(options.vtu_coordinates);
@@ -136,12 +138,16 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.elements = info.elements;
       write(
           format, name + ".txt", [&](const auto& p) { return write_text(mesh, p, o); },
-          [](const WriteStats& s) { return Facts{{"nodes", s.nodes}, {"elements", s.elements}}; });
+          [](const WriteStats& s) {
+            return Facts{{"nodes", s.nodes}, {"elements", s.elements}};
+          });
     } else if (format == "png") {
       const PreviewOptions o = preview_options(options, info.elements);
       write(
           format, name + ".png", [&](const auto& p) { return write_preview_png(mesh, bathy, p, o); },
-          [](const WriteStats& s) { return Facts{{"elements drawn", s.elements}}; });
+          [](const WriteStats& s) {
+            return Facts{{"elements drawn", s.elements}};
+          });
       if (!options.png_zoom.empty()) {
         write(
             "png_zoom", name + "_zoom.png", [&](const auto& p) { return write_preview_zoom_png(mesh, bathy, p, o); },

@@ -35,7 +35,7 @@ struct WrittenFile {
   std::string format;          ///< "msh", "ugrid", "vtu", "fort14", "text", "png" or "png_zoom"
   std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
   std::int64_t bytes = 0;
-  double seconds = 0.0;        ///< wall time of the writer
+  double seconds = 0.0;  ///< wall time of the writer
   WriteStats stats;
   std::vector<std::pair<std::string, std::int64_t>> facts;  ///< counts worth reporting, by name
 };
@@ -57,8 +57,8 @@ void check_mesh_output_options(const config::OutputOptions& options, ElementKind
 /// Writes every requested format (see the table above). Throws ConfigError on bad options
 /// (before writing anything), OutputError naming the file on write failures.
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
-                                            const config::OutputOptions& options, OutputSet& outputs,
-                                            const Logger& log, const MeshOutputInfo& info);
+                                            const config::OutputOptions& options, OutputSet& outputs, const Logger& log,
+                                            const MeshOutputInfo& info);
 
 /// As above with the elements the mesh has (triangles if any, else squares).
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,

@@ -23,7 +23,7 @@ constexpr int kPhysCoast = 1, kPhysOcean = 2, kPhysOceanSquares = 3;
 
 // Writes MSH tokens either as ASCII words separated by spaces or as native binary values.
 class MshOut {
-public:
+ public:
   MshOut(FileWriter& file, bool binary) : f_(file), binary_(binary) {}
   [[nodiscard]] bool binary() const { return binary_; }
   FileWriter& file() { return f_; }
@@ -67,7 +67,7 @@ public:
     f_.maybe_flush();
   }
 
-private:
+ private:
   void sep() {
     if (!first_) f_.text(" ");
     first_ = false;
@@ -98,7 +98,7 @@ struct Box {
 // The written node set: output ids 0..count-1 (tag = id + 1), their positions, and the mesh
 // node whose data each one carries.
 class NodeSet {
-public:
+ public:
   NodeSet(const mesh::Mesh& mesh, const MshOptions& options)
       : mesh_(mesh),
         plane_(options.coordinates == MshCoordinates::kPlane),
@@ -125,7 +125,7 @@ public:
     return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
   }
 
-private:
+ private:
   const mesh::Mesh& mesh_;
   bool plane_;
   SeamNodes seam_;
@@ -143,7 +143,7 @@ struct Block {
 };
 
 class Blocks {
-public:
+ public:
   Blocks(const mesh::Mesh& mesh, const NodeSet& nodes, ElementKinds kinds) : mesh_(mesh), nodes_(nodes) {
     const int square_entity = kinds == ElementKinds::kBoth ? 2 : 1;
     if (has_triangles(kinds) && !mesh.triangles.empty()) add({BlockKind::kTriangles, 2, 1, kTypeTriangle, 3});
@@ -223,7 +223,7 @@ public:
     }
   }
 
-private:
+ private:
   static std::uint64_t tag(NodeId o) {
     if (o < 0) throw InternalError("MSH writer: an element uses a seam node that has no duplicate");
     return static_cast<std::uint64_t>(o) + 1;
@@ -478,8 +478,7 @@ WriteStats write_msh(const mesh::Mesh& mesh, const std::filesystem::path& path, 
   const Blocks blocks(mesh, nodes, options.elements);
   if (nodes.count() > std::numeric_limits<std::int32_t>::max() ||
       blocks.total(-1) > std::numeric_limits<std::int32_t>::max()) {
-    throw OutputError(fmt::format("{}: mesh too large for MSH 4.1 (its data sections use 32-bit tags)",
-                                  path.string()));
+    throw OutputError(fmt::format("{}: mesh too large for MSH 4.1 (its data sections use 32-bit tags)", path.string()));
   }
 
   FileWriter file(path);

@@ -23,8 +23,8 @@ namespace {
 
 #if defined(AQ_HAVE_ZLIB)
 
-constexpr int kStrips = 16;        // fixed: the output must not depend on the thread count
-constexpr int kLevel = 1;          // deflate level: speed over the last 10% of size
+constexpr int kStrips = 16;  // fixed: the output must not depend on the thread count
+constexpr int kLevel = 1;    // deflate level: speed over the last 10% of size
 constexpr std::size_t kIdatBytes = std::size_t{1} << 20;
 
 void put_u32(std::vector<unsigned char>& out, std::uint32_t v) {

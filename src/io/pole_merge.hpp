@@ -19,7 +19,7 @@
 namespace aq::io {
 
 class PoleMerge {
-public:
+ public:
   explicit PoleMerge(const mesh::Mesh& mesh);
 
   /// Output node of mesh node `n`.
@@ -35,7 +35,7 @@ public:
   /// writes them to `out` and returns how many remain (< 3: the element is degenerate).
   int map_polygon(const NodeId* nodes, int k, NodeId* out) const;
 
-private:
+ private:
   std::vector<NodeId> node_map_;  // empty: identity (no pole rows)
   std::vector<NodeId> sources_;
   std::int64_t output_count_ = 0;

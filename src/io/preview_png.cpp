@@ -62,20 +62,20 @@ struct TintClass {
   std::array<int, 3> rgb;
 };
 constexpr std::array<TintClass, 15> kTints{{{-6000, {8, 29, 88}},
-                                           {-5000, {20, 52, 128}},
-                                           {-4000, {33, 78, 160}},
-                                           {-3000, {47, 105, 183}},
-                                           {-2000, {66, 133, 201}},
-                                           {-1000, {96, 160, 214}},
-                                           {-500, {129, 186, 226}},
-                                           {-200, {160, 206, 236}},
-                                           {0, {198, 228, 246}},
-                                           {200, {176, 196, 156}},
-                                           {500, {160, 178, 136}},
-                                           {1000, {146, 158, 118}},
-                                           {2000, {138, 134, 104}},
-                                           {4000, {128, 118, 100}},
-                                           {1e9, {150, 146, 142}}}};
+                                            {-5000, {20, 52, 128}},
+                                            {-4000, {33, 78, 160}},
+                                            {-3000, {47, 105, 183}},
+                                            {-2000, {66, 133, 201}},
+                                            {-1000, {96, 160, 214}},
+                                            {-500, {129, 186, 226}},
+                                            {-200, {160, 206, 236}},
+                                            {0, {198, 228, 246}},
+                                            {200, {176, 196, 156}},
+                                            {500, {160, 178, 136}},
+                                            {1000, {146, 158, 118}},
+                                            {2000, {138, 134, 104}},
+                                            {4000, {128, 118, 100}},
+                                            {1e9, {150, 146, 142}}}};
 std::uint32_t pack_rgb(const std::array<int, 3>& c) {
   return 0xff000000u | (static_cast<std::uint32_t>(c[0]) << 16) | (static_cast<std::uint32_t>(c[1]) << 8) |
          static_cast<std::uint32_t>(c[2]);
@@ -104,8 +104,7 @@ std::uint32_t shade(const std::uint32_t* table, float e) {
   return table[static_cast<int>(std::lround(k)) + kShadeDeep];
 }
 
-void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& mesh,
-                     const raster::Bathymetry& bathy) {
+void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& mesh, const raster::Bathymetry& bathy) {
   cairo_surface_flush(surface);
   unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
@@ -155,7 +154,7 @@ inline std::uint32_t blend(std::uint32_t p, const std::array<int, 3>& c, int alp
 
 // Draws the mesh at horizontal shifts of 0 and ±360° that reach into the view.
 class MeshPainter {
-public:
+ public:
   MeshPainter(cairo_t* cr, const View& v, const mesh::Mesh& m) : cr_(cr), v_(v), m_(m) {}
 
   [[nodiscard]] double x(std::int64_t i) const { return plane_lon_deg(m_.lattice, i); }
@@ -269,7 +268,7 @@ public:
     }
   }
 
-private:
+ private:
   cairo_t* cr_;
   const View& v_;
   const mesh::Mesh& m_;
@@ -279,7 +278,7 @@ private:
 // mesh has ~10^5 edges a few pixels long; Cairo's antialiased stroking of them costs more than
 // all the rest of the picture, and at one pixel width the difference does not show.
 class PixelPen {
-public:
+ public:
   PixelPen(cairo_surface_t* surface, const View& v, std::array<int, 3> rgb, int alpha256)
       : data_(cairo_image_surface_get_data(surface)),
         stride_(cairo_image_surface_get_stride(surface)),
@@ -300,7 +299,7 @@ public:
     }
   }
 
-private:
+ private:
   unsigned char* data_;
   int stride_, y_lo_, y_hi_, w_;
   std::array<int, 3> rgb_;
@@ -309,7 +308,7 @@ private:
 
 // Segments as Cairo path pieces, stroked every 20000 segments and at the end.
 class CairoStroker {
-public:
+ public:
   explicit CairoStroker(cairo_t* cr) : cr_(cr) {}
   ~CairoStroker() { cairo_stroke(cr_); }
   CairoStroker(const CairoStroker&) = delete;
@@ -323,7 +322,7 @@ public:
     }
   }
 
-private:
+ private:
   cairo_t* cr_;
   int n_ = 0;
 };
@@ -376,13 +375,15 @@ void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOp
   };
   std::vector<Item> items;
   for (int l = 0; l <= levels; ++l) {
-    items.push_back({level_colour(l, levels),
-                     fmt::format("level {}: {}{}", l, count[static_cast<std::size_t>(l)],
-                                 l == 0 ? (tri ? " triangles" : " squares") : "")});
+    items.push_back({level_colour(l, levels), fmt::format("level {}: {}{}", l, count[static_cast<std::size_t>(l)],
+                                                          l == 0 ? (tri ? " triangles" : " squares") : "")});
   }
-  for (const auto& [e, label] : std::vector<std::pair<float, const char*>>{
-           {-100.0f, "0-200 m"}, {-1500.0f, "1000-2000 m"}, {-4500.0f, "4000-5000 m"}, {-7000.0f, "> 6000 m"},
-           {100.0f, "land"}, {std::nanf(""), "no data"}}) {
+  for (const auto& [e, label] : std::vector<std::pair<float, const char*>>{{-100.0f, "0-200 m"},
+                                                                           {-1500.0f, "1000-2000 m"},
+                                                                           {-4500.0f, "4000-5000 m"},
+                                                                           {-7000.0f, "> 6000 m"},
+                                                                           {100.0f, "land"},
+                                                                           {std::nanf(""), "no data"}}) {
     const std::uint32_t p = shade_exact(e);
     items.push_back({{((p >> 16) & 0xff) / 255.0, ((p >> 8) & 0xff) / 255.0, (p & 0xff) / 255.0}, label});
   }
@@ -489,23 +490,23 @@ void check_preview_options(const PreviewOptions& o) {
   if (o.zoom.empty()) return;
   const auto& z = o.zoom;
   if (z.size() != 4) {
-    throw ConfigError(fmt::format("output.png_zoom: needs 4 numbers [lon_min, lon_max, lat_min, lat_max], got {}",
-                                  z.size()));
+    throw ConfigError(
+        fmt::format("output.png_zoom: needs 4 numbers [lon_min, lon_max, lat_min, lat_max], got {}", z.size()));
   }
   for (const double v : z)
     if (!std::isfinite(v)) throw ConfigError("output.png_zoom: values must be finite numbers");
   if (!(z[0] < z[1]) || z[1] - z[0] > 360.0) {
-    throw ConfigError(
-        fmt::format("output.png_zoom = [{}, {}, {}, {}]: need lon_min < lon_max within 360 degrees", z[0], z[1], z[2], z[3]));
+    throw ConfigError(fmt::format("output.png_zoom = [{}, {}, {}, {}]: need lon_min < lon_max within 360 degrees", z[0],
+                                  z[1], z[2], z[3]));
   }
   if (!(z[2] < z[3]) || z[2] < -90.0 || z[3] > 90.0) {
-    throw ConfigError(fmt::format("output.png_zoom = [{}, {}, {}, {}]: need -90 <= lat_min < lat_max <= 90", z[0],
-                                  z[1], z[2], z[3]));
+    throw ConfigError(
+        fmt::format("output.png_zoom = [{}, {}, {}, {}]: need -90 <= lat_min < lat_max <= 90", z[0], z[1], z[2], z[3]));
   }
 }
 
-WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
-                             const std::filesystem::path& path, const PreviewOptions& options) {
+WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const std::filesystem::path& path,
+                             const PreviewOptions& options) {
   check_preview_options(options);
   const double lon0 = mesh.lattice.lon0_deg;
   const View v = make_view(lon0, lon0 + 360.0, -90.0, 90.0, options.width_px);

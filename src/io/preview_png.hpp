@@ -34,9 +34,9 @@
 namespace aq::io {
 
 struct PreviewOptions {
-  int width_px = 2400;           ///< picture width, 200..20000
+  int width_px = 2400;  ///< picture width, 200..20000
   ElementKinds elements = ElementKinds::kTriangles;
-  std::vector<double> zoom;      ///< empty, or [lon_min, lon_max, lat_min, lat_max] in map degrees
+  std::vector<double> zoom;  ///< empty, or [lon_min, lon_max, lat_min, lat_max] in map degrees
   std::string title = "aquatoria mesh";
 };
 
@@ -47,8 +47,8 @@ void check_preview_options(const PreviewOptions& options);
 
 /// Draws the whole map (with the zoom box outlined) to `path`. Throws OutputError naming the
 /// path on any Cairo or write failure. WriteStats::elements counts the elements drawn.
-WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
-                             const std::filesystem::path& path, const PreviewOptions& options);
+WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const std::filesystem::path& path,
+                             const PreviewOptions& options);
 
 /// Draws the zoom box (options.zoom must be set) to `path`.
 WriteStats write_preview_zoom_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,

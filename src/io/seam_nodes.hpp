@@ -25,7 +25,7 @@
 namespace aq::io {
 
 class SeamNodes {
-public:
+ public:
   /// Finds the nodes to duplicate for the elements `kinds` and the boundary edges.
   SeamNodes(const mesh::Mesh& mesh, ElementKinds kinds);
 
@@ -52,7 +52,7 @@ public:
   /// Whether boundary edge a -> b is drawn with duplicates.
   static std::array<bool, 2> edge_unwrapped(const mesh::Mesh& mesh, const std::array<NodeId, 2>& e);
 
-private:
+ private:
   std::vector<NodeId> originals_;
   NodeId node_count_ = 0;
 };

@@ -28,7 +28,7 @@ constexpr char kWgs84Wkt[] =
 // A netCDF file being created; every call is checked and a failure throws OutputError naming the
 // file. The destructor aborts (and so deletes) a file that was not closed.
 class NcFile {
-public:
+ public:
   NcFile(std::filesystem::path path, bool netcdf4) : path_(std::move(path)) {
     const int mode = NC_CLOBBER | (netcdf4 ? NC_NETCDF4 : NC_64BIT_OFFSET);
     check(nc_create(path_.c_str(), mode, &id_), "cannot create");
@@ -105,14 +105,14 @@ public:
     check(nc_close(id), "close");
   }
 
-private:
+ private:
   std::filesystem::path path_;
   int id_ = -1;
 };
 
 // The faces of one topology: triangles, or square polygons with their hanging nodes.
 class FaceSet {
-public:
+ public:
   FaceSet(const mesh::Mesh& mesh, bool squares) : m_(mesh), squares_(squares) {
     max_nodes_ = 3;
     if (squares_) {
@@ -135,7 +135,7 @@ public:
     return squares_ ? m_.square_level[static_cast<std::size_t>(f)] : m_.triangle_level[static_cast<std::size_t>(f)];
   }
 
-private:
+ private:
   const mesh::Mesh& m_;
   bool squares_;
   int max_nodes_ = 3;
@@ -167,9 +167,9 @@ std::vector<std::array<NodeId, 2>> unique_edges(const mesh::Mesh& mesh, const Fa
   const auto e = static_cast<std::int64_t>(edges.size());
   const auto b = static_cast<std::int64_t>(mesh.boundary_edges.size());
   if (2 * e - b != half_edges) {
-    throw InternalError(fmt::format(
-        "UGRID writer: the mesh's {} boundary edges do not match its faces ({} half-edges, {} edges)", b,
-        half_edges, e));
+    throw InternalError(
+        fmt::format("UGRID writer: the mesh's {} boundary edges do not match its faces ({} half-edges, {} edges)", b,
+                    half_edges, e));
   }
   return edges;
 }
@@ -196,8 +196,8 @@ struct TopologyVars {
 };
 
 // Defines one topology's variables (the nodes and boundary are shared, defined by the caller).
-TopologyVars define_topology(NcFile& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count,
-                             int two, nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
+TopologyVars define_topology(NcFile& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count, int two,
+                             nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
   TopologyVars v;
   const int face_dim = nc.dim(n.face_dim, faces.count());
   const int edge_dim = nc.dim(n.edge_dim, edge_count);
@@ -205,8 +205,9 @@ TopologyVars define_topology(NcFile& nc, const TopologyNames& n, const FaceSet& 
 
   const int topo = nc.var(n.mesh, NC_INT, {});
   nc.text(topo, "cf_role", "mesh_topology");
-  nc.text(topo, "long_name", n.mesh == "mesh" ? "Topology of the ocean mesh"
-                                              : "Topology of the quadtree squares (polygons with hanging nodes)");
+  nc.text(topo, "long_name",
+          n.mesh == "mesh" ? "Topology of the ocean mesh"
+                           : "Topology of the quadtree squares (polygons with hanging nodes)");
   nc.integer(topo, "topology_dimension", 2);
   nc.text(topo, "node_coordinates", node_coordinates);
   nc.text(topo, "face_node_connectivity", n.faces);
@@ -258,9 +259,8 @@ void write_topology(NcFile& nc, const mesh::Mesh& mesh, const FaceSet& faces, co
                     const std::vector<std::array<NodeId, 2>>& edges) {
   const int w = faces.max_nodes();
   const std::int64_t nx = mesh.lattice.nx;
-  const PoleRotation rotation = mesh.rotation.enabled
-                                    ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg)
-                                    : PoleRotation();
+  const PoleRotation rotation =
+      mesh.rotation.enabled ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation();
   std::vector<long long> idx;
   std::vector<double> cx, cy, bx, by;
   std::vector<short> lev;
@@ -328,7 +328,8 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   if (tri) sets.emplace_back(mesh, false);
   if (sq) sets.emplace_back(mesh, true);
   for (const auto& s : sets) {
-    if (n == 0 || s.count() == 0) throw InternalError(fmt::format("UGRID writer: the mesh is empty ({})", path.string()));
+    if (n == 0 || s.count() == 0)
+      throw InternalError(fmt::format("UGRID writer: the mesh is empty ({})", path.string()));
   }
   std::vector<std::vector<std::array<NodeId, 2>>> edges;
   std::int64_t largest = n;

@@ -50,7 +50,7 @@ struct UgridOptions {
   ElementKinds elements = ElementKinds::kTriangles;
   std::string title = "aquatoria global ocean mesh";
   std::string history = "written by aquatoria";  ///< no timestamp: outputs are reproducible
-  std::string source = "aquatoria";               ///< e.g. program version and input raster
+  std::string source = "aquatoria";              ///< e.g. program version and input raster
 };
 
 /// Writes `mesh` to `path` (a temporary path of an OutputSet). Throws OutputError naming the path

@@ -1,8 +1,8 @@
 // VTK XML UnstructuredGrid writer (see vtu_writer.hpp).
 #include "io/vtu_writer.hpp"
 
-#include <GeographicLib/Geocentric.hpp>
 #include <fmt/format.h>
+#include <GeographicLib/Geocentric.hpp>
 
 #include <array>
 #include <cmath>
@@ -22,9 +22,8 @@ constexpr std::uint8_t kVtkTriangle = 5, kVtkPolygon = 7, kVtkQuad = 9;
 
 // The cells after pole merging, visited in a fixed order (triangles, then squares).
 class Cells {
-public:
-  Cells(const mesh::Mesh& mesh, const PoleMerge& merge, ElementKinds kinds)
-      : m_(mesh), merge_(merge), kinds_(kinds) {
+ public:
+  Cells(const mesh::Mesh& mesh, const PoleMerge& merge, ElementKinds kinds) : m_(mesh), merge_(merge), kinds_(kinds) {
     visit([&](const NodeId*, int k, int, int) {
       ++count_;
       connectivity_ += k;
@@ -55,7 +54,7 @@ public:
     }
   }
 
-private:
+ private:
   const mesh::Mesh& m_;
   const PoleMerge& merge_;
   ElementKinds kinds_;

@@ -134,7 +134,9 @@ TEST(VtkClient, XmlReaderReadsPointsCellsAndArrays) {
   write_vtu(testing::tiny_mesh(), file, o);
   const std::string script =
       "import vtk\n"
-      "r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName('" + file + "'); r.Update()\n"
+      "r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName('" +
+      file +
+      "'); r.Update()\n"
       "g = r.GetOutput(); pd = g.GetPointData(); cd = g.GetCellData()\n"
       "print('error', r.GetErrorCode())\n"
       "print('points', g.GetNumberOfPoints(), 'cells', g.GetNumberOfCells())\n"

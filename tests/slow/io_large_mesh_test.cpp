@@ -70,8 +70,8 @@ TEST(LargeMeshWriters, TenMillionTriangles) {
     report("text", s, t);
   }
   {
-    const auto bathy = raster::Bathymetry::from_grid(std::vector<float>(360 * 181, -3000.0f), 360, 181, -180.0,
-                                                     -90.0, 1.0, 1.0);
+    const auto bathy =
+        raster::Bathymetry::from_grid(std::vector<float>(360 * 181, -3000.0f), 360, 181, -180.0, -90.0, 1.0, 1.0);
     Timer t;
     PreviewOptions o;
     const WriteStats s = write_preview_png(m, bathy, dir / "m.png", o);

@@ -11,7 +11,7 @@
 namespace aq::testing {
 
 class FileSizeLimit {
-public:
+ public:
   explicit FileSizeLimit(rlim_t bytes) {
     if (getrlimit(RLIMIT_FSIZE, &old_) != 0) throw std::runtime_error("getrlimit failed");
     old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
@@ -26,7 +26,7 @@ public:
   FileSizeLimit(const FileSizeLimit&) = delete;
   FileSizeLimit& operator=(const FileSizeLimit&) = delete;
 
-private:
+ private:
   rlimit old_{};
   void (*old_handler_)(int) = nullptr;
 };

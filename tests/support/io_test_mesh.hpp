@@ -44,8 +44,8 @@ inline double test_elevation_m(std::int64_t i, std::int64_t j) {
   return -(100.0 + 10.0 * static_cast<double>(i) + static_cast<double>(j));
 }
 
-inline mesh::Mesh make_leaf_mesh(const Lattice& lattice, const std::vector<LeafSpec>& leaves, bool with_triangles = true,
-                                 const mesh::RotationInfo& rotation = {}) {
+inline mesh::Mesh make_leaf_mesh(const Lattice& lattice, const std::vector<LeafSpec>& leaves,
+                                 bool with_triangles = true, const mesh::RotationInfo& rotation = {}) {
   using Vertex = std::pair<std::int64_t, std::int64_t>;  // (J, I): sorts like the node numbering
   auto wrap = [&](std::int64_t i) { return ((i % lattice.nx) + lattice.nx) % lattice.nx; };
   auto vtx = [&](std::int64_t i, std::int64_t j) { return Vertex{j, wrap(i)}; };
@@ -53,7 +53,8 @@ inline mesh::Mesh make_leaf_mesh(const Lattice& lattice, const std::vector<LeafS
   std::set<Vertex> corners;
   for (const auto& l : leaves) {
     const std::int64_t s = lattice.pixels_per_square(l.level);
-    for (const auto& v : {vtx(l.i, l.j), vtx(l.i + s, l.j), vtx(l.i + s, l.j + s), vtx(l.i, l.j + s)}) corners.insert(v);
+    for (const auto& v : {vtx(l.i, l.j), vtx(l.i + s, l.j), vtx(l.i + s, l.j + s), vtx(l.i, l.j + s)})
+      corners.insert(v);
   }
   struct Leaf {
     std::array<Vertex, 4> c;
@@ -97,7 +98,8 @@ inline mesh::Mesh make_leaf_mesh(const Lattice& lattice, const std::vector<LeafS
     m.rlon_deg.push_back(rlon);
     m.rlat_deg.push_back(rlat);
     double lon = rlon, lat = rlat;
-    if (rotation.enabled) PoleRotation(rotation.pole_lon_deg, rotation.pole_lat_deg).to_geographic(rlon, rlat, lon, lat);
+    if (rotation.enabled)
+      PoleRotation(rotation.pole_lon_deg, rotation.pole_lat_deg).to_geographic(rlon, rlat, lon, lat);
     m.lon_deg.push_back(lon);
     m.lat_deg.push_back(lat);
     m.depth_m.push_back(test_elevation_m(v.second, v.first));
@@ -198,8 +200,7 @@ inline Lattice tiny_lattice() { return Lattice::make(45.0, 1, -180.0); }
 
 /// The hand-made mesh drawn at the top of this file.
 inline mesh::Mesh tiny_mesh(bool with_triangles = true, const mesh::RotationInfo& rotation = {}) {
-  return make_leaf_mesh(tiny_lattice(),
-                        {{0, 2, 2}, {1, 4, 2}, {1, 4, 3}, {1, 15, 2}, {1, 0, 2}, {1, 7, 7}, {1, 8, 7}},
+  return make_leaf_mesh(tiny_lattice(), {{0, 2, 2}, {1, 4, 2}, {1, 4, 3}, {1, 15, 2}, {1, 0, 2}, {1, 7, 7}, {1, 8, 7}},
                         with_triangles, rotation);
 }
 
@@ -235,9 +236,9 @@ inline mesh::Mesh regular_band_mesh(const Lattice& lattice, std::int64_t j0, std
       m.lon_deg[k] = lattice.lon_of(i);
       m.lat_deg[k] = lattice.lat_of(j);
       m.depth_m[k] = test_elevation_m(i, j);
-      m.node_flags[k] = static_cast<std::uint8_t>((j == j0 || j == j1 ? mesh::kNodeBoundary : 0) |
-                                                  (j == 0 || j == lattice.ny ? mesh::kNodePole : 0) |
-                                                  (i == 0 ? mesh::kNodeSeam : 0));
+      m.node_flags[k] =
+          static_cast<std::uint8_t>((j == j0 || j == j1 ? mesh::kNodeBoundary : 0) |
+                                    (j == 0 || j == lattice.ny ? mesh::kNodePole : 0) | (i == 0 ? mesh::kNodeSeam : 0));
     }
   m.rlon_deg = m.lon_deg;
   m.rlat_deg = m.lat_deg;

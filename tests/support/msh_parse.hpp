@@ -22,10 +22,10 @@ struct MshFile {
   std::string version;
   std::vector<std::pair<std::pair<int, int>, std::string>> physical_names;  // ((dim, tag), name)
   std::array<std::size_t, 4> entity_counts{};
-  std::map<std::pair<int, int>, std::vector<int>> entity_physicals;          // (dim, tag) -> physicals
+  std::map<std::pair<int, int>, std::vector<int>> entity_physicals;  // (dim, tag) -> physicals
   std::map<std::pair<int, int>, std::array<double, 6>> entity_boxes;
-  std::map<std::size_t, std::array<double, 3>> nodes;                        // tag -> x, y, z
-  std::map<std::size_t, std::pair<int, int>> node_entity;                    // tag -> (dim, tag)
+  std::map<std::size_t, std::array<double, 3>> nodes;      // tag -> x, y, z
+  std::map<std::size_t, std::pair<int, int>> node_entity;  // tag -> (dim, tag)
   std::size_t nodes_declared = 0, min_node = 0, max_node = 0;
   struct Element {
     std::size_t tag;
@@ -53,7 +53,7 @@ struct MshFile {
 namespace detail {
 
 class MshCursor {
-public:
+ public:
   explicit MshCursor(std::string bytes) : s_(std::move(bytes)) {}
   bool binary = false;
   [[nodiscard]] bool eof() const { return p_ >= s_.size(); }
@@ -96,7 +96,7 @@ public:
     line();
   }
 
-private:
+ private:
   std::string s_;
   std::size_t p_ = 0;
 };

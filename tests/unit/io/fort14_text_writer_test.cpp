@@ -53,9 +53,9 @@ TEST(Fort14Writer, HeaderNodesElementsAndLandBoundaries) {
   const auto& t = m.triangles[9];
   EXPECT_EQ(l[2 + 21 + 9], fmt::format("10 3 {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1));
   std::size_t k = 2 + 21 + 17;
-  EXPECT_EQ(l[k++].substr(0, 2), "0 ");  // NOPE
-  EXPECT_EQ(l[k++].substr(0, 2), "0 ");  // NETA
-  EXPECT_EQ(l[k++].substr(0, 2), "3 ");  // NBOU: one per loop
+  EXPECT_EQ(l[k++].substr(0, 2), "0 ");   // NOPE
+  EXPECT_EQ(l[k++].substr(0, 2), "0 ");   // NETA
+  EXPECT_EQ(l[k++].substr(0, 2), "3 ");   // NBOU: one per loop
   EXPECT_EQ(l[k++].substr(0, 3), "22 ");  // NVEL = 19 edges + 3 closing nodes
   int mainland = 0, island = 0;
   for (std::size_t b = 0; b < m.loops.size(); ++b) {
@@ -119,8 +119,8 @@ TEST(TextWriter, SectionsAndRecords) {
   const std::size_t loops = find("loops 3");
   EXPECT_EQ(l[loops + 2 + 1], "1 1 0 7");  // loop 1 (A+B) is the outer one, 7 edges
   const std::size_t bnd = find("boundary_edges 19");
-  EXPECT_EQ(l[bnd + 2], fmt::format("{} {} {}", m.boundary_edge_loop[0], m.boundary_edges[0][0],
-                                    m.boundary_edges[0][1]));
+  EXPECT_EQ(l[bnd + 2],
+            fmt::format("{} {} {}", m.boundary_edge_loop[0], m.boundary_edges[0][0], m.boundary_edges[0][1]));
   EXPECT_EQ(bnd + 2 + 19, l.size());
 }
 

@@ -9,8 +9,8 @@
 #include <set>
 
 #include "core/error.hpp"
-#include "support/io_test_mesh.hpp"
 #include "support/file_size_limit.hpp"
+#include "support/io_test_mesh.hpp"
 #include "support/msh_parse.hpp"
 #include "support/temp_dir.hpp"
 
@@ -210,8 +210,8 @@ TEST(MshWriter, SphereMergesPoleNodesAndDropsDegenerateTriangles) {
     const auto& b = f.nodes.at(e.nodes[1]);
     const auto& c = f.nodes.at(e.nodes[2]);
     const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double outward = (u[1] * v[2] - u[2] * v[1]) * a[0] + (u[2] * v[0] - u[0] * v[2]) * a[1] +
-                           (u[0] * v[1] - u[1] * v[0]) * a[2];
+    const double outward =
+        (u[1] * v[2] - u[2] * v[1]) * a[0] + (u[2] * v[0] - u[0] * v[2]) * a[1] + (u[0] * v[1] - u[1] * v[0]) * a[2];
     EXPECT_GT(outward, 0.0) << "triangle " << e.tag << " is not anticlockwise seen from outside";
   }
   EXPECT_EQ(f.node_data.at("depth_m").size(), 19u);

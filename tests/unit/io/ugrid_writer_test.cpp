@@ -22,7 +22,7 @@ namespace {
 
 // Minimal checked reader.
 class Nc {
-public:
+ public:
   explicit Nc(const std::filesystem::path& p) { ok(nc_open(p.c_str(), NC_NOWRITE, &id_)); }
   ~Nc() { nc_close(id_); }
   static void ok(int s) {
@@ -80,7 +80,7 @@ public:
     return n;
   }
 
-private:
+ private:
   int id_ = -1;
 };
 
