@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/types.hpp"
+#include "io/depth.hpp"
 #include "io/element_kinds.hpp"
 #include "io/file_writer.hpp"
 
@@ -27,7 +28,7 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
   f.print("{}\n{} {}\n", title, ne, np);
   for (NodeId n = 0; n < np; ++n) {
     fmt::format_to(std::back_inserter(buf), "{} {} {} {}\n", n + 1, wrap_lon_deg(mesh.lon_deg[n], -180.0),
-                   mesh.lat_deg[n], -mesh.depth_m[n]);
+                   mesh.lat_deg[n], depth_below_datum_m(mesh.depth_m[n]));
     f.maybe_flush();
   }
   for (std::int64_t e = 0; e < ne; ++e) {

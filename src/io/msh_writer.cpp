@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/depth.hpp"
 #include "io/file_writer.hpp"
 #include "io/pole_merge.hpp"
 #include "io/seam_nodes.hpp"
@@ -494,7 +495,7 @@ WriteStats write_msh(const mesh::Mesh& mesh, const std::filesystem::path& path, 
       for (NodeId o = 0; o < nodes.count(); ++o) fn(o + 1, value(nodes.source(o)));
     });
   };
-  node_view("depth_m", [&](NodeId n) { return -mesh.depth_m[n]; });
+  node_view("depth_m", [&](NodeId n) { return depth_below_datum_m(mesh.depth_m[n]); });
   if (nodes.plane() && mesh.rotation.enabled) {
     node_view("lon_deg", [&](NodeId n) { return mesh.lon_deg[n]; });
     node_view("lat_deg", [&](NodeId n) { return mesh.lat_deg[n]; });

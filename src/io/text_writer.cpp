@@ -6,6 +6,7 @@
 #include <iterator>
 #include <vector>
 
+#include "io/depth.hpp"
 #include "io/file_writer.hpp"
 
 namespace aq::io {
@@ -31,7 +32,7 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   f.print("nodes {}\n# id lon_deg lat_deg depth_m flags i j\n", np);
   for (NodeId n = 0; n < np; ++n) {
     fmt::format_to(std::back_inserter(buf), "{} {} {} {} {} {} {}\n", n, mesh.lon_deg[n], mesh.lat_deg[n],
-                   -mesh.depth_m[n], mesh.node_flags[n], mesh.node_i[n], mesh.node_j[n]);
+                   depth_below_datum_m(mesh.depth_m[n]), mesh.node_flags[n], mesh.node_i[n], mesh.node_j[n]);
     f.maybe_flush();
   }
   std::int64_t elements = 0;

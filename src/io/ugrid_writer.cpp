@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "core/rotation.hpp"
+#include "io/depth.hpp"
 
 namespace aq::io {
 
@@ -446,7 +447,7 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   }
   {
     std::vector<double> d(static_cast<std::size_t>(n));
-    for (std::size_t a = 0; a < d.size(); ++a) d[a] = -mesh.depth_m[a];
+    for (std::size_t a = 0; a < d.size(); ++a) d[a] = depth_below_datum_m(mesh.depth_m[a]);
     nc.check(nc_put_var_double(nc.id(), depth, d.data()), "write depth");
     std::vector<signed char> fl(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < fl.size(); ++a) fl[a] = static_cast<signed char>(mesh.node_flags[a]);

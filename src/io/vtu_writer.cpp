@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/depth.hpp"
 #include "io/file_writer.hpp"
 #include "io/pole_merge.hpp"
 
@@ -137,7 +138,7 @@ WriteStats write_vtu(const mesh::Mesh& mesh, const std::filesystem::path& path, 
       f.maybe_flush();
     }
   };
-  per_point(depth, [&](NodeId n) { return -mesh.depth_m[n]; });
+  per_point(depth, [&](NodeId n) { return depth_below_datum_m(mesh.depth_m[n]); });
   per_point(flags, [&](NodeId n) { return mesh.node_flags[n]; });
   per_point(lon, [&](NodeId n) { return mesh.lon_deg[n]; });
   per_point(lat, [&](NodeId n) { return mesh.lat_deg[n]; });

@@ -75,6 +75,16 @@ TEST(Fort14Writer, HeaderNodesElementsAndLandBoundaries) {
   EXPECT_EQ(k, l.size());
 }
 
+TEST(Fort14Writer, ZeroElevationIsWrittenAsZeroDepthNotMinusZero) {
+  testing::TempDir dir;
+  auto m = testing::tiny_mesh();
+  m.depth_m[0] = 0.0;
+  write_fort14(m, dir / "m.14");
+  write_text(m, dir / "m.txt");
+  EXPECT_EQ(lines_of(dir / "m.14")[2], "1 -180 -45 0");
+  EXPECT_NE(testing::read_file_bytes((dir / "m.txt").string()).find("\n0 -180 -45 0 17 0 2\n"), std::string::npos);
+}
+
 TEST(Fort14Writer, NeedsTrianglesAndReportsWriteErrors) {
   testing::TempDir dir;
   EXPECT_THROW(write_fort14(testing::tiny_mesh(false), dir / "q.14"), InternalError);
