@@ -246,6 +246,12 @@ double SplineContour::side_end(Side side) const {
   return knots_[static_cast<std::size_t>(corners_[static_cast<std::size_t>(side) + 1])];
 }
 
+double SplineContour::side_parameter(Side side, double t) const {
+  const double a = side_begin(side), b = side_end(side);
+  if (side == Side::kSouth || side == Side::kEast) return a + t * (b - a);
+  return b - t * (b - a);  // the contour runs north and west backwards
+}
+
 Side SplineContour::side_of_segment(int segment) const {
   return static_cast<Side>(side_[static_cast<std::size_t>(segment)]);
 }

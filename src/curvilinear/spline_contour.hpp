@@ -88,6 +88,10 @@ public:
   [[nodiscard]] double side_begin(Side side) const;
   /// Parameter of the side's last corner in contour order (W ends at period()).
   [[nodiscard]] double side_end(Side side) const;
+  /// Global parameter of the point at fraction t ∈ [0, 1] of a side's parameter range, counted in
+  /// the grid's positive direction (south, north: west to east; east, west: south to north), so
+  /// t = 0 is the SW, SE, NW, SW corner of the south, east, north, west side respectively.
+  [[nodiscard]] double side_parameter(Side side, double t) const;
   /// The side a segment (0..N−1) belongs to.
   [[nodiscard]] Side side_of_segment(int segment) const;
 

@@ -120,6 +120,18 @@ TEST(ContourTest, FourCornersGiveTheRectangleWithStraightSides) {
       }
     EXPECT_NEAR(c.side_length(Side::kSouth), 80.0, 1e-11);
     EXPECT_NEAR(c.side_length(Side::kEast), 35.0, 1e-11);
+    // Side fractions in the grid's positive directions: t = 0 at the west/south end.
+    const PlanePoint n0 = c.point(c.side_parameter(Side::kNorth, 0.0));
+    const PlanePoint w1 = c.point(c.side_parameter(Side::kWest, 1.0));
+    const PlanePoint e0 = c.point(c.side_parameter(Side::kEast, 0.0));
+    EXPECT_NEAR(n0.x, -30.0, 1e-13);
+    EXPECT_NEAR(n0.y, 25.0, 1e-13);
+    EXPECT_NEAR(w1.x, -30.0, 1e-13);
+    EXPECT_NEAR(w1.y, 25.0, 1e-13);
+    EXPECT_NEAR(e0.x, 50.0, 1e-13);
+    EXPECT_NEAR(e0.y, -10.0, 1e-13);
+    // Arc length across a corner adds the two pieces.
+    EXPECT_NEAR(c.arc_length(c.side_begin(Side::kSouth), c.side_end(Side::kEast)), 115.0, 1e-11);
   }
 }
 
