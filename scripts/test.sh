@@ -19,6 +19,7 @@ echo "test.sh: release suite done in $(( $(date +%s) - t0 )) s" >&2
 t1=$(date +%s)
 bash scripts/build.sh asan
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
+export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd build-asan && ctest --output-on-failure -j 2 -LE "slow|clients" --timeout 1800)
 echo "test.sh: sanitizer suite done in $(( $(date +%s) - t1 )) s" >&2

@@ -232,6 +232,18 @@ int corner_label(std::string_view label) {
 
 }  // namespace
 
+std::string set_izogrid_key(RegionalParams& params, const std::string& key, std::string_view value) {
+  const auto it = setters().find(key);
+  if (it == setters().end()) return "unknown key";
+  return it->second(params, value);
+}
+
+std::vector<std::string> izogrid_keys() {
+  std::vector<std::string> keys;
+  for (const auto& [k, s] : setters()) keys.push_back(k);
+  return keys;
+}
+
 RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
   RegionalParams p;
   p.source = source;

@@ -21,6 +21,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 #include <string_view>
 
 #include "curvilinear/regional_params.hpp"
@@ -35,6 +36,13 @@ namespace aq::curvilinear {
 /// order, and a number of corners other than 4 (giving how many and on which lines).
 /// The result has source = `source` and input_text = `text`.
 RegionalParams parse_izogrid(std::string_view text, const std::string& source);
+
+/// Sets one parameter by its izogrid key from its text value (the same rules as the file's
+/// preamble; the TOML config uses this too, so both formats share keys and checks). Returns an
+/// empty string on success, otherwise why the value is bad; "unknown key" for a key it doesn't know.
+std::string set_izogrid_key(RegionalParams& params, const std::string& key, std::string_view value);
+/// Every key set_izogrid_key() knows, sorted.
+std::vector<std::string> izogrid_keys();
 
 /// Reads and parses an izogrid file. InputError if it cannot be read; otherwise as parse_izogrid.
 RegionalParams read_izogrid_file(const std::filesystem::path& path);

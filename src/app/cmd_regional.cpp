@@ -1,0 +1,186 @@
+// `aquatoria regional`: a regional orthogonal curvilinear grid by the izogrid method (seed 000,
+// ARCHITECTURE §5): map -> contour -> uniform boundary nodes -> inverse conformal problem ->
+// Laplace fill, stopping after any stage with a picture of what was built. The full run writes
+// the planar grid netCDF (<name>_xygrid.nc) with the quality fields, and the run report.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+
+#include "app/commands.hpp"
+#include "config/regional.hpp"
+#include "core/error.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/regional.hpp"
+#include "io/regional_pictures.hpp"
+#include "io/xygrid_netcdf.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::app {
+
+namespace {
+
+struct RegionalArgs {
+  std::string file;           // positional: .toml or .izogrid
+  std::string config;         // -c
+  std::string stop_after;
+  std::vector<std::string> sets;
+  std::string out_dir;
+  bool no_coastline = false;
+};
+
+// Longitude/latitude box of the picture: the edges given, else the contour's extent padded.
+std::array<double, 4> picture_box(const curvilinear::RegionalResult& r) {
+  const auto& p = r.params;
+  if (std::isfinite(p.west_edge) && std::isfinite(p.east_edge) && std::isfinite(p.south_edge) &&
+      std::isfinite(p.north_edge))
+    return {p.west_edge, p.east_edge, p.south_edge, p.north_edge};
+  double w = 1e9, e = -1e9, s = 1e9, n = -1e9;
+  const auto add = [&](double x, double y) {
+    const auto g = r.projection->inverse(x, y);
+    if (!std::isfinite(g.lon_deg) || !std::isfinite(g.lat_deg)) return;
+    double lon = g.lon_deg;
+    if (lon < p.rlon - 180.0) lon += 360.0;
+    w = std::min(w, lon);
+    e = std::max(e, lon);
+    s = std::min(s, g.lat_deg);
+    n = std::max(n, g.lat_deg);
+  };
+  for (const auto& q : r.contour_samples) add(q.x, q.y);
+  for (std::size_t k = 0; k < r.control_x.size(); ++k) add(r.control_x[k], r.control_y[k]);
+  const double pad_lon = 0.15 * (e - w) + 0.5, pad_lat = 0.15 * (n - s) + 0.5;
+  return {w - pad_lon, e + pad_lon, std::max(-89.0, s - pad_lat), std::min(89.0, n + pad_lat)};
+}
+
+int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
+  Timer total;
+  const std::string path = !a.config.empty() ? a.config : a.file;
+  if (path.empty()) throw ConfigError("regional: give a configuration (-c FILE.toml) or a seed-format FILE.izogrid");
+  if (!a.config.empty() && !a.file.empty())
+    throw ConfigError(fmt::format("regional: give either -c {} or {}, not both", a.config, a.file));
+  auto loaded = config::load_regional(path, a.sets);
+  auto& c = loaded.options;
+  if (!a.out_dir.empty()) c.output_dir = a.out_dir;
+
+  std::string stop = !a.stop_after.empty() ? a.stop_after : c.stop_after;
+  const curvilinear::Stage stage =
+      stop.empty() ? curvilinear::stage_from_mode(c.params.mode) : curvilinear::parse_stage(stop);
+  if (stop.empty() && stage != curvilinear::Stage::kGrid) {
+    log.info("{}: mode={} stops after the {} stage (the seed's modes); --stop-after grid builds the grid", path,
+             c.params.mode, curvilinear::stage_name(stage));
+  }
+
+  Report report;
+  report["command"] = "regional";
+  report["config_source"] = loaded.source;
+  report["config"] = loaded.echo;
+  OutputSet out(c.output_dir);
+
+  const auto result = curvilinear::run_regional(c.params, stage, log, &report);
+
+  // Coastline from the bathymetry's contour at coast_level_m.
+  io::RegionalPictureOptions po;
+  po.line_width = c.params.lwidth;
+  po.title = fmt::format("{}: {}", c.name, curvilinear::stage_name(result.completed));
+  if (!a.no_coastline && !c.input.path.empty() && result.projection) {
+    StageScope cs("coastline", &report, log);
+    raster::OpenOptions ro;
+    ro.path = c.input.path;
+    ro.variable = c.input.variable;
+    ro.positive_down = c.input.positive_down;
+    const auto bathy = raster::Bathymetry::open(ro, log);
+    const auto box = picture_box(result);
+    const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
+    std::size_t points = 0;
+    for (const auto& l : lines) {
+      std::vector<curvilinear::GeoPoint> g(l.lon_deg.size());
+      for (std::size_t k = 0; k < g.size(); ++k) g[k] = {l.lon_deg[k], l.lat_deg[k]};
+      points += g.size();
+      po.coastlines.push_back(std::move(g));
+    }
+    cs.done(fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m,
+                        c.input.path));
+  }
+
+  Json outputs = Json::array();
+  const std::string png = fmt::format("{}_{}.png", c.name, curvilinear::stage_name(result.completed));
+  if (c.params.mode != 5 || stage != curvilinear::Stage::kGrid) {
+    StageScope ps("picture", &report, log);
+    io::write_regional_png(out.temp_path(png), result, result.completed, po);
+    outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
+    ps.done(png);
+  }
+
+  if (result.completed == curvilinear::Stage::kGrid) {
+    StageScope ws("xygrid", &report, log);
+    curvilinear::CheckOptions co;
+    co.dxi_over_deta = result.dxi_over_deta;
+    const curvilinear::GridQuality q = curvilinear::check_grid(result.grid, co);
+    io::XyGrid xy;
+    xy.grid = result.grid;
+    xy.units = "1";  // plane units: unit-sphere radians divided by uscale
+    xy.dxi = result.aspect_ratio / static_cast<double>(result.grid.nx_pts - 1);
+    xy.deta = 1.0 / static_cast<double>(result.grid.ny_pts - 1);
+    xy.title = fmt::format("aquatoria regional grid {}", c.name);
+    xy.history = fmt::format("aquatoria regional {}", loaded.source);
+    xy.residual_history = result.inverse.residual_history;
+    const auto& p = result.params;
+    xy.attributes = {{"proj", std::string(p.proj == curvilinear::ProjectionKind::kMercator       ? "ME"
+                                          : p.proj == curvilinear::ProjectionKind::kLambertConic ? "LC"
+                                                                                                   : "ST")},
+                     {"rlat", p.rlat},
+                     {"rlon", p.rlon},
+                     {"rota", p.rota},
+                     {"uscale", p.uscale},
+                     {"radius", p.radius},
+                     {"spline_type", static_cast<std::int64_t>(p.spline_type)},
+                     {"nx", static_cast<std::int64_t>(result.nx)},
+                     {"ny", static_cast<std::int64_t>(result.ny)},
+                     {"aspect_ratio", result.aspect_ratio},
+                     {"source", loaded.source}};
+    const std::string nc = c.name + "_xygrid.nc";
+    io::write_xygrid(out.temp_path(nc), xy, &q);
+    outputs.push_back(Json{{"file", nc}, {"checksum_fnv1a64", file_checksum(out.pending_path(nc))}});
+    Json qj = Json::object();
+    for (const auto* f : q.fields())
+      qj[f->name] = Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms},
+                         {"worst_cell", {f->worst_i, f->worst_j}}};
+    report["quality"] = qj;
+    ws.done(fmt::format("{} ({} x {} supergrid, nx = {}, ny = {}); orthogonality (50) worst {:.3g}, rms {:.3g}", nc,
+                        result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst,
+                        q.ortho_50.rms));
+  }
+  report["outputs"] = outputs;
+  report.finish();
+  report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
+  const std::string report_name = c.name + "_report.json";
+  {
+    std::ofstream rf(out.temp_path(report_name));
+    rf << report.dump() << '\n';
+    if (!rf) throw OutputError(fmt::format("{}: cannot write the report", out.final_path(report_name).string()));
+  }
+  out.commit();
+  log.info("regional {}: stopped after {}; {} files + {} in {}/ ({:.2f} s)", c.name,
+           curvilinear::stage_name(result.completed), outputs.size(), report_name, c.output_dir, total.wall_s());
+  return 0;
+}
+
+}  // namespace
+
+void add_regional_command(CLI::App& app, Context& ctx) {
+  auto args = std::make_shared<RegionalArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "regional", "Build a regional orthogonal curvilinear grid (izogrid method) from a TOML config or a .izogrid file");
+  cmd->add_option("file", args->file, "A seed-format .izogrid file (or a .toml config)");
+  cmd->add_option("-c,--config", args->config, "Configuration file (TOML); see configs/example_regional.toml");
+  cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or 0..4)");
+  cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
+  cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
+  cmd->add_flag("--no-coastline", args->no_coastline, "Do not draw the bathymetry's coastline on the pictures");
+  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_regional_cmd(*args, ctx.log); }; });
+}
+
+}  // namespace aq::app

@@ -1,0 +1,222 @@
+// The key table of the regional run. [regional] reuses the izogrid keys through
+// curvilinear::set_izogrid_key; the rest are aquatoria's.
+#include "config/regional.hpp"
+
+#include <cmath>
+
+#include "config/schema.hpp"
+#include "curvilinear/izogrid_file.hpp"
+
+namespace aq::config {
+
+namespace {
+
+using detail::Origin;
+using detail::Problems;
+using S = detail::Schema<RegionalConfig>;
+
+// TOML scalar -> the izogrid preamble's text form.
+std::optional<std::string> scalar_text(const toml::value& v) {
+  if (v.is_string()) return v.as_string().str == "auto" ? std::string("nan") : v.as_string().str;
+  if (v.is_integer()) return std::to_string(v.as_integer());
+  if (v.is_floating()) return fmt::format("{}", v.as_floating());
+  if (v.is_boolean()) return v.as_boolean() ? "true" : "false";
+  return std::nullopt;
+}
+
+Json param_json(const curvilinear::RegionalParams& p, const std::string& key);
+
+const S& schema() {
+  static const S s = [] {
+    S t;
+    t.add<std::string>("regional", "name", [](RegionalConfig& c) -> std::string& { return c.name; },
+                       [](const std::string& v) {
+                         return (v.empty() || v.find('/') != std::string::npos) ? std::string("must be a plain name")
+                                                                                 : std::string();
+                       },
+                       "");
+    t.add_custom(
+        "regional", "contour_file",
+        [](RegionalConfig&, const toml::value& v, const Origin& o, Problems& p) {
+          if (!v.is_string()) p.add(o, "regional.contour_file", "expected a file name in quotes");
+          // Read before the other keys by load_regional().
+        },
+        [](const RegionalConfig& c) { return Json(c.contour_file); }, "");
+    t.add<std::string>("regional", "stop_after", [](RegionalConfig& c) -> std::string& { return c.stop_after; },
+                       [](const std::string& v) {
+                         for (const char* n : {"", "map", "contour", "uniform", "conformal", "grid"})
+                           if (v == n) return std::string();
+                         return fmt::format("\"{}\" is not one of map, contour, uniform, conformal, grid", v);
+                       },
+                       "");
+    for (const std::string& key : curvilinear::izogrid_keys()) {
+      t.add_custom(
+          "regional", key,
+          [key](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+            const auto text = scalar_text(v);
+            if (!text) return p.add(o, "regional." + key, "expected a number, string or boolean");
+            const std::string err = curvilinear::set_izogrid_key(c.params, key, *text);
+            if (!err.empty()) p.add(o, "regional." + key, fmt::format("'{}' {}", *text, err));
+          },
+          [key](const RegionalConfig& c) { return param_json(c.params, key); }, "");
+    }
+    t.add_custom(
+        "regional", "control_points",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::vector<std::array<double, 2>> pts;
+          if (auto err = detail::convert(v, pts)) return p.add(o, "regional.control_points", *err);
+          if (pts.empty()) return;  // keep the points of contour_file, if any
+          c.params.x.clear();
+          c.params.y.clear();
+          for (const auto& q : pts) {
+            c.params.x.push_back(q[0]);
+            c.params.y.push_back(q[1]);
+          }
+          c.params.corner.assign(pts.size(), false);
+          if (!pts.empty()) c.params.corner[0] = true;
+        },
+        [](const RegionalConfig& c) {
+          Json a = Json::array();
+          for (std::size_t k = 0; k < c.params.x.size(); ++k) a.push_back({c.params.x[k], c.params.y[k]});
+          return a;
+        },
+        "");
+    t.add_custom(
+        "regional", "corners",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::vector<int> idx;
+          if (auto err = detail::convert(v, idx)) return p.add(o, "regional.corners", *err);
+          if (idx.empty()) return;
+          if (idx.size() != 4 || idx[0] != 1)
+            return p.add(o, "regional.corners", "expected the 4 corner point numbers, SW first: [1, SE, NE, NW]");
+          c.corners = idx;  // applied to the points once all keys are read
+        },
+        [](const RegionalConfig& c) {
+          Json a = Json::array();
+          for (std::size_t k = 0; k < c.params.corner.size(); ++k)
+            if (c.params.corner[k]) a.push_back(k + 1);
+          return a;
+        },
+        "");
+    t.add_custom(
+        "input", "path",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::string x;
+          if (auto err = detail::convert(v, x)) return p.add(o, "input.path", *err);
+          std::filesystem::path path(x);
+          if (!x.empty() && path.is_relative()) path = o.base_dir / path;
+          c.input.path = x.empty() ? x : path.lexically_normal().string();
+        },
+        [](const RegionalConfig& c) { return Json(c.input.path); }, "");
+    t.add<std::string>("input", "variable", [](RegionalConfig& c) -> std::string& { return c.input.variable; }, {}, "");
+    t.add<bool>("input", "positive_down", [](RegionalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
+    t.add<double>("input", "coast_level_m", [](RegionalConfig& c) -> double& { return c.coast_level_m; },
+                  [](const double& v) { return std::isfinite(v) ? std::string() : std::string("must be finite"); }, "");
+    t.add<std::string>("output", "dir", [](RegionalConfig& c) -> std::string& { return c.output_dir; },
+                       [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); },
+                       "");
+    return t;
+  }();
+  return s;
+}
+
+Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
+  // Echo through the izogrid names; enums as their text.
+  if (key == "mode") return p.mode;
+  if (key == "npass") return p.npass;
+  if (key == "gshhs_data") return p.gshhs_data;
+  if (key == "rlat") return p.rlat;
+  if (key == "rlon") return p.rlon;
+  if (key == "rota") return p.rota;
+  if (key == "uscale") return p.uscale;
+  if (key == "radius") return p.radius;
+  if (key == "latlongrid") return p.latlongrid;
+  if (key == "spline_type") return p.spline_type;
+  if (key == "nx") return p.nx;
+  if (key == "ny") return p.ny;
+  if (key == "auto_nx") return p.auto_nx;
+  if (key == "tolerance") return p.tolerance;
+  if (key == "max_outer") return p.max_outer;
+  if (key == "max_inner") return p.max_inner;
+  if (key == "interp_points") return p.interp_points;
+  if (key == "inner_rtol") return p.inner_rtol;
+  if (key == "anderson") return p.anderson;
+  if (key == "xygrid") return p.xygrid;
+  if (key == "threads") return p.threads;
+  if (key == "lwidth") return p.lwidth;
+  if (key == "solver") return p.solver == curvilinear::LaplaceOptions::Solver::kDst ? "dst" : "sor";
+  if (key == "schedule") return curvilinear::inner_schedule_name(p.schedule);
+  if (key == "param") return p.param == curvilinear::Parametrisation::kIndex ? "index" : "arclength";
+  if (key == "points") return p.points_lonlat ? "lonlat" : "plane";
+  auto num = [](double v) { return std::isnan(v) ? Json("auto") : Json(v); };
+  if (key == "lat1") return num(p.lat1);
+  if (key == "lat2") return num(p.lat2);
+  if (key == "west_edge") return num(p.west_edge);
+  if (key == "east_edge") return num(p.east_edge);
+  if (key == "south_edge") return num(p.south_edge);
+  if (key == "north_edge") return num(p.north_edge);
+  if (key == "proj") {
+    switch (p.proj) {
+      case curvilinear::ProjectionKind::kMercator: return "ME";
+      case curvilinear::ProjectionKind::kLambertConic: return "LC";
+      default: return "ST";
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<std::string>& overrides) {
+  Loaded<RegionalConfig> out;
+  Problems p;
+  const std::filesystem::path file(path);
+  out.source = file.string();
+  RegionalConfig& c = out.options;
+  if (file.extension() == ".izogrid") {
+    c.params = curvilinear::read_izogrid_file(file);
+    c.contour_file = file.string();
+    c.name = file.stem().string();
+  } else {
+    const toml::value doc = detail::parse_file(file);
+    std::filesystem::path base = file.parent_path();
+    if (base.empty()) base = ".";
+    c.name = file.stem().string();
+    // The izogrid contour file first, so that TOML keys override its preamble.
+    if (doc.is_table() && doc.contains("regional") && doc.at("regional").is_table() &&
+        doc.at("regional").contains("contour_file") && doc.at("regional").at("contour_file").is_string() &&
+        !doc.at("regional").at("contour_file").as_string().str.empty()) {
+      std::filesystem::path cf(doc.at("regional").at("contour_file").as_string().str);
+      if (cf.is_relative()) cf = base / cf;
+      c.params = curvilinear::read_izogrid_file(cf);
+      c.contour_file = cf.lexically_normal().string();
+    }
+    schema().apply(c, doc, file.string(), base, p);
+  }
+  for (const auto& o : overrides) schema().apply_override(c, o, p);
+  if (!c.corners.empty()) {
+    c.params.corner.assign(c.params.x.size(), false);
+    for (const int k : c.corners) {
+      if (k < 1 || k > static_cast<int>(c.params.x.size())) {
+        p.add_plain(999998, fmt::format("regional.corners: point number {} is outside 1..{} (regional.control_points)", k,
+                                        c.params.x.size()));
+      } else {
+        c.params.corner[static_cast<std::size_t>(k - 1)] = true;
+      }
+    }
+  }
+  for (const auto& [key, msg] : curvilinear::regional_params_problems(c.params))
+    p.add_plain(999999, fmt::format("regional.{}: {}", key, msg));
+  p.throw_if_any(out.source);
+  c.params.source = out.source;
+  out.echo = schema().echo(c);
+  return out;
+}
+
+std::vector<std::string> regional_keys() {
+  std::vector<std::string> k;
+  for (const auto& key : schema().keys()) k.push_back(key.section + "." + key.name);
+  return k;
+}
+
+}  // namespace aq::config

@@ -1,0 +1,38 @@
+// Configuration of a regional grid run (`aquatoria regional -c FILE.toml`, ARCHITECTURE §5, §7).
+// The [regional] keys are exactly the izogrid file's keys (curvilinear/izogrid_file.hpp), set by
+// the same function, so a TOML config and a seed-format .izogrid file mean the same thing;
+// `contour_file` may name an .izogrid file whose preamble and points are read first (TOML keys
+// then override its preamble). [input] names the bathymetry for the coastline (and ROMS depths).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/load.hpp"
+#include "config/options.hpp"
+#include "curvilinear/regional_params.hpp"
+
+namespace aq::config {
+
+struct RegionalConfig {
+  curvilinear::RegionalParams params;  ///< [regional] izogrid keys, control_points, corners
+  std::string name = "regional";       ///< [regional] name: base name of the output files
+  std::string contour_file;            ///< [regional] contour_file: .izogrid file read first (resolved path)
+  std::string stop_after;              ///< [regional] stop_after: map|contour|uniform|conformal|grid; empty = mode
+  std::vector<int> corners;            ///< [regional] corners: 1-based point numbers of the 4 corners
+  InputOptions input;                  ///< [input] bathymetry for the coastline and depths
+  double coast_level_m = 0.0;          ///< [input] coast_level_m: elevation of the drawn coastline
+  std::string output_dir = "out";      ///< [output] dir
+};
+
+/// Reads a regional TOML config (or, when `path` ends in .izogrid, the seed's file format alone)
+/// and applies `overrides` (section.key=value). Throws ConfigError listing every problem, or
+/// InputError for an unreadable/malformed izogrid file.
+Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<std::string>& overrides);
+
+/// Every key of the regional TOML configuration as "section.key".
+std::vector<std::string> regional_keys();
+
+}  // namespace aq::config
