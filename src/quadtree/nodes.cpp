@@ -162,7 +162,7 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
   Bitmap& vb = vr.bitmap();
   for (std::int64_t phase = 0; phase < 2; ++phase) {
     const std::int64_t count = (ny0 - phase + 1) / 2;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(static_cast <std::int64_t>(leaves.size()) * 4)) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nleaves * 4)) \
     shared(leaves, lat, vb, starts, phase, count, nx) schedule(dynamic, 1)
     for (std::int64_t k = 0; k < count; ++k) {
       const std::int64_t b0 = 2 * k + phase;

@@ -95,8 +95,11 @@ struct QuadNodes {
 
 /// Numbers the nodes of balanced leaves and finds midside nodes, boundary edges and loops and
 /// pinch vertices. `leaves` must be in the deterministic order (leaves.hpp), non-overlapping and
-/// face-balanced (2:1); throws InternalError otherwise (checked: order, overlap; an unbalanced set
-/// is detected when boundary tracing fails). Work O(leaves + N/64), parallel except loop tracing.
+/// face-balanced (2:1). Order and overlap are checked (InternalError); balance is not re-checked
+/// here (quadtree::build_leaves proves it), and an unbalanced set may give wrong boundary edges,
+/// which mesh::compute_statistics then reports (boundary_mismatch, Euler). InternalError also
+/// when boundary tracing finds a node with no or more than two outgoing edges. Work
+/// O(leaves + N/64), parallel except loop tracing.
 QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const NodeOptions& options = {});
 
 /// Node at lattice vertex (I mod nx, J), or -1; O(log nodes).
