@@ -104,32 +104,58 @@ std::uint32_t shade(const std::uint32_t* table, float e) {
   return table[static_cast<int>(std::lround(k)) + kShadeDeep];
 }
 
+// Geographic unit vectors of the rotated system's x, y, z axes (the columns of its rotation
+// matrix), taken from PoleRotation itself so that the background agrees with the mesh.
+std::array<std::array<double, 3>, 3> rotation_columns(const PoleRotation& r) {
+  std::array<std::array<double, 3>, 3> c{};
+  const double axes[3][2] = {{0.0, 0.0}, {90.0, 0.0}, {0.0, 90.0}};
+  for (int k = 0; k < 3; ++k) {
+    double lon = 0, lat = 0;
+    r.to_geographic(axes[k][0], axes[k][1], lon, lat);
+    const double lo = lon * kDegToRad, la = lat * kDegToRad;
+    c[static_cast<std::size_t>(k)] = {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
+  }
+  return c;
+}
+
+// Samples the raster at every map pixel centre (rows in parallel; each pixel independent).
+// With a rotated pole the pixel's rotated (λ', φ') is turned into geographic coordinates with
+// per-row and per-column sines and cosines: two inverse trigonometric calls a pixel.
 void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& mesh, const raster::Bathymetry& bathy) {
   cairo_surface_flush(surface);
   unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   const int w = v.width, h = v.map_h, top = v.band;
   const bool rotated = mesh.rotation.enabled;
-  const PoleRotation rot =
-      rotated ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation();
-  std::vector<double> lons(static_cast<std::size_t>(w));
-  for (int x = 0; x < w; ++x) lons[static_cast<std::size_t>(x)] = v.lon_min + (x + 0.5) / v.sx();
+  const auto axes = rotated ? rotation_columns(PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg))
+                            : std::array<std::array<double, 3>, 3>{};
+  std::vector<double> lons(static_cast<std::size_t>(w)), cos_lon(lons.size()), sin_lon(lons.size());
+  for (std::size_t x = 0; x < lons.size(); ++x) {
+    lons[x] = v.lon_min + (static_cast<double>(x) + 0.5) / v.sx();
+    cos_lon[x] = std::cos(lons[x] * kDegToRad);
+    sin_lon[x] = std::sin(lons[x] * kDegToRad);
+  }
   const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), w);
-  const double* lon_p = lons.data();
+  const double* cl = cos_lon.data();
+  const double* sl = sin_lon.data();
   const raster::Bathymetry* b = &bathy;
   const raster::Bathymetry::Columns* c = &cols;
-  const PoleRotation* r = &rot;
+  const auto* ax = &axes;
   const View* vp = &v;
   const std::uint32_t* table = shade_table().data();
 #pragma omp parallel for schedule(static) default(none) \
-    shared(data, stride, w, h, top, rotated, lon_p, b, c, r, vp, table)
+    shared(data, stride, w, h, top, rotated, cl, sl, b, c, ax, vp, table)
   for (int y = 0; y < h; ++y) {
     std::vector<float> row(static_cast<std::size_t>(w));
     const double lat = vp->lat_max - (y + 0.5) / vp->sy();
     if (rotated) {
+      const auto& a = *ax;
+      const double cp = std::cos(lat * kDegToRad), sp = std::sin(lat * kDegToRad);
       for (int x = 0; x < w; ++x) {
-        double glon = 0, glat = 0;
-        r->to_geographic(lon_p[x], lat, glon, glat);
+        double g[3];
+        for (int k = 0; k < 3; ++k) g[k] = cp * (cl[x] * a[0][k] + sl[x] * a[1][k]) + sp * a[2][k];
+        const double glon = std::atan2(g[1], g[0]) * kRadToDeg;
+        const double glat = std::asin(std::clamp(g[2], -1.0, 1.0)) * kRadToDeg;
         row[static_cast<std::size_t>(x)] = static_cast<float>(b->sample(glon, glat));
       }
     } else {
@@ -475,7 +501,7 @@ std::string counts_title(const mesh::Mesh& m, const PreviewOptions& o) {
   s += fmt::format(", {} squares, levels 0-{}, step {} deg, {} boundary loops", m.square_count(), max_level(m),
                    m.lattice.step0_deg, m.loops.size());
   if (m.rotation.enabled) {
-    s += fmt::format("; rotated pole ({}, {}), map in rotated coordinates", m.rotation.pole_lon_deg,
+    s += fmt::format("; rotated pole ({:.6g}, {:.6g}), map in rotated coordinates", m.rotation.pole_lon_deg,
                      m.rotation.pole_lat_deg);
   }
   return s;
