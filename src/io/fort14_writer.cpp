@@ -1,6 +1,7 @@
 // ADCIRC fort.14 writer (see fort14_writer.hpp).
 #include "io/fort14_writer.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -27,13 +28,13 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
   const std::int64_t np = mesh.node_count(), ne = mesh.triangle_count();
   f.print("{}\n{} {}\n", title, ne, np);
   for (NodeId n = 0; n < np; ++n) {
-    fmt::format_to(std::back_inserter(buf), "{} {} {} {}\n", n + 1, wrap_lon_deg(mesh.lon_deg[n], -180.0),
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {}\n"), n + 1, wrap_lon_deg(mesh.lon_deg[n], -180.0),
                    mesh.lat_deg[n], depth_below_datum_m(mesh.depth_m[n]));
     f.maybe_flush();
   }
   for (std::int64_t e = 0; e < ne; ++e) {
     const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
-    fmt::format_to(std::back_inserter(buf), "{} 3 {} {} {}\n", e + 1, t[0] + 1, t[1] + 1, t[2] + 1);
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} 3 {} {} {}\n"), e + 1, t[0] + 1, t[1] + 1, t[2] + 1);
     f.maybe_flush();
   }
 
@@ -52,7 +53,7 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
     const int ibtype = loop.outer ? 0 : 1;
     f.print("{} {} ! boundary {} ({})\n", loop.nodes.size() + 1, ibtype, ++k, loop.outer ? "mainland" : "island");
     for (const NodeId n : loop.nodes) {
-      fmt::format_to(std::back_inserter(buf), "{}\n", n + 1);
+      fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
       f.maybe_flush();
     }
     f.print("{}\n", loop.nodes.front() + 1);

@@ -1,6 +1,9 @@
 // Gmsh MSH 4.1 writer (see msh_writer.hpp for the layout).
 #include "io/msh_writer.hpp"
 
+#include <fmt/compile.h>
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -34,7 +37,7 @@ class MshOut {
       f_.put(v);
     } else {
       sep();
-      fmt::format_to(std::back_inserter(f_.buffer()), "{}", v);
+      fmt::format_to(std::back_inserter(f_.buffer()), FMT_COMPILE("{}"), v);
     }
   }
   void i32(std::int32_t v) {
@@ -42,7 +45,7 @@ class MshOut {
       f_.put(v);
     } else {
       sep();
-      fmt::format_to(std::back_inserter(f_.buffer()), "{}", v);
+      fmt::format_to(std::back_inserter(f_.buffer()), FMT_COMPILE("{}"), v);
     }
   }
   void f64(double v) {
@@ -50,7 +53,7 @@ class MshOut {
       f_.put(v);
     } else {
       sep();
-      fmt::format_to(std::back_inserter(f_.buffer()), "{}", v);
+      fmt::format_to(std::back_inserter(f_.buffer()), FMT_COMPILE("{}"), v);
     }
   }
   void eol() {
@@ -340,12 +343,12 @@ void write_node_block(MshOut& out, const NodeSet& nodes, int dim, int tag, std::
     return;
   }
   ids([&](NodeId o) {
-    fmt::format_to(std::back_inserter(buf), "{}\n", o + 1);
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), o + 1);
     f.maybe_flush();
   });
   ids([&](NodeId o) {
     const auto p = nodes.position(o);
-    fmt::format_to(std::back_inserter(buf), "{} {} {}\n", p[0], p[1], p[2]);
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {}\n"), p[0], p[1], p[2]);
     f.maybe_flush();
   });
 }
@@ -414,8 +417,8 @@ void write_elements(MshOut& out, const Blocks& blocks) {
       });
     } else {
       blocks.visit(b, [&](const std::uint64_t* t, int) {
-        fmt::format_to(std::back_inserter(buf), "{}", tag++);
-        for (std::size_t a = 0; a < k; ++a) fmt::format_to(std::back_inserter(buf), " {}", t[a]);
+        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}"), tag++);
+        for (std::size_t a = 0; a < k; ++a) fmt::format_to(std::back_inserter(buf), FMT_COMPILE(" {}"), t[a]);
         buf.push_back('\n');
         f.maybe_flush();
       });
@@ -464,7 +467,7 @@ void write_data(MshOut& out, std::string_view section, std::string_view view, st
     f.text("\n");
   } else {
     records([&](std::int64_t tag, double v) {
-      fmt::format_to(std::back_inserter(buf), "{} {}\n", tag, v);
+      fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {}\n"), tag, v);
       f.maybe_flush();
     });
   }

@@ -1,6 +1,7 @@
 // Plain-text mesh writer (see text_writer.hpp for the format).
 #include "io/text_writer.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <iterator>
@@ -31,7 +32,7 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   const std::int64_t np = mesh.node_count();
   f.print("nodes {}\n# id lon_deg lat_deg depth_m flags i j\n", np);
   for (NodeId n = 0; n < np; ++n) {
-    fmt::format_to(std::back_inserter(buf), "{} {} {} {} {} {} {}\n", n, mesh.lon_deg[n], mesh.lat_deg[n],
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {} {} {} {}\n"), n, mesh.lon_deg[n], mesh.lat_deg[n],
                    depth_below_datum_m(mesh.depth_m[n]), mesh.node_flags[n], mesh.node_i[n], mesh.node_j[n]);
     f.maybe_flush();
   }
@@ -40,7 +41,8 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
     f.print("triangles {}\n# id level n1 n2 n3\n", mesh.triangle_count());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const auto& v = mesh.triangles[t];
-      fmt::format_to(std::back_inserter(buf), "{} {} {} {} {}\n", t, mesh.triangle_level[t], v[0], v[1], v[2]);
+      fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {} {}\n"), t, mesh.triangle_level[t], v[0], v[1],
+                     v[2]);
       f.maybe_flush();
     }
     elements += mesh.triangle_count();
@@ -51,8 +53,8 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
     for (std::size_t s = 0; s < mesh.squares.size(); ++s) {
       const auto& c = mesh.squares[s];
       const auto& m = mesh.square_midside.empty() ? none : mesh.square_midside[s];
-      fmt::format_to(std::back_inserter(buf), "{} {} {} {} {} {} {} {} {} {}\n", s, mesh.square_level[s], c[0], c[1],
-                     c[2], c[3], m[0], m[1], m[2], m[3]);
+      fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {} {} {} {} {} {} {}\n"), s, mesh.square_level[s],
+                     c[0], c[1], c[2], c[3], m[0], m[1], m[2], m[3]);
       f.maybe_flush();
     }
     elements += mesh.square_count();
@@ -67,7 +69,8 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   f.print("boundary_edges {}\n# loop a b\n", mesh.boundary_edges.size());
   for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
     const int loop = mesh.boundary_edge_loop.empty() ? -1 : mesh.boundary_edge_loop[e];
-    fmt::format_to(std::back_inserter(buf), "{} {} {}\n", loop, mesh.boundary_edges[e][0], mesh.boundary_edges[e][1]);
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {}\n"), loop, mesh.boundary_edges[e][0],
+                   mesh.boundary_edges[e][1]);
     f.maybe_flush();
   }
 

@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "core/rotation.hpp"
+#include "core/types.hpp"
 #include "io/depth.hpp"
 
 namespace aq::io {
@@ -287,7 +288,10 @@ void write_topology(NcFile& nc, const mesh::Mesh& mesh, const FaceSet& faces, co
       const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
       const double rlat = -90.0 + sj / k * mesh.lattice.pixel_deg();
       double lon = rlon, lat = rlat;
-      if (mesh.rotation.enabled) rotation.to_geographic(rlon, rlat, lon, lat);
+      if (mesh.rotation.enabled) {
+        rotation.to_geographic(rlon, rlat, lon, lat);
+        lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
+      }
       const auto u = static_cast<std::size_t>(r);
       cx[u] = lon;
       cy[u] = lat;

@@ -20,6 +20,7 @@
 //                         and mesh_boundary_loop: the loop id of each
 //   mesh_face_x/_y        face centres, seam-aware: the mean of the corners in the lattice plane
 //                         with I unwrapped (Mesh::unwrapped_i), mapped to geographic coordinates
+//                         (longitudes in [λ0, λ0 + 360) like the nodes)
 //   mesh_face_x_bnds/_y   the corners as CF cell bounds, longitudes unwrapped to within 180° of
 //                         the centre (so a face across the antimeridian is continuous), padded by
 //                         repeating the last corner; these make CDO see an unstructured grid

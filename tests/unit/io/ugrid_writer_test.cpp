@@ -241,6 +241,10 @@ TEST(UgridWriter, RotatedPoleIsDescribed) {
   EXPECT_EQ(nc.doubles("mesh_node_rlat"), m.rlat_deg);
   EXPECT_EQ(nc.doubles("mesh_node_x"), m.lon_deg);
   EXPECT_EQ(nc.text("depth", "grid_mapping"), "rotated_pole");
+  for (const double x : nc.doubles("mesh_face_x")) {
+    EXPECT_GE(x, -180.0);
+    EXPECT_LT(x, 180.0);
+  }
 }
 
 TEST(UgridWriter, SameBytesEveryRun) {
