@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -104,20 +105,23 @@ struct Box {
 class NodeSet {
  public:
   NodeSet(const mesh::Mesh& mesh, const MshOptions& options)
-      : mesh_(mesh),
-        plane_(options.coordinates == MshCoordinates::kPlane),
-        seam_(mesh, options.elements),
-        merge_(mesh) {}
+      : mesh_(mesh), plane_(options.coordinates == MshCoordinates::kPlane) {
+    if (plane_) {
+      seam_.emplace(mesh, options.elements);
+    } else {
+      merge_.emplace(mesh);
+    }
+  }
   [[nodiscard]] bool plane() const { return plane_; }
-  [[nodiscard]] const SeamNodes& seam() const { return seam_; }
-  [[nodiscard]] const PoleMerge& merge() const { return merge_; }
-  [[nodiscard]] std::int64_t duplicates() const { return plane_ ? seam_.count() : 0; }
+  [[nodiscard]] const SeamNodes& seam() const { return *seam_; }    // plane only
+  [[nodiscard]] const PoleMerge& merge() const { return *merge_; }  // sphere only
+  [[nodiscard]] std::int64_t duplicates() const { return plane_ ? seam_->count() : 0; }
   [[nodiscard]] std::int64_t count() const {
-    return plane_ ? mesh_.node_count() + seam_.count() : merge_.output_count();
+    return plane_ ? mesh_.node_count() + seam_->count() : merge_->output_count();
   }
   [[nodiscard]] NodeId source(NodeId o) const {
-    if (!plane_) return merge_.source(o);
-    return o < mesh_.node_count() ? o : seam_.originals()[static_cast<std::size_t>(o - mesh_.node_count())];
+    if (!plane_) return merge_->source(o);
+    return o < mesh_.node_count() ? o : seam_->originals()[static_cast<std::size_t>(o - mesh_.node_count())];
   }
   [[nodiscard]] std::array<double, 3> position(NodeId o) const {
     const NodeId n = source(o);
@@ -132,8 +136,8 @@ class NodeSet {
  private:
   const mesh::Mesh& mesh_;
   bool plane_;
-  SeamNodes seam_;
-  PoleMerge merge_;
+  std::optional<SeamNodes> seam_;
+  std::optional<PoleMerge> merge_;
 };
 
 // The element blocks. Each is streamed twice at most (count, then write) straight from the
@@ -179,16 +183,16 @@ class Blocks {
     std::array<NodeId, 4> out{};
     const mesh::Mesh& m = mesh_;
     const bool plane = nodes_.plane();
-    const SeamNodes& seam = nodes_.seam();
-    const PoleMerge& merge = nodes_.merge();
+    const SeamNodes* seam = plane ? &nodes_.seam() : nullptr;
+    const PoleMerge* merge = plane ? nullptr : &nodes_.merge();
     switch (b.kind) {
       case BlockKind::kTriangles:
         for (std::size_t t = 0; t < m.triangles.size(); ++t) {
           const auto& tri = m.triangles[t];
           if (plane) {
-            for (int a = 0; a < 3; ++a) tags[a] = tag(seam.plane_node(m, tri, tri[a]));
+            for (int a = 0; a < 3; ++a) tags[a] = tag(seam->plane_node(m, tri, tri[a]));
           } else {
-            if (merge.map_polygon(tri.data(), 3, out.data()) < 3) continue;
+            if (merge->map_polygon(tri.data(), 3, out.data()) < 3) continue;
             for (int a = 0; a < 3; ++a) tags[a] = tag(out[a]);
           }
           sink(tags.data(), m.triangle_level[t]);
@@ -199,9 +203,9 @@ class Blocks {
         for (std::size_t s = 0; s < m.squares.size(); ++s) {
           const auto& sq = m.squares[s];
           if (plane) {
-            for (int a = 0; a < 4; ++a) tags[a] = tag(seam.plane_node(m, sq, sq[a]));
+            for (int a = 0; a < 4; ++a) tags[a] = tag(seam->plane_node(m, sq, sq[a]));
           } else {
-            const int k = merge.map_polygon(sq.data(), 4, out.data());
+            const int k = merge->map_polygon(sq.data(), 4, out.data());
             if (k != b.nodes_per_element) continue;
             for (int a = 0; a < k; ++a) tags[a] = tag(out[a]);
           }
@@ -211,12 +215,12 @@ class Blocks {
       case BlockKind::kCoast:
         for (const auto& e : m.boundary_edges) {
           if (plane) {
-            const auto p = seam.plane_edge(m, e);
+            const auto p = seam->plane_edge(m, e);
             tags[0] = tag(p[0]);
             tags[1] = tag(p[1]);
           } else {
-            out[0] = merge.map(e[0]);
-            out[1] = merge.map(e[1]);
+            out[0] = merge->map(e[0]);
+            out[1] = merge->map(e[1]);
             if (out[0] == out[1]) continue;  // an edge along a pole row
             tags[0] = tag(out[0]);
             tags[1] = tag(out[1]);
@@ -355,7 +359,8 @@ void write_node_block(MshOut& out, const NodeSet& nodes, int dim, int tag, std::
 
 void write_nodes(MshOut& out, const mesh::Mesh& mesh, const NodeSet& nodes) {
   const std::int64_t total = nodes.count();
-  const auto& orig = nodes.seam().originals();
+  const std::vector<NodeId> none;
+  const auto& orig = nodes.plane() ? nodes.seam().originals() : none;
   const std::int64_t dups = nodes.duplicates();
   const std::int64_t surface = total - 2 * dups;  // plane: seam originals live on curve 2
   const int blocks = (surface > 0 ? 1 : 0) + (dups > 0 ? 2 : 0);
