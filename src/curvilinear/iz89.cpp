@@ -97,6 +97,9 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
   double* bmin_p = ws.block_min.data();
   double* bmax_p = ws.block_max.data();
   SweepResult out;
+#ifndef _OPENMP
+  (void)threads;
+#endif
 #pragma omp parallel num_threads(threads) default(none) \
     shared(out, px, py, corner_flag, theta_p, bmin_p, bmax_p, nb, nwalk, nblocks, k0, k1)
   {

@@ -163,6 +163,14 @@ TEST(Iz89Test, BitIdenticalForOneAndTwoThreads) {
     EXPECT_EQ(ra.max_angle, rb.max_angle);
     EXPECT_EQ(a.x, b.x);  // bit for bit
     EXPECT_EQ(a.y, b.y);
+    // The default: the thread count chosen per chunk by timing.
+    Polygon c = symmetric_l(h);
+    Iz89Options chosen;
+    chosen.max_passes = 3;
+    chosen.min_parallel_vertices = 0;
+    (void)iz89_straighten(c.x, c.y, c.corners, chosen);
+    EXPECT_EQ(a.x, c.x);
+    EXPECT_EQ(a.y, c.y);
   }
 }
 
