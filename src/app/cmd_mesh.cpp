@@ -12,18 +12,14 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/global_run.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "core/rotation.hpp"
 #include "io/mesh_outputs.hpp"
-#include "mask/passages.hpp"
-#include "mask/wet_area.hpp"
-#include "mesh/build_mesh.hpp"
 #include "mesh/statistics.hpp"
-#include "quadtree/build_leaves.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -55,9 +51,6 @@ std::optional<SeedFigure> seed_figure(const config::GlobalConfig& c) {
   return std::nullopt;
 }
 
-// Bytes the bitmaps of the mask and quadtree stages need (about 12 full-lattice bitmaps at peak).
-std::int64_t estimate_lattice_bytes(const Lattice& l) { return 12 * (l.nx / 8 + 8) * (l.ny + 1); }
-
 int run_mesh(const MeshArgs& a, const Logger& log) {
   Timer total;
   auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
@@ -77,81 +70,23 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   report["config"]["output"]["name"] = c.output.name;
   report["config"]["output"]["dir"] = c.output.dir;
 
-  const Lattice lat = Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
-  const PoleRotation rot = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
-                                              : PoleRotation();
+  const GlobalSetup setup = prepare_global_run(c);
+  const Lattice& lat = setup.lattice;
   log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
            loaded.source, c.input.path, lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
            c.mask.cursor, c.mask.min_depth_m,
            c.rotation.enabled ? fmt::format(", pole at ({}, {})", c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
                               : std::string());
 
-  // Refuse early when the lattice cannot fit.
-  const std::int64_t limit = c.input.max_memory_gb > 0
-                                 ? static_cast<std::int64_t>(c.input.max_memory_gb * 1e9)
-                                 : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
-  const std::int64_t need = estimate_lattice_bytes(lat);
-  if (limit > 0 && need > limit) {
-    throw ConfigError(fmt::format(
-        "quadtree.levels = {} with quadtree.step_deg = {}: the {} x {} pixel lattice needs about {:.1f} GB of "
-        "bitmaps, more than the {:.1f} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
-        lat.levels, lat.step0_deg, lat.nx, lat.ny, static_cast<double>(need) / 1e9, static_cast<double>(limit) / 1e9));
-  }
-
   // Fail on an unwritable output folder before the work, not after.
   OutputSet out(c.output.dir);
 
-  raster::OpenOptions ro;
-  ro.path = c.input.path;
-  ro.variable = c.input.variable;
-  ro.band = c.input.band;
-  ro.positive_down = c.input.positive_down;
-  ro.interpolation = c.input.interpolation == "bicubic" ? raster::Interpolation::kBicubic
-                                                        : raster::Interpolation::kBilinear;
-  ro.max_memory_bytes = limit > need ? limit - need : limit;
-  StageScope read_stage("read", &report, log);
-  const auto bathy = raster::Bathymetry::open(ro, log);
+  const GlobalRun run = run_global_pipeline(c, setup, log, &report);
+  const raster::Bathymetry& bathy = *run.bathy;
   const auto& ri = bathy.info();
-  read_stage.done(fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
-                              ri.memory_bytes >> 20));
-  report["input"] = Json{{"path", ri.path}, {"driver", ri.driver}, {"variable", ri.variable},
-                         {"columns", ri.ncols}, {"rows", ri.nrows}, {"resolution_deg", ri.dlon},
-                         {"min_m", ri.min_m}, {"max_m", ri.max_m}};
-  report["lattice"] = Json{{"nx", lat.nx}, {"ny", lat.ny}, {"pixel_deg", lat.pixel_deg()},
-                           {"step0_deg", lat.step0_deg}, {"levels", lat.levels}, {"lon0_deg", lat.lon0_deg}};
-
-  const mask::WetArea area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, &report);
-  if (c.mask.passages && !area.passages.empty()) {
-    log.info("critical passages (open = the filled ocean connects both sides):");
-    for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
-  }
-  if (!area.pinches.pinches.empty() && !c.mask.remove_pinches) {
-    log.warn("{} pinch vertices (the ocean touches itself at a single corner; some models reject them); "
-             "set mask.remove_pinches = true to resolve them",
-             area.pinches.total);
-  }
-
-  const auto leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, &report);
-  const mesh::Mesh m = mesh::build_mesh(leaves, lat, rot, bathy, c.mesh, log, &report);
-
-  StageScope stat_stage("statistics", &report, log);
-  const mesh::MeshStatistics st = mesh::compute_statistics(m);
-  report["statistics"] = mesh::statistics_json(st);
-  const auto failed = st.failed_checks();
-  if (!failed.empty()) {
-    std::string list;
-    for (const auto& f : failed) list += " " + f;
-    throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
-  }
-  stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
-  if (!c.rotation.enabled && area.filled.ny() > 0) {
-    bool top = false;
-    for (std::int64_t w = 0; w < area.filled.words_per_row() && !top; ++w) top = area.filled.row(lat.ny - 1)[w] != 0;
-    if (top) {
-      log.warn("the ocean reaches the lattice's North pole row: φ = 90° is a boundary loop of coincident nodes; "
-               "consider [rotation] enabled = true (pole on land)");
-    }
-  }
+  const mask::WetArea& area = run.area;
+  const mesh::Mesh& m = run.mesh;
+  const mesh::MeshStatistics& st = run.statistics;
 
   // Outputs.
   StageScope write_stage("write", &report, log);
