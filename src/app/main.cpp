@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   aq::app::add_mesh_command(app, ctx);
   aq::app::add_regional_command(app, ctx);
   // SUBCOMMANDS: one line each (keep this list in the order of `aquatoria --help`).
+  aq::app::add_blocks_command(app, ctx);
   aq::app::add_check_command(app, ctx);
 
   try {

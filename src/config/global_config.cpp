@@ -210,6 +210,32 @@ const S& schema() {
           return std::string();
         },
         "");
+    // [blocks]
+    t.add<int>("blocks", "top", [](GlobalConfig& c) -> int& { return c.blocks.top; },
+               [](const int& v) { return in_range(v, 1, 999); }, "");
+    t.add<std::vector<std::array<double, 4>>>(
+        "blocks", "boxes", [](GlobalConfig& c) -> std::vector<std::array<double, 4>>& { return c.blocks.boxes; },
+        [](const std::vector<std::array<double, 4>>& v) {
+          for (std::size_t k = 0; k < v.size(); ++k) {
+            const auto& b = v[k];
+            if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !(b[0] < b[1]) || b[1] - b[0] > 180.0 ||
+                !(b[2] < b[3]) || b[2] < -90.0 || b[3] > 90.0)
+              return fmt::format("box {} = [{}, {}, {}, {}]: expected [lon_min, lon_max, lat_min, lat_max] with "
+                                 "lon_min < lon_max <= lon_min + 180 and -90 <= lat_min < lat_max <= 90",
+                                 k, b[0], b[1], b[2], b[3]);
+          }
+          return std::string();
+        },
+        "");
+    t.add<bool>("blocks", "shrink_to_wet", [](GlobalConfig& c) -> bool& { return c.blocks.shrink_to_wet; }, {}, "");
+    t.add<double>("blocks", "max_inset", [](GlobalConfig& c) -> double& { return c.blocks.max_inset; },
+                  [](const double& v) { return in_range(v, 0.0, 0.45); }, "");
+    t.add<int>("blocks", "ny", [](GlobalConfig& c) -> int& { return c.blocks.ny; },
+               [](const int& v) { return in_range(v, 0, 100000); }, "");
+    t.add<int>("blocks", "refinement", [](GlobalConfig& c) -> int& { return c.blocks.refinement; },
+               [](const int& v) { return in_range(v, 1, 1000); }, "");
+    t.add<int>("blocks", "points_per_side", [](GlobalConfig& c) -> int& { return c.blocks.points_per_side; },
+               [](const int& v) { return in_range(v, 2, 64); }, "");
     return t;
   }();
   return s;

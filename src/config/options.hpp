@@ -70,6 +70,17 @@ struct OutputOptions {
   std::vector<double> png_zoom;        ///< optional [lon_min, lon_max, lat_min, lat_max] zoom box
 };
 
+/// `aquatoria blocks`: coastal blocks of the global run handed to regional grids (ARCHITECTURE §6).
+struct BlocksOptions {
+  int top = 20;                                ///< blocks written, best ranked first (1..999)
+  std::vector<std::array<double, 4>> boxes;    ///< [lon_min, lon_max, lat_min, lat_max] (degrees); empty = level-0 squares
+  bool shrink_to_wet = false;                  ///< move the sides inward over land toward the wet area
+  double max_inset = 0.3;                      ///< shrink_to_wet: farthest a side moves, fraction of the block (0..0.45)
+  int ny = 0;                                  ///< cells along η of each regional grid; 0 = from `refinement`
+  int refinement = 3;                          ///< suggested ny: cells this many times finer than the finest global element
+  int points_per_side = 8;                     ///< contour control points per side (2..64)
+};
+
 /// The whole configuration of a global run.
 struct GlobalConfig {
   InputOptions input;
@@ -78,6 +89,7 @@ struct GlobalConfig {
   RotationOptions rotation;
   MeshOptions mesh;
   OutputOptions output;
+  BlocksOptions blocks;
 };
 
 }  // namespace aq::config

@@ -10,6 +10,7 @@
 //   | squares filled by level (translucent, one colour a level)  |
 //   | mesh edges thin dark grey; coast (boundary edges) black;   |
 //   | the zoom box (if any) outlined in red                      |
+//   | outlines (blocks) in magenta with their labels             |
 //   +------------------------------------------------------------+
 //   | legend: level colours with element counts, sea/land        |  legend band
 //   +------------------------------------------------------------+
@@ -22,6 +23,7 @@
 // parallel but each pixel computed independently).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -33,11 +35,19 @@
 
 namespace aq::io {
 
+/// A closed polygon drawn on the map (e.g. a regional block), with a label at its first point.
+/// Points are (λ, φ) in map degrees (the lattice plane); they are also drawn shifted by ±360°.
+struct PreviewOutline {
+  std::vector<std::array<double, 2>> points;
+  std::string label;
+};
+
 struct PreviewOptions {
   int width_px = 2400;  ///< picture width, 200..20000
   ElementKinds elements = ElementKinds::kTriangles;
   std::vector<double> zoom;  ///< empty, or [lon_min, lon_max, lat_min, lat_max] in map degrees
   std::string title = "aquatoria mesh";
+  std::vector<PreviewOutline> outlines;  ///< drawn in magenta over the mesh, labels in black on white
 };
 
 /// Throws ConfigError naming output.png_width / output.png_zoom when they are unusable: width

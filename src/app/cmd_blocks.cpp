@@ -1,0 +1,286 @@
+// `aquatoria blocks`: the hand-off from the global mesh to regional grids (ARCHITECTURE §6). Runs
+// the global pipeline (app/global_run.hpp, the same as `aquatoria mesh`), ranks the candidate
+// coastal blocks (handoff/coastal_blocks.hpp) and writes, for the best `blocks.top` of them, a
+// regional config and contour (handoff/block_files.hpp, block_contour.hpp) into <dir>/blocks/:
+//
+//   global.toml            the effective global configuration (--set overrides included) that
+//                          every block config names as roms.global_config
+//   block_NNN.toml         regional config:  aquatoria regional -c <dir>/blocks/block_NNN.toml
+//   block_NNN.izogrid      projection + contour (plane units), counter-clockwise from SW
+//   block_NNN.png          the global mesh around the block with its outline
+//   blocks.png             the global mesh with every written block outlined and numbered
+//   blocks.json            the ranked list, parameters and the run report
+//
+// The ranked table goes to stdout; stage lines to stderr.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "app/global_run.hpp"
+#include "config/load.hpp"
+#include "config/regional.hpp"
+#include "core/error.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "curvilinear/spline_contour.hpp"
+#include "handoff/block_contour.hpp"
+#include "handoff/block_files.hpp"
+#include "handoff/coastal_blocks.hpp"
+#include "io/element_kinds.hpp"
+#include "io/preview_png.hpp"
+
+namespace aq::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BlocksArgs {
+  std::optional<std::string> config;
+  std::vector<std::string> sets;
+  std::string out_dir;
+  int top = 0;
+};
+
+// Graticule step for a block's pictures: the largest "nice" step giving at least 3 lines.
+double latlongrid_for(const handoff::BlockBox& b) {
+  const double h = std::min(b.lat_max_deg - b.lat_min_deg, b.lon_max_deg - b.lon_min_deg);
+  double best = 0.01;
+  for (const double s : {0.01, 0.02, 0.05, 0.1, 0.2, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0})
+    if (s <= h / 3.0) best = s;
+  return best;
+}
+
+// The block's box as a closed polygon in the map plane (lattice system), λ continuous.
+std::vector<std::array<double, 2>> map_outline(const handoff::BlockBox& b, const PoleRotation& rot) {
+  std::vector<std::array<double, 2>> pts;
+  const int n = 16;
+  const auto add = [&](double s, double t) {
+    double lon = b.lon_min_deg + s * (b.lon_max_deg - b.lon_min_deg);
+    double lat = b.lat_min_deg + t * (b.lat_max_deg - b.lat_min_deg);
+    if (!b.lattice_system && !rot.identity()) {
+      double rl = 0.0, rp = 0.0;
+      rot.to_rotated(lon, lat, rl, rp);
+      lon = rl;
+      lat = rp;
+    }
+    if (!pts.empty()) {
+      while (lon - pts.back()[0] > 180.0) lon -= 360.0;
+      while (lon - pts.back()[0] < -180.0) lon += 360.0;
+    }
+    pts.push_back({lon, lat});
+  };
+  for (int k = 0; k < n; ++k) add(static_cast<double>(k) / n, 0.0);
+  for (int k = 0; k < n; ++k) add(1.0, static_cast<double>(k) / n);
+  for (int k = 0; k < n; ++k) add(1.0 - static_cast<double>(k) / n, 1.0);
+  for (int k = 0; k < n; ++k) add(0.0, 1.0 - static_cast<double>(k) / n);
+  return pts;
+}
+
+std::string box_text(const handoff::BlockBox& b) {
+  return fmt::format("[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]{}", b.lon_min_deg, b.lon_max_deg, b.lat_min_deg,
+                     b.lat_max_deg, b.lattice_system ? "" : " (geographic)");
+}
+
+int run_blocks(const BlocksArgs& a, const Logger& log) {
+  Timer total;
+  auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
+  if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
+  if (a.top > 0) loaded.options.blocks.top = a.top;
+  const config::GlobalConfig& c = loaded.options;
+  if (a.top < 0 || c.blocks.top < 1 || c.blocks.top > 999)
+    throw ConfigError(fmt::format("--top {}: must be between 1 and 999", a.top < 0 ? a.top : c.blocks.top));
+
+  Report report;
+  report["command"] = "blocks";
+  report["config_source"] = loaded.source;
+  report["config"] = loaded.echo;
+  report["config"]["output"]["dir"] = c.output.dir;
+  report["config"]["blocks"]["top"] = c.blocks.top;
+
+  const GlobalSetup setup = prepare_global_run(c);
+  const Lattice& lat = setup.lattice;
+  const PoleRotation& rot = setup.rotation;
+  log.info(
+      "aquatoria blocks: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}); top {} blocks{}",
+      loaded.source, c.input.path, lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels, c.blocks.top,
+      c.blocks.boxes.empty() ? " of the level-0 squares" : fmt::format(" of {} user boxes", c.blocks.boxes.size()));
+  const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
+  OutputSet out(dir);
+
+  const GlobalRun run = run_global_pipeline(c, setup, log, &report);
+
+  StageScope rank_stage("rank", &report, log);
+  const auto ranked = handoff::rank_blocks(run.area.filled, lat, rot, c.blocks);
+  const std::size_t count = std::min(ranked.size(), static_cast<std::size_t>(c.blocks.top));
+  rank_stage.done(fmt::format("{} candidate blocks with coast, writing the best {}", ranked.size(), count));
+
+  // The effective global configuration, so each block's regional run sees this very global run.
+  Json echo = loaded.echo;
+  echo["input"]["path"] = fs::absolute(c.input.path).lexically_normal().string();
+  echo["output"]["dir"] = fs::absolute(c.output.dir).lexically_normal().string();
+  echo["blocks"]["top"] = c.blocks.top;
+  const std::string global_name = "global.toml";
+  {
+    std::ofstream f(out.temp_path(global_name));
+    f << handoff::config_text_from_echo(
+        echo, fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
+                          "included).\nEvery block_NNN.toml names it as roms.global_config.",
+                          loaded.source));
+    if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(global_name).string()));
+  }
+  const std::string global_path = out.final_path(global_name).string();
+  const auto keys = config::regional_keys();
+  const bool has_global_key = std::find(keys.begin(), keys.end(), "roms.global_config") != keys.end();
+
+  StageScope write_stage("write", &report, log);
+  Json list = Json::array();
+  io::PreviewOptions overview;
+  overview.width_px = c.output.png_width;
+  overview.elements = io::parse_element_kinds(c.mesh.elements);
+  overview.title = fmt::format("aquatoria blocks: {} best coastal blocks", count);
+  std::vector<std::string> table;
+  table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6} {:>5}  {}", "rank", "name", "block",
+                              "box (lon x lat, degrees)", "coast px", "wet %", "ny", "projection"));
+  for (std::size_t k = 0; k < count; ++k) {
+    const handoff::BlockCandidate& b = ranked[k];
+    const std::string name = fmt::format("block_{:03d}", k + 1);
+    const handoff::BoxFrame frame(b.box, rot);
+    handoff::SideInsets insets;
+    if (c.blocks.shrink_to_wet) insets = handoff::shrink_to_wet(frame, run.area.filled, lat, rot, c.blocks.max_inset);
+    handoff::BlockContour contour = handoff::block_contour(frame, insets, c.blocks.points_per_side);
+    // The contour must be usable: build its spline now (corners, orientation, self-intersection).
+    try {
+      std::vector<bool> corner(contour.x.size(), false);
+      for (const int q : contour.corners) corner[static_cast<std::size_t>(q)] = true;
+      curvilinear::ContourOptions co;
+      co.source = name;
+      (void)curvilinear::SplineContour(contour.x, contour.y, corner, co);
+    } catch (const InputError& e) {
+      if (!c.blocks.shrink_to_wet) throw;
+      log.warn("{}: the shrunk contour is not usable ({}); writing the block's outline instead", name, e.what());
+      contour = handoff::block_contour(frame, handoff::SideInsets{}, c.blocks.points_per_side);
+    }
+    if (contour.trimmed)
+      log.warn("{}: a side on a pole was moved off it (a box cannot have a side of zero length)", name);
+    const auto& p = contour.projection;
+    const std::string description = fmt::format(
+        "aquatoria regional config of {} (written by `aquatoria blocks`): {} {}, rank {} of {} by coastal "
+        "pixels\n({} coastal pixels, wet fraction {:.3f}) of the global run {}",
+        name, b.describe(), box_text(b.box), k + 1, ranked.size(), b.coastal_pixels, b.wet_fraction, loaded.source);
+    {
+      std::ofstream f(out.temp_path(name + ".izogrid"));
+      f << handoff::izogrid_text(contour, b.suggested_ny, latlongrid_for(frame.box()), description);
+      if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(name + ".izogrid").string()));
+    }
+    handoff::BlockConfigInfo info;
+    info.name = name;
+    info.izogrid_file = name + ".izogrid";
+    info.description = description;
+    info.ny = b.suggested_ny;
+    info.input_path = fs::absolute(c.input.path).lexically_normal().string();
+    info.input_variable = c.input.variable;
+    info.positive_down = c.input.positive_down;
+    info.coast_level_m = -c.mask.min_depth_m;
+    info.output_dir = dir.string();
+    info.global_config = global_path;
+    info.write_global_config = has_global_key;
+    {
+      std::ofstream f(out.temp_path(name + ".toml"));
+      f << handoff::regional_config_text(info);
+      if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(name + ".toml").string()));
+    }
+
+    io::PreviewOutline outline{map_outline(b.box, rot), fmt::format("{}", k + 1)};
+    overview.outlines.push_back(outline);
+    {
+      io::PreviewOptions zoom;
+      zoom.width_px = std::min(c.output.png_width, 1000);
+      zoom.elements = overview.elements;
+      zoom.title = fmt::format("{}: {}", name, b.describe());
+      double w = 1e9, e = -1e9, s = 1e9, n = -1e9;
+      for (const auto& q : outline.points) {
+        w = std::min(w, q[0]);
+        e = std::max(e, q[0]);
+        s = std::min(s, q[1]);
+        n = std::max(n, q[1]);
+      }
+      const double pad = 0.5 * std::max(e - w, n - s);
+      zoom.zoom = {w - pad, e + pad, std::max(-90.0, s - pad), std::min(90.0, n + pad)};
+      zoom.outlines.push_back(outline);
+      io::write_preview_zoom_png(run.mesh, *run.bathy, out.temp_path(name + ".png"), zoom);
+    }
+
+    const auto g = frame.geographic(0.5, 0.5);
+    list.push_back(Json{{"rank", k + 1},
+                        {"name", name},
+                        {"block", b.describe()},
+                        {"square", b.box_index < 0 ? Json::array({b.square_a, b.square_b}) : Json(nullptr)},
+                        {"box_index", b.box_index < 0 ? Json(nullptr) : Json(b.box_index)},
+                        {"box", {b.box.lon_min_deg, b.box.lon_max_deg, b.box.lat_min_deg, b.box.lat_max_deg}},
+                        {"box_system", b.box.lattice_system ? "lattice" : "geographic"},
+                        {"centre_lon_deg", g.lon_deg},
+                        {"centre_lat_deg", g.lat_deg},
+                        {"coastal_pixels", b.coastal_pixels},
+                        {"filled_pixels", b.filled_pixels},
+                        {"wet_fraction", b.wet_fraction},
+                        {"ny", b.suggested_ny},
+                        {"projection", curvilinear::projection_code(p.kind)},
+                        {"rota_deg", p.rota_deg},
+                        {"uscale", p.uscale},
+                        {"shrink_to_wet", c.blocks.shrink_to_wet},
+                        {"max_inset", {insets.max(0), insets.max(1), insets.max(2), insets.max(3)}},
+                        {"config", out.final_path(name + ".toml").string()},
+                        {"contour", out.final_path(name + ".izogrid").string()}});
+    table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6.1f} {:>5}  {} ({:.4g}, {:.4g})", k + 1, name,
+                                b.describe(), box_text(b.box), b.coastal_pixels, 100.0 * b.wet_fraction, b.suggested_ny,
+                                curvilinear::projection_code(p.kind), g.lon_deg, g.lat_deg));
+  }
+  io::write_preview_png(run.mesh, *run.bathy, out.temp_path("blocks.png"), overview);
+  write_stage.done(fmt::format("{} blocks (config, contour, picture) + blocks.png in {}", count, dir.string()));
+
+  report["blocks"] = Json{{"candidates", ranked.size()},
+                          {"written", count},
+                          {"coastal_pixel", "filled pixel with a non-filled pixel among its 8 neighbours"},
+                          {"global_config", global_path},
+                          {"list", list}};
+  report.finish();
+  report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
+  {
+    std::ofstream f(out.temp_path("blocks.json"));
+    f << report.dump() << '\n';
+    if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path("blocks.json").string()));
+  }
+  out.commit();
+
+  for (const auto& line : table) fmt::print("{}\n", line);
+  std::fflush(stdout);
+  log.info("blocks: {} configs in {}/ (global.toml, block_NNN.toml/.izogrid/.png, blocks.png, blocks.json; {:.2f} s)",
+           count, dir.string(), total.wall_s());
+  if (count > 0) log.info("next: aquatoria regional -c {}", out.final_path("block_001.toml").string());
+  return 0;
+}
+
+}  // namespace
+
+void add_blocks_command(CLI::App& app, Context& ctx) {
+  auto args = std::make_shared<BlocksArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "blocks", "Rank the coastal blocks of a global run and write a regional config + contour for each");
+  cmd->add_option_function<std::string>(
+      "-c,--config", [args](const std::string& s) { args->config = s; },
+      "Global configuration file (TOML); see configs/example.toml [blocks]");
+  cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
+  cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir); files go to DIR/blocks/");
+  cmd->add_option("--top", args->top, "How many blocks to write (overrides blocks.top)");
+  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_blocks(*args, ctx.log); }; });
+}
+
+}  // namespace aq::app

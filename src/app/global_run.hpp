@@ -1,0 +1,53 @@
+// The global discretizer's pipeline core, shared by `aquatoria mesh` (which writes the mesh),
+// `aquatoria blocks` (which ranks coastal blocks of the same run) and `aquatoria regional` (which
+// locates a nested grid's boundary points in the same mesh): configuration -> lattice and memory
+// check -> bathymetry -> wet area (K-cursor fill) -> quadtree leaves -> mesh -> statistics and
+// checks (ARCHITECTURE §4). Output writing stays with each command.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "config/options.hpp"
+#include "core/lattice.hpp"
+#include "core/log.hpp"
+#include "core/report.hpp"
+#include "core/rotation.hpp"
+#include "mask/wet_area.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh/statistics.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::app {
+
+/// What is known before any data is read: the lattice, the rotation and the memory budget.
+struct GlobalSetup {
+  Lattice lattice;
+  PoleRotation rotation;
+  std::int64_t memory_limit_bytes = 0;  ///< input.max_memory_gb, or 80% of RAM
+  std::int64_t lattice_bytes = 0;       ///< estimated bitmaps of the mask and quadtree stages
+};
+
+/// Builds the lattice and rotation of `c` and refuses (ConfigError naming quadtree.levels,
+/// quadtree.step_deg and input.max_memory_gb) a lattice whose bitmaps would not fit.
+GlobalSetup prepare_global_run(const config::GlobalConfig& c);
+
+/// Everything the pipeline built; the raster stays open for depths and pictures.
+struct GlobalRun {
+  GlobalSetup setup;
+  std::optional<raster::Bathymetry> bathy;
+  mask::WetArea area;
+  mesh::Mesh mesh;
+  mesh::MeshStatistics statistics;
+};
+
+/// Runs read -> mask -> quadtree -> mesh -> statistics for `c` (after prepare_global_run).
+/// Logs the stage lines, the passage table and warnings (pinches, the ocean at the North pole
+/// row); fills the report's "input", "lattice", "mask", "quadtree", "mesh" and "statistics"
+/// sections when `report` is given. Throws what the stages throw, and InternalError when a mesh
+/// check fails (nothing has been written then).
+GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                              Report* report);
+
+}  // namespace aq::app

@@ -1,0 +1,227 @@
+// Point location in a real global mesh (ETOPO60, Δ0 = 4°, L = 3): every triangle's centroid is
+// found in that triangle, random points agree with a brute-force search over all triangles,
+// barycentric weights reproduce the points to 1e-9° and lie in [0, 1] within 1e-12, points on
+// the seam, on nodes, at the North pole and in a rotated-pole mesh, and land points outside.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/types.hpp"
+#include "handoff/mesh_locator.hpp"
+#include "unit/handoff/global_mesh_fixture.hpp"
+
+namespace {
+
+using aq::handoff::MeshLocation;
+using aq::handoff::MeshLocator;
+using aq::mesh::Mesh;
+
+// Lattice-plane position of a node as drawn in the triangle (seam-unwrapped).
+std::array<double, 2> node_deg(const Mesh& m, const std::array<aq::NodeId, 3>& t, aq::NodeId n) {
+  return {m.lattice.lon_of(m.unwrapped_i(t, n)), m.lattice.lat_of(m.node_j[static_cast<std::size_t>(n)])};
+}
+
+// Σ w_k · node_k in the lattice plane.
+std::array<double, 2> reproduce(const Mesh& m, const MeshLocation& loc) {
+  std::array<double, 2> p{0.0, 0.0};
+  for (std::size_t q = 0; q < 3; ++q) {
+    const auto d = node_deg(m, loc.nodes, loc.nodes[q]);
+    p[0] += loc.weights[q] * d[0];
+    p[1] += loc.weights[q] * d[1];
+  }
+  return p;
+}
+
+double lon_diff(double a, double b) { return std::remainder(a - b, 360.0); }
+
+void expect_weights_ok(const MeshLocation& loc) {
+  double sum = 0.0;
+  for (const double w : loc.weights) {
+    EXPECT_GE(w, -1e-12);
+    EXPECT_LE(w, 1.0 + 1e-12);
+    sum += w;
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-14);
+}
+
+// Smallest barycentric weight of point (lon, lat) (lattice degrees, λ near the triangle) in t.
+double min_weight(const Mesh& m, std::size_t t, double lon, double lat) {
+  const auto& tri = m.triangles[t];
+  std::array<std::array<double, 2>, 3> v{};
+  for (std::size_t q = 0; q < 3; ++q) v[q] = node_deg(m, tri, tri[q]);
+  const double x = v[0][0] + lon_diff(lon, v[0][0]);  // λ brought next to the triangle
+  const double det = (v[1][1] - v[2][1]) * (v[0][0] - v[2][0]) + (v[2][0] - v[1][0]) * (v[0][1] - v[2][1]);
+  const double w0 = ((v[1][1] - v[2][1]) * (x - v[2][0]) + (v[2][0] - v[1][0]) * (lat - v[2][1])) / det;
+  const double w1 = ((v[2][1] - v[0][1]) * (x - v[2][0]) + (v[0][0] - v[2][0]) * (lat - v[2][1])) / det;
+  return std::min({w0, w1, 1.0 - w0 - w1});
+}
+
+}  // namespace
+
+TEST(MeshLocator, EveryCentroidIsInItsTriangle) {
+  const auto& f = aq::testing::etopo60_mesh(false);
+  const Mesh& m = f.mesh;
+  ASSERT_GT(m.triangle_count(), 10000);
+  const MeshLocator loc(m);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    double lon = 0.0, lat = 0.0;
+    for (const auto n : tri) {
+      const auto d = node_deg(m, tri, n);
+      lon += d[0] / 3.0;
+      lat += d[1] / 3.0;
+    }
+    const MeshLocation l = loc.locate_lattice(lon, lat);
+    ASSERT_EQ(l.triangle, static_cast<aq::ElementId>(t)) << "centroid (" << lon << ", " << lat << ")";
+    for (const double w : l.weights) EXPECT_NEAR(w, 1.0 / 3.0, 1e-12);
+  }
+}
+
+TEST(MeshLocator, AgreesWithBruteForceAndReproducesPositions) {
+  const auto& f = aq::testing::etopo60_mesh(false);
+  const Mesh& m = f.mesh;
+  const MeshLocator loc(m);
+  std::mt19937_64 rng(20240611);
+  std::uniform_real_distribution<double> ulon(-180.0, 180.0), usin(-1.0, 1.0);
+  int inside = 0, outside = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const double lon = ulon(rng), lat = std::asin(usin(rng)) * aq::kRadToDeg;
+    const MeshLocation l = loc.locate_geographic(lon, lat);
+    double best = -1e300;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) best = std::max(best, min_weight(m, t, lon, lat));
+    if (best >= 1e-9) {
+      ASSERT_TRUE(l.inside()) << lon << ", " << lat;
+    } else if (best < -1e-9) {
+      ASSERT_FALSE(l.inside()) << lon << ", " << lat;
+    }
+    if (!l.inside()) {
+      ++outside;
+      continue;
+    }
+    ++inside;
+    EXPECT_GE(min_weight(m, static_cast<std::size_t>(l.triangle), lon, lat), -1e-12);
+    expect_weights_ok(l);
+    const auto p = reproduce(m, l);
+    EXPECT_NEAR(lon_diff(p[0], lon), 0.0, 1e-9);
+    EXPECT_NEAR(p[1], lat, 1e-9);
+    EXPECT_NEAR(p[0], l.lattice_lon_deg, 1e-9);
+  }
+  // About 70% of the globe is ocean.
+  EXPECT_GT(inside, 900);
+  EXPECT_GT(outside, 250);
+}
+
+TEST(MeshLocator, PointsOnTheSeam) {
+  const auto& f = aq::testing::etopo60_mesh(false);
+  const Mesh& m = f.mesh;
+  const MeshLocator loc(m);
+  for (const double lat : {-60.0, -55.3, -10.1, 30.7}) {  // the antimeridian is open ocean here
+    for (const double lon : {-180.0, 180.0, 179.9999999999, -179.9999999999, 540.0}) {
+      const MeshLocation l = loc.locate_geographic(lon, lat);
+      ASSERT_TRUE(l.inside()) << lon << ", " << lat;
+      expect_weights_ok(l);
+      const auto p = reproduce(m, l);
+      EXPECT_NEAR(lon_diff(p[0], lon), 0.0, 1e-9) << lon << ", " << lat;
+      EXPECT_NEAR(p[1], lat, 1e-9);
+    }
+    // East of the seam in the first column and west of it in the last: the elements differ,
+    // both drawn without a jump of 360°.
+    const MeshLocation e = loc.locate_geographic(-179.99, lat), w = loc.locate_geographic(179.99, lat);
+    ASSERT_TRUE(e.inside() && w.inside());
+    EXPECT_NE(e.triangle, w.triangle);
+    EXPECT_NEAR(reproduce(m, w)[0], 179.99, 1e-9);
+    EXPECT_NEAR(reproduce(m, e)[0], -179.99, 1e-9);
+  }
+}
+
+TEST(MeshLocator, NodesPoleAndLand) {
+  const auto& f = aq::testing::etopo60_mesh(false);
+  const Mesh& m = f.mesh;
+  const MeshLocator loc(m);
+  // A node: one weight is 1.
+  for (std::size_t n = 0; n < m.lon_deg.size(); n += 997) {
+    const MeshLocation l = loc.locate_geographic(m.lon_deg[n], m.lat_deg[n]);
+    ASSERT_TRUE(l.inside());
+    const double wmax = std::max({l.weights[0], l.weights[1], l.weights[2]});
+    EXPECT_NEAR(wmax, 1.0, 1e-12);
+    expect_weights_ok(l);
+  }
+  // The North pole: ETOPO60's Arctic reaches 90°N (a pole loop of the unrotated mesh).
+  const MeshLocation pole = loc.locate_geographic(10.0, 90.0);
+  ASSERT_TRUE(pole.inside());
+  EXPECT_NEAR(reproduce(m, pole)[1], 90.0, 1e-9);
+  // Land: the Sahara, the interior of Antarctica, the Tibetan plateau.
+  EXPECT_FALSE(loc.locate_geographic(20.0, 22.0).inside());
+  EXPECT_FALSE(loc.locate_geographic(0.0, -85.0).inside());
+  EXPECT_FALSE(loc.locate_geographic(88.0, 33.0).inside());
+  EXPECT_EQ(loc.locate_geographic(20.0, 22.0).triangle, -1);
+}
+
+TEST(MeshLocator, RotatedPoleMesh) {
+  const auto& f = aq::testing::etopo60_mesh(true);
+  const Mesh& m = f.mesh;
+  ASSERT_TRUE(m.rotation.enabled);
+  const MeshLocator loc(m);
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> ulon(-180.0, 180.0), usin(-1.0, 1.0);
+  int inside = 0;
+  for (int k = 0; k < 600; ++k) {
+    const double lon = ulon(rng), lat = std::asin(usin(rng)) * aq::kRadToDeg;
+    const MeshLocation l = loc.locate_geographic(lon, lat);
+    double rlon = 0, rlat = 0;
+    f.rotation.to_rotated(lon, lat, rlon, rlat);
+    double best = -1e300;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) best = std::max(best, min_weight(m, t, rlon, rlat));
+    if (best >= 1e-9) {
+      ASSERT_TRUE(l.inside());
+    }
+    if (best < -1e-9) {
+      ASSERT_FALSE(l.inside());
+    }
+    if (!l.inside()) continue;
+    ++inside;
+    expect_weights_ok(l);
+    // Weights reproduce the point in the lattice (rotated) plane, and so, rotated back, on the Earth.
+    const auto p = reproduce(m, l);
+    EXPECT_NEAR(lon_diff(p[0], rlon), 0.0, 1e-9);
+    EXPECT_NEAR(p[1], rlat, 1e-9);
+    double glon = 0, glat = 0;
+    f.rotation.to_geographic(p[0], p[1], glon, glat);
+    EXPECT_NEAR(glat, lat, 1e-9);
+    if (std::abs(lat) < 89.9) {
+      EXPECT_NEAR(lon_diff(glon, lon), 0.0, 1e-9);
+    }
+  }
+  EXPECT_GT(inside, 300);
+  // The geographic North pole is ocean, and not a pole of the rotated lattice.
+  const MeshLocation np = loc.locate_geographic(0.0, 90.0);
+  ASSERT_TRUE(np.inside());
+  double glon = 0, glat = 0;
+  const auto p = reproduce(m, np);
+  f.rotation.to_geographic(p[0], p[1], glon, glat);
+  EXPECT_NEAR(glat, 90.0, 1e-9);
+}
+
+TEST(MeshLocator, FindSquareUsesTheLeafStructure) {
+  const auto& f = aq::testing::etopo60_mesh(false);
+  const Mesh& m = f.mesh;
+  const MeshLocator loc(m);
+  // Every filled pixel is in exactly the square that covers it; unfilled pixels in none.
+  std::int64_t filled = 0;
+  for (std::int64_t j = 0; j < m.lattice.ny; ++j) {
+    for (std::int64_t i = 0; i < m.lattice.nx; ++i) {
+      const aq::ElementId s = loc.find_square(i, j);
+      ASSERT_EQ(s >= 0, f.area.filled.get(i, j)) << i << ", " << j;
+      if (s < 0) continue;
+      ++filled;
+      const auto sw = static_cast<std::size_t>(m.squares[static_cast<std::size_t>(s)][0]);
+      const std::int64_t size = m.lattice.pixels_per_square(m.square_level[static_cast<std::size_t>(s)]);
+      EXPECT_TRUE(i >= m.node_i[sw] && i < m.node_i[sw] + size && j >= m.node_j[sw] && j < m.node_j[sw] + size);
+    }
+  }
+  EXPECT_EQ(filled, f.area.filled.count());
+  EXPECT_EQ(loc.find_square(m.lattice.nx + 3, 100), loc.find_square(3, 100));
+  EXPECT_EQ(loc.find_square(0, -1), -1);
+  EXPECT_EQ(loc.find_square(0, m.lattice.ny), -1);
+}
