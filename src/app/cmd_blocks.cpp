@@ -145,7 +145,8 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   io::PreviewOptions overview;
   overview.width_px = c.output.png_width;
   overview.elements = io::parse_element_kinds(c.mesh.elements);
-  overview.title = fmt::format("aquatoria blocks: {} best coastal blocks", count);
+  overview.title = fmt::format("aquatoria blocks: the {} best of {} coastal block{}", count, ranked.size(),
+                               ranked.size() == 1 ? "" : "s");
   std::vector<std::string> table;
   table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6} {:>5}  {}", "rank", "name", "block",
                               "box (lon x lat, degrees)", "coast px", "wet %", "ny", "projection"));
@@ -173,7 +174,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     const auto& p = contour.projection;
     const std::string description = fmt::format(
         "aquatoria regional config of {} (written by `aquatoria blocks`): {} {}, rank {} of {} by coastal "
-        "pixels\n({} coastal pixels, wet fraction {:.3f}) of the global run {}",
+        "pixels\n({} coastal pixels, wet fraction {:.3f}) of the global run from {}",
         name, b.describe(), box_text(b.box), k + 1, ranked.size(), b.coastal_pixels, b.wet_fraction, loaded.source);
     {
       std::ofstream f(out.temp_path(name + ".izogrid"));

@@ -27,8 +27,9 @@
 //      the box, 32..1024). For side S, station k (s_k = (k + ½)/n) gets the raw inset
 //      d_k = (number of consecutive non-filled cells from t = 0 upward) / n, capped at
 //      `max_inset` (so opposite sides never meet); likewise E (from s = 1 leftward), N (from
-//      t = 1 downward), W (from s = 0 rightward). The strip between the old and the raw side
-//      holds no wet cell.
+//      t = 1 downward), W (from s = 0 rightward). At every station the strip between the old and
+//      the raw side holds no wet cell (the guarantee is at the stations' resolution, half a
+//      lattice pixel; the spline through the control points may cut across less than a station).
 //   2. Smooth by lowering only: e = min(d, ·) through the lower Lipschitz envelope
 //      e_k = min_j (d_j + ½·|s_k − s_j|) (two sweeps), so a side turns at most atan ½ ≈ 26.6°
 //      against the box edge and e <= d keeps the strip dry;

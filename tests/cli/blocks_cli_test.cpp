@@ -85,6 +85,25 @@ TEST(BlocksCli, UserBoxOverTheCoast) {
   EXPECT_EQ(g.exit_code, 0) << g.err;
 }
 
+TEST(BlocksCli, SameFilesWithOneAndTwoThreads) {
+  aq::testing::TempDir d1, d2;
+  const auto r1 = aq::test::run_command("OMP_NUM_THREADS=1 " + std::string(AQ_BINARY) + " " + small_run(d1.path()) +
+                                        " --top 4 --set blocks.shrink_to_wet=true -q");
+  const auto r2 = aq::test::run_command("OMP_NUM_THREADS=2 " + std::string(AQ_BINARY) + " " + small_run(d2.path()) +
+                                        " --top 4 --set blocks.shrink_to_wet=true -q");
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  EXPECT_EQ(r1.out, r2.out);
+  for (const char* f : {"block_001.izogrid", "block_004.izogrid", "block_002.toml", "blocks.png", "block_003.png"}) {
+    std::string a = aq::test::slurp(d1 / "blocks" / f), b = aq::test::slurp(d2 / "blocks" / f);
+    EXPECT_FALSE(a.empty()) << f;
+    // The configs name their (different) folders: compare with the folder taken out.
+    for (auto [text, folder] : {std::pair{&a, d1.path().string()}, std::pair{&b, d2.path().string()}})
+      for (std::size_t p = text->find(folder); p != std::string::npos; p = text->find(folder)) text->erase(p, folder.size());
+    EXPECT_TRUE(a == b) << f;
+  }
+}
+
 TEST(BlocksCli, BadTopIsAUsageError) {
   aq::testing::TempDir dir;
   const auto r = run_aquatoria(small_run(dir.path()) + " --top 1000");
