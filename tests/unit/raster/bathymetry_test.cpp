@@ -171,7 +171,10 @@ class OriginVariants : public ::testing::TestWithParam<VariantCase> {};
 
 TEST_P(OriginVariants, SameSamplesAsReference) {
   const auto& vc = GetParam();
-  const fs::path p = write_raster(std::string(vc.name) + (std::string(vc.driver) == "GTiff" ? ".tif" : ".nc"),
+  const std::string drv = vc.driver;
+  const bool gmt = std::string(vc.name).rfind("gmt", 0) == 0;  // GMT 4+ grd files are netCDF
+  const std::string ext = drv == "GTiff" ? ".tif" : drv == "EHdr" ? ".bin" : gmt ? ".grd" : ".nc";
+  const fs::path p = write_raster(std::string(vc.name) + ext,
                                   vc.driver, vc.layout, global_field);
   const auto b = open(p);
   EXPECT_TRUE(b.info().global_lon) << vc.name;
@@ -193,7 +196,10 @@ INSTANTIATE_TEST_SUITE_P(
         VariantCase{"origin20_duplicate_column", "GTiff", {20.0, 90.0, 1.0, 361, 181, true}},
         VariantCase{"origin_minus180_duplicate_360", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}},
         VariantCase{"lat_pixel_registered_2deg", "netCDF", {0.0, 89.0, 2.0, 180, 90, true}},
-        VariantCase{"netcdf_origin0", "netCDF", {0.0, -90.0, 2.0, 180, 91, false}}),
+        VariantCase{"netcdf_origin0", "netCDF", {0.0, -90.0, 2.0, 180, 91, false}},
+        // ETOPO2v2-style raw binary with an .hdr header, and a GMT grd (ETOPO1 .grd).
+        VariantCase{"ehdr_raw_binary", "EHdr", {-180.0, 90.0, 1.0, 360, 181, true}},
+        VariantCase{"gmt_grd", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}}),
     [](const ::testing::TestParamInfo<VariantCase>& i) { return std::string(i.param.name); });
 
 TEST(Raster, RegistrationIsReported) {
