@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "app/commands.hpp"
+#include "app/regional_roms.hpp"
 #include "config/regional.hpp"
 #include "core/error.hpp"
 #include "core/output_files.hpp"
@@ -153,6 +154,11 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
                         result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst,
                         q.ortho_50.rms));
   }
+
+  // Stage 5 on the sphere: the ROMS grid file <name>_grd.nc and <name>_roms.png (app/regional_roms.hpp).
+  if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled)
+    write_regional_roms(c, loaded.source, result, out, outputs, report, log);
+
   report["outputs"] = outputs;
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;

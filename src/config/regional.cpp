@@ -115,6 +115,39 @@ const S& schema() {
     t.add<std::string>("output", "dir", [](RegionalConfig& c) -> std::string& { return c.output_dir; },
                        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); },
                        "");
+    t.add<bool>("roms", "enabled", [](RegionalConfig& c) -> bool& { return c.roms.enabled; }, {}, "");
+    t.add_custom(
+        "roms", "global_config",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::string x;
+          if (auto err = detail::convert(v, x)) return p.add(o, "roms.global_config", *err);
+          std::filesystem::path path(x);
+          if (!x.empty() && path.is_relative()) path = o.base_dir / path;
+          c.roms.global_config = x.empty() ? x : path.lexically_normal().string();
+        },
+        [](const RegionalConfig& c) { return Json(c.roms.global_config); }, "");
+    t.add<double>("roms", "hmin_m", [](RegionalConfig& c) -> double& { return c.roms.hmin_m; },
+                  [](const double& v) {
+                    return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a depth > 0 (m)");
+                  },
+                  "");
+    t.add<double>("roms", "rmax", [](RegionalConfig& c) -> double& { return c.roms.rmax; },
+                  [](const double& v) {
+                    return (v >= 0.0 && v < 1.0) ? std::string() : std::string("must be in [0, 1) (0 = no smoothing)");
+                  },
+                  "");
+    t.add<std::string>("roms", "distances", [](RegionalConfig& c) -> std::string& { return c.roms.distances; },
+                       [](const std::string& v) {
+                         return (v == "sphere" || v == "wgs84")
+                                    ? std::string()
+                                    : fmt::format("\"{}\" is not one of \"sphere\", \"wgs84\"", v);
+                       },
+                       "");
+    t.add<double>("roms", "earth_radius_m", [](RegionalConfig& c) -> double& { return c.roms.earth_radius_m; },
+                  [](const double& v) {
+                    return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a radius > 0 (m)");
+                  },
+                  "");
     return t;
   }();
   return s;

@@ -1,0 +1,266 @@
+// The ROMS grid file of a regional run: global mask and depth from roms.global_config, C-grid
+// metrics on the Earth, depth clip/smoothing, netCDF and picture (see regional_roms.hpp).
+#include "app/regional_roms.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "config/load.hpp"
+#include "core/error.hpp"
+#include "core/lattice.hpp"
+#include "core/rotation.hpp"
+#include "core/timer.hpp"
+#include "curvilinear/cgrid.hpp"
+#include "curvilinear/roms_depth.hpp"
+#include "io/depth.hpp"
+#include "io/roms_grid.hpp"
+#include "io/roms_grid_png.hpp"
+#include "mask/regional_mask.hpp"
+#include "mask/wet_area.hpp"
+#include "raster/bathymetry.hpp"
+
+#ifndef AQ_VERSION
+#define AQ_VERSION "dev"
+#endif
+
+namespace aq::app {
+
+namespace {
+
+// Bitmaps of the mask stage for a lattice (wet vertices, wet, coastal, filled and the fill's
+// work space), as the global run estimates them.
+std::int64_t mask_bitmap_bytes(const Lattice& l) { return 12 * (l.nx / 8 + 8) * (l.ny + 1); }
+
+config::Loaded<config::GlobalConfig> load_global_run(const config::RegionalConfig& c) {
+  try {
+    return config::load_global(c.roms.global_config.empty() ? std::optional<std::string>() : c.roms.global_config, {});
+  } catch (const ConfigError& e) {
+    throw ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
+  }
+}
+
+}  // namespace
+
+void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
+                         const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
+                         const Logger& log) {
+  if (result.completed != curvilinear::Stage::kGrid || !result.projection)
+    throw InternalError("roms: the regional run did not complete the grid stage");
+  StageScope rs("roms", &report, log);
+  const auto distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
+
+  // The global run whose ocean the grid shares.
+  const auto global = load_global_run(c);
+  const config::GlobalConfig& g = global.options;
+  const Lattice lattice = Lattice::make(g.quadtree.step_deg, g.quadtree.levels, g.quadtree.lon0_deg);
+  const PoleRotation rot =
+      g.rotation.enabled ? PoleRotation(g.rotation.pole_lon_deg, g.rotation.pole_lat_deg) : PoleRotation();
+  const std::int64_t limit = g.input.max_memory_gb > 0
+                                 ? static_cast<std::int64_t>(g.input.max_memory_gb * 1e9)
+                                 : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
+  const std::int64_t need = mask_bitmap_bytes(lattice);
+  if (limit > 0 && need > limit)
+    throw ConfigError(fmt::format(
+        "roms.global_config = \"{}\": the {} x {} pixel lattice (quadtree.step_deg = {}, quadtree.levels = {}) needs "
+        "about {:.1f} GB of bitmaps, more than the {:.1f} GB allowed",
+        global.source, lattice.nx, lattice.ny, lattice.step0_deg, lattice.levels, static_cast<double>(need) / 1e9,
+        static_cast<double>(limit) / 1e9));
+  if (!c.input.path.empty() && c.input.path != g.input.path)
+    log.warn("roms: depth and mask come from the global run's bathymetry {} ({}), not from [input] path {}",
+             g.input.path, global.source, c.input.path);
+  if (c.params.radius != c.roms.earth_radius_m)
+    log.warn("roms: regional.radius = {} m but roms.earth_radius_m = {} m; the ROMS file uses roms.earth_radius_m",
+             c.params.radius, c.roms.earth_radius_m);
+
+  raster::OpenOptions ro;
+  ro.path = g.input.path;
+  ro.variable = g.input.variable;
+  ro.band = g.input.band;
+  ro.positive_down = g.input.positive_down;
+  ro.interpolation =
+      g.input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
+  ro.max_memory_bytes = limit > need ? limit - need : limit;
+  const auto bathy = raster::Bathymetry::open(ro, log);
+
+  // C-grid on the Earth.
+  curvilinear::CGridOptions co;
+  co.earth_radius_m = c.roms.earth_radius_m;
+  co.distances = distances;
+  const curvilinear::CGrid cg = curvilinear::build_cgrid(result.grid, *result.projection, co);
+  const int ni = cg.L + 1, nj = cg.M + 1;
+  const std::size_t nr = cg.rho.size();
+
+  // Depth at ρ with the global run's sampling; the global ocean; the masks.
+  const std::vector<double> elevation =
+      mask::sample_elevations(bathy, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), nr);
+  const mask::WetArea area = mask::compute_wet_area(bathy, lattice, rot, g.mask, log, nullptr);
+  const mask::RomsMasks masks =
+      mask::build_roms_masks(area.filled, lattice, rot, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), elevation.data(),
+                             g.mask.min_depth_m, ni, nj, &area.wet);
+  const auto& ms = masks.stats;
+  if (ms.wet_rho_interior == 0)
+    throw InputError(fmt::format(
+        "{}: the regional grid has no water of the global ocean: none of its {} interior ρ points lies in the K-fill "
+        "of roms.global_config = \"{}\" ({}; K = {}, h = {} m, {} seed{}, {:.4g}' pixels), although {} ρ points are "
+        "deeper than h (a lake, or a sea the fill does not reach at this lattice, e.g. the Black Sea behind the "
+        "Bosphorus): add a seed in the region to mask.seeds of that global config, use a finer lattice or a smaller "
+        "cursor, or set roms.enabled = false",
+        config_source, (ni - 2) * (nj - 2), c.roms.global_config, global.source, g.mask.cursor, g.mask.min_depth_m,
+        g.mask.seeds.size(), g.mask.seeds.size() == 1 ? "" : "s", lattice.pixel_deg() * 60.0, ms.deep_enough));
+
+  std::vector<double> hraw(nr);
+  for (std::size_t k = 0; k < nr; ++k) hraw[k] = io::depth_below_datum_m(elevation[k]);
+  curvilinear::DepthOptions dopt;
+  dopt.hmin_m = c.roms.hmin_m;
+  dopt.rmax = c.roms.rmax;
+  const curvilinear::DepthResult depth = curvilinear::roms_depth(hraw, masks.rho, ni, nj, dopt);
+  const curvilinear::CGridStats st = curvilinear::cgrid_stats(cg);
+
+  // The file.
+  const auto& p = c.params;
+  io::RomsGridData data;
+  data.grid = &cg;
+  data.h = depth.h;
+  data.hraw = hraw;
+  data.mask_rho = masks.rho;
+  data.mask_u = masks.u;
+  data.mask_v = masks.v;
+  data.mask_psi = masks.psi;
+  data.title = fmt::format("aquatoria regional grid {} (izogrid method, Shchepetkin 2020)", c.name);
+  data.history = fmt::format("aquatoria regional {}", config_source);
+  data.source = fmt::format("aquatoria {}", AQ_VERSION);
+  data.attributes = {
+      {"grid_name", c.name},
+      {"regional_config", config_source},
+      {"proj", curvilinear::projection_code(p.proj)},
+      {"rlat", p.rlat},
+      {"rlon", p.rlon},
+      {"rota", p.rota},
+      {"uscale", p.uscale},
+      {"spline_type", static_cast<std::int64_t>(p.spline_type)},
+      {"izogrid_nx", static_cast<std::int64_t>(result.nx)},
+      {"izogrid_ny", static_cast<std::int64_t>(result.ny)},
+      {"aspect_ratio", result.aspect_ratio},
+      {"index_convention",
+       std::string("rho(i,j) = supergrid(2i,2j) including the contour, u(k,j) = (2k+1,2j), v(i,l) = (2i,2l+1), "
+                   "psi(k,l) = (2k+1,2l+1); 0-based file indices")},
+      {"metrics",
+       fmt::format("1/pm, 1/pn: sums of the two supergrid half steps through rho ({}), doubled single half step on "
+                   "the boundary; angle: mean direction of the xi half steps at rho, counter-clockwise from east; "
+                   "dndx, dmde: centred differences, one-sided on the boundary",
+                   distances == curvilinear::DistanceModel::kWgs84 ? "WGS84 geodesics, GeographicLib"
+                                                                   : "great circles on the sphere")},
+      {"distances", std::string(curvilinear::distance_model_name(distances))},
+      {"earth_radius_m", c.roms.earth_radius_m},
+      {"earth_rotation_rate_per_s", curvilinear::kEarthOmega},
+      {"xy_metres_per_plane_unit", cg.xy_metres_per_unit},
+      {"global_config", global.source},
+      {"bathymetry", g.input.path},
+      {"bathymetry_sampling", g.input.interpolation},
+      {"mask_rule",
+       std::string("wet iff the rho point's lattice pixel is in the global K-fill set and its elevation <= -h; "
+                   "boundary rows/columns copy the nearest interior point; mask_u, mask_v, mask_psi are products "
+                   "of the adjacent mask_rho")},
+      {"mask_min_depth_m", g.mask.min_depth_m},
+      {"mask_cursor", static_cast<std::int64_t>(g.mask.cursor)},
+      {"lattice_pixel_deg", lattice.pixel_deg()},
+      {"lattice_lon0_deg", lattice.lon0_deg},
+      {"rotation", g.rotation.enabled
+                       ? fmt::format("pole at lon {} lat {}", g.rotation.pole_lon_deg, g.rotation.pole_lat_deg)
+                       : std::string("none")},
+      {"hmin_m", c.roms.hmin_m},
+      {"rmax", c.roms.rmax},
+      {"smoothing",
+       std::string("r-factor |h1-h2|/(h1+h2) <= rmax on faces between wet rho points, by raising the shallower "
+                   "depth only (minimal solution, Sikiric et al. 2009 positive rx0); land keeps max(hraw, hmin)")},
+      {"rx0_before", depth.rx0_before},
+      {"rx0_after", depth.rx0_after},
+  };
+  const std::string nc = c.name + "_grd.nc";
+  io::write_roms_grid(out.temp_path(nc), data);
+  outputs.push_back(Json{{"file", nc}, {"checksum_fnv1a64", file_checksum(out.pending_path(nc))}});
+
+  // The picture, with the coastline of the global bathymetry.
+  io::RomsPictureOptions po;
+  po.title = fmt::format("{}: ROMS grid {} x {} rho points, {} wet; h >= {} m{}", c.name, ni, nj, ms.wet_rho,
+                         c.roms.hmin_m, c.roms.rmax > 0.0 ? fmt::format(", r <= {}", c.roms.rmax) : std::string());
+  {
+    double w = 1e9, e = -1e9, s = 1e9, n = -1e9;
+    for (std::size_t k = 0; k < nr; ++k) {
+      w = std::min(w, cg.rho.lon_deg[k]);
+      e = std::max(e, cg.rho.lon_deg[k]);
+      s = std::min(s, cg.rho.lat_deg[k]);
+      n = std::max(n, cg.rho.lat_deg[k]);
+    }
+    const double pad = 0.5;
+    for (const auto& line : raster::contour_lines(bathy, c.coast_level_m, w - pad, e + pad, std::max(-90.0, s - pad),
+                                                  std::min(90.0, n + pad))) {
+      std::vector<curvilinear::PlanePoint> q(line.lon_deg.size());
+      for (std::size_t k = 0; k < q.size(); ++k) q[k] = result.projection->forward(line.lon_deg[k], line.lat_deg[k]);
+      po.coastlines.push_back(std::move(q));
+    }
+  }
+  const std::string png = c.name + "_roms.png";
+  io::write_roms_png(out.temp_path(png), result.grid, masks.rho, depth.h, po);
+  outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
+
+  double hmax = 0.0;
+  for (std::size_t k = 0; k < nr; ++k)
+    if (masks.rho[k] != 0) hmax = std::max(hmax, depth.h[k]);
+  report["roms"] = Json{{"file", nc},
+                        {"xi_rho", ni},
+                        {"eta_rho", nj},
+                        {"global_config", global.source},
+                        {"bathymetry", g.input.path},
+                        {"lattice", Json{{"nx", lattice.nx}, {"ny", lattice.ny}, {"pixel_deg", lattice.pixel_deg()}}},
+                        {"global_filled_pixels", area.filled_pixels},
+                        {"mask", Json{{"rho_points", ms.rho_points},
+                                      {"in_global_ocean", ms.in_filled},
+                                      {"deeper_than_h", ms.deep_enough},
+                                      {"lake_points", ms.lake_points},
+                                      {"coastal_pixel_points", ms.coastal_points},
+                                      {"shallow_in_global_ocean", ms.shallow_in_filled},
+                                      {"boundary_changed", ms.boundary_changed},
+                                      {"wet_rho", ms.wet_rho},
+                                      {"wet_rho_interior", ms.wet_rho_interior},
+                                      {"wet_u", ms.wet_u},
+                                      {"wet_v", ms.wet_v},
+                                      {"wet_psi", ms.wet_psi}}},
+                        {"metrics", Json{{"distances", curvilinear::distance_model_name(distances)},
+                                         {"earth_radius_m", c.roms.earth_radius_m},
+                                         {"pm_min", st.pm_min},
+                                         {"pm_max", st.pm_max},
+                                         {"pn_min", st.pn_min},
+                                         {"pn_max", st.pn_max},
+                                         {"dx_min_m", st.dx_min_m},
+                                         {"dx_max_m", st.dx_max_m},
+                                         {"isotropy_max_abs_pm_over_pn_minus_1", st.isotropy_max},
+                                         {"isotropy_worst_rho", {st.isotropy_worst_i, st.isotropy_worst_j}},
+                                         {"isotropy_max_interior", st.isotropy_max_interior},
+                                         {"angle_min_rad", st.angle_min},
+                                         {"angle_max_rad", st.angle_max},
+                                         {"xl_m", cg.xl_m},
+                                         {"el_m", cg.el_m}}},
+                        {"depth", Json{{"hmin_m", c.roms.hmin_m},
+                                       {"rmax", c.roms.rmax},
+                                       {"clipped", depth.clipped},
+                                       {"clipped_wet", depth.clipped_wet},
+                                       {"rx0_before", depth.rx0_before},
+                                       {"rx0_after", depth.rx0_after},
+                                       {"smoothed_points", depth.smoothed},
+                                       {"max_deepening_m", depth.max_deepening_m},
+                                       {"volume_added_rel", depth.volume_added_rel},
+                                       {"sweeps", depth.sweeps},
+                                       {"h_max_wet_m", hmax}}}};
+  rs.done(
+      fmt::format("{} ({} x {} ρ points, {} wet; land although deeper than h: {} in unconnected water, {} in "
+                  "coastal pixels); dx {:.4g}..{:.4g} km, max |pm/pn-1| "
+                  "{:.3g} (interior {:.3g}); rx0 {:.3g} -> {:.3g} ({} points deepened); {}",
+                  nc, ni, nj, ms.wet_rho, ms.lake_points, ms.coastal_points, st.dx_min_m / 1000.0, st.dx_max_m / 1000.0,
+                  st.isotropy_max, st.isotropy_max_interior, depth.rx0_before, depth.rx0_after, depth.smoothed, png));
+}
+
+}  // namespace aq::app

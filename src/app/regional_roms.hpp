@@ -1,0 +1,28 @@
+// `aquatoria regional`, stage 5 on the sphere (ARCHITECTURE §5): the ROMS grid file
+// <name>_grd.nc and its picture <name>_roms.png from a complete regional grid. The global run
+// named by roms.global_config supplies the bathymetry (with its sampling), the threshold h, the
+// lattice and the K-fill Ω_L, so depth and land mask are those of the global mesh.
+#pragma once
+
+#include <string>
+
+#include "config/regional.hpp"
+#include "core/log.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "curvilinear/regional.hpp"
+
+namespace aq::app {
+
+/// Builds the C-grid (curvilinear/cgrid.hpp), depths (curvilinear/roms_depth.hpp) and masks
+/// (mask/regional_mask.hpp) of `result` (completed = grid) and writes <name>_grd.nc and
+/// <name>_roms.png through `out`; appends both to `outputs` (file and checksum), adds a "roms"
+/// report section and logs "roms: done ...". `config_source` names the regional config in
+/// messages and file attributes. Throws ConfigError for a bad roms.* value or global config,
+/// InputError when the grid leaves the bathymetry or contains no water of the global ocean
+/// (naming both configs), and what the writers throw.
+void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
+                         const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
+                         const Logger& log);
+
+}  // namespace aq::app
