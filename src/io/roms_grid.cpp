@@ -169,7 +169,8 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
     return v;
   };
   for (std::size_t k = 0; k < 6; ++k) rho_vars[k] = define(rho_fields[k]);  // angle after the coordinates
-  nc.text(rho_vars[0], "comment", "hraw clipped to hmin (roms_hmin_m) and smoothed to roms_rmax on wet faces");
+  nc.text(rho_vars[0], "comment",
+          "hraw clipped to hmin_m and smoothed to the r-factor bound rmax on wet faces (global attributes)");
 
   // x, y then lat, lon of each family (CDL order: rho, psi, u, v).
   static constexpr std::array<const char*, 4> kUpper = {"RHO", "PSI", "U", "V"};
