@@ -12,6 +12,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -273,6 +274,35 @@ TEST_F(BlackSeaRoms, SameBytesWithOneThread) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(bytes(one / "black_sea_grd.nc"), bytes(grd()));
   EXPECT_EQ(bytes(one / "black_sea_roms.png"), bytes(dir_->path() / "black_sea_roms.png"));
+}
+
+TEST(GulfOfMexicoRoms, TheBuiltInGlobalRunGivesTheMaskOfAConnectedSea) {
+  // roms.global_config = "": the seed's reference run (0.5° pixels, K = 2, one Atlantic seed).
+  aq::testing::TempDir d;
+  const auto r = aq::test::run_aquatoria("regional -c " + (kConfigs / "gulf_of_mexico.toml").string() + " -o " +
+                                         d.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path file = d / "gulf_of_mexico_grd.nc";
+  const Field m = read_field(file, "mask_rho"), lon = read_field(file, "lon_rho"), lat = read_field(file, "lat_rho");
+  EXPECT_EQ(m.ni, 51u);
+  EXPECT_EQ(m.nj, 41u);
+  const auto g = aq::config::load_global(std::nullopt, {});
+  const aq::Lattice lattice =
+      aq::Lattice::make(g.options.quadtree.step_deg, g.options.quadtree.levels, g.options.quadtree.lon0_deg);
+  aq::raster::OpenOptions ro;
+  ro.path = g.options.input.path;
+  const auto bathy = aq::raster::Bathymetry::open(ro);
+  const auto area =
+      aq::mask::compute_wet_area(bathy, lattice, aq::PoleRotation(), g.options.mask, aq::Logger::null(), nullptr);
+  std::size_t wet = 0;
+  for (std::size_t j = 1; j + 1 < m.nj; ++j)
+    for (std::size_t i = 1; i + 1 < m.ni; ++i) {
+      if (m.at(i, j) == 0) continue;
+      ++wet;
+      const auto p = aq::mask::pixel_of_point(lattice, aq::PoleRotation(), lon.at(i, j), lat.at(i, j));
+      EXPECT_TRUE(area.filled.get(p.i, p.j)) << i << "," << j;
+    }
+  EXPECT_GT(wet, 1000u);  // the deep Gulf, open to the Atlantic through the Florida Strait
 }
 
 TEST(RomsBadInput, ABlockWithoutWaterOfTheGlobalOceanIsAClearError) {
