@@ -1,0 +1,30 @@
+// `aquatoria regional`, after the ROMS grid file: the nesting data of the regional grid in the
+// global mesh it is handed off from (ARCHITECTURE §6; handoff/nesting.hpp), <name>_nesting.nc
+// beside <name>_grd.nc. Written when the grid is complete, the ROMS file is enabled and
+// roms.global_config names the global run (as every config `aquatoria blocks` writes does).
+#pragma once
+
+#include <string>
+
+#include "config/regional.hpp"
+#include "core/log.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "curvilinear/regional.hpp"
+
+namespace aq::app {
+
+/// Whether write_regional_nesting() has work for this config and result.
+bool wants_regional_nesting(const config::RegionalConfig& c, const curvilinear::RegionalResult& result);
+
+/// Rebuilds the global mesh of roms.global_config (app/global_run.hpp: the same pipeline as
+/// `aquatoria mesh`, with triangles), builds the C-grid of `result` as the ROMS file does
+/// (roms.earth_radius_m, roms.distances), locates every boundary ρ/u/v point and writes
+/// <name>_nesting.nc through `out`; appends it to `outputs`, adds a "nesting" report section and
+/// logs "nesting: done ...", with a warning when points fall outside the global wet mesh.
+/// Throws ConfigError for a bad global config, and what the pipeline and writer throw.
+void write_regional_nesting(const config::RegionalConfig& c, const std::string& config_source,
+                            const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
+                            const Logger& log);
+
+}  // namespace aq::app
