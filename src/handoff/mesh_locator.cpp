@@ -142,6 +142,11 @@ MeshLocation MeshLocator::locate_lattice(double rlon_deg, double rlat_deg) const
     }
   }
   if (best_min < -kInsideTolerance) return MeshLocation{};
+  // A point on an element edge gets weights like -1e-11 from the rounding of its pixel
+  // coordinates: clamp them to 0 and renormalise (moves the point by < 1e-9 pixel).
+  double sum = 0.0;
+  for (double& w : best.weights) sum += (w = std::max(w, 0.0));
+  for (double& w : best.weights) w /= sum;
   return best;
 }
 

@@ -14,7 +14,9 @@
 // A point on a pixel edge (within 1e-9 pixel) is tried in the pixels on both sides, so points on
 // the coast or on a leaf boundary are found in whichever filled leaf touches them. Weights are in
 // the lattice plane: λ'_p = Σ w_k λ'_k, φ'_p = Σ w_k φ'_k (λ' of the nodes unwrapped as the
-// element is drawn), which the tests check to 1e-9°.
+// element is drawn), which the tests check to 1e-9°. Weights are in [0, 1] and sum to 1: a point
+// on an element's edge (within 1e-9 in weight) gets the tiny negative weights of rounding
+// clamped to 0 and the rest renormalised.
 #pragma once
 
 #include <array>

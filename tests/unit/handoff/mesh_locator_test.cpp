@@ -112,6 +112,49 @@ TEST(MeshLocator, AgreesWithBruteForceAndReproducesPositions) {
   EXPECT_GT(outside, 250);
 }
 
+TEST(MeshLocator, PointsJustOutsideTheCoastHaveWeightsInZeroOne) {
+  // A regional block's outline runs along lattice lines, as the coast of the mesh does; after the
+  // projection's round trip its points lie up to ~1e-11° off the line, possibly just outside the
+  // wet mesh. They are still located (tolerance 1e-9 in weight), with weights clamped to [0, 1].
+  const auto& f = aq::testing::etopo60_mesh(false);
+  const Mesh& m = f.mesh;
+  const MeshLocator loc(m);
+  int tested = 0;
+  for (std::size_t e = 0; e < m.boundary_edges.size(); e += 7) {
+    const auto [a, b] = m.boundary_edges[e];
+    const auto ia = m.node_i[static_cast<std::size_t>(a)], ib = m.node_i[static_cast<std::size_t>(b)];
+    if (std::abs(ia - ib) > 1 || m.lattice.lat_of(m.node_j[static_cast<std::size_t>(a)]) > 89.0) continue;
+    const double x0 = m.lattice.lon_of(ia), y0 = m.lattice.lat_of(m.node_j[static_cast<std::size_t>(a)]);
+    const double x1 = m.lattice.lon_of(ib), y1 = m.lattice.lat_of(m.node_j[static_cast<std::size_t>(b)]);
+    const double len = std::hypot(x1 - x0, y1 - y0);
+    // Wet on the left of a -> b: the outward normal is on the right, (dy, -dx).
+    const double nx = (y1 - y0) / len, ny = -(x1 - x0) / len;
+    for (const double t : {0.3, 0.5}) {
+      const double lon = x0 + t * (x1 - x0) + 3e-11 * nx, lat = y0 + t * (y1 - y0) + 3e-11 * ny;
+      const MeshLocation l = loc.locate_geographic(lon, lat);
+      ASSERT_TRUE(l.inside()) << lon << ", " << lat;
+      ++tested;
+      for (const double w : l.weights) {
+        EXPECT_GE(w, 0.0);
+        EXPECT_LE(w, 1.0);
+      }
+      const auto p = reproduce(m, l);
+      EXPECT_NEAR(lon_diff(p[0], lon), 0.0, 1e-9);
+      EXPECT_NEAR(p[1], lat, 1e-9);
+    }
+  }
+  EXPECT_GT(tested, 500);
+  // Farther out (1e-5°, about 2e-5 in weight) is outside.
+  const auto [a, b] = m.boundary_edges[0];
+  const double x0 = m.lattice.lon_of(m.node_i[static_cast<std::size_t>(a)]);
+  const double y0 = m.lattice.lat_of(m.node_j[static_cast<std::size_t>(a)]);
+  const double x1 = m.lattice.lon_of(m.node_i[static_cast<std::size_t>(b)]);
+  const double y1 = m.lattice.lat_of(m.node_j[static_cast<std::size_t>(b)]);
+  const double len = std::hypot(x1 - x0, y1 - y0);
+  EXPECT_FALSE(loc.locate_geographic(0.5 * (x0 + x1) + 1e-5 * (y1 - y0) / len, 0.5 * (y0 + y1) - 1e-5 * (x1 - x0) / len)
+                   .inside());
+}
+
 TEST(MeshLocator, PointsOnTheSeam) {
   const auto& f = aq::testing::etopo60_mesh(false);
   const Mesh& m = f.mesh;
