@@ -8,11 +8,11 @@
 #include <cmath>
 #include <optional>
 
+#include "app/global_run.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
-#include "core/timer.hpp"
 #include "curvilinear/cgrid.hpp"
 #include "curvilinear/roms_depth.hpp"
 #include "io/depth.hpp"
@@ -29,10 +29,6 @@
 namespace aq::app {
 
 namespace {
-
-// Bitmaps of the mask stage for a lattice (wet vertices, wet, coastal, filled and the fill's
-// work space), as the global run estimates them.
-std::int64_t mask_bitmap_bytes(const Lattice& l) { return 12 * (l.nx / 8 + 8) * (l.ny + 1); }
 
 config::Loaded<config::GlobalConfig> load_global_run(const config::RegionalConfig& c) {
   try {
@@ -55,19 +51,15 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   // The global run whose ocean the grid shares.
   const auto global = load_global_run(c);
   const config::GlobalConfig& g = global.options;
-  const Lattice lattice = Lattice::make(g.quadtree.step_deg, g.quadtree.levels, g.quadtree.lon0_deg);
-  const PoleRotation rot =
-      g.rotation.enabled ? PoleRotation(g.rotation.pole_lon_deg, g.rotation.pole_lat_deg) : PoleRotation();
-  const std::int64_t limit = g.input.max_memory_gb > 0
-                                 ? static_cast<std::int64_t>(g.input.max_memory_gb * 1e9)
-                                 : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
-  const std::int64_t need = mask_bitmap_bytes(lattice);
-  if (limit > 0 && need > limit)
-    throw ConfigError(fmt::format(
-        "roms.global_config = \"{}\": the {} x {} pixel lattice (quadtree.step_deg = {}, quadtree.levels = {}) needs "
-        "about {:.1f} GB of bitmaps, more than the {:.1f} GB allowed",
-        global.source, lattice.nx, lattice.ny, lattice.step0_deg, lattice.levels, static_cast<double>(need) / 1e9,
-        static_cast<double>(limit) / 1e9));
+  GlobalSetup setup;
+  try {
+    setup = prepare_global_run(g);
+  } catch (const ConfigError& e) {
+    throw ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
+  }
+  const Lattice& lattice = setup.lattice;
+  const PoleRotation& rot = setup.rotation;
+  const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
   if (!c.input.path.empty() && c.input.path != g.input.path)
     log.warn("roms: depth and mask come from the global run's bathymetry {} ({}), not from [input] path {}",
              g.input.path, global.source, c.input.path);
@@ -148,9 +140,10 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
        std::string("rho(i,j) = supergrid(2i,2j) including the contour, u(k,j) = (2k+1,2j), v(i,l) = (2i,2l+1), "
                    "psi(k,l) = (2k+1,2l+1); 0-based file indices")},
       {"metrics",
-       fmt::format("1/pm, 1/pn: sums of the two supergrid half steps through rho ({}), doubled single half step on "
-                   "the boundary; angle: mean direction of the xi half steps at rho, counter-clockwise from east; "
-                   "dndx, dmde: centred differences, one-sided on the boundary",
+       fmt::format("1/pm, 1/pn: sums of the two supergrid half steps through rho ({}); on the contour the outer "
+                   "half step is extrapolated linearly, 1/pm = max(3 h1 - h2, 1.5 h1); angle: direction of the xi "
+                   "line from Earth-centred positions (centred, one-sided second order on the contour), "
+                   "counter-clockwise from east; dndx, dmde: centred differences, one-sided on the boundary",
                    distances == curvilinear::DistanceModel::kWgs84 ? "WGS84 geodesics, GeographicLib"
                                                                    : "great circles on the sphere")},
       {"distances", std::string(curvilinear::distance_model_name(distances))},
