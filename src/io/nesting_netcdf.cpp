@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "io/netcdf_file.hpp"
 
 namespace aq::io {
 
@@ -16,30 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-template <typename E>
-void nc_check(int status, const fs::path& path, const std::string& what) {
-  if (status != NC_NOERR) throw E(fmt::format("{}: netCDF {}: {}", path.string(), what, nc_strerror(status)));
-}
-
-class NcFile {
- public:
-  NcFile() = default;
-  NcFile(const NcFile&) = delete;
-  NcFile& operator=(const NcFile&) = delete;
-  ~NcFile() {
-    if (id_ >= 0) nc_close(id_);
-  }
-  int* out() { return &id_; }
-  [[nodiscard]] int id() const { return id_; }
-  int close() {
-    const int s = nc_close(id_);
-    id_ = -1;
-    return s;
-  }
-
- private:
-  int id_ = -1;
-};
 
 struct VarSpec {
   const char* name;

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "core/error.hpp"
+#include "io/netcdf_file.hpp"
 
 namespace aq::io {
 
@@ -16,9 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void check(int status, const fs::path& path, const std::string& what) {
-  if (status != NC_NOERR) throw OutputError(fmt::format("{}: netCDF {}: {}", path.string(), what, nc_strerror(status)));
-}
+void check(int status, const fs::path& path, const std::string& what) { nc_check<OutputError>(status, path, what); }
 
 // The open file, closed on scope exit (that close's status only matters on the success path,
 // where close() is called explicitly).

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "io/netcdf_file.hpp"
 
 namespace aq::io {
 
@@ -27,34 +28,6 @@ bool is_reserved(const std::string& key) {
   return false;
 }
 
-/// Throws E("<path>: netCDF <what>: <nc_strerror>") unless status is NC_NOERR.
-template <typename E>
-void nc_check(int status, const fs::path& path, const std::string& what) {
-  if (status != NC_NOERR) throw E(fmt::format("{}: netCDF {}: {}", path.string(), what, nc_strerror(status)));
-}
-
-/// An open netCDF file, closed on scope exit (errors on that close are ignored: it only runs
-/// when another error is already propagating, or after an explicit close()).
-class NcFile {
- public:
-  NcFile() = default;
-  NcFile(const NcFile&) = delete;
-  NcFile& operator=(const NcFile&) = delete;
-  ~NcFile() {
-    if (id_ >= 0) nc_close(id_);
-  }
-  int* out() { return &id_; }
-  [[nodiscard]] int id() const { return id_; }
-  /// Closes and returns nc_close's status (data are flushed here).
-  int close() {
-    const int status = nc_close(id_);
-    id_ = -1;
-    return status;
-  }
-
- private:
-  int id_ = -1;
-};
 
 void put_text(int nc, int var, const char* name, const std::string& text, const fs::path& path) {
   nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
