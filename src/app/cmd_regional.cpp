@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "app/commands.hpp"
+#include "app/global_run.hpp"
 #include "app/regional_nesting.hpp"
 #include "app/regional_roms.hpp"
 #include "config/regional.hpp"
@@ -89,11 +90,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   po.title = fmt::format("{}: {}", c.name, curvilinear::stage_name(result.completed));
   if (!a.no_coastline && !c.input.path.empty() && result.projection) {
     StageScope cs("coastline", &report, log);
-    raster::OpenOptions ro;
-    ro.path = c.input.path;
-    ro.variable = c.input.variable;
-    ro.positive_down = c.input.positive_down;
-    const auto bathy = raster::Bathymetry::open(ro, log);
+    const auto bathy = raster::Bathymetry::open(raster_options(c.input, 0), log);
     const auto box = picture_box(result);
     const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
     std::size_t points = 0;

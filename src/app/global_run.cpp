@@ -36,6 +36,18 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   return s;
 }
 
+raster::OpenOptions raster_options(const config::InputOptions& input, std::int64_t max_memory_bytes) {
+  raster::OpenOptions ro;
+  ro.path = input.path;
+  ro.variable = input.variable;
+  ro.band = input.band;
+  ro.positive_down = input.positive_down;
+  ro.interpolation =
+      input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
+  ro.max_memory_bytes = max_memory_bytes;
+  return ro;
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report) {
   GlobalRun run;
@@ -44,14 +56,7 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   const PoleRotation& rot = setup.rotation;
   const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
 
-  raster::OpenOptions ro;
-  ro.path = c.input.path;
-  ro.variable = c.input.variable;
-  ro.band = c.input.band;
-  ro.positive_down = c.input.positive_down;
-  ro.interpolation =
-      c.input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
-  ro.max_memory_bytes = limit > need ? limit - need : limit;
+  const raster::OpenOptions ro = raster_options(c.input, limit > need ? limit - need : limit);
   StageScope read_stage("read", report, log);
   run.bathy.emplace(raster::Bathymetry::open(ro, log));
   const raster::Bathymetry& bathy = *run.bathy;
@@ -76,13 +81,6 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     log.info("critical passages (open = the filled ocean connects both sides):");
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
-  if (!area.pinches.pinches.empty() && !c.mask.remove_pinches) {
-    log.warn(
-        "{} pinch vertices (the ocean touches itself at a single corner; some models reject them); "
-        "set mask.remove_pinches = true to resolve them",
-        area.pinches.total);
-  }
-
   const auto leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
   run.mesh = mesh::build_mesh(leaves, lat, rot, bathy, c.mesh, log, report);
 
@@ -97,15 +95,6 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
   }
   stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
-  if (!c.rotation.enabled && area.filled.ny() > 0) {
-    bool top = false;
-    for (std::int64_t w = 0; w < area.filled.words_per_row() && !top; ++w) top = area.filled.row(lat.ny - 1)[w] != 0;
-    if (top) {
-      log.warn(
-          "the ocean reaches the lattice's North pole row: φ = 90° is a boundary loop of coincident nodes; "
-          "consider [rotation] enabled = true (pole on land)");
-    }
-  }
   return run;
 }
 

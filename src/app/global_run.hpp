@@ -42,6 +42,9 @@ struct GlobalRun {
   mesh::MeshStatistics statistics;
 };
 
+/// Raster open options from an [input] section (one place for the config -> raster mapping).
+raster::OpenOptions raster_options(const config::InputOptions& input, std::int64_t max_memory_bytes);
+
 /// Runs read -> mask -> quadtree -> mesh -> statistics for `c` (after prepare_global_run).
 /// Logs the stage lines, the passage table and warnings (pinches, the ocean at the North pole
 /// row); fills the report's "input", "lattice", "mask", "quadtree", "mesh" and "statistics"

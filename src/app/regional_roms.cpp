@@ -67,15 +67,8 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
     log.warn("roms: regional.radius = {} m but roms.earth_radius_m = {} m; the ROMS file uses roms.earth_radius_m",
              c.params.radius, c.roms.earth_radius_m);
 
-  raster::OpenOptions ro;
-  ro.path = g.input.path;
-  ro.variable = g.input.variable;
-  ro.band = g.input.band;
-  ro.positive_down = g.input.positive_down;
-  ro.interpolation =
-      g.input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
-  ro.max_memory_bytes = limit > need ? limit - need : limit;
-  const auto bathy = raster::Bathymetry::open(ro, log);
+  const auto bathy_options = raster_options(g.input, limit > need ? limit - need : limit);
+  const auto bathy = raster::Bathymetry::open(bathy_options, log);
 
   // C-grid on the Earth.
   curvilinear::CGridOptions co;
