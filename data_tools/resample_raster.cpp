@@ -38,8 +38,8 @@ int main(int argc, char** argv) {
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
     char** opts = nullptr;
     opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
-    GDALDataset* ds = drv->Create(dst.c_str(), static_cast<int>(nx), static_cast<int>(ny), 1,
-                                  f32 ? GDT_Float32 : GDT_Int16, opts);
+    GDALDataset* ds =
+        drv->Create(dst.c_str(), static_cast<int>(nx), static_cast<int>(ny), 1, f32 ? GDT_Float32 : GDT_Int16, opts);
     CSLDestroy(opts);
     if (ds == nullptr) {
       std::fprintf(stderr, "aq_resample: cannot create %s\n", dst.c_str());
@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
     srs.importFromEPSG(4326);
     ds->SetSpatialRef(&srs);
     std::vector<double> lons(static_cast<std::size_t>(nx));
-    for (std::int64_t i = 0; i < nx; ++i) lons[static_cast<std::size_t>(i)] = -180.0 + (static_cast<double>(i) + 0.5) * step;
+    for (std::int64_t i = 0; i < nx; ++i)
+      lons[static_cast<std::size_t>(i)] = -180.0 + (static_cast<double>(i) + 0.5) * step;
     const auto cols = bathy.prepare_columns(lons.data(), nx);
     const std::int64_t chunk = 256;
     std::vector<float> buf(static_cast<std::size_t>(nx * chunk));

@@ -56,8 +56,8 @@ int run_info(const InfoArgs& a, const Logger& log) {
   std::printf("resolution:    %.10g x %.10g deg (%.4g' x %.4g')\n", i.dlon, i.dlat, i.dlon * 60.0, i.dlat * 60.0);
   std::printf("registration:  %s%s\n", i.registration.c_str(),
               i.duplicate_column ? " (duplicated 360-degree column dropped)" : "");
-  std::printf("longitude:     first sample %.10g as found, %.10g normalised; %s\n", i.lon_first_found,
-              i.lon_first, i.global_lon ? "global (wraps)" : fmt::format("regional, to {:.10g}", lon_last).c_str());
+  std::printf("longitude:     first sample %.10g as found, %.10g normalised; %s\n", i.lon_first_found, i.lon_first,
+              i.global_lon ? "global (wraps)" : fmt::format("regional, to {:.10g}", lon_last).c_str());
   std::printf("latitude:      %.10g .. %.10g; rows stored %s\n", i.lat_first,
               i.lat_first + static_cast<double>(i.nrows - 1) * i.dlat, i.north_up ? "north-up" : "south-up");
   std::printf("crs:           %s\n", i.crs_name.c_str());

@@ -105,17 +105,21 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   report["outputs"] = outputs;
   write_stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
 
-  Json mesh_counts = Json{{"nodes", m.node_count()}, {"triangles", m.triangle_count()}, {"squares", m.square_count()},
-                          {"boundary_loops", m.loops.size()}, {"pinch_nodes", m.pinch_nodes.size()}};
+  Json mesh_counts = Json{{"nodes", m.node_count()},
+                          {"triangles", m.triangle_count()},
+                          {"squares", m.square_count()},
+                          {"boundary_loops", m.loops.size()},
+                          {"pinch_nodes", m.pinch_nodes.size()}};
   report["mesh_counts"] = mesh_counts;
   const auto seed = seed_figure(c);
   if (seed) {
-    report["seed_reference"] = Json{{"figure", seed->figure},
-                                    {"data", "ETOPO2 (ours: " + ri.path + ")"},
-                                    {"triangles", seed->triangles},
-                                    {"nodes", seed->nodes},
-                                    {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
-                                    {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
+    report["seed_reference"] =
+        Json{{"figure", seed->figure},
+             {"data", "ETOPO2 (ours: " + ri.path + ")"},
+             {"triangles", seed->triangles},
+             {"nodes", seed->nodes},
+             {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
+             {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
   }
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
@@ -141,8 +145,8 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   log.info("wet area {:.4g} million km² (WGS84); filled {} of {} wet pixels ({} left out: lakes, cut-off seas)",
            st.triangle_area_km2 / 1e6, area.filled_pixels, area.classes.wet, area.fill.wet_left_out);
   if (seed) {
-    log.info("seed ({}, ETOPO2): {} triangles / {} nodes; ours on ETOPO5: {} / {} ({:+.1f}% / {:+.1f}%)",
-             seed->figure, seed->triangles, seed->nodes, m.triangle_count(), m.node_count(),
+    log.info("seed ({}, ETOPO2): {} triangles / {} nodes; ours on ETOPO5: {} / {} ({:+.1f}% / {:+.1f}%)", seed->figure,
+             seed->triangles, seed->nodes, m.triangle_count(), m.node_count(),
              100.0 * (static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles) - 1.0),
              100.0 * (static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes) - 1.0));
   }
@@ -155,10 +159,11 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
 
 void add_mesh_command(CLI::App& app, Context& ctx) {
   auto args = std::make_shared<MeshArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "mesh", "Build a global finite-element mesh (with no -c: the seed's reference run on ETOPO5)");
-  cmd->add_option_function<std::string>("-c,--config", [args](const std::string& s) { args->config = s; },
-                                        "Configuration file (TOML); see configs/example.toml");
+  CLI::App* cmd =
+      app.add_subcommand("mesh", "Build a global finite-element mesh (with no -c: the seed's reference run on ETOPO5)");
+  cmd->add_option_function<std::string>(
+      "-c,--config", [args](const std::string& s) { args->config = s; },
+      "Configuration file (TOML); see configs/example.toml");
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
   cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_mesh(*args, ctx.log); }; });

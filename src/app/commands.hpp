@@ -12,8 +12,8 @@
 namespace aq::app {
 
 struct Context {
-  Logger log;                   ///< stderr logger; verbosity set by -v/-q
-  std::function<int()> run;     ///< the chosen subcommand's action
+  Logger log;                ///< stderr logger; verbosity set by -v/-q
+  std::function<int()> run;  ///< the chosen subcommand's action
 };
 
 void add_info_command(CLI::App& app, Context& ctx);

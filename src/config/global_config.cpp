@@ -44,13 +44,18 @@ void add_rules(S& s) {
           if (!e.is_table()) return p.add(o, "quadtree.depth_rules", "expected {min_depth_m, max_depth_m, level}");
           for (const auto& [k, x] : e.as_table()) {
             std::optional<std::string> err;
-            if (k == "min_depth_m") err = detail::convert(x, r.min_depth_m);
-            else if (k == "max_depth_m") err = detail::convert(x, r.max_depth_m);
-            else if (k == "level") err = detail::convert(x, r.level);
-            else err = "unknown field '" + k + "' (min_depth_m, max_depth_m, level)";
+            if (k == "min_depth_m")
+              err = detail::convert(x, r.min_depth_m);
+            else if (k == "max_depth_m")
+              err = detail::convert(x, r.max_depth_m);
+            else if (k == "level")
+              err = detail::convert(x, r.level);
+            else
+              err = "unknown field '" + k + "' (min_depth_m, max_depth_m, level)";
             if (err) return p.add(o, "quadtree.depth_rules", *err);
           }
-          if (!(r.min_depth_m < r.max_depth_m)) return p.add(o, "quadtree.depth_rules", "needs min_depth_m < max_depth_m");
+          if (!(r.min_depth_m < r.max_depth_m))
+            return p.add(o, "quadtree.depth_rules", "needs min_depth_m < max_depth_m");
           if (r.level < 0) return p.add(o, "quadtree.depth_rules", "level must be >= 0");
           rules.push_back(r);
         }
@@ -70,20 +75,29 @@ void add_rules(S& s) {
         std::vector<BoxRule> rules;
         for (const auto& e : v.as_array()) {
           BoxRule r;
-          if (!e.is_table()) return p.add(o, "quadtree.box_rules", "expected {lon_min_deg, lon_max_deg, lat_min_deg, lat_max_deg, level}");
+          if (!e.is_table())
+            return p.add(o, "quadtree.box_rules",
+                         "expected {lon_min_deg, lon_max_deg, lat_min_deg, lat_max_deg, level}");
           for (const auto& [k, x] : e.as_table()) {
             std::optional<std::string> err;
-            if (k == "lon_min_deg") err = detail::convert(x, r.lon_min_deg);
-            else if (k == "lon_max_deg") err = detail::convert(x, r.lon_max_deg);
-            else if (k == "lat_min_deg") err = detail::convert(x, r.lat_min_deg);
-            else if (k == "lat_max_deg") err = detail::convert(x, r.lat_max_deg);
-            else if (k == "level") err = detail::convert(x, r.level);
-            else err = "unknown field '" + k + "' (lon_min_deg, lon_max_deg, lat_min_deg, lat_max_deg, level)";
+            if (k == "lon_min_deg")
+              err = detail::convert(x, r.lon_min_deg);
+            else if (k == "lon_max_deg")
+              err = detail::convert(x, r.lon_max_deg);
+            else if (k == "lat_min_deg")
+              err = detail::convert(x, r.lat_min_deg);
+            else if (k == "lat_max_deg")
+              err = detail::convert(x, r.lat_max_deg);
+            else if (k == "level")
+              err = detail::convert(x, r.level);
+            else
+              err = "unknown field '" + k + "' (lon_min_deg, lon_max_deg, lat_min_deg, lat_max_deg, level)";
             if (err) return p.add(o, "quadtree.box_rules", *err);
           }
           if (!(r.lon_min_deg < r.lon_max_deg) || !(r.lat_min_deg < r.lat_max_deg) || r.lat_min_deg < -90 ||
               r.lat_max_deg > 90)
-            return p.add(o, "quadtree.box_rules", "needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg <= 90");
+            return p.add(o, "quadtree.box_rules",
+                         "needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg <= 90");
           if (r.level < 0) return p.add(o, "quadtree.box_rules", "level must be >= 0");
           rules.push_back(r);
         }
@@ -92,8 +106,11 @@ void add_rules(S& s) {
       [](const GlobalConfig& c) {
         Json a = Json::array();
         for (const auto& r : c.quadtree.box_rules)
-          a.push_back({{"lon_min_deg", r.lon_min_deg}, {"lon_max_deg", r.lon_max_deg}, {"lat_min_deg", r.lat_min_deg},
-                       {"lat_max_deg", r.lat_max_deg}, {"level", r.level}});
+          a.push_back({{"lon_min_deg", r.lon_min_deg},
+                       {"lon_max_deg", r.lon_max_deg},
+                       {"lat_min_deg", r.lat_min_deg},
+                       {"lat_max_deg", r.lat_max_deg},
+                       {"level", r.level}});
         return a;
       },
       "minimum level inside lon/lat boxes");
@@ -114,20 +131,29 @@ const S& schema() {
           c.input.path = path.lexically_normal().string();
         },
         [](const GlobalConfig& c) { return Json(c.input.path); }, "bathymetry raster");
-    t.add<std::string>("input", "variable", [](GlobalConfig& c) -> std::string& { return c.input.variable; }, {},
-                       "netCDF variable");
-    t.add<int>("input", "band", [](GlobalConfig& c) -> int& { return c.input.band; },
-               [](const int& v) { return v >= 1 ? std::string() : fmt::format("{} must be >= 1", v); }, "band");
-    t.add<bool>("input", "positive_down", [](GlobalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
-    t.add<std::string>("input", "interpolation", [](GlobalConfig& c) -> std::string& { return c.input.interpolation; },
-                       [](const std::string& v) { return one_of(v, {"bilinear", "bicubic"}); }, "");
-    t.add<double>("input", "max_memory_gb", [](GlobalConfig& c) -> double& { return c.input.max_memory_gb; },
-                  [](const double& v) { return in_range(v, 0.0, 1e6); }, "");
+    t.add<std::string>(
+        "input", "variable", [](GlobalConfig& c) -> std::string& { return c.input.variable; }, {}, "netCDF variable");
+    t.add<int>(
+        "input", "band", [](GlobalConfig& c) -> int& { return c.input.band; },
+        [](const int& v) { return v >= 1 ? std::string() : fmt::format("{} must be >= 1", v); }, "band");
+    t.add<bool>(
+        "input", "positive_down", [](GlobalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
+    t.add<std::string>(
+        "input", "interpolation", [](GlobalConfig& c) -> std::string& { return c.input.interpolation; },
+        [](const std::string& v) {
+          return one_of(v, {"bilinear", "bicubic"});
+        },
+        "");
+    t.add<double>(
+        "input", "max_memory_gb", [](GlobalConfig& c) -> double& { return c.input.max_memory_gb; },
+        [](const double& v) { return in_range(v, 0.0, 1e6); }, "");
     // [mask]
-    t.add<double>("mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },
-                  [](const double& v) { return in_range(v, -10000.0, 12000.0); }, "h");
-    t.add<int>("mask", "cursor", [](GlobalConfig& c) -> int& { return c.mask.cursor; },
-               [](const int& v) { return in_range(v, 1, 64); }, "K");
+    t.add<double>(
+        "mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },
+        [](const double& v) { return in_range(v, -10000.0, 12000.0); }, "h");
+    t.add<int>(
+        "mask", "cursor", [](GlobalConfig& c) -> int& { return c.mask.cursor; },
+        [](const int& v) { return in_range(v, 1, 64); }, "K");
     t.add<std::vector<std::array<double, 2>>>(
         "mask", "seeds", [](GlobalConfig& c) -> std::vector<std::array<double, 2>>& { return c.mask.seeds; },
         [](const std::vector<std::array<double, 2>>& v) {
@@ -138,53 +164,80 @@ const S& schema() {
           return std::string();
         },
         "");
-    t.add<double>("mask", "seed_radius_deg", [](GlobalConfig& c) -> double& { return c.mask.seed_radius_deg; },
-                  [](const double& v) { return in_range(v, 0.0, 180.0); }, "");
-    t.add<std::string>("mask", "sampling", [](GlobalConfig& c) -> std::string& { return c.mask.sampling; },
-                       [](const std::string& v) { return one_of(v, {"vertex", "area"}); }, "");
-    t.add<bool>("mask", "remove_pinches", [](GlobalConfig& c) -> bool& { return c.mask.remove_pinches; }, {}, "");
-    t.add<bool>("mask", "passages", [](GlobalConfig& c) -> bool& { return c.mask.passages; }, {}, "");
+    t.add<double>(
+        "mask", "seed_radius_deg", [](GlobalConfig& c) -> double& { return c.mask.seed_radius_deg; },
+        [](const double& v) { return in_range(v, 0.0, 180.0); }, "");
+    t.add<std::string>(
+        "mask", "sampling", [](GlobalConfig& c) -> std::string& { return c.mask.sampling; },
+        [](const std::string& v) {
+          return one_of(v, {"vertex", "area"});
+        },
+        "");
+    t.add<bool>(
+        "mask", "remove_pinches", [](GlobalConfig& c) -> bool& { return c.mask.remove_pinches; }, {}, "");
+    t.add<bool>(
+        "mask", "passages", [](GlobalConfig& c) -> bool& { return c.mask.passages; }, {}, "");
     // [quadtree]
-    t.add<double>("quadtree", "step_deg", [](GlobalConfig& c) -> double& { return c.quadtree.step_deg; },
-                  [](const double& v) {
-                    try {
-                      (void)Lattice::make(v, 0, -180.0);
-                    } catch (const ConfigError&) {
-                      return fmt::format("{}: Δ0 must divide 180° in whole arc-seconds (648000 % Δ0\" == 0)", v);
-                    }
-                    return std::string();
-                  },
-                  "");
-    t.add<int>("quadtree", "levels", [](GlobalConfig& c) -> int& { return c.quadtree.levels; },
-               [](const int& v) { return in_range(v, 0, 20); }, "");
-    t.add<int>("quadtree", "coast_band", [](GlobalConfig& c) -> int& { return c.quadtree.coast_band; },
-               [](const int& v) { return in_range(v, 0, 64); }, "");
-    t.add<std::string>("quadtree", "balance", [](GlobalConfig& c) -> std::string& { return c.quadtree.balance; },
-                       [](const std::string& v) { return one_of(v, {"face", "corner"}); }, "");
-    t.add<double>("quadtree", "lon0_deg", [](GlobalConfig& c) -> double& { return c.quadtree.lon0_deg; },
-                  [](const double& v) { return in_range(v, -360.0, 360.0); }, "");
+    t.add<double>(
+        "quadtree", "step_deg", [](GlobalConfig& c) -> double& { return c.quadtree.step_deg; },
+        [](const double& v) {
+          try {
+            (void)Lattice::make(v, 0, -180.0);
+          } catch (const ConfigError&) {
+            return fmt::format("{}: Δ0 must divide 180° in whole arc-seconds (648000 % Δ0\" == 0)", v);
+          }
+          return std::string();
+        },
+        "");
+    t.add<int>(
+        "quadtree", "levels", [](GlobalConfig& c) -> int& { return c.quadtree.levels; },
+        [](const int& v) { return in_range(v, 0, 20); }, "");
+    t.add<int>(
+        "quadtree", "coast_band", [](GlobalConfig& c) -> int& { return c.quadtree.coast_band; },
+        [](const int& v) { return in_range(v, 0, 64); }, "");
+    t.add<std::string>(
+        "quadtree", "balance", [](GlobalConfig& c) -> std::string& { return c.quadtree.balance; },
+        [](const std::string& v) {
+          return one_of(v, {"face", "corner"});
+        },
+        "");
+    t.add<double>(
+        "quadtree", "lon0_deg", [](GlobalConfig& c) -> double& { return c.quadtree.lon0_deg; },
+        [](const double& v) { return in_range(v, -360.0, 360.0); }, "");
     add_rules(t);
     // [rotation]
-    t.add<bool>("rotation", "enabled", [](GlobalConfig& c) -> bool& { return c.rotation.enabled; }, {}, "");
-    t.add<double>("rotation", "pole_lon_deg", [](GlobalConfig& c) -> double& { return c.rotation.pole_lon_deg; },
-                  [](const double& v) { return in_range(v, -360.0, 360.0); }, "");
-    t.add<double>("rotation", "pole_lat_deg", [](GlobalConfig& c) -> double& { return c.rotation.pole_lat_deg; },
-                  [](const double& v) { return in_range(v, -90.0, 90.0); }, "");
+    t.add<bool>(
+        "rotation", "enabled", [](GlobalConfig& c) -> bool& { return c.rotation.enabled; }, {}, "");
+    t.add<double>(
+        "rotation", "pole_lon_deg", [](GlobalConfig& c) -> double& { return c.rotation.pole_lon_deg; },
+        [](const double& v) { return in_range(v, -360.0, 360.0); }, "");
+    t.add<double>(
+        "rotation", "pole_lat_deg", [](GlobalConfig& c) -> double& { return c.rotation.pole_lat_deg; },
+        [](const double& v) { return in_range(v, -90.0, 90.0); }, "");
     // [mesh]
-    t.add<std::string>("mesh", "elements", [](GlobalConfig& c) -> std::string& { return c.mesh.elements; },
-                       [](const std::string& v) { return one_of(v, {"triangles", "squares", "both"}); }, "");
-    t.add<std::string>("mesh", "diagonal", [](GlobalConfig& c) -> std::string& { return c.mesh.diagonal; },
-                       [](const std::string& v) { return one_of(v, {"ne", "nw", "alternate"}); }, "");
+    t.add<std::string>(
+        "mesh", "elements", [](GlobalConfig& c) -> std::string& { return c.mesh.elements; },
+        [](const std::string& v) {
+          return one_of(v, {"triangles", "squares", "both"});
+        },
+        "");
+    t.add<std::string>(
+        "mesh", "diagonal", [](GlobalConfig& c) -> std::string& { return c.mesh.diagonal; },
+        [](const std::string& v) {
+          return one_of(v, {"ne", "nw", "alternate"});
+        },
+        "");
     // [output]
-    t.add<std::string>("output", "dir", [](GlobalConfig& c) -> std::string& { return c.output.dir; },
-                       [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "");
-    t.add<std::string>("output", "name", [](GlobalConfig& c) -> std::string& { return c.output.name; },
-                       [](const std::string& v) {
-                         return (v.empty() || v.find('/') != std::string::npos)
-                                    ? std::string("must be a plain file name without '/'")
-                                    : std::string();
-                       },
-                       "");
+    t.add<std::string>(
+        "output", "dir", [](GlobalConfig& c) -> std::string& { return c.output.dir; },
+        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "");
+    t.add<std::string>(
+        "output", "name", [](GlobalConfig& c) -> std::string& { return c.output.name; },
+        [](const std::string& v) {
+          return (v.empty() || v.find('/') != std::string::npos) ? std::string("must be a plain file name without '/'")
+                                                                 : std::string();
+        },
+        "");
     t.add<std::vector<std::string>>(
         "output", "formats", [](GlobalConfig& c) -> std::vector<std::string>& { return c.output.formats; },
         [](const std::vector<std::string>& v) {
@@ -195,12 +248,17 @@ const S& schema() {
           return std::string();
         },
         "");
-    t.add<bool>("output", "msh_binary", [](GlobalConfig& c) -> bool& { return c.output.msh_binary; }, {}, "");
-    t.add<std::string>("output", "vtu_coordinates",
-                       [](GlobalConfig& c) -> std::string& { return c.output.vtu_coordinates; },
-                       [](const std::string& v) { return one_of(v, {"sphere", "wgs84"}); }, "");
-    t.add<int>("output", "png_width", [](GlobalConfig& c) -> int& { return c.output.png_width; },
-               [](const int& v) { return in_range(v, 64, 20000); }, "");
+    t.add<bool>(
+        "output", "msh_binary", [](GlobalConfig& c) -> bool& { return c.output.msh_binary; }, {}, "");
+    t.add<std::string>(
+        "output", "vtu_coordinates", [](GlobalConfig& c) -> std::string& { return c.output.vtu_coordinates; },
+        [](const std::string& v) {
+          return one_of(v, {"sphere", "wgs84"});
+        },
+        "");
+    t.add<int>(
+        "output", "png_width", [](GlobalConfig& c) -> int& { return c.output.png_width; },
+        [](const int& v) { return in_range(v, 64, 20000); }, "");
     t.add<std::vector<double>>(
         "output", "png_zoom", [](GlobalConfig& c) -> std::vector<double>& { return c.output.png_zoom; },
         [](const std::vector<double>& v) {
@@ -211,8 +269,9 @@ const S& schema() {
         },
         "");
     // [blocks]
-    t.add<int>("blocks", "top", [](GlobalConfig& c) -> int& { return c.blocks.top; },
-               [](const int& v) { return in_range(v, 1, 999); }, "");
+    t.add<int>(
+        "blocks", "top", [](GlobalConfig& c) -> int& { return c.blocks.top; },
+        [](const int& v) { return in_range(v, 1, 999); }, "");
     t.add<std::vector<std::array<double, 4>>>(
         "blocks", "boxes", [](GlobalConfig& c) -> std::vector<std::array<double, 4>>& { return c.blocks.boxes; },
         [](const std::vector<std::array<double, 4>>& v) {
@@ -220,22 +279,28 @@ const S& schema() {
             const auto& b = v[k];
             if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !(b[0] < b[1]) || b[1] - b[0] > 180.0 ||
                 !(b[2] < b[3]) || b[2] < -90.0 || b[3] > 90.0)
-              return fmt::format("box {} = [{}, {}, {}, {}]: expected [lon_min, lon_max, lat_min, lat_max] with "
-                                 "lon_min < lon_max <= lon_min + 180 and -90 <= lat_min < lat_max <= 90",
-                                 k, b[0], b[1], b[2], b[3]);
+              return fmt::format(
+                  "box {} = [{}, {}, {}, {}]: expected [lon_min, lon_max, lat_min, lat_max] with "
+                  "lon_min < lon_max <= lon_min + 180 and -90 <= lat_min < lat_max <= 90",
+                  k, b[0], b[1], b[2], b[3]);
           }
           return std::string();
         },
         "");
-    t.add<bool>("blocks", "shrink_to_wet", [](GlobalConfig& c) -> bool& { return c.blocks.shrink_to_wet; }, {}, "");
-    t.add<double>("blocks", "max_inset", [](GlobalConfig& c) -> double& { return c.blocks.max_inset; },
-                  [](const double& v) { return in_range(v, 0.0, 0.45); }, "");
-    t.add<int>("blocks", "ny", [](GlobalConfig& c) -> int& { return c.blocks.ny; },
-               [](const int& v) { return in_range(v, 0, 100000); }, "");
-    t.add<int>("blocks", "refinement", [](GlobalConfig& c) -> int& { return c.blocks.refinement; },
-               [](const int& v) { return in_range(v, 1, 1000); }, "");
-    t.add<int>("blocks", "points_per_side", [](GlobalConfig& c) -> int& { return c.blocks.points_per_side; },
-               [](const int& v) { return in_range(v, 2, 64); }, "");
+    t.add<bool>(
+        "blocks", "shrink_to_wet", [](GlobalConfig& c) -> bool& { return c.blocks.shrink_to_wet; }, {}, "");
+    t.add<double>(
+        "blocks", "max_inset", [](GlobalConfig& c) -> double& { return c.blocks.max_inset; },
+        [](const double& v) { return in_range(v, 0.0, 0.45); }, "");
+    t.add<int>(
+        "blocks", "ny", [](GlobalConfig& c) -> int& { return c.blocks.ny; },
+        [](const int& v) { return in_range(v, 0, 100000); }, "");
+    t.add<int>(
+        "blocks", "refinement", [](GlobalConfig& c) -> int& { return c.blocks.refinement; },
+        [](const int& v) { return in_range(v, 1, 1000); }, "");
+    t.add<int>(
+        "blocks", "points_per_side", [](GlobalConfig& c) -> int& { return c.blocks.points_per_side; },
+        [](const int& v) { return in_range(v, 2, 64); }, "");
     return t;
   }();
   return s;
@@ -249,8 +314,8 @@ void cross_check(const GlobalConfig& c, Problems& p) {
                                       c.quadtree.levels));
   for (const auto& r : c.quadtree.box_rules)
     if (r.level > c.quadtree.levels)
-      p.add_plain(999999, fmt::format("quadtree.box_rules: level {} exceeds quadtree.levels = {}", r.level,
-                                      c.quadtree.levels));
+      p.add_plain(999999,
+                  fmt::format("quadtree.box_rules: level {} exceeds quadtree.levels = {}", r.level, c.quadtree.levels));
 }
 
 }  // namespace

@@ -11,16 +11,16 @@ namespace aq::config {
 
 struct InputOptions {
   std::string path = "/usr/share/ferret-vis/data/etopo5.cdf";  ///< any GDAL raster in lon/lat
-  std::string variable;             ///< netCDF variable / subdataset name; empty = first
-  int band = 1;                     ///< 1-based band of the raster (or of the variable)
-  bool positive_down = false;       ///< file stores depth as positive numbers
-  std::string interpolation = "bilinear";  ///< "bilinear" (seed rule) or "bicubic" (C2 spline)
-  double max_memory_gb = 0.0;       ///< refuse runs estimated above this; 0 = 80% of RAM
+  std::string variable;                                        ///< netCDF variable / subdataset name; empty = first
+  int band = 1;                                                ///< 1-based band of the raster (or of the variable)
+  bool positive_down = false;                                  ///< file stores depth as positive numbers
+  std::string interpolation = "bilinear";                      ///< "bilinear" (seed rule) or "bicubic" (C2 spline)
+  double max_memory_gb = 0.0;                                  ///< refuse runs estimated above this; 0 = 80% of RAM
 };
 
 struct MaskOptions {
-  double min_depth_m = 0.0;         ///< h: a lattice vertex is wet when elevation <= -h
-  int cursor = 2;                   ///< K of the K-cursor fill, 1..64
+  double min_depth_m = 0.0;                                  ///< h: a lattice vertex is wet when elevation <= -h
+  int cursor = 2;                                            ///< K of the K-cursor fill, 1..64
   std::vector<std::array<double, 2>> seeds{{-30.0, -50.0}};  ///< lon, lat of fill seeds (degrees)
   double seed_radius_deg = 5.0;     ///< how far a seed may be moved to the nearest all-wet window
   std::string sampling = "vertex";  ///< "vertex" (seed rule) or "area" (min over raster cells)
@@ -31,20 +31,20 @@ struct MaskOptions {
 struct DepthRule {
   double min_depth_m = 0.0;  ///< rule applies where depth (positive down) is in [min, max)
   double max_depth_m = 0.0;
-  int level = 0;             ///< minimum quadtree level there
+  int level = 0;  ///< minimum quadtree level there
 };
 
 struct BoxRule {
   double lon_min_deg = 0.0, lon_max_deg = 0.0, lat_min_deg = 0.0, lat_max_deg = 0.0;
-  int level = 0;             ///< minimum quadtree level inside the box
+  int level = 0;  ///< minimum quadtree level inside the box
 };
 
 struct QuadtreeOptions {
-  double step_deg = 4.0;            ///< Δ0, must divide 180 (in whole arc-seconds)
-  int levels = 3;                   ///< L
-  int coast_band = 2;               ///< Chebyshev distance (pixels) from the coast kept at level L
-  std::string balance = "face";     ///< "face" or "corner"
-  double lon0_deg = -180.0;         ///< western edge of the lattice (the seam)
+  double step_deg = 4.0;         ///< Δ0, must divide 180 (in whole arc-seconds)
+  int levels = 3;                ///< L
+  int coast_band = 2;            ///< Chebyshev distance (pixels) from the coast kept at level L
+  std::string balance = "face";  ///< "face" or "corner"
+  double lon0_deg = -180.0;      ///< western edge of the lattice (the seam)
   std::vector<DepthRule> depth_rules;
   std::vector<BoxRule> box_rules;
 };
@@ -62,23 +62,24 @@ struct MeshOptions {
 
 struct OutputOptions {
   std::string dir = "out";
-  std::string name = "mesh";           ///< base name of the output files
+  std::string name = "mesh";  ///< base name of the output files
   std::vector<std::string> formats{"msh", "ugrid", "vtu", "fort14", "text", "png"};
-  bool msh_binary = false;             ///< Gmsh MSH 4.1 binary instead of ASCII
+  bool msh_binary = false;                 ///< Gmsh MSH 4.1 binary instead of ASCII
   std::string vtu_coordinates = "sphere";  ///< "sphere" (unit sphere) or "wgs84" (metres, ECEF)
-  int png_width = 2400;                ///< preview width in pixels
-  std::vector<double> png_zoom;        ///< optional [lon_min, lon_max, lat_min, lat_max] zoom box
+  int png_width = 2400;                    ///< preview width in pixels
+  std::vector<double> png_zoom;            ///< optional [lon_min, lon_max, lat_min, lat_max] zoom box
 };
 
 /// `aquatoria blocks`: coastal blocks of the global run handed to regional grids (ARCHITECTURE §6).
 struct BlocksOptions {
-  int top = 20;                                ///< blocks written, best ranked first (1..999)
-  std::vector<std::array<double, 4>> boxes;    ///< [lon_min, lon_max, lat_min, lat_max] (degrees); empty = level-0 squares
-  bool shrink_to_wet = false;                  ///< move the sides inward over land toward the wet area
-  double max_inset = 0.3;                      ///< shrink_to_wet: farthest a side moves, fraction of the block (0..0.45)
-  int ny = 0;                                  ///< cells along η of each regional grid; 0 = from `refinement`
-  int refinement = 3;                          ///< suggested ny: cells this many times finer than the finest global element
-  int points_per_side = 8;                     ///< contour control points per side (2..64)
+  int top = 20;  ///< blocks written, best ranked first (1..999)
+  std::vector<std::array<double, 4>>
+      boxes;                   ///< [lon_min, lon_max, lat_min, lat_max] (degrees); empty = level-0 squares
+  bool shrink_to_wet = false;  ///< move the sides inward over land toward the wet area
+  double max_inset = 0.3;      ///< shrink_to_wet: farthest a side moves, fraction of the block (0..0.45)
+  int ny = 0;                  ///< cells along η of each regional grid; 0 = from `refinement`
+  int refinement = 3;          ///< suggested ny: cells this many times finer than the finest global element
+  int points_per_side = 8;     ///< contour control points per side (2..64)
 };
 
 /// The whole configuration of a global run.

@@ -24,14 +24,14 @@ namespace aq::config::detail {
 
 /// Where a value came from and how to resolve relative paths in it.
 struct Origin {
-  std::string where;                 ///< "file:line:col" or "--set section.key=value"
-  std::filesystem::path base_dir;    ///< folder relative paths resolve against
+  std::string where;               ///< "file:line:col" or "--set section.key=value"
+  std::filesystem::path base_dir;  ///< folder relative paths resolve against
   std::uint32_t line = 0, column = 0;
 };
 
 /// All problems found in one pass.
 class Problems {
-public:
+ public:
   void add(const Origin& o, const std::string& key, const std::string& text) {
     items_.push_back({o.line, o.column, fmt::format("{}: {}: {}", o.where, key, text)});
   }
@@ -49,7 +49,7 @@ public:
     throw ConfigError(msg);
   }
 
-private:
+ private:
   struct Item {
     std::uint32_t line, column;
     std::string text;
@@ -69,8 +69,14 @@ inline Origin origin_of(const toml::value& v, const std::string& file, const std
 
 // ---- conversions from TOML values; return an error text or nothing ----
 inline std::optional<std::string> convert(const toml::value& v, double& out) {
-  if (v.is_floating()) { out = v.as_floating(); return std::nullopt; }
-  if (v.is_integer()) { out = static_cast<double>(v.as_integer()); return std::nullopt; }
+  if (v.is_floating()) {
+    out = v.as_floating();
+    return std::nullopt;
+  }
+  if (v.is_integer()) {
+    out = static_cast<double>(v.as_integer());
+    return std::nullopt;
+  }
   return "expected a number";
 }
 inline std::optional<std::string> convert(const toml::value& v, int& out) {
@@ -112,12 +118,14 @@ std::optional<std::string> convert(const toml::value& v, std::vector<E>& out) {
 
 // ---- JSON echo of values ----
 template <typename V>
-Json to_json(const V& v) { return Json(v); }
+Json to_json(const V& v) {
+  return Json(v);
+}
 
 /// A table of keys for option struct T.
 template <typename T>
 class Schema {
-public:
+ public:
   using Setter = std::function<void(T&, const toml::value&, const Origin&, Problems&)>;
   using Getter = std::function<Json(const T&)>;
   struct Key {
@@ -225,7 +233,7 @@ public:
     return j;
   }
 
-private:
+ private:
   [[nodiscard]] bool has_section(const std::string& s) const {
     return std::any_of(keys_.begin(), keys_.end(), [&](const Key& k) { return k.section == s; });
   }
@@ -275,7 +283,8 @@ private:
 /// Parses a TOML file; a syntax error becomes a ConfigError with toml11's file:line:column text.
 inline toml::value parse_file(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw ConfigError(fmt::format("{}: no such configuration file", path.string()));
+  if (!std::filesystem::exists(path, ec))
+    throw ConfigError(fmt::format("{}: no such configuration file", path.string()));
   try {
     return toml::parse(path.string());
   } catch (const toml::syntax_error& e) {

@@ -14,19 +14,16 @@
 namespace aq {
 
 class Bitmap {
-public:
+ public:
   Bitmap() = default;
   Bitmap(std::int64_t nx, std::int64_t ny)
-      : nx_(nx), ny_(ny), words_per_row_((nx + 63) / 64),
-        words_(static_cast<std::size_t>(words_per_row_ * ny), 0ULL) {}
+      : nx_(nx), ny_(ny), words_per_row_((nx + 63) / 64), words_(static_cast<std::size_t>(words_per_row_ * ny), 0ULL) {}
 
   [[nodiscard]] std::int64_t nx() const { return nx_; }
   [[nodiscard]] std::int64_t ny() const { return ny_; }
   [[nodiscard]] std::int64_t words_per_row() const { return words_per_row_; }
 
-  [[nodiscard]] bool get(std::int64_t i, std::int64_t j) const {
-    return ((word(i, j) >> (i & 63)) & 1ULL) != 0;
-  }
+  [[nodiscard]] bool get(std::int64_t i, std::int64_t j) const { return ((word(i, j) >> (i & 63)) & 1ULL) != 0; }
   void set(std::int64_t i, std::int64_t j) { word_ref(i, j) |= (1ULL << (i & 63)); }
   void clear(std::int64_t i, std::int64_t j) { word_ref(i, j) &= ~(1ULL << (i & 63)); }
   void assign(std::int64_t i, std::int64_t j, bool v) { v ? set(i, j) : clear(i, j); }
@@ -42,13 +39,11 @@ public:
     return n;
   }
   [[nodiscard]] std::size_t bytes() const { return words_.size() * sizeof(std::uint64_t); }
-  [[nodiscard]] bool operator==(const Bitmap& o) const {
-    return nx_ == o.nx_ && ny_ == o.ny_ && words_ == o.words_;
-  }
+  [[nodiscard]] bool operator==(const Bitmap& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && words_ == o.words_; }
   std::vector<std::uint64_t>& words() { return words_; }
   [[nodiscard]] const std::vector<std::uint64_t>& words() const { return words_; }
 
-private:
+ private:
   [[nodiscard]] std::uint64_t word(std::int64_t i, std::int64_t j) const {
     return words_[static_cast<std::size_t>(j * words_per_row_ + (i >> 6))];
   }

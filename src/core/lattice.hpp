@@ -11,12 +11,12 @@
 namespace aq {
 
 struct Lattice {
-  double lon0_deg = -180.0;   ///< western edge of the lattice (the seam)
-  double step0_deg = 4.0;     ///< Δ0, side of a level-0 square; 180/Δ0 is an integer
-  int levels = 3;             ///< L >= 0
-  std::int64_t n0 = 45;       ///< 180/Δ0: level-0 squares per meridian
-  std::int64_t nx = 720;      ///< pixels along λ: 2·n0·2^L
-  std::int64_t ny = 360;      ///< pixels along φ: n0·2^L
+  double lon0_deg = -180.0;  ///< western edge of the lattice (the seam)
+  double step0_deg = 4.0;    ///< Δ0, side of a level-0 square; 180/Δ0 is an integer
+  int levels = 3;            ///< L >= 0
+  std::int64_t n0 = 45;      ///< 180/Δ0: level-0 squares per meridian
+  std::int64_t nx = 720;     ///< pixels along λ: 2·n0·2^L
+  std::int64_t ny = 360;     ///< pixels along φ: n0·2^L
 
   /// Builds and validates; throws ConfigError (naming `key_prefix`.step_deg / levels) when Δ0 does
   /// not divide 180° exactly in arc-seconds or L is outside 0..20.

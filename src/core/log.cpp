@@ -34,9 +34,8 @@ ProgressFn Logger::progress(std::string stage) const {
     *last = pct;
     constexpr int kWidth = 30;
     const int filled = pct * kWidth / 100;
-    std::fprintf(stderr, "\r%s [%.*s%*s] %3d%% %.*s\x1b[K", stage.c_str(), filled,
-                 "##############################", kWidth - filled, "", pct,
-                 static_cast<int>(label.size()), label.data());
+    std::fprintf(stderr, "\r%s [%.*s%*s] %3d%% %.*s\x1b[K", stage.c_str(), filled, "##############################",
+                 kWidth - filled, "", pct, static_cast<int>(label.size()), label.data());
     if (pct >= 100) std::fprintf(stderr, "\r\x1b[K");
     std::fflush(stderr);
   };

@@ -18,7 +18,7 @@ using ProgressFn = std::function<void(double fraction, std::string_view label)>;
 
 /// Where log lines go. The default sink writes to stderr; tests install a capturing sink.
 class Logger {
-public:
+ public:
   using Sink = std::function<void(LogLevel, std::string_view)>;
 
   Logger();
@@ -49,7 +49,7 @@ public:
   /// A logger that discards everything (for tests and library defaults).
   static const Logger& null();
 
-private:
+ private:
   Sink sink_;
   LogLevel min_level_ = LogLevel::kInfo;
   bool progress_enabled_ = false;

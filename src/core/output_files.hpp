@@ -17,7 +17,7 @@ inline constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
 std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t hash = kFnvOffset);
 
 class OutputSet {
-public:
+ public:
   /// Creates `dir` if needed and checks it is writable; throws OutputError naming it otherwise.
   explicit OutputSet(std::filesystem::path dir);
   ~OutputSet();
@@ -35,7 +35,7 @@ public:
   /// Final path of a reserved name (valid before and after commit).
   [[nodiscard]] std::filesystem::path final_path(const std::string& name) const { return dir_ / name; }
 
-private:
+ private:
   std::filesystem::path dir_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, final
   bool committed_ = false;

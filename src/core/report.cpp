@@ -16,8 +16,7 @@ Report::Report() {
   root_["stages"] = Json::array();
 }
 
-void Report::add_stage(const std::string& name, double wall_s, double cpu_s,
-                       const std::string& summary) {
+void Report::add_stage(const std::string& name, double wall_s, double cpu_s, const std::string& summary) {
   root_["stages"].push_back(Json{{"stage", name},
                                  {"summary", summary},
                                  {"wall_s", round3(wall_s)},

@@ -15,7 +15,7 @@ using Json = nlohmann::ordered_json;
 
 /// Accumulates the run report. Sections are free-form JSON; "stages" is filled by StageScope.
 class Report {
-public:
+ public:
   Report();
   Json& root() { return root_; }
   [[nodiscard]] const Json& root() const { return root_; }
@@ -27,21 +27,21 @@ public:
   void finish();
   [[nodiscard]] std::string dump() const { return root_.dump(2); }
 
-private:
+ private:
   Json root_;
   Timer total_;
 };
 
 /// Times one stage; on done() logs "stage: done <summary> (t s)" and adds it to the report.
 class StageScope {
-public:
+ public:
   StageScope(std::string name, Report* report, const Logger& log)
       : name_(std::move(name)), report_(report), log_(log) {}
   /// Ends the stage with a one-line summary of what it produced.
   void done(const std::string& summary);
   [[nodiscard]] double wall_s() const { return timer_.wall_s(); }
 
-private:
+ private:
   std::string name_;
   Report* report_;
   const Logger& log_;

@@ -28,9 +28,7 @@ PoleRotation::PoleRotation(double pole_lon_deg, double pole_lat_deg) {
   const double p = pole_lon_deg * kDegToRad;
   const double ct = std::cos(t), st = std::sin(t), cp = std::cos(p), sp = std::sin(p);
   // R = Rz(p) * Ry(t)
-  m_ = {cp * ct, -sp, cp * st,
-        sp * ct, cp,  sp * st,
-        -st,     0.0, ct};
+  m_ = {cp * ct, -sp, cp * st, sp * ct, cp, sp * st, -st, 0.0, ct};
 }
 
 void PoleRotation::to_geographic(double rlon_deg, double rlat_deg, double& lon_deg, double& lat_deg) const {
@@ -41,8 +39,7 @@ void PoleRotation::to_geographic(double rlon_deg, double rlat_deg, double& lon_d
   }
   double v[3];
   to_xyz(rlon_deg, rlat_deg, v);
-  const double g[3] = {m_[0] * v[0] + m_[1] * v[1] + m_[2] * v[2],
-                       m_[3] * v[0] + m_[4] * v[1] + m_[5] * v[2],
+  const double g[3] = {m_[0] * v[0] + m_[1] * v[1] + m_[2] * v[2], m_[3] * v[0] + m_[4] * v[1] + m_[5] * v[2],
                        m_[6] * v[0] + m_[7] * v[1] + m_[8] * v[2]};
   from_xyz(g, lon_deg, lat_deg);
 }
@@ -56,8 +53,7 @@ void PoleRotation::to_rotated(double lon_deg, double lat_deg, double& rlon_deg, 
   double g[3];
   to_xyz(lon_deg, lat_deg, g);
   const double v[3] = {m_[0] * g[0] + m_[3] * g[1] + m_[6] * g[2],  // transpose = inverse
-                       m_[1] * g[0] + m_[4] * g[1] + m_[7] * g[2],
-                       m_[2] * g[0] + m_[5] * g[1] + m_[8] * g[2]};
+                       m_[1] * g[0] + m_[4] * g[1] + m_[7] * g[2], m_[2] * g[0] + m_[5] * g[1] + m_[8] * g[2]};
   from_xyz(v, rlon_deg, rlat_deg);
 }
 

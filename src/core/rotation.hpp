@@ -10,7 +10,7 @@
 namespace aq {
 
 class PoleRotation {
-public:
+ public:
   /// Identity rotation.
   PoleRotation() = default;
   /// Rotated North pole at geographic (pole_lon_deg, pole_lat_deg); pole_lat_deg in [-90, 90].
@@ -22,7 +22,7 @@ public:
   void to_rotated(double lon_deg, double lat_deg, double& rlon_deg, double& rlat_deg) const;
   [[nodiscard]] bool identity() const { return identity_; }
 
-private:
+ private:
   std::array<double, 9> m_{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< rotated xyz -> geographic xyz, row-major
   bool identity_ = true;
 };

@@ -15,14 +15,14 @@ std::int64_t physical_memory_bytes();
 
 /// Measures wall and CPU time from construction.
 class Timer {
-public:
+ public:
   Timer() : wall0_(std::chrono::steady_clock::now()), cpu0_(process_cpu_seconds()) {}
   [[nodiscard]] double wall_s() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
   }
   [[nodiscard]] double cpu_s() const { return process_cpu_seconds() - cpu0_; }
 
-private:
+ private:
   std::chrono::steady_clock::time_point wall0_;
   double cpu0_;
 };

@@ -20,7 +20,8 @@ int polygon_index(const BoundaryNodes& nodes, Side side, int k) {
 std::vector<double> side_parameters(const SplineContour& contour, const BoundaryNodes& nodes, Side side) {
   const int n = nodes.side_count(side);
   std::vector<double> out(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = nodes.s[static_cast<std::size_t>(polygon_index(nodes, side, k))];
+  for (int k = 0; k < n; ++k)
+    out[static_cast<std::size_t>(k)] = nodes.s[static_cast<std::size_t>(polygon_index(nodes, side, k))];
   if (side == Side::kWest) out.back() = contour.period();
   return out;
 }
@@ -51,7 +52,8 @@ void node_positions(const SplineContour& contour, const BoundaryNodes& nodes, st
 
 void set_grid_boundary(const SplineContour& contour, const BoundaryNodes& nodes, Grid2D& grid) {
   const int L = nodes.nx_pts, M = nodes.ny_pts;
-  if (grid.nx_pts != L || grid.ny_pts != M || grid.x.size() != static_cast<std::size_t>(L) * static_cast<std::size_t>(M))
+  if (grid.nx_pts != L || grid.ny_pts != M ||
+      grid.x.size() != static_cast<std::size_t>(L) * static_cast<std::size_t>(M))
     throw InternalError("set_grid_boundary: grid size differs from the boundary nodes");
   std::vector<double> x, y;
   node_positions(contour, nodes, x, y);
@@ -94,7 +96,10 @@ double next_node(const SplineContour& c, double s_prev, double h, double ds_gues
     const double dx = p.x - p0.x, dy = p.y - p0.y;
     const double r = std::hypot(dx, dy);
     const double gv = r - h;
-    if (gv < 0.0) lo = s; else hi = s;
+    if (gv < 0.0)
+      lo = s;
+    else
+      hi = s;
     const double gd = r > 0.0 ? (dx * d.x + dy * d.y) / r : 0.0;
     const double small = 4.0 * kUlp * std::fabs(s);
     double sn = gd > 0.0 ? s - gv / gd : 0.5 * (lo + hi);
@@ -107,10 +112,11 @@ double next_node(const SplineContour& c, double s_prev, double h, double ds_gues
 
 }  // namespace
 
-BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, int ny_pts, const UniformOptions& options,
-                                     UniformStats* stats) {
+BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, int ny_pts,
+                                     const UniformOptions& options, UniformStats* stats) {
   if (nx_pts < 2 || ny_pts < 2)
-    throw ConfigError(fmt::format("uniform boundary nodes: a grid needs at least 2 x 2 points, got {} x {}", nx_pts, ny_pts));
+    throw ConfigError(
+        fmt::format("uniform boundary nodes: a grid needs at least 2 x 2 points, got {} x {}", nx_pts, ny_pts));
   BoundaryNodes nodes;
   nodes.nx_pts = nx_pts;
   nodes.ny_pts = ny_pts;
@@ -127,7 +133,8 @@ BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, i
     const int k1 = si == 3 ? np : corners[static_cast<std::size_t>(si) + 1];
     for (int k = k0; k < k1; ++k) {
       const auto ku = static_cast<std::size_t>(k), kn = static_cast<std::size_t>((k + 1) % np);
-      poly += std::hypot(contour.control_x()[kn] - contour.control_x()[ku], contour.control_y()[kn] - contour.control_y()[ku]);
+      poly += std::hypot(contour.control_x()[kn] - contour.control_x()[ku],
+                         contour.control_y()[kn] - contour.control_y()[ku]);
     }
     const double ds_guess0 = (b - a) / (n - 1);
     std::vector<double> s(static_cast<std::size_t>(n));
@@ -191,8 +198,8 @@ BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, i
         march(h1);
       }
       if (!(s[static_cast<std::size_t>(n) - 2] < b))
-        throw NumericalError(fmt::format("uniform boundary nodes: the {} side could not be filled with {} nodes",
-                                         side_name(side), n));
+        throw NumericalError(
+            fmt::format("uniform boundary nodes: the {} side could not be filled with {} nodes", side_name(side), n));
     } else {
       const PlanePoint pa = contour.point(a);
       h1 = std::hypot(pe.x - pa.x, pe.y - pa.y);

@@ -23,8 +23,7 @@ struct Grid2D {
   std::vector<double> x, y;
 
   Grid2D() = default;
-  Grid2D(int nx, int ny)
-      : nx_pts(nx), ny_pts(ny), x(static_cast<std::size_t>(nx) * ny, 0.0), y(x.size(), 0.0) {}
+  Grid2D(int nx, int ny) : nx_pts(nx), ny_pts(ny), x(static_cast<std::size_t>(nx) * ny, 0.0), y(x.size(), 0.0) {}
   [[nodiscard]] std::size_t at(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_pts) + static_cast<std::size_t>(i);
   }

@@ -25,7 +25,8 @@ const char* inner_schedule_name(InnerSchedule schedule) {
 
 int inner_pass_count(InnerSchedule schedule, int m) {
   const double md = static_cast<double>(std::max(m, 1));
-  const double v = schedule == InnerSchedule::kExponential ? std::pow(2.0, 0.5 * (md + 5.0)) : std::sqrt(2.0 * md + 5.0);
+  const double v =
+      schedule == InnerSchedule::kExponential ? std::pow(2.0, 0.5 * (md + 5.0)) : std::sqrt(2.0 * md + 5.0);
   // Guard against pow(2, k) landing an ulp above an integer (exact for integer exponents anyway).
   return static_cast<int>(std::ceil(v - 1e-9));
 }
@@ -56,7 +57,8 @@ double lagrange(const std::vector<double>& t, const std::vector<double>& f, doub
   for (int a = first; a < last; ++a) {
     double w = 1.0;
     for (int b = first; b < last; ++b)
-      if (b != a) w *= (ts - t[static_cast<std::size_t>(b)]) / (t[static_cast<std::size_t>(a)] - t[static_cast<std::size_t>(b)]);
+      if (b != a)
+        w *= (ts - t[static_cast<std::size_t>(b)]) / (t[static_cast<std::size_t>(a)] - t[static_cast<std::size_t>(b)]);
     sum += w * f[static_cast<std::size_t>(a)];
   }
   return sum;
@@ -72,7 +74,7 @@ bool increasing(const std::vector<double>& v) {
 // outer loop: s_new = G(s_m) − ΔG γ with γ = argmin |f_m − ΔF γ|, f = G(s) − s, over the last
 // `depth` differences. The accelerated iterate is used only if every side stays increasing.
 class Anderson {
-public:
+ public:
   explicit Anderson(int depth) : depth_(depth) {}
   void reset() {
     df_.clear();
@@ -143,7 +145,7 @@ public:
     g = trial.s;
   }
 
-private:
+ private:
   int depth_;
   bool has_prev_ = false;
   std::vector<double> f_prev_, g_prev_;
@@ -162,7 +164,8 @@ RectangleMeasure measure_rectangle(const std::vector<double>& x, const std::vect
     const double len = c.back();
     m.side_length[static_cast<std::size_t>(si)] = len;
     for (int k = 1; k < n - 1; ++k)
-      m.residual = std::max(m.residual, std::fabs(c[static_cast<std::size_t>(k)] / len - static_cast<double>(k) / (n - 1)));
+      m.residual =
+          std::max(m.residual, std::fabs(c[static_cast<std::size_t>(k)] / len - static_cast<double>(k) / (n - 1)));
   }
   m.aspect_ratio = (m.side_length[0] + m.side_length[2]) / (m.side_length[1] + m.side_length[3]);
   return m;
@@ -173,14 +176,15 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
   if (!(options.tolerance > 0.0))
     throw ConfigError(fmt::format("inverse problem: tolerance = {} must be positive", options.tolerance));
   if (options.interpolation_points < 2 || options.interpolation_points > 8)
-    throw ConfigError(fmt::format("inverse problem: interpolation points = {} must be within 2..8",
-                                  options.interpolation_points));
+    throw ConfigError(
+        fmt::format("inverse problem: interpolation points = {} must be within 2..8", options.interpolation_points));
   if (options.cell_multiple < 1 || (initial.ny_pts - 1) % options.cell_multiple != 0 ||
       (initial.nx_pts - 1) % options.cell_multiple != 0)
-    throw ConfigError(fmt::format("inverse problem: grid {} x {} points does not fit cell multiple {}",
-                                  initial.nx_pts, initial.ny_pts, options.cell_multiple));
+    throw ConfigError(fmt::format("inverse problem: grid {} x {} points does not fit cell multiple {}", initial.nx_pts,
+                                  initial.ny_pts, options.cell_multiple));
   if (options.max_outer_iterations < 1)
-    throw ConfigError(fmt::format("inverse problem: max outer iterations = {} must be >= 1", options.max_outer_iterations));
+    throw ConfigError(
+        fmt::format("inverse problem: max outer iterations = {} must be >= 1", options.max_outer_iterations));
   const Timer timer;
   InverseResult res;
   BoundaryNodes nodes = initial;
@@ -222,10 +226,11 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
     res.inner_passes.push_back(passes);
     res.iz89_angle.push_back(iz.max_angle.empty() ? 0.0 : iz.max_angle.back());
     res.outer_iterations = m;
-    log.debug("inverse problem: iteration {}: residual {:.3e}, W/H {:.9f}, {} x {} nodes, {} IZ89 passes (max angle "
-              "{:.2e}{})",
-              m, meas.residual, meas.aspect_ratio, nodes.nx_pts, nodes.ny_pts, passes, res.iz89_angle.back(),
-              iz.converged ? "" : ", not converged");
+    log.debug(
+        "inverse problem: iteration {}: residual {:.3e}, W/H {:.9f}, {} x {} nodes, {} IZ89 passes (max angle "
+        "{:.2e}{})",
+        m, meas.residual, meas.aspect_ratio, nodes.nx_pts, nodes.ny_pts, passes, res.iz89_angle.back(),
+        iz.converged ? "" : ", not converged");
     const bool done = meas.residual <= tol && full;
     if (done || m >= options.max_outer_iterations) {
       res.nodes = nodes;

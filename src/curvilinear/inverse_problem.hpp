@@ -89,11 +89,11 @@ struct InverseOptions {
 };
 
 struct InverseResult {
-  BoundaryNodes nodes;                 ///< final node parameters (nx_pts may differ from the input)
-  double aspect_ratio = 0.0;           ///< W/H of the rectangle of the final nodes
-  double residual = 0.0;               ///< residual of the final nodes
-  double tolerance = 0.0;              ///< the tolerance applied (after the round-off floor)
-  bool converged = false;              ///< residual ≤ tolerance with IZ89 converged
+  BoundaryNodes nodes;                   ///< final node parameters (nx_pts may differ from the input)
+  double aspect_ratio = 0.0;             ///< W/H of the rectangle of the final nodes
+  double residual = 0.0;                 ///< residual of the final nodes
+  double tolerance = 0.0;                ///< the tolerance applied (after the round-off floor)
+  bool converged = false;                ///< residual ≤ tolerance with IZ89 converged
   std::vector<double> residual_history;  ///< r_m per outer iteration
   std::vector<double> aspect_history;    ///< W/H per outer iteration
   std::vector<int> nx_pts_history;       ///< L per outer iteration
@@ -101,7 +101,7 @@ struct InverseResult {
   std::vector<double> iz89_angle;        ///< IZ89's last max turning angle per outer iteration
   std::vector<double> rect_x, rect_y;    ///< IZ89 image (rectangle) of the final nodes
   int outer_iterations = 0;
-  double seconds = 0.0;                  ///< wall time
+  double seconds = 0.0;  ///< wall time
 };
 
 /// Measures the distribution of a straightened polygon: residual (max |t' − k/(n−1)|) and W/H.

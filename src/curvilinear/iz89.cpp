@@ -63,7 +63,9 @@ inline double small_angle(double cr, double dt) {
   if (dt > 0.0 && std::fabs(cr) <= 0.0625 * dt) {
     const double t = cr / dt, t2 = t * t;
     // t − t³/3 + t⁵/5 − ... − t¹⁵/15
-    return t * (1.0 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11 + t2 * (1.0 / 13 - t2 / 15)))))));
+    return t * (1.0 + t2 * (-1.0 / 3 +
+                            t2 * (1.0 / 5 +
+                                  t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11 + t2 * (1.0 / 13 - t2 / 15)))))));
   }
   return std::atan2(cr, dt);
 }
@@ -143,8 +145,8 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
         a_int = kPi - ang;
       }
       pass_max = std::max(pass_max, std::fabs(ang));
-      if (ang == 0.0) continue;  // the identity map
-      double eps = ang / a_int;  // P − 1 = (T − A_int)/A_int
+      if (ang == 0.0) continue;           // the identity map
+      double eps = ang / a_int;           // P − 1 = (T − A_int)/A_int
       const double ubx = -ax, uby = -ay;  // backward ray (unnormalised)
 
       // Phase 1: θ within each of my blocks, relative to the block's absolute start, and the
@@ -230,7 +232,7 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
 // machine can make far slower than the work they split). The slower mode is re-timed now and
 // then, less often the slower it was.
 class ThreadChooser {
-public:
+ public:
   explicit ThreadChooser(int max_threads) : max_(max_threads) {}
   int next() {
     if (max_ <= 1) return 1;
@@ -249,7 +251,7 @@ public:
     t = t < 0.0 ? seconds_per_vertex : 0.5 * (t + seconds_per_vertex);
   }
 
-private:
+ private:
   int max_;
   double t_[2] = {-1.0, -1.0};
   int since_probe_ = 0;
@@ -261,7 +263,8 @@ Iz89Result iz89_straighten(std::span<double> x, std::span<double> y, const std::
                            const Iz89Options& options) {
   const int nb = static_cast<int>(x.size());
   if (nb < 4 || y.size() != x.size()) throw InternalError("iz89_straighten: needs >= 4 vertices and equal x, y sizes");
-  if (corners[0] != 0 || !(corners[0] < corners[1] && corners[1] < corners[2] && corners[2] < corners[3] && corners[3] < nb))
+  if (corners[0] != 0 ||
+      !(corners[0] < corners[1] && corners[1] < corners[2] && corners[2] < corners[3] && corners[3] < nb))
     throw InternalError("iz89_straighten: corner indices must be 0 < SE < NE < NW < Nb");
   std::vector<char> is_corner(static_cast<std::size_t>(nb), 0);
   for (int c : corners) is_corner[static_cast<std::size_t>(c)] = 1;
@@ -305,8 +308,9 @@ Iz89Result iz89_straighten(std::span<double> x, std::span<double> y, const std::
       const SweepResult r = sweep(ws, k0, k1, threads);
       chooser.record(threads, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / (k1 - k0));
       if (r.collapsed)
-        throw NumericalError("IZ89: a polygon edge collapsed to zero length (nodes coincide); the contour or the node "
-                             "distribution is degenerate");
+        throw NumericalError(
+            "IZ89: a polygon edge collapsed to zero length (nodes coincide); the contour or the node "
+            "distribution is degenerate");
       pass_max = std::max(pass_max, r.max_angle);
       result.clamped_maps += r.clamped;
     }

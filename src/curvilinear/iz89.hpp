@@ -51,10 +51,10 @@ struct Iz89Options {
 };
 
 struct Iz89Result {
-  int passes = 0;                  ///< passes done
-  bool converged = false;          ///< tolerance or round-off floor reached
-  std::vector<double> max_angle;   ///< largest |turning angle| met during each pass, radians
-  int clamped_maps = 0;            ///< vertex maps limited by the 1.98π guard (0 for sane contours)
+  int passes = 0;                 ///< passes done
+  bool converged = false;         ///< tolerance or round-off floor reached
+  std::vector<double> max_angle;  ///< largest |turning angle| met during each pass, radians
+  int clamped_maps = 0;           ///< vertex maps limited by the 1.98π guard (0 for sane contours)
 };
 
 /// Straightens the closed polygon (x, y) (Nb ≥ 4 vertices, counter-clockwise, simple) in place

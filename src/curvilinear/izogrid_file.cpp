@@ -276,8 +276,8 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
       for (std::string_view tok : split_blanks(line)) {
         const auto eq = tok.find('=');
         if (eq == std::string_view::npos || eq == 0) {
-          config_errors.push_back(fmt::format("{}: '{}' is not key=value (or the end-of-preamble line '---' is missing)",
-                                              where, tok));
+          config_errors.push_back(
+              fmt::format("{}: '{}' is not key=value (or the end-of-preamble line '---' is missing)", where, tok));
           continue;
         }
         const std::string key = lower(tok.substr(0, eq));
@@ -311,12 +311,13 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
     bool corner = false;
     if (first) {
       if (kind > 0 && kind != 4)
-        input_errors.push_back(fmt::format("{}: the first point is the south-west corner, but it is labelled '{}'",
-                                           where, label));
+        input_errors.push_back(
+            fmt::format("{}: the first point is the south-west corner, but it is labelled '{}'", where, label));
     } else if (kind == -1) {
-      input_errors.push_back(fmt::format("{}: 'south-west' must be the first point (points run counter-clockwise "
-                                         "from the south-west corner)",
-                                         where));
+      input_errors.push_back(
+          fmt::format("{}: 'south-west' must be the first point (points run counter-clockwise "
+                      "from the south-west corner)",
+                      where));
     } else if (kind != 0) {
       corner = true;
       corner_lines.push_back(line_no);
@@ -328,19 +329,21 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
     point_lines.push_back(line_no);
   }
   if (!in_points) {
-    input_errors.push_back(fmt::format("{}: no end-of-preamble line (a line of three or more dashes '---') before "
-                                       "the points",
-                                       source));
+    input_errors.push_back(
+        fmt::format("{}: no end-of-preamble line (a line of three or more dashes '---') before "
+                    "the points",
+                    source));
   } else {
     if (p.x.empty()) input_errors.push_back(fmt::format("{}: no points after the end-of-preamble line", source));
     // Corners: the first point plus exactly three marked, in the order SE, NE, NW when named.
     if (!p.x.empty() && corner_lines.size() != 3) {
       std::string lines = fmt::format("{}", point_lines.front());
       for (int l : corner_lines) lines += fmt::format(", {}", l);
-      input_errors.push_back(fmt::format("{}: the contour needs exactly 4 corners (the first point is south-west, "
-                                         "then south-east, north-east and north-west marked with '<'); found {} "
-                                         "(lines {})",
-                                         source, corner_lines.size() + 1, lines));
+      input_errors.push_back(
+          fmt::format("{}: the contour needs exactly 4 corners (the first point is south-west, "
+                      "then south-east, north-east and north-west marked with '<'); found {} "
+                      "(lines {})",
+                      source, corner_lines.size() + 1, lines));
     } else {
       for (std::size_t i = 0; i < corner_kinds.size(); ++i)
         if (corner_kinds[i] != 4 && corner_kinds[i] != static_cast<int>(i) + 1)

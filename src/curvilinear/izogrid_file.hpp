@@ -21,8 +21,8 @@
 
 #include <filesystem>
 #include <string>
-#include <vector>
 #include <string_view>
+#include <vector>
 
 #include "curvilinear/regional_params.hpp"
 

@@ -31,8 +31,8 @@ using Vec2d = std::array<double, 2>;
 /// Cyclic block-tridiagonal solve with 2×2 blocks ("matrix sweep", seed 000 after (73)):
 /// A_i z_{i−1} + B_i z_i + C_i z_{i+1} = g_i, indices mod n, n ≥ 3. `g` is overwritten with z.
 /// Throws NumericalError for a singular pivot block or a non-finite result.
-void solve_cyclic_block_tridiagonal(std::span<const Block2> a, std::span<const Block2> b,
-                                    std::span<const Block2> c, std::span<Vec2d> g);
+void solve_cyclic_block_tridiagonal(std::span<const Block2> a, std::span<const Block2> b, std::span<const Block2> c,
+                                    std::span<Vec2d> g);
 
 /// Slopes of the periodic C² cubic spline, eq. (62) (eq. (85) when all h = 1):
 /// d_{k−1}/A + 2(1/A + 1/B) d_k + d_{k+1}/B = 3(Δf_{k−1/2}/A² + Δf_{k+1/2}/B²),

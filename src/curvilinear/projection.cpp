@@ -36,17 +36,20 @@ ProjectionKind parse_projection_kind(std::string_view text) {
   if (t == "me" || t == "mercator") return ProjectionKind::kMercator;
   if (t == "lc" || t == "lambert") return ProjectionKind::kLambertConic;
   if (t == "st" || t == "stereographic") return ProjectionKind::kStereographic;
-  throw ConfigError(fmt::format(
-      "proj = '{}' is not a supported conformal projection (use ME = rotated Mercator, LC = Lambert "
-      "conformal conic or ST = stereographic)",
-      text));
+  throw ConfigError(
+      fmt::format("proj = '{}' is not a supported conformal projection (use ME = rotated Mercator, LC = Lambert "
+                  "conformal conic or ST = stereographic)",
+                  text));
 }
 
 std::string projection_code(ProjectionKind kind) {
   switch (kind) {
-    case ProjectionKind::kMercator: return "ME";
-    case ProjectionKind::kLambertConic: return "LC";
-    case ProjectionKind::kStereographic: return "ST";
+    case ProjectionKind::kMercator:
+      return "ME";
+    case ProjectionKind::kLambertConic:
+      return "LC";
+    case ProjectionKind::kStereographic:
+      return "ST";
   }
   return "??";
 }
@@ -69,10 +72,10 @@ Projection::Projection(const ProjectionParams& params) : p_(params) {
   sin_rota_ = std::sin(th);
 
   if (p_.kind == ProjectionKind::kMercator && std::fabs(p_.rlat_deg) > 90.0 - 1e-9)
-    throw ConfigError(fmt::format(
-        "projection: a Mercator centre at a pole (rlat = {}) has no east direction; use proj = ST "
-        "for polar regions",
-        p_.rlat_deg));
+    throw ConfigError(
+        fmt::format("projection: a Mercator centre at a pole (rlat = {}) has no east direction; use proj = ST "
+                    "for polar regions",
+                    p_.rlat_deg));
 
   // m = Rx(rota) * Ry(phi0) * Rz(-lam0): geographic unit vector -> centred frame (digest §3).
   const double cl = std::cos(lam0), sl = std::sin(lam0), cp = std::cos(phi0), sp = std::sin(phi0);
@@ -92,8 +95,8 @@ Projection::Projection(const ProjectionParams& params) : p_(params) {
     require_finite(lat1, "lat1");
     require_finite(lat2, "lat2");
     if (std::fabs(lat1) > 90.0 - 1e-9 || std::fabs(lat2) > 90.0 - 1e-9)
-      throw ConfigError(fmt::format("projection: LC standard parallels lat1 = {}, lat2 = {} must be inside (-90, 90)",
-                                    lat1, lat2));
+      throw ConfigError(
+          fmt::format("projection: LC standard parallels lat1 = {}, lat2 = {} must be inside (-90, 90)", lat1, lat2));
     const double p1 = lat1 * kDegToRad, p2 = lat2 * kDegToRad;
     double n = 0.0;
     if (std::fabs(p1 - p2) < 1e-12) {
@@ -182,8 +185,10 @@ double Projection::metres_per_unit(double x, double y) const {
   const double u = x * p_.uscale, v = y * p_.uscale;
   const double k = p_.radius_m * p_.uscale;
   switch (p_.kind) {
-    case ProjectionKind::kMercator: return k / std::cosh(v);
-    case ProjectionKind::kStereographic: return k * 4.0 / (4.0 + u * u + v * v);
+    case ProjectionKind::kMercator:
+      return k / std::cosh(v);
+    case ProjectionKind::kStereographic:
+      return k * 4.0 / (4.0 + u * u + v * v);
     case ProjectionKind::kLambertConic: {
       const double u0 = cos_rota_ * u + sin_rota_ * v;
       const double v0 = -sin_rota_ * u + cos_rota_ * v;

@@ -78,7 +78,7 @@ struct GeoPoint {
 /// A conformal sphere <-> plane projection. Immutable and cheap to copy; thread-safe.
 /// Forward and inverse agree to ~1e-13 degrees (round trips are tested to 1e-12).
 class Projection {
-public:
+ public:
   /// Validates the parameters: ConfigError naming the key and value for a Mercator or LC centre
   /// at a pole, LC standard parallels at a pole or symmetric about the equator, non-positive or
   /// non-finite uscale or radius, non-finite angles.
@@ -98,7 +98,7 @@ public:
 
   [[nodiscard]] const ProjectionParams& params() const { return p_; }
 
-private:
+ private:
   ProjectionParams p_;
   // Rotation taking geographic unit vectors to the frame with the centre at (1,0,0), +y3 along
   // the plane's x axis and +z3 along its y axis (ME and ST); LC uses only the plane rotation.

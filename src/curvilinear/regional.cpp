@@ -17,11 +17,16 @@ Stage stage_from_mode(int mode) {
 
 const char* stage_name(Stage stage) {
   switch (stage) {
-    case Stage::kMap: return "map";
-    case Stage::kContour: return "contour";
-    case Stage::kUniform: return "uniform";
-    case Stage::kConformal: return "conformal";
-    case Stage::kGrid: return "grid";
+    case Stage::kMap:
+      return "map";
+    case Stage::kContour:
+      return "contour";
+    case Stage::kUniform:
+      return "uniform";
+    case Stage::kConformal:
+      return "conformal";
+    case Stage::kGrid:
+      return "grid";
   }
   return "?";
 }
@@ -104,7 +109,8 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
       r.cubic_contour.emplace(r.control_x, r.control_y, r.control_corner, co);
     }
     r.contour_samples = r.contour->sample(32);
-    for (int s = 0; s < 4; ++s) r.side_length[static_cast<std::size_t>(s)] = r.contour->side_length(static_cast<Side>(s));
+    for (int s = 0; s < 4; ++s)
+      r.side_length[static_cast<std::size_t>(s)] = r.contour->side_length(static_cast<Side>(s));
     r.stage_seconds[1] = t.wall_s();
     r.completed = Stage::kContour;
     if (section != nullptr) (*section)["side_lengths"] = r.side_length;
@@ -128,8 +134,8 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
     r.uniform_nodes = uniform_boundary_nodes(*r.contour, 2 * r.nx_initial + 1, 2 * p.ny + 1, {}, &r.uniform_stats);
     r.stage_seconds[2] = t.wall_s();
     r.completed = Stage::kUniform;
-    scope.done(fmt::format("{} boundary nodes of a {} x {} supergrid", r.uniform_nodes.count(),
-                           r.uniform_nodes.nx_pts, r.uniform_nodes.ny_pts));
+    scope.done(fmt::format("{} boundary nodes of a {} x {} supergrid", r.uniform_nodes.count(), r.uniform_nodes.nx_pts,
+                           r.uniform_nodes.ny_pts));
   }
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kUniform) return r;
@@ -169,10 +175,11 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
       (*section)["residual"] = r.inverse.residual;
       (*section)["tolerance"] = r.inverse.tolerance;
     }
-    scope.done(fmt::format("W/H = {:.7f}, nx = {} for ny = {} (supergrid {} x {}), residual {:.2e} after {} outer "
-                           "iterations, {} IZ89 passes",
-                           r.aspect_ratio, r.nx, r.ny, r.nodes.nx_pts, r.nodes.ny_pts, r.inverse.residual,
-                           r.inverse.outer_iterations, passes));
+    scope.done(
+        fmt::format("W/H = {:.7f}, nx = {} for ny = {} (supergrid {} x {}), residual {:.2e} after {} outer "
+                    "iterations, {} IZ89 passes",
+                    r.aspect_ratio, r.nx, r.ny, r.nodes.nx_pts, r.nodes.ny_pts, r.inverse.residual,
+                    r.inverse.outer_iterations, passes));
   }
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kConformal) return r;

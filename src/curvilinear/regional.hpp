@@ -53,12 +53,12 @@ struct RegionalResult {
   int nx_initial = 0;  ///< nx0: the first guess used (params.nx or guessed from the side lengths)
 
   // Stage 3: inverse problem.
-  BoundaryNodes nodes;      ///< final boundary nodes of the (2nx+1) × (2ny+1) supergrid
-  InverseResult inverse;    ///< residual history, W/H history, passes, the rectangle
-  double aspect_ratio = 0;  ///< W/H of the conformal rectangle
-  int nx = 0;               ///< cells along ξ of the final grid (supergrid 2nx+1 points)
-  int ny = 0;               ///< cells along η of the final grid (supergrid 2ny+1 points)
-  double dxi_over_deta = 0; ///< ρ = Δξ/Δη of the supergrid's computational steps
+  BoundaryNodes nodes;       ///< final boundary nodes of the (2nx+1) × (2ny+1) supergrid
+  InverseResult inverse;     ///< residual history, W/H history, passes, the rectangle
+  double aspect_ratio = 0;   ///< W/H of the conformal rectangle
+  int nx = 0;                ///< cells along ξ of the final grid (supergrid 2nx+1 points)
+  int ny = 0;                ///< cells along η of the final grid (supergrid 2ny+1 points)
+  double dxi_over_deta = 0;  ///< ρ = Δξ/Δη of the supergrid's computational steps
 
   // Stage 4: the filled supergrid.
   Grid2D grid;
@@ -72,11 +72,11 @@ struct RegionalResult {
 };
 
 /// Runs the stages up to and including `stop_after` (the caller derives it from params.mode with
-/// stage_from_mode() or from a command-line override; params.mode itself is not consulted). Logs one "regional <stage>: done ..." line per stage and, when
-/// `report` is given, adds the stages and a "regional" section (parameters, nx, ny, W/H,
-/// residual history, timings). Throws ConfigError for invalid parameters, InputError for a bad
-/// contour (corners, self-intersection, orientation, points at a projection singularity),
-/// NumericalError when the inverse problem or the fill does not converge.
+/// stage_from_mode() or from a command-line override; params.mode itself is not consulted). Logs one "regional <stage>:
+/// done ..." line per stage and, when `report` is given, adds the stages and a "regional" section (parameters, nx, ny,
+/// W/H, residual history, timings). Throws ConfigError for invalid parameters, InputError for a bad contour (corners,
+/// self-intersection, orientation, points at a projection singularity), NumericalError when the inverse problem or the
+/// fill does not converge.
 RegionalResult run_regional(const RegionalParams& params, Stage stop_after, const Logger& log = Logger::null(),
                             Report* report = nullptr);
 

@@ -18,19 +18,27 @@ namespace {
 // Rotation of a side into the unfolded frame (eq. (9)): primed = R_side * original.
 PlanePoint rotate_to_unfolded(int side, double vx, double vy) {
   switch (side) {
-    case 0: return {vx, vy};    // south: unrotated
-    case 1: return {vy, -vx};   // east: 90° clockwise
-    case 2: return {-vx, -vy};  // north: 180°
-    default: return {-vy, vx};  // west: 270° clockwise
+    case 0:
+      return {vx, vy};  // south: unrotated
+    case 1:
+      return {vy, -vx};  // east: 90° clockwise
+    case 2:
+      return {-vx, -vy};  // north: 180°
+    default:
+      return {-vy, vx};  // west: 270° clockwise
   }
 }
 // Inverse rotation (eqs. (11)–(15) before re-orienting north and west).
 PlanePoint rotate_back(int side, double vx, double vy) {
   switch (side) {
-    case 0: return {vx, vy};
-    case 1: return {-vy, vx};
-    case 2: return {-vx, -vy};
-    default: return {vy, -vx};
+    case 0:
+      return {vx, vy};
+    case 1:
+      return {-vy, vx};
+    case 2:
+      return {-vx, -vy};
+    default:
+      return {vy, -vx};
   }
 }
 
@@ -92,17 +100,24 @@ bool segments_intersect(const PlanePoint& p1, const PlanePoint& p2, const PlaneP
 
 const char* side_name(Side side) {
   switch (side) {
-    case Side::kSouth: return "south";
-    case Side::kEast: return "east";
-    case Side::kNorth: return "north";
-    case Side::kWest: return "west";
+    case Side::kSouth:
+      return "south";
+    case Side::kEast:
+      return "east";
+    case Side::kNorth:
+      return "north";
+    case Side::kWest:
+      return "west";
   }
   return "?";
 }
 
 SplineContour::SplineContour(std::vector<double> x, std::vector<double> y, const std::vector<bool>& corner,
                              const ContourOptions& options)
-    : x_(std::move(x)), y_(std::move(y)), degree_(options.degree), param_(options.parametrisation),
+    : x_(std::move(x)),
+      y_(std::move(y)),
+      degree_(options.degree),
+      param_(options.parametrisation),
       source_(options.source) {
   if (degree_ != 3 && degree_ != 5)
     throw ConfigError(fmt::format("{}: spline degree {} is not supported (3 = cubic, 5 = quintic)", source_, degree_));
@@ -116,10 +131,10 @@ SplineContour::SplineContour(std::vector<double> x, std::vector<double> y, const
   if (found.size() != 4) {
     std::string list;
     for (std::size_t i = 0; i < found.size(); ++i) list += fmt::format("{}{}", i ? ", " : "", found[i] + 1);
-    throw InputError(fmt::format(
-        "{}: the contour needs exactly 4 corners (the first point is the south-west corner, then the "
-        "south-east, north-east and north-west corners are marked); found {} (points {})",
-        source_, found.size(), list));
+    throw InputError(
+        fmt::format("{}: the contour needs exactly 4 corners (the first point is the south-west corner, then the "
+                    "south-east, north-east and north-west corners are marked); found {} (points {})",
+                    source_, found.size(), list));
   }
   if (n < 4) throw InputError(fmt::format("{}: a contour needs at least 4 points, got {}", source_, n));
   for (int i = 0; i < 4; ++i) corners_[static_cast<std::size_t>(i)] = found[static_cast<std::size_t>(i)];

@@ -61,7 +61,7 @@ struct ContourOptions {
 /// A closed contour through the control points with four exact right-angle corners. Immutable
 /// after construction; evaluation is thread-safe.
 class SplineContour {
-public:
+ public:
   /// Builds the spline. `x`, `y`: N ≥ 4 control points in plane units, counter-clockwise from the
   /// SW corner. `corner[k]` marks corners; point 0 is the SW corner whether marked or not.
   /// Throws InputError (naming `options.source`, point numbers counted from 1 and coordinates)
@@ -127,7 +127,7 @@ public:
   /// Iterations the arc-length parametrisation took (0 for the index parametrisation).
   [[nodiscard]] int arc_length_iterations() const { return arc_iterations_; }
 
-private:
+ private:
   void fit(const std::vector<double>& h);
   void check_geometry(const ContourOptions& options) const;
 

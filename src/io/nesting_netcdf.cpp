@@ -17,7 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 struct VarSpec {
   const char* name;
   nc_type type;

@@ -63,7 +63,7 @@ double nice_step(double raw) {
 }
 
 class Painter {
-public:
+ public:
   Painter(cairo_t* cr, const View& v, double lw) : cr_(cr), v_(v), lw_(lw) {}
 
   // A polyline of plane points, cut at non-finite points and at jumps longer than `max_jump`
@@ -113,7 +113,7 @@ public:
     cairo_show_text(cr_, s.c_str());
   }
 
-private:
+ private:
   cairo_t* cr_;
   const View& v_;
   double lw_;
@@ -158,9 +158,10 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
     throw ConfigError(fmt::format("regional picture of stage '{}' requested, but the run stopped after '{}'",
                                   curvilinear::stage_name(stage), curvilinear::stage_name(r.completed)));
   if (options.width_px < 200 || options.width_px > 20000 || !(options.line_width > 0.0) || options.max_grid_lines < 2)
-    throw ConfigError(fmt::format("regional picture: width {} px (200..20000), line width {} (> 0), max grid lines "
-                                  "{} (>= 2)",
-                                  options.width_px, options.line_width, options.max_grid_lines));
+    throw ConfigError(
+        fmt::format("regional picture: width {} px (200..20000), line width {} (> 0), max grid lines "
+                    "{} (>= 2)",
+                    options.width_px, options.line_width, options.max_grid_lines));
   const auto& proj = *r.projection;
   const double lw = options.line_width;
 
@@ -226,7 +227,8 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
       for (int i = 0; i <= nsamp; ++i) pts.push_back(proj.forward(lon, g.s + (g.n - g.s) * i / nsamp));
       paint.polyline(pts, 0.5 * diag);
       const PlanePoint q = proj.forward(lon, g.s);
-      if (std::isfinite(q.x)) paint.text(v.px(q.x) + 2, std::min(v.py(q.y), v.height - 4.0), fmt::format("{:g}E", lon), 11);
+      if (std::isfinite(q.x))
+        paint.text(v.px(q.x) + 2, std::min(v.py(q.y), v.height - 4.0), fmt::format("{:g}E", lon), 11);
     }
     for (double lat = std::ceil(g.s / step) * step; lat <= g.n + 1e-9; lat += step) {
       std::vector<PlanePoint> pts;
@@ -346,8 +348,8 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   if (title.empty()) {
     title = fmt::format("{}: {}", r.params.source, curvilinear::stage_name(stage));
     if (stage == Stage::kMap)
-      title += fmt::format(" ({} centred at {}N {}E, rota {})", curvilinear::projection_code(r.params.proj), r.params.rlat,
-                           r.params.rlon, r.params.rota);
+      title += fmt::format(" ({} centred at {}N {}E, rota {})", curvilinear::projection_code(r.params.proj),
+                           r.params.rlat, r.params.rlon, r.params.rota);
     if (stage == Stage::kUniform || stage == Stage::kConformal) {
       const auto& n = stage == Stage::kUniform ? r.uniform_nodes : r.nodes;
       title += fmt::format(" ({} x {} boundary nodes)", n.nx_pts, n.ny_pts);

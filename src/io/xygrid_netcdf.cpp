@@ -28,7 +28,6 @@ bool is_reserved(const std::string& key) {
   return false;
 }
 
-
 void put_text(int nc, int var, const char* name, const std::string& text, const fs::path& path) {
   nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
                         fmt::format("attribute {}", name));

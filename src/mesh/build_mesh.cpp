@@ -112,8 +112,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   mesh.rlat_deg.resize(static_cast<std::size_t>(n));
   mesh.depth_m.resize(static_cast<std::size_t>(n));
   const bool rotated = mesh.rotation.enabled;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(n * (rotated ? 32 : 2))) shared(mesh, lat, rotation, n, rotated) \
-    schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n * (rotated ? 32 : 2))) \
+    shared(mesh, lat, rotation, n, rotated) schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto p = static_cast<std::size_t>(k);
     const double rlon = lat.lon_of(mesh.node_i[p]);

@@ -52,18 +52,18 @@ struct Mesh {
 
   // Nodes.
   std::vector<std::int64_t> node_i, node_j;  ///< lattice coordinates, I in [0, nx), J in [0, ny]
-  std::vector<double> lon_deg, lat_deg;       ///< geographic coordinates (after un-rotation)
-  std::vector<double> rlon_deg, rlat_deg;     ///< lattice-system coordinates (== geographic without rotation)
-  std::vector<double> depth_m;                ///< elevation in metres, negative below sea level
-  std::vector<std::uint8_t> node_flags;       ///< NodeFlag bits
+  std::vector<double> lon_deg, lat_deg;      ///< geographic coordinates (after un-rotation)
+  std::vector<double> rlon_deg, rlat_deg;    ///< lattice-system coordinates (== geographic without rotation)
+  std::vector<double> depth_m;               ///< elevation in metres, negative below sea level
+  std::vector<std::uint8_t> node_flags;      ///< NodeFlag bits
 
   // Triangles (present when mesh.elements is "triangles" or "both").
   std::vector<std::array<NodeId, 3>> triangles;
-  std::vector<std::uint8_t> triangle_level;   ///< quadtree level of the square it came from
-  std::vector<ElementId> triangle_square;     ///< index of that square in `squares`
+  std::vector<std::uint8_t> triangle_level;  ///< quadtree level of the square it came from
+  std::vector<ElementId> triangle_square;    ///< index of that square in `squares`
 
   // Squares = quadtree leaves (always present; written when elements is "squares" or "both").
-  std::vector<std::array<NodeId, 4>> squares;         ///< SW, SE, NE, NW corners (anticlockwise)
+  std::vector<std::array<NodeId, 4>> squares;  ///< SW, SE, NE, NW corners (anticlockwise)
   std::vector<std::uint8_t> square_level;
   std::vector<std::array<NodeId, 4>> square_midside;  ///< midside node of side S, E, N, W or -1
 
@@ -71,7 +71,7 @@ struct Mesh {
   std::vector<std::array<NodeId, 2>> boundary_edges;  ///< wet area on the left of (a -> b)
   std::vector<std::int32_t> boundary_edge_loop;       ///< loop id of each boundary edge
   std::vector<BoundaryLoop> loops;
-  std::vector<NodeId> pinch_nodes;                    ///< where the wet area touches itself at a corner
+  std::vector<NodeId> pinch_nodes;  ///< where the wet area touches itself at a corner
 
   [[nodiscard]] std::int64_t node_count() const { return static_cast<std::int64_t>(node_i.size()); }
   [[nodiscard]] std::int64_t triangle_count() const { return static_cast<std::int64_t>(triangles.size()); }

@@ -109,7 +109,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     for (const NodeId v : t)
       if (v < 0 || v >= s.nodes) throw InternalError(fmt::format("mesh statistics: node id {} out of range", v));
   for (const ElementId q : m.triangle_square)
-    if (q < 0 || q >= m.square_count()) throw InternalError(fmt::format("mesh statistics: square id {} out of range", q));
+    if (q < 0 || q >= m.square_count())
+      throw InternalError(fmt::format("mesh statistics: square id {} out of range", q));
 
   // Unwrapped lattice coordinates of a triangle's vertices: I below its square's SW corner wrapped.
   const auto vertex_ij = [&](std::int64_t t, int v, std::int64_t& i, std::int64_t& j) {

@@ -56,8 +56,8 @@ DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
   std::error_code ec;
   if (!fs::exists(o.path, ec)) throw InputError(fmt::format("{}: no such file", o.path));
   if (fs::is_directory(o.path, ec)) throw InputError(fmt::format("{}: is a directory, not a raster", o.path));
-  DatasetPtr ds(static_cast<GDALDataset*>(GDALOpenEx(o.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
-                                                     nullptr, nullptr, nullptr)));
+  DatasetPtr ds(static_cast<GDALDataset*>(
+      GDALOpenEx(o.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
     FILE* f = std::fopen(o.path.c_str(), "rb");
     if (f == nullptr) throw InputError(fmt::format("{}: cannot read the file", o.path));
@@ -93,12 +93,12 @@ DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
           const char* vn = ds->GetRasterBand(1)->GetMetadataItem("NETCDF_VARNAME");
           avail = vn != nullptr ? std::string(" ") + vn : std::string(" (band 1 only)");
         }
-        throw InputError(fmt::format("{}: variable '{}' not found (input.variable); the file has:{}", o.path,
-                                     o.variable, avail));
+        throw InputError(
+            fmt::format("{}: variable '{}' not found (input.variable); the file has:{}", o.path, o.variable, avail));
       }
     }
-    ds.reset(static_cast<GDALDataset*>(GDALOpenEx(pick.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr,
-                                                  nullptr, nullptr)));
+    ds.reset(static_cast<GDALDataset*>(
+        GDALOpenEx(pick.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     if (!ds) throw InputError(fmt::format("{}: cannot open {}{}", o.path, pick, gdal_message()));
     used_name = pick;
   }
@@ -110,8 +110,8 @@ DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
 
 struct Bathymetry::Impl {
   RasterInfo info;
-  std::vector<float> v;                 // ncols × nrows, south-up
-  std::vector<float> fx, fy, fxy;       // bicubic: slopes per degree, only when bicubic
+  std::vector<float> v;            // ncols × nrows, south-up
+  std::vector<float> fx, fy, fxy;  // bicubic: slopes per degree, only when bicubic
   Interpolation interp = Interpolation::kBilinear;
   bool global_lat = false;
 
@@ -221,9 +221,10 @@ struct Bathymetry::Impl {
     const auto nc = info.ncols, nr = info.nrows;
     for (const float x : v)
       if (std::isnan(x))
-        throw ConfigError(fmt::format("input.interpolation = \"bicubic\": {} has no-data cells; the spline needs "
-                                      "a complete raster (use \"bilinear\")",
-                                      info.path));
+        throw ConfigError(
+            fmt::format("input.interpolation = \"bicubic\": {} has no-data cells; the spline needs "
+                        "a complete raster (use \"bilinear\")",
+                        info.path));
     fx.assign(v.size(), 0.0f);
     fy.assign(v.size(), 0.0f);
     fxy.assign(v.size(), 0.0f);
@@ -315,9 +316,8 @@ std::int64_t estimate_raster_bytes(std::int64_t width, std::int64_t height) {
   return width * height * static_cast<std::int64_t>(sizeof(float));
 }
 
-Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, std::int64_t nrows,
-                                 double lon_first, double lat_first, double dlon, double dlat,
-                                 Interpolation interpolation) {
+Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, std::int64_t nrows, double lon_first,
+                                 double lat_first, double dlon, double dlat, Interpolation interpolation) {
   if (ncols < 2 || nrows < 2 || static_cast<std::int64_t>(values.size()) != ncols * nrows || !(dlon > 0) ||
       !(dlat > 0)) {
     throw InputError("from_grid: values must be ncols×nrows (>= 2×2) with positive steps");
@@ -376,9 +376,10 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     const char* name = srs->GetName();
     info.crs_name = name != nullptr ? name : "unnamed";
     if (srs->IsProjected() || !srs->IsGeographic()) {
-      throw InputError(fmt::format("{}: coordinate system '{}' is not geographic (lon/lat); reproject to "
-                                   "EPSG:4326 first (e.g. gdalwarp -t_srs EPSG:4326)",
-                                   o.path, info.crs_name));
+      throw InputError(
+          fmt::format("{}: coordinate system '{}' is not geographic (lon/lat); reproject to "
+                      "EPSG:4326 first (e.g. gdalwarp -t_srs EPSG:4326)",
+                      o.path, info.crs_name));
     }
   } else {
     info.crs_name = "none in file; lon/lat on WGS 84 assumed";
@@ -426,8 +427,8 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     info.lon_first = snap(info.lon_first, info.dlon / 2.0);
   }
   const double top_or_bottom = snap(gt[3] + 0.5 * gt[5], info.dlat / 2.0);  // centre of stored row 0
-  info.lat_first = info.north_up ? snap(top_or_bottom - static_cast<double>(h - 1) * info.dlat, info.dlat / 2.0)
-                                 : top_or_bottom;
+  info.lat_first =
+      info.north_up ? snap(top_or_bottom - static_cast<double>(h - 1) * info.dlat, info.dlat / 2.0) : top_or_bottom;
   const double q = info.lon_first_found / info.dlon;
   const double qy = info.lat_first / info.dlat;
   info.registration = (std::abs(q - std::round(q)) < 1e-6 && std::abs(qy - std::round(qy)) < 1e-6) ? "grid" : "pixel";
@@ -437,14 +438,16 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   }
 
   // Memory estimate before reading.
-  const std::int64_t need = estimate_raster_bytes(info.ncols, info.nrows) *
-                            (o.interpolation == Interpolation::kBicubic ? 4 : 1);
-  const std::int64_t limit = o.max_memory_bytes > 0 ? o.max_memory_bytes
-                                                    : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
+  const std::int64_t need =
+      estimate_raster_bytes(info.ncols, info.nrows) * (o.interpolation == Interpolation::kBicubic ? 4 : 1);
+  const std::int64_t limit = o.max_memory_bytes > 0
+                                 ? o.max_memory_bytes
+                                 : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
   if (limit > 0 && need > limit) {
-    throw InputError(fmt::format("{}: holding the raster needs {:.1f} GB, more than the limit {:.1f} GB "
-                                 "(input.max_memory_gb); use a coarser raster or a region",
-                                 o.path, static_cast<double>(need) / 1e9, static_cast<double>(limit) / 1e9));
+    throw InputError(
+        fmt::format("{}: holding the raster needs {:.1f} GB, more than the limit {:.1f} GB "
+                    "(input.max_memory_gb); use a coarser raster or a region",
+                    o.path, static_cast<double>(need) / 1e9, static_cast<double>(limit) / 1e9));
   }
 
   int has_nd = 0;
@@ -486,8 +489,8 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   }
   im->compute_stats();
   if (im->info.valid_count == 0) {
-    throw InputError(fmt::format("{}: band {} ({}) holds no data: every value is no-data", o.path, o.band,
-                                 info.variable));
+    throw InputError(
+        fmt::format("{}: band {} ({}) holds no data: every value is no-data", o.path, o.band, info.variable));
   }
   if (o.interpolation == Interpolation::kBicubic) {
     im->build_spline();

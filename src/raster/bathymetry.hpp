@@ -22,9 +22,9 @@ enum class Interpolation { kBilinear, kBicubic };
 
 struct OpenOptions {
   std::string path;
-  std::string variable;         ///< netCDF variable / subdataset; empty = the first / the file itself
-  int band = 1;                 ///< 1-based band
-  bool positive_down = false;   ///< file stores depth positive down: values are negated
+  std::string variable;        ///< netCDF variable / subdataset; empty = the first / the file itself
+  int band = 1;                ///< 1-based band
+  bool positive_down = false;  ///< file stores depth positive down: values are negated
   Interpolation interpolation = Interpolation::kBilinear;
   std::int64_t max_memory_bytes = 0;  ///< refuse if the raster would not fit; 0 = 80% of RAM
 };
@@ -32,34 +32,34 @@ struct OpenOptions {
 /// What `aquatoria info` prints about a raster, as found and as normalised.
 struct RasterInfo {
   std::string path, driver, variable, crs_name, units;
-  std::int64_t width = 0, height = 0;           ///< as stored in the file
-  std::int64_t ncols = 0, nrows = 0;            ///< after dropping a duplicated column
-  double dlon = 0.0, dlat = 0.0;                ///< degrees between sample points
-  double lon_first_found = 0.0;                 ///< λ of the first stored column's sample point
-  double lon_first = 0.0, lat_first = 0.0;      ///< normalised origin (sample point of (0, 0))
-  bool north_up = true;                         ///< rows stored north to south
-  bool global_lon = false;                      ///< covers 360° (longitude wraps)
-  bool duplicate_column = false;                ///< a 360° column was dropped
-  std::string registration;                     ///< "grid" (points on whole multiples) or "pixel"
-  std::string data_type;                        ///< GDAL type name of the band
+  std::int64_t width = 0, height = 0;       ///< as stored in the file
+  std::int64_t ncols = 0, nrows = 0;        ///< after dropping a duplicated column
+  double dlon = 0.0, dlat = 0.0;            ///< degrees between sample points
+  double lon_first_found = 0.0;             ///< λ of the first stored column's sample point
+  double lon_first = 0.0, lat_first = 0.0;  ///< normalised origin (sample point of (0, 0))
+  bool north_up = true;                     ///< rows stored north to south
+  bool global_lon = false;                  ///< covers 360° (longitude wraps)
+  bool duplicate_column = false;            ///< a 360° column was dropped
+  std::string registration;                 ///< "grid" (points on whole multiples) or "pixel"
+  std::string data_type;                    ///< GDAL type name of the band
   double scale = 1.0, offset = 0.0;
   bool has_nodata = false;
   double nodata = 0.0;
   double min_m = 0.0, max_m = 0.0, mean_m = 0.0;  ///< over valid values (after normalisation)
   std::int64_t valid_count = 0;
-  std::int64_t memory_bytes = 0;                  ///< bytes held for the values
+  std::int64_t memory_bytes = 0;  ///< bytes held for the values
 };
 
 class Bathymetry {
-public:
+ public:
   /// Opens and reads the raster (band by band of rows through GDAL windows, with progress).
   /// Throws InputError naming the path: missing/unreadable, not a raster, projected CRS (named),
   /// band/variable not found, all no-data; throws InputError when it would not fit in memory.
   static Bathymetry open(const OpenOptions& options, const Logger& log = Logger::null());
   /// Builds from values in memory (tests and data tools): `values` row-major south-up,
   /// ncols×nrows, sample points at lon_first + c·dlon, lat_first + r·dlat; NaN = no data.
-  static Bathymetry from_grid(std::vector<float> values, std::int64_t ncols, std::int64_t nrows,
-                              double lon_first, double lat_first, double dlon, double dlat,
+  static Bathymetry from_grid(std::vector<float> values, std::int64_t ncols, std::int64_t nrows, double lon_first,
+                              double lat_first, double dlon, double dlat,
                               Interpolation interpolation = Interpolation::kBilinear);
 
   Bathymetry(Bathymetry&&) noexcept;
@@ -87,7 +87,7 @@ public:
   /// Raster value (c, r) in normalised layout (c wraps for global rasters); NaN if no data.
   [[nodiscard]] float value(std::int64_t c, std::int64_t r) const;
 
-private:
+ private:
   struct Impl;
   explicit Bathymetry(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
@@ -102,7 +102,7 @@ struct Polyline {
 };
 /// Contours of elevation `level_m` inside [lon_min, lon_max] × [lat_min, lat_max]
 /// (longitudes may extend past the raster's range on a global raster).
-std::vector<Polyline> contour_lines(const Bathymetry& bathy, double level_m, double lon_min,
-                                    double lon_max, double lat_min, double lat_max);
+std::vector<Polyline> contour_lines(const Bathymetry& bathy, double level_m, double lon_min, double lon_max,
+                                    double lat_min, double lat_max);
 
 }  // namespace aq::raster

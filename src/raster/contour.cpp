@@ -25,24 +25,25 @@ std::vector<Polyline> contour_lines(const Bathymetry& bathy, double level_m, dou
   const std::int64_t nc = c_hi - c_lo + 1;
   const std::int64_t nr = r_hi - r_lo + 1;
   if (nc < 2 || nr < 2 || nc * nr > (1LL << 28)) {
-    throw InputError(fmt::format("contour window {}..{} × {}..{} is empty or too large", lon_min, lon_max, lat_min,
-                                 lat_max));
+    throw InputError(
+        fmt::format("contour window {}..{} × {}..{} is empty or too large", lon_min, lon_max, lat_min, lat_max));
   }
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
   GDALDataset* ds = mem->Create("", static_cast<int>(nc), static_cast<int>(nr), 1, GDT_Float32, nullptr);
   std::vector<float> buf(static_cast<std::size_t>(nc * nr));
   for (std::int64_t r = 0; r < nr; ++r)
     for (std::int64_t c = 0; c < nc; ++c) {
-      const float v = bathy.value(c_lo + c, r_hi - r);  // north-up for GDAL
+      const float v = bathy.value(c_lo + c, r_hi - r);                       // north-up for GDAL
       buf[static_cast<std::size_t>(r * nc + c)] = std::isnan(v) ? 1e4f : v;  // no data: high land
     }
   if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, static_cast<int>(nc), static_cast<int>(nr), buf.data(),
-                                     static_cast<int>(nc), static_cast<int>(nr), GDT_Float32, 0, 0, nullptr) != CE_None) {
+                                     static_cast<int>(nc), static_cast<int>(nr), GDT_Float32, 0, 0,
+                                     nullptr) != CE_None) {
     GDALClose(ds);
     throw InputError("contour: cannot fill the in-memory raster");
   }
   double gt[6] = {in.lon_first + (static_cast<double>(c_lo) - 0.5) * in.dlon, in.dlon, 0.0,
-                  in.lat_first + (static_cast<double>(r_hi) + 0.5) * in.dlat, 0.0, -in.dlat};
+                  in.lat_first + (static_cast<double>(r_hi) + 0.5) * in.dlat, 0.0,     -in.dlat};
   ds->SetGeoTransform(gt);
 
   GDALDriver* vmem = GetGDALDriverManager()->GetDriverByName("Memory");
@@ -53,8 +54,8 @@ std::vector<Polyline> contour_lines(const Bathymetry& bathy, double level_m, dou
   OGRFieldDefn fel("ELEV", OFTReal);
   layer->CreateField(&fel);
   double levels[1] = {level_m};
-  const CPLErr err = GDALContourGenerate(ds->GetRasterBand(1), 0.0, 0.0, 1, levels, 0, 0.0, layer, 0, 1,
-                                         nullptr, nullptr);
+  const CPLErr err =
+      GDALContourGenerate(ds->GetRasterBand(1), 0.0, 0.0, 1, levels, 0, 0.0, layer, 0, 1, nullptr, nullptr);
   std::vector<Polyline> out;
   if (err == CE_None) {
     layer->ResetReading();

@@ -99,7 +99,8 @@ TEST(BlocksCli, SameFilesWithOneAndTwoThreads) {
     EXPECT_FALSE(a.empty()) << f;
     // The configs name their (different) folders: compare with the folder taken out.
     for (auto [text, folder] : {std::pair{&a, d1.path().string()}, std::pair{&b, d2.path().string()}})
-      for (std::size_t p = text->find(folder); p != std::string::npos; p = text->find(folder)) text->erase(p, folder.size());
+      for (std::size_t p = text->find(folder); p != std::string::npos; p = text->find(folder))
+        text->erase(p, folder.size());
     EXPECT_TRUE(a == b) << f;
   }
 }

@@ -78,7 +78,8 @@ TEST(Cli, UnknownConfigKeyNamesKeyAndLine) {
 }
 
 TEST(Cli, ThreeBadValuesAllReported) {
-  const auto p = write_temp("bad3.toml", "[mask]\ncursor = -1\n[quadtree]\nstep_deg = 5.5\n[output]\nformats = [\"stl\"]\n");
+  const auto p =
+      write_temp("bad3.toml", "[mask]\ncursor = -1\n[quadtree]\nstep_deg = 5.5\n[output]\nformats = [\"stl\"]\n");
   const auto r = run_aquatoria("mesh -c " + p.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("3 configuration errors"));

@@ -34,8 +34,8 @@ fs::path write_izogrid(const std::string& name, const std::string& points) {
 
 TEST(RegionalCli, BlackSeaFromTomlBuildsTheSeedGrid) {
   const fs::path out = fresh_dir("toml");
-  const auto r = run_aquatoria("regional -q -c " + kConfigs + "black_sea.toml -o " + out.string() +
-                               " --set roms.enabled=false");
+  const auto r =
+      run_aquatoria("regional -q -c " + kConfigs + "black_sea.toml -o " + out.string() + " --set roms.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out / "black_sea_xygrid.nc"));
   EXPECT_TRUE(fs::exists(out / "black_sea_grid.png"));
@@ -64,8 +64,8 @@ TEST(RegionalCli, SeedFileFormatStopsWhereItsModeSays) {
 TEST(RegionalCli, EachStopAfterStageDrawsItsPicture) {
   for (const std::string stage : {"map", "contour", "uniform", "conformal"}) {
     const fs::path out = fresh_dir("stage_" + stage);
-    const auto r = run_aquatoria("regional -q -c " + kConfigs + "black_sea.toml --stop-after " + stage + " -o " +
-                                 out.string());
+    const auto r =
+        run_aquatoria("regional -q -c " + kConfigs + "black_sea.toml --stop-after " + stage + " -o " + out.string());
     ASSERT_EQ(r.exit_code, 0) << stage << ": " << r.err;
     EXPECT_TRUE(fs::exists(out / ("black_sea_" + stage + ".png"))) << stage;
     EXPECT_GT(fs::file_size(out / ("black_sea_" + stage + ".png")), 10000u) << stage;
@@ -73,7 +73,8 @@ TEST(RegionalCli, EachStopAfterStageDrawsItsPicture) {
 }
 
 TEST(RegionalCli, ThreeCornersIsAClearError) {
-  const auto f = write_izogrid("three.izogrid", "-50 -20 south-west\n50 -20 < south-east\n50 20 < north-east\n-50 20\n");
+  const auto f =
+      write_izogrid("three.izogrid", "-50 -20 south-west\n50 -20 < south-east\n50 20 < north-east\n-50 20\n");
   const fs::path out = fresh_dir("three");
   const auto r = run_aquatoria("regional " + f.string() + " -o " + out.string());
   EXPECT_EQ(r.exit_code, 1);
@@ -95,8 +96,8 @@ TEST(RegionalCli, SelfIntersectingContourIsRefused) {
 
 TEST(RegionalCli, IterationLimitIsANumericalError) {
   const fs::path out = fresh_dir("limit");
-  const auto r = run_aquatoria("regional -q -c " + kConfigs + "black_sea.toml --set regional.max_outer=2 -o " +
-                               out.string());
+  const auto r =
+      run_aquatoria("regional -q -c " + kConfigs + "black_sea.toml --set regional.max_outer=2 -o " + out.string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("residual"));
   EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out));

@@ -29,8 +29,8 @@ const Run& mesh_run(const std::string& args, int threads = 2) {
   const std::string key = args + "#" + std::to_string(threads);
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  const fs::path dir = fs::temp_directory_path() / ("aq_global_" + std::to_string(cache.size()) + "_" +
-                                                    std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("aq_global_" + std::to_string(cache.size()) + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto r = run_command("OMP_NUM_THREADS=" + std::to_string(threads) + " " + AQ_BINARY + " mesh -q -o " +
                              dir.string() + " " + args);
@@ -58,7 +58,8 @@ void expect_invariants(const json& r) {
   EXPECT_EQ(s.at("right_isosceles").at("clockwise_or_degenerate"), 0);
   // Total triangle area = filled area, exactly in lattice units.
   EXPECT_EQ(s.at("area").at("triangles_px2").get<double>(), s.at("area").at("filled_px2").get<double>());
-  EXPECT_EQ(s.at("area").at("filled_px2").get<std::int64_t>(), r.at("mask").at("fill").at("filled_pixels_final").get<std::int64_t>());
+  EXPECT_EQ(s.at("area").at("filled_px2").get<std::int64_t>(),
+            r.at("mask").at("fill").at("filled_pixels_final").get<std::int64_t>());
   // Geodesic triangles vs lattice cells on WGS84 (authalic sphere cells when rotated): a boundary
   // effect of first order in the pixel size, 5e-7 plain and 4e-4 rotated at 0.5° pixels.
   EXPECT_LT(s.at("area").at("relative_difference").get<double>(), 1e-3);
@@ -127,8 +128,9 @@ TEST(GlobalMeshEtopo5, VtkReadsTheRealVtu) {
   if (run_command(py + " -c 'import vtk'").exit_code != 0) GTEST_SKIP() << "python3-vtk9 not installed";
   const auto& run = mesh_run("");
   const fs::path vtu = run.dir / "seed_4deg_L3.vtu";
-  const auto r = run_command(py + " -c \"import vtk; r=vtk.vtkXMLUnstructuredGridReader(); r.SetFileName('" +
-                             vtu.string() + "'); r.Update(); g=r.GetOutput(); print(g.GetNumberOfPoints(), g.GetNumberOfCells())\"");
+  const auto r =
+      run_command(py + " -c \"import vtk; r=vtk.vtkXMLUnstructuredGridReader(); r.SetFileName('" + vtu.string() +
+                  "'); r.Update(); g=r.GetOutput(); print(g.GetNumberOfPoints(), g.GetNumberOfCells())\"");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   long points = 0, cells = 0;
   ASSERT_EQ(std::sscanf(r.out.c_str(), "%ld %ld", &points, &cells), 2) << r.out;
@@ -173,11 +175,13 @@ TEST(GlobalMeshEtopo5, BadInputsFailCleanlyWithoutPartialFiles) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, ::testing::HasSubstr("/nonexistent.nc"));
   EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir));
-  r = run_command(std::string(AQ_BINARY) + " mesh -q -o " + dir.string() + " --set mask.seeds=[[30.0,0.0]] --set mask.seed_radius_deg=1");
+  r = run_command(std::string(AQ_BINARY) + " mesh -q -o " + dir.string() +
+                  " --set mask.seeds=[[30.0,0.0]] --set mask.seed_radius_deg=1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, ::testing::HasSubstr("mask.seeds[0]"));
   EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir));
-  r = run_command(std::string(AQ_BINARY) + " mesh -q -o " + dir.string() + " --set quadtree.levels=14 --set input.max_memory_gb=1");
+  r = run_command(std::string(AQ_BINARY) + " mesh -q -o " + dir.string() +
+                  " --set quadtree.levels=14 --set input.max_memory_gb=1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, ::testing::HasSubstr("quadtree.levels = 14"));
   EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir));

@@ -74,8 +74,8 @@ TEST(Config, UnknownSectionIsAnError) {
 }
 
 TEST(Config, AllBadValuesReportedInOneRun) {
-  const auto p = write_temp("three.toml",
-                            "[mask]\ncursor = 0\n[quadtree]\nstep_deg = 7.0\n[mesh]\ndiagonal = \"sw\"\n");
+  const auto p =
+      write_temp("three.toml", "[mask]\ncursor = 0\n[quadtree]\nstep_deg = 7.0\n[mesh]\ndiagonal = \"sw\"\n");
   const std::string e = error_of(p.string());
   EXPECT_THAT(e, HasSubstr("3 configuration errors"));
   EXPECT_THAT(e, HasSubstr("three.toml:2:"));
@@ -123,9 +123,10 @@ TEST(Config, RelativeInputPathResolvesAgainstConfigFolder) {
 }
 
 TEST(Config, RulesParseAndCrossCheckLevels) {
-  const auto p = write_temp("rules.toml",
-                            "[quadtree]\nlevels = 3\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, level = 2}]\n"
-                            "box_rules = [{lon_min_deg = -10.0, lon_max_deg = 40.0, lat_min_deg = 30.0, lat_max_deg = 46.0, level = 5}]\n");
+  const auto p = write_temp(
+      "rules.toml",
+      "[quadtree]\nlevels = 3\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, level = 2}]\n"
+      "box_rules = [{lon_min_deg = -10.0, lon_max_deg = 40.0, lat_min_deg = 30.0, lat_max_deg = 46.0, level = 5}]\n");
   EXPECT_THAT(error_of(p.string()), HasSubstr("level 5 exceeds quadtree.levels = 3"));
   const auto ok = load_global(p.string(), {"quadtree.levels=5"});
   ASSERT_EQ(ok.options.quadtree.depth_rules.size(), 1u);

@@ -32,8 +32,10 @@ TEST(ExampleRegionalToml, ListsExactlyTheKeysTheCodeKnows) {
     for (const auto& [key, v] : table.as_table()) in_file.insert(sec + "." + key);
   const auto keys = aq::config::regional_keys();
   const std::set<std::string> in_code(keys.begin(), keys.end());
-  for (const auto& k : in_code) EXPECT_TRUE(in_file.count(k)) << k << " is in the code but not in example_regional.toml";
-  for (const auto& k : in_file) EXPECT_TRUE(in_code.count(k)) << k << " is in example_regional.toml but not in the code";
+  for (const auto& k : in_code)
+    EXPECT_TRUE(in_file.count(k)) << k << " is in the code but not in example_regional.toml";
+  for (const auto& k : in_file)
+    EXPECT_TRUE(in_code.count(k)) << k << " is in example_regional.toml but not in the code";
   EXPECT_EQ(keys.size(), in_code.size()) << "a key is registered twice";
 }
 

@@ -82,7 +82,8 @@ TEST(ContourTest, CornersAreExactlyRightAnglesOnRandomStarShapes) {
         }
         ++built;
         for (int k = 0; k < 4; ++k) {
-          ASSERT_LT(std::fabs(corner_cos(*c, k)), 1e-13) << "trial " << trial << " degree " << degree << " corner " << k;
+          ASSERT_LT(std::fabs(corner_cos(*c, k)), 1e-13)
+              << "trial " << trial << " degree " << degree << " corner " << k;
           // The same from positions alone: chords a small step before and after the corner.
           const double s = c->side_begin(static_cast<Side>(k));
           const double d = 1e-5;
@@ -180,9 +181,9 @@ TEST(ContourTest, CyclicSweepsMatchDenseSolves) {
                       7.0 / 15 * d[kp] / (B * B * B) + 1.0 / 15 * dd[km] / (A * A) -
                       1.0 / 10 * (1 / (A * A) - 1 / (B * B)) * dd[kk] - 1.0 / 15 * dd[kp] / (B * B) -
                       (df[kk] / std::pow(B, 4) + df[km] / std::pow(A, 4));
-    const double r2 = -2.0 / 5 * d[km] / (A * A) - 3.0 / 5 * (1 / (A * A) - 1 / (B * B)) * d[kk] + 2.0 / 5 * d[kp] / (B * B) -
-                      1.0 / 20 * dd[km] / A + 3.0 / 20 * (1 / A + 1 / B) * dd[kk] - 1.0 / 20 * dd[kp] / B -
-                      (df[kk] / (B * B * B) - df[km] / (A * A * A));
+    const double r2 = -2.0 / 5 * d[km] / (A * A) - 3.0 / 5 * (1 / (A * A) - 1 / (B * B)) * d[kk] +
+                      2.0 / 5 * d[kp] / (B * B) - 1.0 / 20 * dd[km] / A + 3.0 / 20 * (1 / A + 1 / B) * dd[kk] -
+                      1.0 / 20 * dd[kp] / B - (df[kk] / (B * B * B) - df[km] / (A * A * A));
     EXPECT_NEAR(r1, 0.0, 1e-13);
     EXPECT_NEAR(r2, 0.0, 1e-13);
   }

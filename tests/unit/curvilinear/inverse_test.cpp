@@ -36,10 +36,11 @@ const RegionalResult& black_sea() {
     Report report;
     RegionalResult res = run_regional(black_sea_params(), Stage::kGrid, Logger::null(), &report);
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("[ info ] Black Sea, all stages: %.3f s wall, %.3f s CPU (read+map %.4f, contour %.4f, uniform %.4f, "
-                "conformal %.4f, grid %.4f)\n",
-                total, process_cpu_seconds() - cpu0, res.stage_seconds[0], res.stage_seconds[1], res.stage_seconds[2], res.stage_seconds[3],
-                res.stage_seconds[4]);
+    std::printf(
+        "[ info ] Black Sea, all stages: %.3f s wall, %.3f s CPU (read+map %.4f, contour %.4f, uniform %.4f, "
+        "conformal %.4f, grid %.4f)\n",
+        total, process_cpu_seconds() - cpu0, res.stage_seconds[0], res.stage_seconds[1], res.stage_seconds[2],
+        res.stage_seconds[3], res.stage_seconds[4]);
     return res;
   }();
   return r;
@@ -75,7 +76,8 @@ TEST(InverseTest, BlackSeaConvergesToRoundOffMonotonically) {
   ASSERT_GE(h.size(), 4u);
   std::printf("[ info ] Black Sea outer iterations (residual, W/H, IZ89 passes):\n");
   for (std::size_t m = 0; m < h.size(); ++m)
-    std::printf("[ info ]   %2zu  %.3e  %.9f  %d\n", m + 1, h[m], r.inverse.aspect_history[m], r.inverse.inner_passes[m]);
+    std::printf("[ info ]   %2zu  %.3e  %.9f  %d\n", m + 1, h[m], r.inverse.aspect_history[m],
+                r.inverse.inner_passes[m]);
   for (std::size_t m = 1; m < h.size(); ++m) EXPECT_LT(h[m], h[m - 1]) << "iteration " << m + 1;
   EXPECT_LT(h.back(), 1e-11);
   EXPECT_TRUE(r.inverse.converged);
@@ -98,10 +100,11 @@ TEST(InverseTest, InverseNodesGiveAnOrthogonalGridUniformNodesDoNot) {
   laplace_fill(uni, rho_u, 1.0);
   co.dxi_over_deta = rho_u;
   const GridQuality bad = check_grid(uni, co);
-  std::printf("[ info ] orthogonality error (50): inverse-problem nodes max %.2e rms %.2e (%d non-convex cells); "
-              "uniform nodes max %.2e rms %.2e (%d non-convex cells)\n",
-              good.ortho_50.worst, good.ortho_50.rms, good.non_convex_cells, bad.ortho_50.worst, bad.ortho_50.rms,
-              bad.non_convex_cells);
+  std::printf(
+      "[ info ] orthogonality error (50): inverse-problem nodes max %.2e rms %.2e (%d non-convex cells); "
+      "uniform nodes max %.2e rms %.2e (%d non-convex cells)\n",
+      good.ortho_50.worst, good.ortho_50.rms, good.non_convex_cells, bad.ortho_50.worst, bad.ortho_50.rms,
+      bad.non_convex_cells);
   std::printf("[ info ] isotropy |l_xi|/|l_eta| in [%.4f, %.4f], target rho = %.4f\n", good.isotropy_ratio_min,
               good.isotropy_ratio_max, r.dxi_over_deta);
   EXPECT_EQ(good.non_convex_cells, 0);
@@ -129,9 +132,10 @@ TEST(InverseTest, ScheduleReadingsCompared) {
     const RectangleMeasure t = true_measure(c, r.nodes);
     int passes = 0;
     for (int p : r.inner_passes) passes += p;
-    std::printf("[ info ] schedule %-11s: %2d outer iterations, %3d IZ89 passes, %.2f s; measured residual %.2e, "
-                "true residual %.2e, W/H %.9f\n",
-                inner_schedule_name(sch), r.outer_iterations, passes, sec, r.residual, t.residual, t.aspect_ratio);
+    std::printf(
+        "[ info ] schedule %-11s: %2d outer iterations, %3d IZ89 passes, %.2f s; measured residual %.2e, "
+        "true residual %.2e, W/H %.9f\n",
+        inner_schedule_name(sch), r.outer_iterations, passes, sec, r.residual, t.residual, t.aspect_ratio);
     std::printf("[ info ]   measured history:");
     for (double v : r.residual_history) std::printf(" %.1e", v);
     std::printf("\n");
@@ -248,11 +252,12 @@ TEST(InverseTest, DISABLED_BigGridTiming) {
   const double cpu = process_cpu_seconds() - cpu0;
   int passes = 0;
   for (int q : r.inverse.inner_passes) passes += q;
-  std::printf("[ info ] big grid %d x %d (W/H %.6f): %.1f s wall, %.1f s CPU (contour %.3f, uniform %.3f, conformal %.2f with "
-              "%d outer iterations / %d IZ89 passes, grid %.3f); residual %.2e (tolerance %.1e)\n",
-              r.grid.nx_pts, r.grid.ny_pts, r.aspect_ratio, total, cpu, r.stage_seconds[1], r.stage_seconds[2],
-              r.stage_seconds[3], r.inverse.outer_iterations, passes, r.stage_seconds[4], r.inverse.residual,
-              r.inverse.tolerance);
+  std::printf(
+      "[ info ] big grid %d x %d (W/H %.6f): %.1f s wall, %.1f s CPU (contour %.3f, uniform %.3f, conformal %.2f with "
+      "%d outer iterations / %d IZ89 passes, grid %.3f); residual %.2e (tolerance %.1e)\n",
+      r.grid.nx_pts, r.grid.ny_pts, r.aspect_ratio, total, cpu, r.stage_seconds[1], r.stage_seconds[2],
+      r.stage_seconds[3], r.inverse.outer_iterations, passes, r.stage_seconds[4], r.inverse.residual,
+      r.inverse.tolerance);
   EXPECT_TRUE(r.inverse.converged);
 }
 

@@ -43,7 +43,8 @@ Polygon subdivide(const std::vector<std::pair<double, double>>& v, const std::ar
   const int n = static_cast<int>(v.size());
   int c = 0;
   for (int i = 0; i < n; ++i) {
-    if (c < 4 && corner_vertex[static_cast<std::size_t>(c)] == i) p.corners[static_cast<std::size_t>(c++)] = static_cast<int>(p.x.size());
+    if (c < 4 && corner_vertex[static_cast<std::size_t>(c)] == i)
+      p.corners[static_cast<std::size_t>(c++)] = static_cast<int>(p.x.size());
     const auto [x0, y0] = v[static_cast<std::size_t>(i)];
     const auto [x1, y1] = v[static_cast<std::size_t>((i + 1) % n)];
     const int m = std::max(1, static_cast<int>(std::lround(std::hypot(x1 - x0, y1 - y0) / h)));
@@ -87,9 +88,7 @@ Polygon half_square_triangle(double h) {
   return subdivide({{0, -1}, {1, -1}, {1, 0}, {1, 1}, {-1, -1}}, {0, 2, 3, 4}, h);
 }
 
-Polygon symmetric_l(double h) {
-  return subdivide({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {0, 1, 3, 5}, h);
-}
+Polygon symmetric_l(double h) { return subdivide({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {0, 1, 3, 5}, h); }
 
 TEST(Iz89Test, HalfSquareTriangleHasModulusTwo) {
   double prev_err = 1.0;
@@ -119,7 +118,8 @@ TEST(Iz89Test, SymmetricLShapeHasModulusOne) {
     ASSERT_TRUE(r.converged);
     EXPECT_LT(max_corner_cos(p), 2e-16 * static_cast<double>(p.x.size() * p.x.size()));
     const double err = std::fabs(aspect(p) - 1.0);
-    std::printf("[ info ] symmetric L, h = 1/%d: W/H = %.10f, %d passes\n", static_cast<int>(1 / h), aspect(p), r.passes);
+    std::printf("[ info ] symmetric L, h = 1/%d: W/H = %.10f, %d passes\n", static_cast<int>(1 / h), aspect(p),
+                r.passes);
     EXPECT_LT(err, 0.55 * prev_err) << "h = " << h;
     prev_err = err;
   }

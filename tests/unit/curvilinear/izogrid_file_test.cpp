@@ -46,8 +46,8 @@ TEST(IzogridFileTest, ReadsTheSeedBlackSeaFile) {
   EXPECT_EQ(p.x[6], 104.0);
   EXPECT_EQ(p.y[14], -6.2);
   EXPECT_EQ(p.x[4], 25.0);  // "+25"
-  const std::vector<bool> corners{true, false, false, false, false, false, true, false,
-                                  false, false, true, false, true, false, false};
+  const std::vector<bool> corners{true,  false, false, false, false, false, true, false,
+                                  false, false, true,  false, true,  false, false};
   EXPECT_EQ(p.corner, corners);  // corners at points 1, 7, 11, 13 (digest §2.3)
   EXPECT_FALSE(p.points_lonlat);
   EXPECT_NE(p.input_text.find("uscale=0.001"), std::string::npos);

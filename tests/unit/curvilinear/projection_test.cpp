@@ -98,9 +98,9 @@ TEST(ProjectionTest, CentreIsOriginAndAxesFollowRota) {
 TEST(ProjectionTest, BlackSeaControlPointsInsideTheSeedMapLimits) {
   // Seed Fig. 3: rotated Mercator at 43.75N 34.5E, uscale = 0.001 (plane units are milliradians
   // of the rotated sphere); the same file's map limits 26.5..43E, 40.75..47.25N frame the region,
-  // so every control point must fall inside them (the NE corner at 47.29N sits on the edge). Independently of the rotation code, the
-  // angular distance from the centre of the rotated-sphere point (λ', φ') = (x, asinh⁻¹ y)·uscale
-  // is acos(cos φ' cos λ').
+  // so every control point must fall inside them (the NE corner at 47.29N sits on the edge). Independently of the
+  // rotation code, the angular distance from the centre of the rotated-sphere point (λ', φ') = (x, asinh⁻¹ y)·uscale is
+  // acos(cos φ' cos λ').
   ProjectionParams p;
   p.rlat_deg = 43.75;
   p.rlon_deg = 34.5;
@@ -141,8 +141,10 @@ TEST(ProjectionTest, ConformalWithTheStatedScaleFactor) {
       const GeoPoint o = proj.inverse(x, y), ex = proj.inverse(x + h, y), ey = proj.inverse(x, y + h);
       const double k = proj.metres_per_unit(x, y) * h;
       const double r = proj.params().radius_m;
-      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ex.lon_deg, ex.lat_deg, r) / k, 1.0, 2e-6) << projection_code(c.kind);
-      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ey.lon_deg, ey.lat_deg, r) / k, 1.0, 2e-6) << projection_code(c.kind);
+      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ex.lon_deg, ex.lat_deg, r) / k, 1.0, 2e-6)
+          << projection_code(c.kind);
+      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ey.lon_deg, ey.lat_deg, r) / k, 1.0, 2e-6)
+          << projection_code(c.kind);
       // Perpendicular: the diagonal has length sqrt(2) k.
       const GeoPoint exy = proj.inverse(x + h, y + h);
       const GeoPoint em = proj.inverse(x + h, y - h);

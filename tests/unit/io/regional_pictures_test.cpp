@@ -68,11 +68,11 @@ TEST(RegionalPicturesTest, EveryStageDrawsWhatItShows) {
     EXPECT_GT(c[s].height, 300) << s;
     EXPECT_GT(c[s].brown, 50) << "coastline missing in stage " << s;
   }
-  EXPECT_GT(c[0].red, 15 * 10);     // 15 control points
-  EXPECT_GT(c[1].black, 1500);      // the contour
-  EXPECT_GT(c[1].red, c[0].red);    // + corner tangents
-  EXPECT_GT(c[1].blue, 250);        // spline_type = 4: the cubic, dashed blue
-  EXPECT_GT(c[2].blue, c[1].blue);  // + nodes
+  EXPECT_GT(c[0].red, 15 * 10);                     // 15 control points
+  EXPECT_GT(c[1].black, 1500);                      // the contour
+  EXPECT_GT(c[1].red, c[0].red);                    // + corner tangents
+  EXPECT_GT(c[1].blue, 250);                        // spline_type = 4: the cubic, dashed blue
+  EXPECT_GT(c[2].blue, c[1].blue);                  // + nodes
   EXPECT_GT(c[4].nonwhite, 4 * c[1].nonwhite / 3);  // grid lines fill the inside
 }
 

@@ -29,7 +29,7 @@ TEST(RegionalMask, PixelOfAPointTakesTheEastAndNorthPixelOnEdges) {
   EXPECT_EQ(pixel_of_point(lat, none, 20.0, 30.0), (PixelIJ{50, 30}));  // a vertex: pixel to its NE
   EXPECT_EQ(pixel_of_point(lat, none, 21.9, 33.9), (PixelIJ{50, 30}));
   EXPECT_EQ(pixel_of_point(lat, none, 19.99, 29.99), (PixelIJ{49, 29}));
-  EXPECT_EQ(pixel_of_point(lat, none, 180.0, 0.0), (PixelIJ{0, 22}));   // the seam wraps
+  EXPECT_EQ(pixel_of_point(lat, none, 180.0, 0.0), (PixelIJ{0, 22}));  // the seam wraps
   EXPECT_EQ(pixel_of_point(lat, none, 540.0, 0.0), (PixelIJ{0, 22}));
   EXPECT_EQ(pixel_of_point(lat, none, 179.999, 0.0), (PixelIJ{89, 22}));
   EXPECT_EQ(pixel_of_point(lat, none, 10.0, 90.0), (PixelIJ{47, 44}));  // the pole row
@@ -53,14 +53,7 @@ class DrawnBlock : public ::testing::Test {
     lattice = Lattice::make(4.0, 0, -180.0);
     filled = Bitmap(lattice.nx, lattice.ny);
     // Ω_L in the block; the two '.' inside the ring are a lake (deep, not connected).
-    test::paste(filled,
-                test::draw({"........",
-                            ".####...",
-                            ".######.",
-                            ".##..##.",
-                            ".######.",
-                            "........"}),
-                50, 30);
+    test::paste(filled, test::draw({"........", ".####...", ".######.", ".##..##.", ".######.", "........"}), 50, 30);
     for (int j = 0; j < kNj; ++j)
       for (int i = 0; i < kNi; ++i) {
         lon.push_back(-180.0 + 4.0 * (50 + i) + 2.0);
@@ -78,12 +71,10 @@ TEST_F(DrawnBlock, RhoMaskIsFilledAndDeepEnough) {
   RegionalMaskStats s;
   const auto m = rho_mask_from_filled(filled, lattice, PoleRotation(), lon.data(), lat.data(), elevation.data(), 0.0,
                                       lon.size(), &s);
-  EXPECT_EQ(m, drawn_mask({"00000000",
-                           "01111000",
-                           "01111010",    // (5, 3): island, land
-                           "01100110",    // (3, 2), (4, 2): the lake stays land
-                           "01111110",
-                           "00000000"}));
+  EXPECT_EQ(m, drawn_mask({"00000000", "01111000",
+                           "01111010",  // (5, 3): island, land
+                           "01100110",  // (3, 2), (4, 2): the lake stays land
+                           "01111110", "00000000"}));
   EXPECT_EQ(s.rho_points, 48);
   EXPECT_EQ(s.in_filled, 20);
   EXPECT_EQ(s.deep_enough, 47);
@@ -102,39 +93,21 @@ TEST_F(DrawnBlock, RhoMaskIsFilledAndDeepEnough) {
   EXPECT_EQ(s2.lake_points, 2);
   EXPECT_EQ(s2.coastal_points, 26);
   // Without depths only the pixel rule applies; a threshold deeper than the sea dries it.
-  const auto pixels_only = rho_mask_from_filled(filled, lattice, PoleRotation(), lon.data(), lat.data(), nullptr, 0.0,
-                                                lon.size());
+  const auto pixels_only =
+      rho_mask_from_filled(filled, lattice, PoleRotation(), lon.data(), lat.data(), nullptr, 0.0, lon.size());
   EXPECT_EQ(pixels_only[3 * kNi + 5], 1);
-  const auto too_deep = rho_mask_from_filled(filled, lattice, PoleRotation(), lon.data(), lat.data(),
-                                             elevation.data(), 200.0, lon.size());
+  const auto too_deep = rho_mask_from_filled(filled, lattice, PoleRotation(), lon.data(), lat.data(), elevation.data(),
+                                             200.0, lon.size());
   for (const auto v : too_deep) EXPECT_EQ(v, 0);
 }
 
 TEST_F(DrawnBlock, BoundaryCopiesAndRomsRules) {
-  const RomsMasks m = build_roms_masks(filled, lattice, PoleRotation(), lon.data(), lat.data(), elevation.data(), 0.0,
-                                       kNi, kNj);
-  EXPECT_EQ(m.rho, drawn_mask({"11111000",
-                               "11111000",
-                               "11111011",
-                               "11100111",
-                               "11111111",
-                               "11111111"}));
-  EXPECT_EQ(m.u, drawn_mask({"1111000",
-                             "1111000",
-                             "1111001",
-                             "1100011",
-                             "1111111",
-                             "1111111"}));
-  EXPECT_EQ(m.v, drawn_mask({"11111000",
-                             "11111000",
-                             "11100011",
-                             "11100111",
-                             "11111111"}));
-  EXPECT_EQ(m.psi, drawn_mask({"1111000",
-                               "1111000",
-                               "1100001",
-                               "1100011",
-                               "1111111"}));
+  const RomsMasks m =
+      build_roms_masks(filled, lattice, PoleRotation(), lon.data(), lat.data(), elevation.data(), 0.0, kNi, kNj);
+  EXPECT_EQ(m.rho, drawn_mask({"11111000", "11111000", "11111011", "11100111", "11111111", "11111111"}));
+  EXPECT_EQ(m.u, drawn_mask({"1111000", "1111000", "1111001", "1100011", "1111111", "1111111"}));
+  EXPECT_EQ(m.v, drawn_mask({"11111000", "11111000", "11100011", "11100111", "11111111"}));
+  EXPECT_EQ(m.psi, drawn_mask({"1111000", "1111000", "1100001", "1100011", "1111111"}));
   EXPECT_EQ(m.stats.wet_rho, 39);
   EXPECT_EQ(m.stats.wet_rho_interior, 19);
   EXPECT_EQ(m.stats.boundary_changed, 20);
@@ -149,15 +122,9 @@ TEST_F(DrawnBlock, BoundaryCopiesAndRomsRules) {
 }
 
 TEST(RegionalMask, CornersCopyTheDiagonalInteriorPoint) {
-  auto m = drawn_mask({"0000",
-                       "0100",
-                       "0010",
-                       "0000"});
+  auto m = drawn_mask({"0000", "0100", "0010", "0000"});
   EXPECT_EQ(copy_boundary_from_interior(m, 4, 4), 6);
-  EXPECT_EQ(m, drawn_mask({"1100",
-                           "1100",
-                           "0011",
-                           "0011"}));
+  EXPECT_EQ(m, drawn_mask({"1100", "1100", "0011", "0011"}));
   EXPECT_THROW(copy_boundary_from_interior(m, 2, 8), InternalError);
 }
 

@@ -28,9 +28,9 @@ fs::path tmpdir() {
 }
 
 struct Layout {
-  double lon_first;   // centre of the first stored column
-  double lat_top;     // centre of the first stored row
-  double step;        // degrees
+  double lon_first;  // centre of the first stored column
+  double lat_top;    // centre of the first stored row
+  double step;       // degrees
   int width, height;
   bool north_up = true;
 };
@@ -106,7 +106,8 @@ TEST(BathymetryFromGrid, BilinearReproducesBilinearFunctionsExactly) {
   const int nc = 41, nr = 31;
   std::vector<float> v(static_cast<std::size_t>(nc * nr));
   for (int r = 0; r < nr; ++r)
-    for (int c = 0; c < nc; ++c) v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(bilin(10.0 + c, -20.0 + r));
+    for (int c = 0; c < nc; ++c)
+      v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(bilin(10.0 + c, -20.0 + r));
   // Regional raster: values are small integers' combos exactly representable in float.
   const auto b = Bathymetry::from_grid(v, nc, nr, 10.0, -20.0, 1.0, 1.0);
   std::mt19937 rng(42);
@@ -124,7 +125,8 @@ TEST(BathymetryFromGrid, WrapsAcrossTheSeam) {
   const int nc = 360, nr = 181;
   std::vector<float> v(static_cast<std::size_t>(nc * nr));
   for (int r = 0; r < nr; ++r)
-    for (int c = 0; c < nc; ++c) v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(c == 359 ? 100 : c == 0 ? 200 : -1);
+    for (int c = 0; c < nc; ++c)
+      v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(c == 359 ? 100 : c == 0 ? 200 : -1);
   const auto b = Bathymetry::from_grid(v, nc, nr, 0.0, -90.0, 1.0, 1.0);
   EXPECT_TRUE(b.info().global_lon);
   EXPECT_DOUBLE_EQ(b.sample(359.5, 0.0), 150.0);  // between the last and first column
@@ -145,7 +147,9 @@ TEST(BathymetryFromGrid, GridLinePointsTakeGridValuesExactly) {
 TEST(BathymetryFromGrid, BicubicReproducesSmoothFieldAndGridValues) {
   const int nc = 360, nr = 181;
   std::vector<float> v(static_cast<std::size_t>(nc * nr));
-  auto f = [](double lon, double lat) { return 1000.0 * std::cos(lon * M_PI / 180.0 * 3) * std::cos(lat * M_PI / 180.0); };
+  auto f = [](double lon, double lat) {
+    return 1000.0 * std::cos(lon * M_PI / 180.0 * 3) * std::cos(lat * M_PI / 180.0);
+  };
   for (int r = 0; r < nr; ++r)
     for (int c = 0; c < nc; ++c) v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(f(c, -90.0 + r));
   const auto cub = Bathymetry::from_grid(v, nc, nr, 0.0, -90.0, 1.0, 1.0, aq::raster::Interpolation::kBicubic);
@@ -174,8 +178,7 @@ TEST_P(OriginVariants, SameSamplesAsReference) {
   const std::string drv = vc.driver;
   const bool gmt = std::string(vc.name).rfind("gmt", 0) == 0;  // GMT 4+ grd files are netCDF
   const std::string ext = drv == "GTiff" ? ".tif" : drv == "EHdr" ? ".bin" : gmt ? ".grd" : ".nc";
-  const fs::path p = write_raster(std::string(vc.name) + ext,
-                                  vc.driver, vc.layout, global_field);
+  const fs::path p = write_raster(std::string(vc.name) + ext, vc.driver, vc.layout, global_field);
   const auto b = open(p);
   EXPECT_TRUE(b.info().global_lon) << vc.name;
   std::mt19937 rng(7);
@@ -190,16 +193,15 @@ TEST_P(OriginVariants, SameSamplesAsReference) {
 
 INSTANTIATE_TEST_SUITE_P(
     Raster, OriginVariants,
-    ::testing::Values(
-        VariantCase{"origin0_northup_grid", "GTiff", {0.0, 90.0, 1.0, 360, 181, true}},
-        VariantCase{"origin_minus180_southup", "GTiff", {-180.0, -90.0, 1.0, 360, 181, false}},
-        VariantCase{"origin20_duplicate_column", "GTiff", {20.0, 90.0, 1.0, 361, 181, true}},
-        VariantCase{"origin_minus180_duplicate_360", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}},
-        VariantCase{"lat_pixel_registered_2deg", "netCDF", {0.0, 89.0, 2.0, 180, 90, true}},
-        VariantCase{"netcdf_origin0", "netCDF", {0.0, -90.0, 2.0, 180, 91, false}},
-        // ETOPO2v2-style raw binary with an .hdr header, and a GMT grd (ETOPO1 .grd).
-        VariantCase{"ehdr_raw_binary", "EHdr", {-180.0, 90.0, 1.0, 360, 181, true}},
-        VariantCase{"gmt_grd", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}}),
+    ::testing::Values(VariantCase{"origin0_northup_grid", "GTiff", {0.0, 90.0, 1.0, 360, 181, true}},
+                      VariantCase{"origin_minus180_southup", "GTiff", {-180.0, -90.0, 1.0, 360, 181, false}},
+                      VariantCase{"origin20_duplicate_column", "GTiff", {20.0, 90.0, 1.0, 361, 181, true}},
+                      VariantCase{"origin_minus180_duplicate_360", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}},
+                      VariantCase{"lat_pixel_registered_2deg", "netCDF", {0.0, 89.0, 2.0, 180, 90, true}},
+                      VariantCase{"netcdf_origin0", "netCDF", {0.0, -90.0, 2.0, 180, 91, false}},
+                      // ETOPO2v2-style raw binary with an .hdr header, and a GMT grd (ETOPO1 .grd).
+                      VariantCase{"ehdr_raw_binary", "EHdr", {-180.0, 90.0, 1.0, 360, 181, true}},
+                      VariantCase{"gmt_grd", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}}),
     [](const ::testing::TestParamInfo<VariantCase>& i) { return std::string(i.param.name); });
 
 TEST(Raster, RegistrationIsReported) {
@@ -245,13 +247,14 @@ TEST(Raster, Errors) {
   o.path = txt.string();
   EXPECT_THAT(open_error(o), HasSubstr("not a raster"));
 
-  o.path = write_raster("merc.tif", "GTiff", {0.0, 90.0, 1.0, 10, 10, true}, global_field, GDT_Float32, 1, 0,
-                        "EPSG:3857")
-               .string();
+  o.path =
+      write_raster("merc.tif", "GTiff", {0.0, 90.0, 1.0, 10, 10, true}, global_field, GDT_Float32, 1, 0, "EPSG:3857")
+          .string();
   EXPECT_THAT(open_error(o), HasSubstr("Pseudo-Mercator"));
 
-  o.path = write_raster("nodata.tif", "GTiff", {0.0, 10.0, 1.0, 10, 10, true},
-                        [](double, double) { return NAN; }, GDT_Float32, 1, 0, "EPSG:4326", -9999.0)
+  o.path = write_raster(
+               "nodata.tif", "GTiff", {0.0, 10.0, 1.0, 10, 10, true}, [](double, double) { return NAN; }, GDT_Float32,
+               1, 0, "EPSG:4326", -9999.0)
                .string();
   EXPECT_THAT(open_error(o), HasSubstr("no data"));
 
@@ -300,9 +303,8 @@ TEST(RealEtopo, Etopo5_20_60AgreeAtOceanPoints) {
   const auto b5 = open(etopo("etopo5.cdf"));
   const auto b20 = open(etopo("etopo20.cdf"));
   const auto b60 = open(etopo("etopo60.cdf"));
-  const std::vector<std::pair<double, double>> pts = {{-150.0, 0.0},  {-140.0, -20.0}, {-30.0, 30.0},
-                                                      {-25.0, -35.0}, {80.0, -10.0},   {170.0, 30.0},
-                                                      {-160.0, 40.0}, {60.0, -40.0}};
+  const std::vector<std::pair<double, double>> pts = {{-150.0, 0.0}, {-140.0, -20.0}, {-30.0, 30.0},  {-25.0, -35.0},
+                                                      {80.0, -10.0}, {170.0, 30.0},   {-160.0, 40.0}, {60.0, -40.0}};
   for (const auto& [lon, lat] : pts) {
     const double z5 = b5.sample(lon, lat);
     EXPECT_LT(z5, -3000.0) << lon << "," << lat;
