@@ -28,7 +28,7 @@ TEST(LargeMeshWriters, TenMillionTriangles) {
             << build.wall_s() << " s\n";
   testing::TempDir dir;
   auto report = [&](const char* what, const WriteStats& s, const Timer& t) {
-    std::cout << what << ": " << t.wall_s() << " s wall, " << s.bytes / 1e6 << " MB\n";
+    std::cout << what << ": " << t.wall_s() << " s wall, " << static_cast<double>(s.bytes) / 1e6 << " MB\n";
     RecordProperty(what, std::to_string(t.wall_s()));
   };
   {
