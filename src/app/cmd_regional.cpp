@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/regional_contact.hpp"
 #include "app/regional_nesting.hpp"
 #include "app/regional_roms.hpp"
 #include "config/regional.hpp"
@@ -158,6 +159,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     write_regional_roms(c, loaded.source, result, out, outputs, report, log);
   // Nesting data beside it: boundary points in the global mesh (app/regional_nesting.hpp).
   if (wants_regional_nesting(c, result)) write_regional_nesting(c, loaded.source, result, out, outputs, report, log);
+  // ROMS contact points in the parent grid of [nesting] parent (app/regional_contact.hpp).
+  if (wants_regional_contact(c, result)) write_regional_contact(c, loaded.source, result, out, outputs, report, log);
 
   report["outputs"] = outputs;
   report.finish();

@@ -148,6 +148,16 @@ const S& schema() {
                     return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a radius > 0 (m)");
                   },
                   "");
+    t.add_custom(
+        "nesting", "parent",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::string x;
+          if (auto err = detail::convert(v, x)) return p.add(o, "nesting.parent", *err);
+          std::filesystem::path path(x);
+          if (!x.empty() && path.is_relative()) path = o.base_dir / path;
+          c.nesting.parent = x.empty() ? x : path.lexically_normal().string();
+        },
+        [](const RegionalConfig& c) { return Json(c.nesting.parent); }, "");
     return t;
   }();
   return s;

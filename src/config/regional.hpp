@@ -29,6 +29,13 @@ struct RomsOptions {
   double earth_radius_m = 6371000.0; ///< sphere radius of the ROMS metrics and x/y (m, > 0)
 };
 
+/// [nesting] A parent regional ROMS grid this grid nests in (app/regional_contact.hpp).
+struct NestingOptions {
+  /// The parent's ROMS grid file (<parent>_grd.nc, resolved path); "" = none. When set,
+  /// <name>_contact.nc holds the ROMS contact points of this grid in it (nesting.cdl).
+  std::string parent;
+};
+
 struct RegionalConfig {
   curvilinear::RegionalParams params;  ///< [regional] izogrid keys, control_points, corners
   std::string name = "regional";       ///< [regional] name: base name of the output files
@@ -39,6 +46,7 @@ struct RegionalConfig {
   double coast_level_m = 0.0;          ///< [input] coast_level_m: elevation of the drawn coastline
   std::string output_dir = "out";      ///< [output] dir
   RomsOptions roms;                    ///< [roms]
+  NestingOptions nesting;              ///< [nesting]
 };
 
 /// Reads a regional TOML config (or, when `path` ends in .izogrid, the seed's file format alone)
