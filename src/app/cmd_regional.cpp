@@ -28,8 +28,8 @@ namespace aq::app {
 namespace {
 
 struct RegionalArgs {
-  std::string file;           // positional: .toml or .izogrid
-  std::string config;         // -c
+  std::string file;    // positional: .toml or .izogrid
+  std::string config;  // -c
   std::string stop_after;
   std::vector<std::string> sets;
   std::string out_dir;
@@ -101,8 +101,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
       points += g.size();
       po.coastlines.push_back(std::move(g));
     }
-    cs.done(fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m,
-                        c.input.path));
+    cs.done(
+        fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m, c.input.path));
   }
 
   Json outputs = Json::array();
@@ -130,7 +130,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     const auto& p = result.params;
     xy.attributes = {{"proj", std::string(p.proj == curvilinear::ProjectionKind::kMercator       ? "ME"
                                           : p.proj == curvilinear::ProjectionKind::kLambertConic ? "LC"
-                                                                                                   : "ST")},
+                                                                                                 : "ST")},
                      {"rlat", p.rlat},
                      {"rlon", p.rlon},
                      {"rota", p.rota},
@@ -146,8 +146,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     outputs.push_back(Json{{"file", nc}, {"checksum_fnv1a64", file_checksum(out.pending_path(nc))}});
     Json qj = Json::object();
     for (const auto* f : q.fields())
-      qj[f->name] = Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms},
-                         {"worst_cell", {f->worst_i, f->worst_j}}};
+      qj[f->name] =
+          Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms}, {"worst_cell", {f->worst_i, f->worst_j}}};
     report["quality"] = qj;
     ws.done(fmt::format("{} ({} x {} supergrid, nx = {}, ny = {}); orthogonality (50) worst {:.3g}, rms {:.3g}", nc,
                         result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst,
@@ -182,7 +182,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
 void add_regional_command(CLI::App& app, Context& ctx) {
   auto args = std::make_shared<RegionalArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "regional", "Build a regional orthogonal curvilinear grid (izogrid method) from a TOML config or a .izogrid file");
+      "regional",
+      "Build a regional orthogonal curvilinear grid (izogrid method) from a TOML config or a .izogrid file");
   cmd->add_option("file", args->file, "A seed-format .izogrid file (or a .toml config)");
   cmd->add_option("-c,--config", args->config, "Configuration file (TOML); see configs/example_regional.toml");
   cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or 0..4)");

@@ -45,10 +45,11 @@ void write_regional_contact(const config::RegionalConfig& c, const std::string& 
                            {"refinement_ratio_min", sum.ratio_min},
                            {"refinement_ratio_max", sum.ratio_max},
                            {"qweights", "biquadratic Lagrange, 3 x 3 donor points"}};
-  stage.done(fmt::format("{}: {} points ({} ρ, {} u, {} v; {} over parent water) in {}; refinement ratio {:.3g} "
-                         "(median, {:.3g}..{:.3g}), refine_factor {}",
-                         name, sum.points, sum.rho, sum.u, sum.v, sum.wet_points, c.nesting.parent, sum.ratio_median,
-                         sum.ratio_min, sum.ratio_max, f.refine_factor[1]));
+  stage.done(
+      fmt::format("{}: {} points ({} ρ, {} u, {} v; {} over parent water) in {}; refinement ratio {:.3g} "
+                  "(median, {:.3g}..{:.3g}), refine_factor {}",
+                  name, sum.points, sum.rho, sum.u, sum.v, sum.wet_points, c.nesting.parent, sum.ratio_median,
+                  sum.ratio_min, sum.ratio_max, f.refine_factor[1]));
 }
 
 }  // namespace aq::app

@@ -29,12 +29,12 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key);
 const S& schema() {
   static const S s = [] {
     S t;
-    t.add<std::string>("regional", "name", [](RegionalConfig& c) -> std::string& { return c.name; },
-                       [](const std::string& v) {
-                         return (v.empty() || v.find('/') != std::string::npos) ? std::string("must be a plain name")
-                                                                                 : std::string();
-                       },
-                       "");
+    t.add<std::string>(
+        "regional", "name", [](RegionalConfig& c) -> std::string& { return c.name; },
+        [](const std::string& v) {
+          return (v.empty() || v.find('/') != std::string::npos) ? std::string("must be a plain name") : std::string();
+        },
+        "");
     t.add_custom(
         "regional", "contour_file",
         [](RegionalConfig&, const toml::value& v, const Origin& o, Problems& p) {
@@ -42,13 +42,14 @@ const S& schema() {
           // Read before the other keys by load_regional().
         },
         [](const RegionalConfig& c) { return Json(c.contour_file); }, "");
-    t.add<std::string>("regional", "stop_after", [](RegionalConfig& c) -> std::string& { return c.stop_after; },
-                       [](const std::string& v) {
-                         for (const char* n : {"", "map", "contour", "uniform", "conformal", "grid"})
-                           if (v == n) return std::string();
-                         return fmt::format("\"{}\" is not one of map, contour, uniform, conformal, grid", v);
-                       },
-                       "");
+    t.add<std::string>(
+        "regional", "stop_after", [](RegionalConfig& c) -> std::string& { return c.stop_after; },
+        [](const std::string& v) {
+          for (const char* n : {"", "map", "contour", "uniform", "conformal", "grid"})
+            if (v == n) return std::string();
+          return fmt::format("\"{}\" is not one of map, contour, uniform, conformal, grid", v);
+        },
+        "");
     for (const std::string& key : curvilinear::izogrid_keys()) {
       t.add_custom(
           "regional", key,
@@ -108,14 +109,18 @@ const S& schema() {
           c.input.path = x.empty() ? x : path.lexically_normal().string();
         },
         [](const RegionalConfig& c) { return Json(c.input.path); }, "");
-    t.add<std::string>("input", "variable", [](RegionalConfig& c) -> std::string& { return c.input.variable; }, {}, "");
-    t.add<bool>("input", "positive_down", [](RegionalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
-    t.add<double>("input", "coast_level_m", [](RegionalConfig& c) -> double& { return c.coast_level_m; },
-                  [](const double& v) { return std::isfinite(v) ? std::string() : std::string("must be finite"); }, "");
-    t.add<std::string>("output", "dir", [](RegionalConfig& c) -> std::string& { return c.output_dir; },
-                       [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); },
-                       "");
-    t.add<bool>("roms", "enabled", [](RegionalConfig& c) -> bool& { return c.roms.enabled; }, {}, "");
+    t.add<std::string>(
+        "input", "variable", [](RegionalConfig& c) -> std::string& { return c.input.variable; }, {}, "");
+    t.add<bool>(
+        "input", "positive_down", [](RegionalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
+    t.add<double>(
+        "input", "coast_level_m", [](RegionalConfig& c) -> double& { return c.coast_level_m; },
+        [](const double& v) { return std::isfinite(v) ? std::string() : std::string("must be finite"); }, "");
+    t.add<std::string>(
+        "output", "dir", [](RegionalConfig& c) -> std::string& { return c.output_dir; },
+        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "");
+    t.add<bool>(
+        "roms", "enabled", [](RegionalConfig& c) -> bool& { return c.roms.enabled; }, {}, "");
     t.add_custom(
         "roms", "global_config",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
@@ -126,28 +131,31 @@ const S& schema() {
           c.roms.global_config = x.empty() ? x : path.lexically_normal().string();
         },
         [](const RegionalConfig& c) { return Json(c.roms.global_config); }, "");
-    t.add<double>("roms", "hmin_m", [](RegionalConfig& c) -> double& { return c.roms.hmin_m; },
-                  [](const double& v) {
-                    return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a depth > 0 (m)");
-                  },
-                  "");
-    t.add<double>("roms", "rmax", [](RegionalConfig& c) -> double& { return c.roms.rmax; },
-                  [](const double& v) {
-                    return (v >= 0.0 && v < 1.0) ? std::string() : std::string("must be in [0, 1) (0 = no smoothing)");
-                  },
-                  "");
-    t.add<std::string>("roms", "distances", [](RegionalConfig& c) -> std::string& { return c.roms.distances; },
-                       [](const std::string& v) {
-                         return (v == "sphere" || v == "wgs84")
-                                    ? std::string()
-                                    : fmt::format("\"{}\" is not one of \"sphere\", \"wgs84\"", v);
-                       },
-                       "");
-    t.add<double>("roms", "earth_radius_m", [](RegionalConfig& c) -> double& { return c.roms.earth_radius_m; },
-                  [](const double& v) {
-                    return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a radius > 0 (m)");
-                  },
-                  "");
+    t.add<double>(
+        "roms", "hmin_m", [](RegionalConfig& c) -> double& { return c.roms.hmin_m; },
+        [](const double& v) {
+          return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a depth > 0 (m)");
+        },
+        "");
+    t.add<double>(
+        "roms", "rmax", [](RegionalConfig& c) -> double& { return c.roms.rmax; },
+        [](const double& v) {
+          return (v >= 0.0 && v < 1.0) ? std::string() : std::string("must be in [0, 1) (0 = no smoothing)");
+        },
+        "");
+    t.add<std::string>(
+        "roms", "distances", [](RegionalConfig& c) -> std::string& { return c.roms.distances; },
+        [](const std::string& v) {
+          return (v == "sphere" || v == "wgs84") ? std::string()
+                                                 : fmt::format("\"{}\" is not one of \"sphere\", \"wgs84\"", v);
+        },
+        "");
+    t.add<double>(
+        "roms", "earth_radius_m", [](RegionalConfig& c) -> double& { return c.roms.earth_radius_m; },
+        [](const double& v) {
+          return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a radius > 0 (m)");
+        },
+        "");
     t.add_custom(
         "nesting", "parent",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
@@ -200,9 +208,12 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "north_edge") return num(p.north_edge);
   if (key == "proj") {
     switch (p.proj) {
-      case curvilinear::ProjectionKind::kMercator: return "ME";
-      case curvilinear::ProjectionKind::kLambertConic: return "LC";
-      default: return "ST";
+      case curvilinear::ProjectionKind::kMercator:
+        return "ME";
+      case curvilinear::ProjectionKind::kLambertConic:
+        return "LC";
+      default:
+        return "ST";
     }
   }
   return nullptr;
@@ -241,8 +252,8 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
     c.params.corner.assign(c.params.x.size(), false);
     for (const int k : c.corners) {
       if (k < 1 || k > static_cast<int>(c.params.x.size())) {
-        p.add_plain(999998, fmt::format("regional.corners: point number {} is outside 1..{} (regional.control_points)", k,
-                                        c.params.x.size()));
+        p.add_plain(999998, fmt::format("regional.corners: point number {} is outside 1..{} (regional.control_points)",
+                                        k, c.params.x.size()));
       } else {
         c.params.corner[static_cast<std::size_t>(k - 1)] = true;
       }

@@ -18,15 +18,15 @@ namespace aq::config {
 
 /// [roms] The ROMS grid file (<name>_grd.nc) of a complete grid (app/regional_roms.hpp).
 struct RomsOptions {
-  bool enabled = true;          ///< write <name>_grd.nc and <name>_roms.png after the grid
+  bool enabled = true;  ///< write <name>_grd.nc and <name>_roms.png after the grid
   /// The global run's TOML (resolved path) whose input, mask, quadtree and rotation define the
   /// bathymetry, the lattice, the threshold h and the K-fill Ω_L; "" = the built-in defaults (the
   /// seed's reference run on ETOPO5).
   std::string global_config;
-  double hmin_m = 10.0;         ///< minimum depth h is clipped to (m, > 0)
-  double rmax = 0.0;            ///< r-factor bound of the depth smoothing, [0, 1); 0 = none
-  std::string distances = "sphere";  ///< pm, pn from "sphere" great circles or "wgs84" geodesics
-  double earth_radius_m = 6371000.0; ///< sphere radius of the ROMS metrics and x/y (m, > 0)
+  double hmin_m = 10.0;               ///< minimum depth h is clipped to (m, > 0)
+  double rmax = 0.0;                  ///< r-factor bound of the depth smoothing, [0, 1); 0 = none
+  std::string distances = "sphere";   ///< pm, pn from "sphere" great circles or "wgs84" geodesics
+  double earth_radius_m = 6371000.0;  ///< sphere radius of the ROMS metrics and x/y (m, > 0)
 };
 
 /// [nesting] A parent regional ROMS grid this grid nests in (app/regional_contact.hpp).

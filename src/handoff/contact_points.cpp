@@ -119,9 +119,7 @@ Located locate(const Family& F, double x, double y) {
   return r;
 }
 
-std::array<double, 4> bilinear(double p, double q) {
-  return {(1 - p) * (1 - q), p * (1 - q), p * q, (1 - p) * q};
-}
+std::array<double, 4> bilinear(double p, double q) { return {(1 - p) * (1 - q), p * (1 - q), p * q, (1 - p) * q}; }
 
 // Lagrange weights at offsets -1, 0, 1 for position t relative to the centre.
 std::array<double, 3> lagrange3(double t) { return {0.5 * t * (t - 1), (1 - t) * (1 + t), 0.5 * t * (t + 1)}; }
@@ -180,17 +178,17 @@ io::ContactFile contact_points(const io::RomsGridFields& parent, const curviline
         f.Yrg.push_back(y);
         f.Lweight.push_back(w);
         f.Qweight.push_back(biquadratic(F, c));
-        const std::size_t corner[4] = {F.at(c.i, c.j), F.at(c.i + 1, c.j), F.at(c.i + 1, c.j + 1),
-                                       F.at(c.i, c.j + 1)};
+        const std::size_t corner[4] = {F.at(c.i, c.j), F.at(c.i + 1, c.j), F.at(c.i + 1, c.j + 1), F.at(c.i, c.j + 1)};
         const auto big = static_cast<std::size_t>(std::max_element(w.begin(), w.end()) - w.begin());
         f.mask.push_back((*F.mask)[corner[big]]);
         if (f.mask.back() > 0.5) ++sum.wet_points;
         // The parent's ρ fields at the point.
         Located r = type == 0 ? c : locate(rho, x, y);
         if (r.i < 0)
-          throw ConfigError(fmt::format("{}: the child grid's {} point at {:.6f}°E {:.6f}°N lies outside the parent "
-                                        "grid's rho points (the child must lie inside its parent)",
-                                        context, tn, x, y));
+          throw ConfigError(
+              fmt::format("{}: the child grid's {} point at {:.6f}°E {:.6f}°N lies outside the parent "
+                          "grid's rho points (the child must lie inside its parent)",
+                          context, tn, x, y));
         r.p = std::clamp(r.p, 0.0, 1.0);
         r.q = std::clamp(r.q, 0.0, 1.0);
         const auto wr = bilinear(r.p, r.q);

@@ -24,8 +24,8 @@ std::vector<double> read_2d(int nc, const char* name, std::size_t nj, std::size_
   std::size_t len[2] = {0, 0};
   for (int k = 0; k < 2; ++k) nc_check<InputError>(nc_inq_dimlen(nc, dims[k], &len[k]), path, name);
   if (len[0] != nj || len[1] != ni)
-    throw InputError(fmt::format("{}: {} is {} x {}, expected {} x {} (eta, xi)", path.string(), name, len[0], len[1],
-                                 nj, ni));
+    throw InputError(
+        fmt::format("{}: {} is {} x {}, expected {} x {} (eta, xi)", path.string(), name, len[0], len[1], nj, ni));
   std::vector<double> v(nj * ni);
   nc_check<InputError>(nc_get_var_double(nc, var, v.data()), path, fmt::format("read {}", name));
   return v;
@@ -37,11 +37,6 @@ std::size_t dim_len(int nc, const char* name, const fs::path& path) {
   std::size_t n = 0;
   nc_check<InputError>(nc_inq_dimlen(nc, d, &n), path, name);
   return n;
-}
-
-void put_text(int nc, int var, const char* name, const std::string& text, const fs::path& path) {
-  nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
-                        fmt::format("attribute {}", name));
 }
 
 enum class Dim { kScalar, kGrids, kContact, kDatum, kL, kQ };
@@ -155,12 +150,28 @@ void write_contact(const fs::path& path, const ContactFile& d) {
     int dims[2] = {-1, -1};
     int nd = 1;
     switch (v.dim) {
-      case Dim::kScalar: nd = 0; break;
-      case Dim::kGrids: dims[0] = dg; break;
-      case Dim::kContact: dims[0] = dc; break;
-      case Dim::kDatum: dims[0] = dd; break;
-      case Dim::kL: dims[0] = dd; dims[1] = dl; nd = 2; break;
-      case Dim::kQ: dims[0] = dd; dims[1] = dq; nd = 2; break;
+      case Dim::kScalar:
+        nd = 0;
+        break;
+      case Dim::kGrids:
+        dims[0] = dg;
+        break;
+      case Dim::kContact:
+        dims[0] = dc;
+        break;
+      case Dim::kDatum:
+        dims[0] = dd;
+        break;
+      case Dim::kL:
+        dims[0] = dd;
+        dims[1] = dl;
+        nd = 2;
+        break;
+      case Dim::kQ:
+        dims[0] = dd;
+        dims[1] = dq;
+        nd = 2;
+        break;
     }
     int var = -1;
     nc_check<OutputError>(nc_def_var(id, v.name, v.type, nd, dims, &var), path,
@@ -179,8 +190,7 @@ void write_contact(const fs::path& path, const ContactFile& d) {
     nc_check<OutputError>(nc_put_att_int(id, var_of("spherical"), "flag_values", NC_INT, 2, fv), path, "flag_values");
     put_text(id, var_of("spherical"), "flag_meanings", "Cartesian spherical", path);
     const int bv[5] = {0, 1, 2, 3, 4};
-    nc_check<OutputError>(nc_put_att_int(id, var_of("on_boundary"), "flag_values", NC_INT, 5, bv), path,
-                          "flag_values");
+    nc_check<OutputError>(nc_put_att_int(id, var_of("on_boundary"), "flag_values", NC_INT, 5, bv), path, "flag_values");
     put_text(id, var_of("on_boundary"), "flag_meanings", "other western southern eastern northern", path);
     put_text(id, var_of("Lweight"), "comment",
              "corners (Idg,Jdg), (Idg+1,Jdg), (Idg+1,Jdg+1), (Idg,Jdg+1) of the donor cell of the point's type", path);

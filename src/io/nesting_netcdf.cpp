@@ -44,21 +44,6 @@ constexpr VarSpec kVars[] = {
     {"refinement_ratio", NC_DOUBLE, false, "global_element_size / regional_cell_size", "1"},
 };
 
-void put_text(int nc, int var, const char* name, const std::string& text, const fs::path& path) {
-  nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
-                        fmt::format("attribute {}", name));
-}
-
-std::string get_text_att(int nc, const char* name) {
-  nc_type type = NC_NAT;
-  std::size_t len = 0;
-  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || type != NC_CHAR) return {};
-  std::string text(len, '\0');
-  if (len > 0 && nc_get_att_text(nc, NC_GLOBAL, name, text.data()) != NC_NOERR) return {};
-  while (!text.empty() && text.back() == '\0') text.pop_back();
-  return text;
-}
-
 }  // namespace
 
 void write_nesting(const fs::path& path, const NestingFile& d) {
@@ -197,8 +182,8 @@ NestingFile read_nesting(const fs::path& path) {
       }
     }
   }
-  d.title = get_text_att(id, "title");
-  d.history = get_text_att(id, "history");
+  d.title = global_text(id, "title");
+  d.history = global_text(id, "history");
   int natts = 0;
   nc_check<InputError>(nc_inq_natts(id, &natts), path, "attributes");
   for (int a = 0; a < natts; ++a) {
@@ -210,7 +195,7 @@ NestingFile read_nesting(const fs::path& path) {
     std::size_t len = 0;
     nc_check<InputError>(nc_inq_att(id, NC_GLOBAL, name, &type, &len), path, key);
     if (type == NC_CHAR) {
-      d.attributes.emplace_back(key, get_text_att(id, name));
+      d.attributes.emplace_back(key, global_text(id, name));
     } else if (type == NC_DOUBLE || type == NC_FLOAT) {
       double v = 0.0;
       nc_check<InputError>(nc_get_att_double(id, NC_GLOBAL, name, &v), path, key);

@@ -8,12 +8,31 @@
 #include <filesystem>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace aq::io {
 
 /// Throws E("<path>: netCDF <what>: <nc_strerror>") unless status is NC_NOERR.
 template <typename E>
 void nc_check(int status, const std::filesystem::path& path, const std::string& what) {
   if (status != NC_NOERR) throw E(fmt::format("{}: netCDF {}: {}", path.string(), what, nc_strerror(status)));
+}
+
+/// Writes a text attribute; OutputError naming the path and attribute on failure.
+inline void put_text(int nc, int var, const char* name, const std::string& text, const std::filesystem::path& path) {
+  nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
+                        fmt::format("attribute {}", name));
+}
+
+/// A global text attribute, or "" when it is missing or not text (trailing NULs removed).
+inline std::string global_text(int nc, const char* name) {
+  nc_type type = NC_NAT;
+  std::size_t len = 0;
+  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || type != NC_CHAR) return {};
+  std::string text(len, '\0');
+  if (len > 0 && nc_get_att_text(nc, NC_GLOBAL, name, text.data()) != NC_NOERR) return {};
+  while (!text.empty() && text.back() == '\0') text.pop_back();
+  return text;
 }
 
 /// An open netCDF file id, closed on scope exit (errors of that close are ignored: it only runs

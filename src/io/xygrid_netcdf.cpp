@@ -28,11 +28,6 @@ bool is_reserved(const std::string& key) {
   return false;
 }
 
-void put_text(int nc, int var, const char* name, const std::string& text, const fs::path& path) {
-  nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
-                        fmt::format("attribute {}", name));
-}
-
 void put_double(int nc, int var, const char* name, double value, const fs::path& path) {
   nc_check<OutputError>(nc_put_att_double(nc, var, name, NC_DOUBLE, 1, &value), path,
                         fmt::format("attribute {}", name));
@@ -96,16 +91,6 @@ double global_number(int nc, const char* name) {
   double v = 0.0;
   if (nc_get_att_double(nc, NC_GLOBAL, name, &v) != NC_NOERR) return std::numeric_limits<double>::quiet_NaN();
   return v;
-}
-
-std::string global_text(int nc, const char* name) {
-  nc_type type = NC_NAT;
-  std::size_t len = 0;
-  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || type != NC_CHAR) return {};
-  std::string text(len, '\0');
-  if (len > 0 && nc_get_att_text(nc, NC_GLOBAL, name, text.data()) != NC_NOERR) return {};
-  while (!text.empty() && text.back() == '\0') text.pop_back();
-  return text;
 }
 
 }  // namespace

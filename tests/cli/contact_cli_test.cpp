@@ -57,12 +57,33 @@ TEST(ContactCli, ChildInsideGulfOfMexicoWritesContactPoints) {
   const fs::path nc = dir / "child" / "gulf_child_contact.nc";
   ASSERT_TRUE(fs::exists(nc));
   const std::string h = ncdump_h(nc);
-  for (const char* v : {"int spherical", "Lm(Ngrids)", "refine_factor(Ngrids)", "donor_grid(Ncontact)",
-                        "receiver_grid(Ncontact)", "NstrR(Ncontact)", "NendV(Ncontact)", "contact_region(datum)",
-                        "on_boundary(datum)", "Idg(datum)", "Jdg(datum)", "Irg(datum)", "Jrg(datum)", "Xrg(datum)",
-                        "Yrg(datum)", "Lweight(datum, nLweights)", "Qweight(datum, nQweights)", "angle(datum)",
-                        "mask(datum)", "h(datum)", "f(datum)", "pm(datum)", "pn(datum)", "dndx(datum)",
-                        "dmde(datum)", "nLweights = 4", "nQweights = 9"})
+  for (const char* v : {"int spherical",
+                        "Lm(Ngrids)",
+                        "refine_factor(Ngrids)",
+                        "donor_grid(Ncontact)",
+                        "receiver_grid(Ncontact)",
+                        "NstrR(Ncontact)",
+                        "NendV(Ncontact)",
+                        "contact_region(datum)",
+                        "on_boundary(datum)",
+                        "Idg(datum)",
+                        "Jdg(datum)",
+                        "Irg(datum)",
+                        "Jrg(datum)",
+                        "Xrg(datum)",
+                        "Yrg(datum)",
+                        "Lweight(datum, nLweights)",
+                        "Qweight(datum, nQweights)",
+                        "angle(datum)",
+                        "mask(datum)",
+                        "h(datum)",
+                        "f(datum)",
+                        "pm(datum)",
+                        "pn(datum)",
+                        "dndx(datum)",
+                        "dmde(datum)",
+                        "nLweights = 4",
+                        "nQweights = 9"})
     EXPECT_THAT(h, HasSubstr(v));
 
   // Reaching east of the parent's -80° edge: an error naming the child config, no contact file.
