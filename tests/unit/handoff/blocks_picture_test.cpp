@@ -7,17 +7,14 @@
 
 #include "io/preview_png.hpp"
 #include "support/io_test_mesh.hpp"
+#include "support/png_pixels.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
 
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<std::uint32_t> px;
+struct Picture : aq::testing::PngPixels {
   [[nodiscard]] bool magenta(int x, int y) const {
-    const std::uint32_t p = px[static_cast<std::size_t>(y * width + x)];
-    const int r = static_cast<int>((p >> 16) & 0xff), g = static_cast<int>((p >> 8) & 0xff),
-              b = static_cast<int>(p & 0xff);
+    const auto [r, g, b] = rgb(x, y);
     return r > 140 && g < 80 && b > 150;  // the line's colour, alone or anti-aliased over the sea
   }
   [[nodiscard]] int magenta_near(int x, int y) const {
@@ -34,23 +31,7 @@ struct Picture {
   }
 };
 
-Picture load(const std::filesystem::path& p) {
-  cairo_surface_t* s = cairo_image_surface_create_from_png(p.c_str());
-  EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
-  Picture pic;
-  pic.width = cairo_image_surface_get_width(s);
-  pic.height = cairo_image_surface_get_height(s);
-  const int stride = cairo_image_surface_get_stride(s);
-  const unsigned char* d = cairo_image_surface_get_data(s);
-  for (int y = 0; y < pic.height; ++y)
-    for (int x = 0; x < pic.width; ++x) {
-      std::uint32_t v = 0;
-      std::memcpy(&v, d + y * stride + 4 * x, 4);
-      pic.px.push_back(v);
-    }
-  cairo_surface_destroy(s);
-  return pic;
-}
+Picture load(const std::filesystem::path& p) { return Picture{aq::testing::load_png_pixels(p)}; }
 
 aq::raster::Bathymetry ocean() {
   std::vector<float> v(72 * 37, -4000.0f);

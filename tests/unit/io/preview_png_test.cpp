@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "support/io_test_mesh.hpp"
 #include "support/msh_parse.hpp"
+#include "support/png_pixels.hpp"
 #include "support/temp_dir.hpp"
 
 namespace aq::io {
@@ -28,32 +29,9 @@ raster::Bathymetry test_bathy() {
   return raster::Bathymetry::from_grid(std::move(v), 72, 37, -180.0, -90.0, 5.0, 5.0);
 }
 
-struct Picture {
-  int width = 0, height = 0;
-  std::vector<std::uint32_t> px;
-  [[nodiscard]] std::array<int, 3> rgb(int x, int y) const {
-    const std::uint32_t p = px[static_cast<std::size_t>(y * width + x)];
-    return {static_cast<int>((p >> 16) & 0xff), static_cast<int>((p >> 8) & 0xff), static_cast<int>(p & 0xff)};
-  }
-};
+using Picture = aq::testing::PngPixels;
 
-Picture load(const std::filesystem::path& p) {
-  cairo_surface_t* s = cairo_image_surface_create_from_png(p.c_str());
-  EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
-  Picture pic;
-  pic.width = cairo_image_surface_get_width(s);
-  pic.height = cairo_image_surface_get_height(s);
-  const int stride = cairo_image_surface_get_stride(s);
-  const unsigned char* d = cairo_image_surface_get_data(s);
-  for (int y = 0; y < pic.height; ++y)
-    for (int x = 0; x < pic.width; ++x) {
-      std::uint32_t v = 0;
-      std::memcpy(&v, d + y * stride + 4 * x, 4);
-      pic.px.push_back(v);
-    }
-  cairo_surface_destroy(s);
-  return pic;
-}
+Picture load(const std::filesystem::path& p) { return aq::testing::load_png_pixels(p); }
 
 // Pixel of map position (lon, lat) in a full-map picture of width w (band = w / 60).
 std::pair<int, int> at(double lon, double lat, int w) {
