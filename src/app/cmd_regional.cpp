@@ -10,8 +10,8 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
-#include "app/regional_contact.hpp"
 #include "app/regional_nesting.hpp"
+#include "app/regional_refine.hpp"
 #include "app/regional_roms.hpp"
 #include "config/regional.hpp"
 #include "core/error.hpp"
@@ -83,7 +83,21 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   report["config"] = loaded.echo;
   OutputSet out(c.output_dir);
 
-  const auto result = curvilinear::run_regional(c.params, stage, log, &report);
+  // A refinement grid is cut from its parent (app/regional_refine.hpp); any other from its contour.
+  std::optional<RefinedGrid> refined;
+  curvilinear::RegionalResult built;
+  if (c.nesting.refinement()) {
+    if (stage != curvilinear::Stage::kGrid)
+      throw ConfigError(
+          fmt::format("{}: a refinement grid (nesting.refine_factor = {}) is cut from its parent in one "
+                      "step; stopping after the {} stage does not apply",
+                      path, c.nesting.refine_factor, curvilinear::stage_name(stage)));
+    refined = build_refinement(c, loaded.source, log, &report);
+    c.params = refined->result.params;  // the parent's plane, for the files' attributes
+  } else {
+    built = curvilinear::run_regional(c.params, stage, log, &report);
+  }
+  const curvilinear::RegionalResult& result = refined ? refined->result : built;
 
   // Coastline from the bathymetry's contour at coast_level_m.
   io::RegionalPictureOptions po;
@@ -159,8 +173,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     write_regional_roms(c, loaded.source, result, out, outputs, report, log);
   // Nesting data beside it: boundary points in the global mesh (app/regional_nesting.hpp).
   if (wants_regional_nesting(c, result)) write_regional_nesting(c, loaded.source, result, out, outputs, report, log);
-  // ROMS contact points in the parent grid of [nesting] parent (app/regional_contact.hpp).
-  if (wants_regional_contact(c, result)) write_regional_contact(c, loaded.source, result, out, outputs, report, log);
+  // ROMS contact points of a refinement grid and its parent (app/regional_refine.hpp).
+  if (refined) write_refinement_contact(c, loaded.source, *refined, out, outputs, report, log);
 
   report["outputs"] = outputs;
   report.finish();

@@ -125,6 +125,9 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       {"rlon", p.rlon},
       {"rota", p.rota},
       {"uscale", p.uscale},
+      {"lat1", std::isnan(p.lat1) ? p.rlat : p.lat1},
+      {"lat2", std::isnan(p.lat2) ? p.rlat : p.lat2},
+      {"radius", p.radius},
       {"spline_type", static_cast<std::int64_t>(p.spline_type)},
       {"izogrid_nx", static_cast<std::int64_t>(result.nx)},
       {"izogrid_ny", static_cast<std::int64_t>(result.ny)},
@@ -165,6 +168,15 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       {"rx0_before", depth.rx0_before},
       {"rx0_after", depth.rx0_after},
   };
+  if (c.nesting.refinement()) {  // as ROMS's coarse2fine.m marks a refinement grid
+    const auto& b = c.nesting.parent_box;
+    data.attributes.emplace("parent_grid", c.nesting.parent);
+    data.attributes.emplace("parent_Imin", static_cast<std::int64_t>(b[0]));
+    data.attributes.emplace("parent_Imax", static_cast<std::int64_t>(b[1]));
+    data.attributes.emplace("parent_Jmin", static_cast<std::int64_t>(b[2]));
+    data.attributes.emplace("parent_Jmax", static_cast<std::int64_t>(b[3]));
+    data.attributes.emplace("refine_factor", static_cast<std::int64_t>(c.nesting.refine_factor));
+  }
   const std::string nc = c.name + "_grd.nc";
   io::write_roms_grid(out.temp_path(nc), data);
   outputs.push_back(Json{{"file", nc}, {"checksum_fnv1a64", file_checksum(out.pending_path(nc))}});

@@ -166,6 +166,36 @@ const S& schema() {
           c.nesting.parent = x.empty() ? x : path.lexically_normal().string();
         },
         [](const RegionalConfig& c) { return Json(c.nesting.parent); }, "");
+    t.add<int>(
+        "nesting", "refine_factor", [](RegionalConfig& c) -> int& { return c.nesting.refine_factor; },
+        [](const int& v) {
+          return (v == 0 || (v >= 3 && v <= 55 && v % 2 == 1))
+                     ? std::string()
+                     : std::string(
+                           "must be an odd factor 3..55 (ROMS averages r x r fine cells around a centre "
+                           "point) or 0 for no refinement");
+        },
+        "");
+    t.add_custom(
+        "nesting", "parent_box",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::vector<int> b;
+          if (auto err = detail::convert(v, b)) return p.add(o, "nesting.parent_box", *err);
+          if (b.empty()) {
+            c.nesting.parent_box = {0, 0, 0, 0};
+            return;
+          }
+          if (b.size() != 4 || b[0] < 1 || b[2] < 1 || b[1] <= b[0] || b[3] <= b[2])
+            return p.add(o, "nesting.parent_box",
+                         "expected the parent's psi indices [I_left, I_right, J_bottom, J_top] (ROMS, 1-based) "
+                         "with I_left < I_right and J_bottom < J_top");
+          c.nesting.parent_box = {b[0], b[1], b[2], b[3]};
+        },
+        [](const RegionalConfig& c) {
+          if (c.nesting.parent_box == std::array<int, 4>{0, 0, 0, 0}) return Json::array();
+          return Json(std::vector<int>(c.nesting.parent_box.begin(), c.nesting.parent_box.end()));
+        },
+        "");
     return t;
   }();
   return s;
@@ -258,6 +288,25 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
         c.params.corner[static_cast<std::size_t>(k - 1)] = true;
       }
     }
+  }
+  {
+    const auto& n = c.nesting;
+    const bool box = n.parent_box != std::array<int, 4>{0, 0, 0, 0};
+    if (n.refinement() && n.parent.empty())
+      p.add_plain(999997, "nesting.refine_factor: a refinement grid needs nesting.parent, the parent's _grd.nc");
+    if (n.refinement() && !box)
+      p.add_plain(999997,
+                  "nesting.refine_factor: a refinement grid needs nesting.parent_box = [I_left, I_right, "
+                  "J_bottom, J_top], the parent's psi indices of its corners");
+    if (!n.refinement() && box)
+      p.add_plain(999997, "nesting.parent_box: only used with nesting.refine_factor (odd, >= 3)");
+    if (!n.parent.empty() && !n.refinement())
+      p.add_plain(999997,
+                  fmt::format("nesting.parent = \"{}\": ROMS nests a grid inside a parent only as a refinement, "
+                              "the parent's psi cells split r x r (r odd), so that fine-to-coarse averaging and the "
+                              "boundary fluxes line up; set nesting.refine_factor and nesting.parent_box (the grid "
+                              "is then made from the parent, not from a contour), or remove nesting.parent",
+                              n.parent));
   }
   for (const auto& [key, msg] : curvilinear::regional_params_problems(c.params))
     p.add_plain(999999, fmt::format("regional.{}: {}", key, msg));

@@ -29,11 +29,21 @@ struct RomsOptions {
   double earth_radius_m = 6371000.0;  ///< sphere radius of the ROMS metrics and x/y (m, > 0)
 };
 
-/// [nesting] A parent regional ROMS grid this grid nests in (app/regional_contact.hpp).
+/// [nesting] A parent regional ROMS grid this grid is a refinement of (ROMS refinement nesting,
+/// app/regional_refine.hpp). With refine_factor > 0 the grid is not built from a contour: it is
+/// the parent's ψ-cell box parent_box split refine_factor × refine_factor (as ROMS's
+/// coarse2fine.m lays a refinement grid over its parent), and <name>_contact.nc holds the ROMS
+/// contact points of both contact regions (nesting.cdl).
 struct NestingOptions {
-  /// The parent's ROMS grid file (<parent>_grd.nc, resolved path); "" = none. When set,
-  /// <name>_contact.nc holds the ROMS contact points of this grid in it (nesting.cdl).
+  /// The parent's ROMS grid file (<parent>_grd.nc, resolved path); "" = none.
   std::string parent;
+  /// Odd refinement factor r, 3..55 (ROMS's fine-to-coarse averaging needs odd r); 0 = none.
+  int refine_factor = 0;
+  /// Parent ψ-point indices (ROMS's 1-based I, J of ψ) of the refinement grid's corners:
+  /// I_left, I_right, J_bottom, J_top; all 0 = not set.
+  std::array<int, 4> parent_box{0, 0, 0, 0};
+
+  [[nodiscard]] bool refinement() const { return refine_factor > 0; }
 };
 
 struct RegionalConfig {

@@ -1,11 +1,10 @@
-// ROMS contact points of a child grid in its parent (see contact_points.hpp).
+// ROMS contact points of a refinement grid and its parent (see contact_points.hpp).
 #include "handoff/contact_points.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "core/error.hpp"
 
@@ -13,243 +12,254 @@ namespace aq::handoff {
 
 namespace {
 
-// One staggered family of the parent: ni × nj points, (i, j) at j·ni + i.
+enum Type { kRho = 0, kU = 1, kV = 2 };
+
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// Points of one type of a ROMS grid by ROMS indices (u: I = file + 1 in ξ; v: J = file + 1 in η).
 struct Family {
-  int ni = 0, nj = 0;
+  int ni = 0, nj = 0, oi = 0, oj = 0;  // file index = ROMS index − o
   const std::vector<double>* lon = nullptr;
   const std::vector<double>* lat = nullptr;
   const std::vector<double>* mask = nullptr;
-  [[nodiscard]] std::size_t at(int i, int j) const {
+  [[nodiscard]] std::size_t at(int I, int J) const {
+    const int i = I - oi, j = J - oj;
+    if (i < 0 || j < 0 || i >= ni || j >= nj)
+      throw InternalError(fmt::format("contact points: index ({}, {}) outside a {} x {} family", I, J, ni, nj));
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i);
   }
 };
 
-double unwrap(double lon, double ref) { return lon + 360.0 * std::round((ref - lon) / 360.0); }
-
-constexpr double kInside = 1e-10;  // tolerance of the cell test in fractional cell coordinates
-
-// Inverts the bilinear map of cell (i, j) at (x, y) (longitude unwrapped near the cell) by Newton's
-// method. Returns false when it does not converge.
-bool invert_cell(const Family& F, int i, int j, double x, double y, double& p, double& q) {
-  const std::size_t k1 = F.at(i, j), k2 = F.at(i + 1, j), k3 = F.at(i + 1, j + 1), k4 = F.at(i, j + 1);
-  const double ref = (*F.lon)[k1];
-  const double x1 = ref, x2 = unwrap((*F.lon)[k2], ref), x3 = unwrap((*F.lon)[k3], ref), x4 = unwrap((*F.lon)[k4], ref);
-  const double y1 = (*F.lat)[k1], y2 = (*F.lat)[k2], y3 = (*F.lat)[k3], y4 = (*F.lat)[k4];
-  const double px = unwrap(x, ref);
-  const double bx = x2 - x1, cx = x4 - x1, dx = x1 - x2 + x3 - x4;
-  const double by = y2 - y1, cy = y4 - y1, dy = y1 - y2 + y3 - y4;
-  p = 0.5;
-  q = 0.5;
-  for (int it = 0; it < 60; ++it) {
-    const double fx = x1 + bx * p + cx * q + dx * p * q - px;
-    const double fy = y1 + by * p + cy * q + dy * p * q - y;
-    const double a11 = bx + dx * q, a12 = cx + dx * p, a21 = by + dy * q, a22 = cy + dy * p;
-    const double det = a11 * a22 - a12 * a21;
-    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
-    const double dp = (fx * a22 - fy * a12) / det, dq = (a11 * fy - a21 * fx) / det;
-    p -= dp;
-    q -= dq;
-    if (!std::isfinite(p) || !std::isfinite(q) || std::abs(p) > 1e6 || std::abs(q) > 1e6) return false;
-    if (std::abs(dp) < 1e-15 && std::abs(dq) < 1e-15) return true;
+Family parent_family(const io::RomsGridFields& p, Type t) {
+  switch (t) {
+    case kRho:
+      return {p.L + 1, p.M + 1, 0, 0, &p.lon_rho, &p.lat_rho, &p.mask_rho};
+    case kU:
+      return {p.L, p.M + 1, 1, 0, &p.lon_u, &p.lat_u, &p.mask_u};
+    default:
+      return {p.L + 1, p.M, 0, 1, &p.lon_v, &p.lat_v, &p.mask_v};
   }
-  return std::isfinite(p) && std::isfinite(q);
 }
 
-bool inside(double p, double q) { return p >= -kInside && p <= 1 + kInside && q >= -kInside && q <= 1 + kInside; }
-
-struct Located {
-  int i = -1, j = -1;  // lower-left corner, file indices
-  double p = 0, q = 0;
+// One direction of a point: fractional coarse coordinate num/(2r), donor index, offset p in [0, 1).
+struct Axis {
+  int num = 0;      // ξ = num / (2r)
+  int donor = 0;    // Idg
+  double p = 0.0;   // ξ − ξ(Idg)
+  double xi = 0.0;  // ξ
+  double xi_dg = 0.0;
 };
 
-// The cell of F containing (x, y), or i = -1.
-Located locate(const Family& F, double x, double y) {
-  // Coarse scan: the nearest point (local metric cos φ on longitude).
-  const double c = std::cos(y * M_PI / 180.0);
-  double best = std::numeric_limits<double>::infinity();
-  int bi = 0, bj = 0;
-  for (int j = 0; j < F.nj; ++j)
-    for (int i = 0; i < F.ni; ++i) {
-      const std::size_t k = F.at(i, j);
-      const double dlon = (unwrap(x, (*F.lon)[k]) - (*F.lon)[k]) * c, dlat = y - (*F.lat)[k];
-      const double d2 = dlon * dlon + dlat * dlat;
-      if (d2 < best) {
-        best = d2;
-        bi = i;
-        bj = j;
-      }
-    }
-  Located r;
-  const auto try_cell = [&](int i, int j, double& p, double& q) {
-    if (i < 0 || j < 0 || i > F.ni - 2 || j > F.nj - 2) return false;
-    return invert_cell(F, i, j, x, y, p, q);
-  };
-  // The four cells around the nearest point, then walk from the first that inverts.
-  int wi = -1, wj = -1;
-  double wp = 0, wq = 0;
-  for (const auto& [di, dj] : {std::pair{0, 0}, std::pair{-1, 0}, std::pair{0, -1}, std::pair{-1, -1}}) {
-    double p = 0, q = 0;
-    if (!try_cell(bi + di, bj + dj, p, q)) continue;
-    if (inside(p, q)) return {bi + di, bj + dj, p, q};
-    if (wi < 0) {
-      wi = bi + di;
-      wj = bj + dj;
-      wp = p;
-      wq = q;
-    }
+// `centred`: ρ-like along this direction (fine index i at Io + (i − ½)/r, donor ρ at Idg + ½);
+// else u-like (fine I at Io + (I − 1)/r, donor at Idg).
+Axis axis(int index, int lo, int r, bool centred) {
+  Axis a;
+  if (centred) {
+    a.num = 2 * r * lo + 2 * index - 1;
+    a.donor = lo + floor_div(index - (r + 1) / 2, r);
+    a.p = static_cast<double>(a.num - 2 * r * a.donor - r) / static_cast<double>(2 * r);
+    a.xi_dg = a.donor + 0.5;
+  } else {
+    a.num = 2 * r * lo + 2 * (index - 1);
+    a.donor = lo + floor_div(index - 1, r);
+    a.p = static_cast<double>(a.num - 2 * r * a.donor) / static_cast<double>(2 * r);
+    a.xi_dg = a.donor;
   }
-  for (int step = 0; wi >= 0 && step < 200; ++step) {
-    const int ni = std::clamp(wi + static_cast<int>(std::floor(wp)), 0, F.ni - 2);
-    const int nj = std::clamp(wj + static_cast<int>(std::floor(wq)), 0, F.nj - 2);
-    if (ni == wi && nj == wj) break;  // at the parent's edge
-    double p = 0, q = 0;
-    if (!try_cell(ni, nj, p, q)) break;
-    wi = ni;
-    wj = nj;
-    wp = p;
-    wq = q;
-    if (inside(p, q)) return {wi, wj, p, q};
-  }
-  // Last resort: every cell.
-  for (int j = 0; j + 1 < F.nj; ++j)
-    for (int i = 0; i + 1 < F.ni; ++i) {
-      double p = 0, q = 0;
-      if (try_cell(i, j, p, q) && inside(p, q)) return {i, j, p, q};
-    }
-  return r;
+  a.xi = static_cast<double>(a.num) / static_cast<double>(2 * r);
+  if (!(a.p >= 0.0 && a.p < 1.0))
+    throw InternalError(fmt::format("contact points: offset {} outside [0, 1) at index {}", a.p, index));
+  return a;
 }
 
-std::array<double, 4> bilinear(double p, double q) { return {(1 - p) * (1 - q), p * (1 - q), p * q, (1 - p) * q}; }
-
-// Lagrange weights at offsets -1, 0, 1 for position t relative to the centre.
-std::array<double, 3> lagrange3(double t) { return {0.5 * t * (t - 1), (1 - t) * (1 + t), 0.5 * t * (t + 1)}; }
-
-std::array<double, 9> biquadratic(const Family& F, const Located& c) {
-  const int ci = std::clamp(c.i, 1, F.ni - 2), cj = std::clamp(c.j, 1, F.nj - 2);
-  const auto wx = lagrange3(c.i + c.p - ci), wy = lagrange3(c.j + c.q - cj);
-  std::array<double, 9> w{};
-  for (std::size_t b = 0; b < 3; ++b)
-    for (std::size_t a = 0; a < 3; ++a) w[3 * b + a] = wx[a] * wy[b];
-  return w;
+std::array<double, 3> quadratic(double p, double alpha) {
+  return {0.5 * p * (p - 1.0) + alpha, 1.0 - p * p - 2.0 * alpha, 0.5 * p * (p + 1.0) + alpha};
 }
 
 }  // namespace
 
-io::ContactFile contact_points(const io::RomsGridFields& parent, const curvilinear::CGrid& child,
-                               const std::string& context, ContactSummary* summary) {
-  const int PL = parent.L, PM = parent.M;
-  const Family rho{PL + 1, PM + 1, &parent.lon_rho, &parent.lat_rho, &parent.mask_rho};
-  const Family fu{PL, PM + 1, &parent.lon_u, &parent.lat_u, &parent.mask_u};
-  const Family fv{PL + 1, PM, &parent.lon_v, &parent.lat_v, &parent.mask_v};
-  io::ContactFile f;
-  f.Lm = {PL - 1, child.L - 1};
-  f.Mm = {PM - 1, child.M - 1};
-  std::vector<double> ratios;
-  ContactSummary sum;
+std::string refinement_box_problem(const curvilinear::RefineBox& b, int PL, int PM) {
+  if (b.i_left >= 2 && b.j_bottom >= 2 && b.i_right <= PL - 1 && b.j_top <= PM - 1 && b.i_left < b.i_right &&
+      b.j_bottom < b.j_top)
+    return {};
+  return fmt::format(
+      "the refinement box I {}..{}, J {}..{} must lie within the parent's psi points I 2..{}, J 2..{} (the parent "
+      "has psi I 1..{}, J 1..{}; ROMS takes the coarse data for 3 fine rows outside the box from whole coarse "
+      "cells)",
+      b.i_left, b.i_right, b.j_bottom, b.j_top, PL - 1, PM - 1, PL, PM);
+}
 
-  // type 0 ρ, 1 u, 2 v: child family, parent family, ROMS index offsets (child and parent alike).
-  for (int type = 0; type < 3; ++type) {
-    const curvilinear::StaggeredPoints& cp = type == 0 ? child.rho : type == 1 ? child.u : child.v;
-    const Family& F = type == 0 ? rho : type == 1 ? fu : fv;
-    const int oi = type == 1 ? 1 : 0, oj = type == 2 ? 1 : 0;
-    const int start = static_cast<int>(f.size()) + 1;
-    for (int j = 0; j < cp.nj; ++j)
-      for (int i = 0; i < cp.ni; ++i) {
-        const int side = i == 0 ? 1 : j == 0 ? 2 : i == cp.ni - 1 ? 3 : j == cp.nj - 1 ? 4 : 0;
-        if (side == 0) continue;
-        const std::size_t k = cp.at(i, j);
-        const double x = cp.lon_deg[k], y = cp.lat_deg[k];
-        Located c = locate(F, x, y);
-        const char* tn = type == 0 ? "rho" : type == 1 ? "u" : "v";
-        if (c.i < 0)
-          throw ConfigError(fmt::format(
-              "{}: the child grid's {} point ({}, {}) at {:.6f}°E {:.6f}°N lies outside the parent grid's {} points "
-              "(the child must lie inside its parent, half a parent cell from its edge)",
-              context, tn, i + oi, j + oj, x, y, tn));
-        c.p = std::clamp(c.p, 0.0, 1.0);
-        c.q = std::clamp(c.q, 0.0, 1.0);
-        const auto w = bilinear(c.p, c.q);
-        f.on_boundary.push_back(side);
-        f.Idg.push_back(c.i + oi);
-        f.Jdg.push_back(c.j + oj);
-        f.Irg.push_back(i + oi);
-        f.Jrg.push_back(j + oj);
-        f.Xrg.push_back(x);
-        f.Yrg.push_back(y);
-        f.Lweight.push_back(w);
-        f.Qweight.push_back(biquadratic(F, c));
-        const std::size_t corner[4] = {F.at(c.i, c.j), F.at(c.i + 1, c.j), F.at(c.i + 1, c.j + 1), F.at(c.i, c.j + 1)};
-        const auto big = static_cast<std::size_t>(std::max_element(w.begin(), w.end()) - w.begin());
-        f.mask.push_back((*F.mask)[corner[big]]);
-        if (f.mask.back() > 0.5) ++sum.wet_points;
-        // The parent's ρ fields at the point.
-        Located r = type == 0 ? c : locate(rho, x, y);
-        if (r.i < 0)
-          throw ConfigError(
-              fmt::format("{}: the child grid's {} point at {:.6f}°E {:.6f}°N lies outside the parent "
-                          "grid's rho points (the child must lie inside its parent)",
-                          context, tn, x, y));
-        r.p = std::clamp(r.p, 0.0, 1.0);
-        r.q = std::clamp(r.q, 0.0, 1.0);
-        const auto wr = bilinear(r.p, r.q);
-        const std::size_t rc[4] = {rho.at(r.i, r.j), rho.at(r.i + 1, r.j), rho.at(r.i + 1, r.j + 1),
-                                   rho.at(r.i, r.j + 1)};
-        const auto interp = [&](const std::vector<double>& v) {
-          double s = 0;
-          for (std::size_t m = 0; m < 4; ++m) s += wr[m] * v[rc[m]];
-          return s;
-        };
-        f.h.push_back(interp(parent.h));
-        f.f.push_back(interp(parent.f));
-        f.pm.push_back(interp(parent.pm));
-        f.pn.push_back(interp(parent.pn));
-        f.dndx.push_back(interp(parent.dndx));
-        f.dmde.push_back(interp(parent.dmde));
-        double s = 0, co = 0;
-        for (std::size_t m = 0; m < 4; ++m) {
-          s += wr[m] * std::sin(parent.angle[rc[m]]);
-          co += wr[m] * std::cos(parent.angle[rc[m]]);
-        }
-        f.angle.push_back(std::atan2(s, co));
-        if (type == 0 && !child.pm.empty()) {
-          const double rpm = f.pm.back(), rpn = f.pn.back();
-          if (rpm > 0 && rpn > 0)
-            ratios.push_back(0.5 * (child.pm[k] / rpm + child.pn[k] / rpn));  // parent step / child step
-        }
-      }
-    const int end = static_cast<int>(f.size());
-    const std::size_t count = static_cast<std::size_t>(end - start + 1);
-    if (type == 0) {
-      f.NstrR = start;
-      f.NendR = end;
-      sum.rho = count;
-    } else if (type == 1) {
-      f.NstrU = start;
-      f.NendU = end;
-      sum.u = count;
-    } else {
-      f.NstrV = start;
-      f.NendV = end;
-      sum.v = count;
+io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvilinear::RefineBox& box,
+                                   const curvilinear::CGrid& fine, int pad, ContactSummary* summary) {
+  if (const std::string bad = refinement_box_problem(box, parent.L, parent.M); !bad.empty()) throw ConfigError(bad);
+  const int r = box.factor, L = box.L(), M = box.M(), Lm = L - 1, Mm = M - 1;
+  const int Io = box.i_left, Ie = box.i_right, Jo = box.j_bottom, Je = box.j_top;
+  if (pad < 4 || fine.L != L + 2 * pad || fine.M != M + 2 * pad)
+    throw InternalError(fmt::format("refinement_contact: the fine C-grid is {} x {} with pad {}, expected {} x {}",
+                                    fine.L, fine.M, pad, L + 2 * pad, M + 2 * pad));
+  const double alpha = (1.0 / (r * r) - 1.0) / 24.0;
+  const Family coarse[3] = {parent_family(parent, kRho), parent_family(parent, kU), parent_family(parent, kV)};
+  // Fine points by ROMS index in the padded C-grid.
+  const auto fine_point = [&](Type t, int I, int J) -> std::size_t {
+    switch (t) {
+      case kRho:
+        return fine.rho.at(I + pad, J + pad);
+      case kU:
+        return fine.u.at(I - 1 + pad, J + pad);
+      default:
+        return fine.v.at(I + pad, J - 1 + pad);
     }
+  };
+  const auto fine_lonlat = [&](Type t, std::size_t k) {
+    const curvilinear::StaggeredPoints& s = t == kRho ? fine.rho : t == kU ? fine.u : fine.v;
+    return std::pair{s.lon_deg[k], s.lat_deg[k]};
+  };
+  // The coarse ρ mask at the coarse ρ cell holding fine ρ (i, j).
+  const auto fine_rho_mask = [&](int i, int j) {
+    const int ic = Io + floor_div(2 * i - 1, 2 * r), jc = Jo + floor_div(2 * j - 1, 2 * r);
+    return parent.mask_rho[coarse[kRho].at(ic, jc)];
+  };
+
+  io::ContactFile f;
+  f.Lm = {parent.L - 1, Lm};
+  f.Mm = {parent.M - 1, Mm};
+  f.refine_factor = {0, r};
+  f.parent_box = {Io, Ie, Jo, Je};
+  ContactSummary sum;
+  std::vector<double> ratios;
+
+  const auto push_common = [&](int region, int boundary, int Idg, int Jdg, int Irg, int Jrg, double xi_dg,
+                               double eta_dg, double xi_rg, double eta_rg, std::pair<double, double> dg,
+                               std::pair<double, double> rg, double mask) {
+    f.contact_region.push_back(region);
+    f.on_boundary.push_back(boundary);
+    f.Idg.push_back(Idg);
+    f.Jdg.push_back(Jdg);
+    f.Irg.push_back(Irg);
+    f.Jrg.push_back(Jrg);
+    f.xi_dg.push_back(xi_dg);
+    f.eta_dg.push_back(eta_dg);
+    f.xi_rg.push_back(xi_rg);
+    f.eta_rg.push_back(eta_rg);
+    f.Xdg.push_back(dg.first);
+    f.Ydg.push_back(dg.second);
+    f.Xrg.push_back(rg.first);
+    f.Yrg.push_back(rg.second);
+    f.mask.push_back(mask);
+    if (mask > 0.5) ++sum.wet_points;
+  };
+  const auto push_fill = [&] {
+    for (auto* v : {&f.h, &f.f, &f.pm, &f.pn, &f.dndx, &f.dmde, &f.angle}) v->push_back(io::kContactFill);
+  };
+  const auto close_type = [&](io::ContactRegion& reg, Type t, int start) {
+    const int end = static_cast<int>(f.size());
+    if (t == kRho) {
+      reg.NstrR = start;
+      reg.NendR = end;
+    } else if (t == kU) {
+      reg.NstrU = start;
+      reg.NendU = end;
+    } else {
+      reg.NstrV = start;
+      reg.NendV = end;
+    }
+    return static_cast<std::size_t>(end - start + 1);
+  };
+
+  // Region 1: coarse → fine, the band around the fine interior.
+  io::ContactRegion& r1 = f.regions[0];
+  r1.donor_grid = 1;
+  r1.receiver_grid = 2;
+  for (const Type t : {kRho, kU, kV}) {
+    const int start = static_cast<int>(f.size()) + 1;
+    const int i0 = t == kU ? -2 : -3, j0 = t == kV ? -2 : -3;
+    const int ia = t == kU ? 2 : 1, ja = t == kV ? 2 : 1;  // the excluded interior ia..Lm × ja..Mm
+    const Family& C = coarse[t];
+    for (int j = j0; j <= M + 2; ++j)
+      for (int i = i0; i <= L + 2; ++i) {
+        if (i >= ia && i <= Lm && j >= ja && j <= Mm) continue;
+        const Axis ax = axis(i, Io, r, t != kU), ay = axis(j, Jo, r, t != kV);
+        const std::array<double, 4> w = {(1 - ax.p) * (1 - ay.p), ax.p * (1 - ay.p), ax.p * ay.p, (1 - ax.p) * ay.p};
+        int boundary = 0;
+        if (t == kU && j >= 1 && j <= Mm) boundary = i == 1 ? 1 : i == L ? 3 : 0;
+        if (t == kV && i >= 1 && i <= Lm) boundary = j == 1 ? 2 : j == M ? 4 : 0;
+        const double mask = t == kRho ? fine_rho_mask(i, j)
+                            : t == kU ? fine_rho_mask(i - 1, j) * fine_rho_mask(i, j)
+                                      : fine_rho_mask(i, j - 1) * fine_rho_mask(i, j);
+        const std::size_t dk = C.at(ax.donor, ay.donor), fk = fine_point(t, i, j);
+        push_common(1, boundary, ax.donor, ay.donor, i, j, ax.xi_dg, ay.xi_dg, ax.xi, ay.xi,
+                    {(*C.lon)[dk], (*C.lat)[dk]}, fine_lonlat(t, fk), mask);
+        f.Lweight.push_back(w);
+        const auto qx = quadratic(ax.p, alpha), qy = quadratic(ay.p, alpha);
+        std::array<double, 9> q{};
+        for (std::size_t b = 0; b < 3; ++b)
+          for (std::size_t a = 0; a < 3; ++a) q[3 * b + a] = qx[a] * qy[b];
+        f.Qweight.push_back(q);
+        if (t != kRho) {
+          push_fill();
+          continue;
+        }
+        const std::size_t c[4] = {C.at(ax.donor, ay.donor), C.at(ax.donor + 1, ay.donor),
+                                  C.at(ax.donor + 1, ay.donor + 1), C.at(ax.donor, ay.donor + 1)};
+        double h = 0, cor = 0, s = 0, co = 0, pm = 0;
+        for (std::size_t m = 0; m < 4; ++m) {
+          h += w[m] * parent.h[c[m]];
+          cor += w[m] * parent.f[c[m]];
+          s += w[m] * std::sin(parent.angle[c[m]]);
+          co += w[m] * std::cos(parent.angle[c[m]]);
+          pm += w[m] * parent.pm[c[m]];
+        }
+        f.h.push_back(h);
+        f.f.push_back(cor);
+        f.angle.push_back(std::atan2(s, co));
+        f.pm.push_back(fine.pm[fk]);
+        f.pn.push_back(fine.pn[fk]);
+        f.dndx.push_back(fine.dndx[fk]);
+        f.dmde.push_back(fine.dmde[fk]);
+        if (pm > 0.0) ratios.push_back(fine.pm[fk] / pm);
+      }
+    sum.coarse_to_fine[t] = close_type(r1, t, start);
   }
+
+  // Region 2: fine → coarse, the coarse points inside the fine grid.
+  io::ContactRegion& r2 = f.regions[1];
+  r2.donor_grid = 2;
+  r2.receiver_grid = 1;
+  const int centre = (r + 1) / 2;
+  for (const Type t : {kRho, kU, kV}) {
+    const int start = static_cast<int>(f.size()) + 1;
+    const Family& C = coarse[t];
+    const int i0 = t == kU ? Io + 1 : Io, j0 = t == kV ? Jo + 1 : Jo;
+    for (int j = j0; j <= Je - 1; ++j)
+      for (int i = i0; i <= Ie - 1; ++i) {
+        const int Idg = t == kU ? 1 + (i - Io) * r : centre + (i - Io) * r;
+        const int Jdg = t == kV ? 1 + (j - Jo) * r : centre + (j - Jo) * r;
+        const std::size_t ck = C.at(i, j), fk = fine_point(t, Idg, Jdg);
+        const double xi_rg = t == kU ? i : i + 0.5, eta_rg = t == kV ? j : j + 0.5;
+        const double xi_dg = t == kU ? Idg : Idg + 0.5, eta_dg = t == kV ? Jdg : Jdg + 0.5;
+        push_common(2, 0, Idg, Jdg, i, j, xi_dg, eta_dg, xi_rg, eta_rg, fine_lonlat(t, fk),
+                    {(*C.lon)[ck], (*C.lat)[ck]}, (*C.mask)[ck]);
+        f.Lweight.push_back({});
+        f.Qweight.push_back({});
+        if (t != kRho) {
+          push_fill();
+          continue;
+        }
+        f.h.push_back(parent.h[ck]);
+        f.f.push_back(parent.f[ck]);
+        f.pm.push_back(parent.pm[ck]);
+        f.pn.push_back(parent.pn[ck]);
+        f.dndx.push_back(parent.dndx[ck]);
+        f.dmde.push_back(parent.dmde[ck]);
+        f.angle.push_back(parent.angle[ck]);
+      }
+    sum.fine_to_coarse[t] = close_type(r2, t, start);
+  }
+
   sum.points = f.size();
   if (!ratios.empty()) {
     std::sort(ratios.begin(), ratios.end());
-    sum.ratio_min = ratios.front();
-    sum.ratio_max = ratios.back();
     sum.ratio_median = ratios[ratios.size() / 2];
   }
-  f.refine_factor = {1, std::max(1, static_cast<int>(std::lround(sum.ratio_median)))};
-  f.attributes.emplace_back("refinement_ratio_median", sum.ratio_median);
-  f.attributes.emplace_back("refinement_ratio_min", sum.ratio_min);
-  f.attributes.emplace_back("refinement_ratio_max", sum.ratio_max);
-  f.attributes.emplace_back(
-      "Qweight_stencil",
-      std::string("donor points (Idg-1..Idg+1) x (Jdg-1..Jdg+1), shifted inward at the donor's edges, I fastest"));
-  f.attributes.emplace_back(
-      "note", std::string("the child is an independent orthogonal grid, not an exact refine_factor subdivision of "
-                          "the parent's cells; refine_factor is the rounded median refinement ratio"));
   if (summary != nullptr) *summary = sum;
   return f;
 }

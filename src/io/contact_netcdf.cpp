@@ -4,6 +4,9 @@
 #include <fmt/format.h>
 #include <netcdf.h>
 
+#include <cmath>
+#include <limits>
+
 #include "core/error.hpp"
 #include "io/netcdf_file.hpp"
 
@@ -41,52 +44,92 @@ std::size_t dim_len(int nc, const char* name, const fs::path& path) {
 
 enum class Dim { kScalar, kGrids, kContact, kDatum, kL, kQ };
 
+// Extra attributes of a variable, as nesting.cdl / c_contact.m give them.
+enum Extra : unsigned {
+  kNone = 0,
+  kFlags01 = 1u << 0,  // int flag_values 0, 1; flag_meanings "false true"
+  kCoord = 1u << 1,    // coordinates "Xrg Yrg"
+  kFill = 1u << 2,     // double _FillValue 1e37
+  kIntFill = 1u << 3,  // int _FillValue -999
+  kLon = 1u << 4,      // standard_name longitude
+  kLat = 1u << 5,      // standard_name latitude
+};
+
 struct VarSpec {
   const char* name;
   nc_type type;
   Dim dim;
   const char* long_name;
   const char* units;  // nullptr: none
+  unsigned extra;
 };
 
+// In the order of c_contact.m.
 constexpr VarSpec kVars[] = {
-    {"spherical", NC_INT, Dim::kScalar, "grid type logical switch (1: spherical)", nullptr},
-    {"Lm", NC_INT, Dim::kGrids, "number of interior RHO-points in the I-direction", nullptr},
-    {"Mm", NC_INT, Dim::kGrids, "number of interior RHO-points in the J-direction", nullptr},
-    {"refine_factor", NC_INT, Dim::kGrids, "refinement factor from donor grid", nullptr},
-    {"coincident", NC_INT, Dim::kContact, "coincident donor and receiver grids logical switch", nullptr},
-    {"composite", NC_INT, Dim::kContact, "composite grid type logical switch", nullptr},
-    {"hybrid", NC_INT, Dim::kContact, "hybrid nested grids logical switch", nullptr},
-    {"mosaic", NC_INT, Dim::kContact, "mosaic grid type logical switch", nullptr},
-    {"refinement", NC_INT, Dim::kContact, "refinement grid type logical switch", nullptr},
-    {"interpolate", NC_INT, Dim::kContact, "vertical interpolation at contact points logical switch", nullptr},
-    {"donor_grid", NC_INT, Dim::kContact, "data donor grid number", nullptr},
-    {"receiver_grid", NC_INT, Dim::kContact, "data receiver grid number", nullptr},
-    {"NstrR", NC_INT, Dim::kContact, "starting contact RHO-point index in data vector", nullptr},
-    {"NendR", NC_INT, Dim::kContact, "ending contact RHO-point index in data vector", nullptr},
-    {"NstrU", NC_INT, Dim::kContact, "starting contact U-point index in data vector", nullptr},
-    {"NendU", NC_INT, Dim::kContact, "ending contact U-point index in data vector", nullptr},
-    {"NstrV", NC_INT, Dim::kContact, "starting contact V-point index in data vector", nullptr},
-    {"NendV", NC_INT, Dim::kContact, "ending contact V-point index in data vector", nullptr},
-    {"contact_region", NC_INT, Dim::kDatum, "contact region number", nullptr},
-    {"on_boundary", NC_INT, Dim::kDatum, "contact point on receiver grid physical boundary", nullptr},
-    {"Idg", NC_INT, Dim::kDatum, "I-left index of donor cell containing contact point", nullptr},
-    {"Jdg", NC_INT, Dim::kDatum, "J-bottom index of donor cell containing contact point", nullptr},
-    {"Irg", NC_INT, Dim::kDatum, "receiver grid I-index of contact point", nullptr},
-    {"Jrg", NC_INT, Dim::kDatum, "receiver grid J-index of contact point", nullptr},
-    {"Xrg", NC_DOUBLE, Dim::kDatum, "longitude of receiver grid contact point", "degree_east"},
-    {"Yrg", NC_DOUBLE, Dim::kDatum, "latitude of receiver grid contact point", "degree_north"},
-    {"Lweight", NC_DOUBLE, Dim::kL, "linear interpolation weights", nullptr},
-    {"Qweight", NC_DOUBLE, Dim::kQ, "quadratic interpolation weights", nullptr},
-    {"angle", NC_DOUBLE, Dim::kDatum, "angle between XI-axis and EAST at contact points", "radians"},
-    {"dmde", NC_DOUBLE, Dim::kDatum, "ETA-derivative of inverse metric factor pm at contact points", "meter"},
-    {"dndx", NC_DOUBLE, Dim::kDatum, "XI-derivative of inverse metric factor pn at contact points", "meter"},
-    {"f", NC_DOUBLE, Dim::kDatum, "Coriolis parameter at contact points", "second-1"},
-    {"h", NC_DOUBLE, Dim::kDatum, "bathymetry at contact points", "meter"},
-    {"mask", NC_DOUBLE, Dim::kDatum, "land-sea mask of contact points", nullptr},
-    {"pm", NC_DOUBLE, Dim::kDatum, "curvilinear coordinate metric in XI at contact points", "meter-1"},
-    {"pn", NC_DOUBLE, Dim::kDatum, "curvilinear coordinate metric in ETA at contact points", "meter-1"},
+    {"spherical", NC_INT, Dim::kScalar, "grid type logical switch", nullptr, kNone},
+    {"Lm", NC_INT, Dim::kGrids, "number of interior RHO-points in the I-direction", nullptr, kNone},
+    {"Mm", NC_INT, Dim::kGrids, "number of interior RHO-points in the J-direction", nullptr, kNone},
+    {"refine_factor", NC_INT, Dim::kGrids, "refinement factor from donor grid", nullptr, kNone},
+    {"coincident", NC_INT, Dim::kContact, "coincident donor and receiver grids logical switch", nullptr, kFlags01},
+    {"composite", NC_INT, Dim::kContact, "composite grid type logical switch", nullptr, kFlags01},
+    {"mosaic", NC_INT, Dim::kContact, "mosaic grid type logical switch", nullptr, kFlags01},
+    {"refinement", NC_INT, Dim::kContact, "refinement grid type logical switch", nullptr, kFlags01},
+    {"interpolate", NC_INT, Dim::kContact, "vertical interpolation at contact points logical switch", nullptr,
+     kFlags01},
+    {"donor_grid", NC_INT, Dim::kContact, "data donor grid number", nullptr, kNone},
+    {"receiver_grid", NC_INT, Dim::kContact, "data receiver grid number", nullptr, kNone},
+    {"I_left", NC_INT, Dim::kGrids, "donor grid I-left index at PSI points used to extract refinement grid", nullptr,
+     kIntFill},
+    {"I_right", NC_INT, Dim::kGrids, "donor grid I-right index at PSI points used to extract refinement grid", nullptr,
+     kIntFill},
+    {"J_bottom", NC_INT, Dim::kGrids, "donor grid J-bottom index at PSI points used to extract refinement grid",
+     nullptr, kIntFill},
+    {"J_top", NC_INT, Dim::kGrids, "donor grid J-top index at PSI points used to extract refinement grid", nullptr,
+     kIntFill},
+    {"NstrR", NC_INT, Dim::kContact, "starting contact RHO-point index in data vector", nullptr, kNone},
+    {"NendR", NC_INT, Dim::kContact, "ending contact RHO-point index in data vector", nullptr, kNone},
+    {"NstrU", NC_INT, Dim::kContact, "starting contact U-point index in data vector", nullptr, kNone},
+    {"NendU", NC_INT, Dim::kContact, "ending contact U-point index in data vector", nullptr, kNone},
+    {"NstrV", NC_INT, Dim::kContact, "starting contact V-point index in data vector", nullptr, kNone},
+    {"NendV", NC_INT, Dim::kContact, "ending contact V-point index in data vector", nullptr, kNone},
+    {"contact_region", NC_INT, Dim::kDatum, "contact region number", nullptr, kNone},
+    {"on_boundary", NC_INT, Dim::kDatum, "contact point on receiver grid physical boundary", nullptr, kNone},
+    {"Idg", NC_INT, Dim::kDatum, "I-left index of donor cell containing contact point", nullptr, kNone},
+    {"Jdg", NC_INT, Dim::kDatum, "J-bottom index of donor cell containing contact point", nullptr, kNone},
+    {"Irg", NC_INT, Dim::kDatum, "receiver grid I-index of contact point", nullptr, kCoord},
+    {"Jrg", NC_INT, Dim::kDatum, "receiver grid J-index of contact point", nullptr, kCoord},
+    {"xi_dg", NC_DOUBLE, Dim::kDatum, "XI-coordinate of donor cell bottom-left corner containing contact point",
+     nullptr, kNone},
+    {"eta_dg", NC_DOUBLE, Dim::kDatum, "ETA-coordinate of donor cell bottom-left corner containing contact point",
+     nullptr, kNone},
+    {"xi_rg", NC_DOUBLE, Dim::kDatum, "XI-coordinate of receiver grid contact points", nullptr, kNone},
+    {"eta_rg", NC_DOUBLE, Dim::kDatum, "ETA-location of receiver grid contact points", nullptr, kNone},
+    {"Xdg", NC_DOUBLE, Dim::kDatum, "longitude of donor cell bottom-left corner containing contact point",
+     "degree_east", kLon},
+    {"Ydg", NC_DOUBLE, Dim::kDatum, "latitude of donor cell bottom-left corner containing contact point",
+     "degree_north", kLat},
+    {"Xrg", NC_DOUBLE, Dim::kDatum, "longitude of receiver grid contact points", "degree_east", kLon},
+    {"Yrg", NC_DOUBLE, Dim::kDatum, "latitude of receiver grid contact points", "degree_north", kLat},
+    {"Lweight", NC_DOUBLE, Dim::kL, "horizontal linear interpolation weights", nullptr, kCoord},
+    {"Qweight", NC_DOUBLE, Dim::kQ, "horizontal quadratic interpolation weights", nullptr, kCoord},
+    {"h", NC_DOUBLE, Dim::kDatum, "bathymetry at RHO-points", "meter", kCoord | kFill},
+    {"f", NC_DOUBLE, Dim::kDatum, "Coriolis parameter at RHO-points", "second-1", kCoord | kFill},
+    {"pm", NC_DOUBLE, Dim::kDatum, "curvilinear coordinate metric in XI", "meter-1", kCoord | kFill},
+    {"pn", NC_DOUBLE, Dim::kDatum, "curvilinear coordinate metric in ETA", "meter-1", kCoord | kFill},
+    {"dndx", NC_DOUBLE, Dim::kDatum, "XI-derivative of inverse metric factor pn", "meter", kCoord | kFill},
+    {"dmde", NC_DOUBLE, Dim::kDatum, "ETA-derivative of inverse metric factor pm", "meter", kCoord | kFill},
+    {"angle", NC_DOUBLE, Dim::kDatum, "angle between XI-axis and EAST", "radians", kCoord | kFill},
+    {"mask", NC_DOUBLE, Dim::kDatum, "land-sea mask of contact points", nullptr, kCoord},
 };
+
+double global_number(int nc, const char* name) {
+  nc_type type = NC_NAT;
+  std::size_t len = 0;
+  double v = std::numeric_limits<double>::quiet_NaN();
+  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || len != 1 || type == NC_CHAR) return v;
+  if (nc_get_att_double(nc, NC_GLOBAL, name, &v) != NC_NOERR) return std::numeric_limits<double>::quiet_NaN();
+  return v;
+}
 
 }  // namespace
 
@@ -109,6 +152,8 @@ RomsGridFields read_roms_grid_fields(const fs::path& path) {
   g.lon_v = read_2d(id, "lon_v", er - 1, xr, path);
   g.lat_v = read_2d(id, "lat_v", er - 1, xr, path);
   g.mask_v = read_2d(id, "mask_v", er - 1, xr, path);
+  g.lon_psi = read_2d(id, "lon_psi", er - 1, xr - 1, path);
+  g.lat_psi = read_2d(id, "lat_psi", er - 1, xr - 1, path);
   g.h = read_2d(id, "h", er, xr, path);
   g.f = read_2d(id, "f", er, xr, path);
   g.pm = read_2d(id, "pm", er, xr, path);
@@ -116,6 +161,18 @@ RomsGridFields read_roms_grid_fields(const fs::path& path) {
   g.dndx = read_2d(id, "dndx", er, xr, path);
   g.dmde = read_2d(id, "dmde", er, xr, path);
   g.angle = read_2d(id, "angle", er, xr, path);
+  g.proj = global_text(id, "proj");
+  g.rlat = global_number(id, "rlat");
+  g.rlon = global_number(id, "rlon");
+  g.rota = global_number(id, "rota");
+  g.uscale = global_number(id, "uscale");
+  g.lat1 = global_number(id, "lat1");
+  g.lat2 = global_number(id, "lat2");
+  g.radius = global_number(id, "radius");
+  g.aspect_ratio = global_number(id, "aspect_ratio");
+  const double nx = global_number(id, "izogrid_nx"), ny = global_number(id, "izogrid_ny");
+  g.izogrid_nx = std::isfinite(nx) ? static_cast<int>(nx) : 0;
+  g.izogrid_ny = std::isfinite(ny) ? static_cast<int>(ny) : 0;
   return g;
 }
 
@@ -130,18 +187,32 @@ const std::vector<std::string>& contact_variables() {
 
 void write_contact(const fs::path& path, const ContactFile& d) {
   const std::size_t n = d.size();
-  bool ok = d.on_boundary.size() == n && d.Jdg.size() == n && d.Irg.size() == n && d.Jrg.size() == n &&
-            d.Xrg.size() == n && d.Yrg.size() == n && d.Lweight.size() == n && d.Qweight.size() == n;
-  for (const auto* v : {&d.angle, &d.dmde, &d.dndx, &d.f, &d.h, &d.mask, &d.pm, &d.pn}) ok = ok && v->size() == n;
-  if (!ok) throw InternalError(fmt::format("write_contact {}: per-point arrays differ in length", path.string()));
-  if (n == 0) throw InternalError(fmt::format("write_contact {}: no contact points", path.string()));
+  bool ok = n > 0;
+  for (const auto* v : {&d.contact_region, &d.on_boundary, &d.Jdg, &d.Irg, &d.Jrg}) ok = ok && v->size() == n;
+  for (const auto* v : {&d.xi_dg, &d.eta_dg, &d.xi_rg, &d.eta_rg, &d.Xdg, &d.Ydg, &d.Xrg, &d.Yrg, &d.h, &d.f, &d.pm,
+                        &d.pn, &d.dndx, &d.dmde, &d.angle, &d.mask})
+    ok = ok && v->size() == n;
+  ok = ok && d.Lweight.size() == n && d.Qweight.size() == n;
+  // The six ranges of each region follow each other from 1 to n.
+  int next = 1;
+  for (const ContactRegion& r : d.regions) {
+    for (const auto& [s, e] : {std::pair{r.NstrR, r.NendR}, std::pair{r.NstrU, r.NendU}, std::pair{r.NstrV, r.NendV}}) {
+      ok = ok && s == next && e >= s - 1;
+      next = e + 1;
+    }
+  }
+  ok = ok && next == static_cast<int>(n) + 1;
+  if (!ok)
+    throw InternalError(
+        fmt::format("write_contact {}: {} points, arrays of other lengths or region ranges that do not tile them",
+                    path.string(), n));
 
   NcFile nc;
   nc_check<OutputError>(nc_create(path.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, nc.out()), path, "create");
   const int id = nc.id();
   int dg = -1, dc = -1, dl = -1, dq = -1, dd = -1;
   nc_check<OutputError>(nc_def_dim(id, "Ngrids", 2, &dg), path, "dimension Ngrids");
-  nc_check<OutputError>(nc_def_dim(id, "Ncontact", 1, &dc), path, "dimension Ncontact");
+  nc_check<OutputError>(nc_def_dim(id, "Ncontact", 2, &dc), path, "dimension Ncontact");
   nc_check<OutputError>(nc_def_dim(id, "nLweights", 4, &dl), path, "dimension nLweights");
   nc_check<OutputError>(nc_def_dim(id, "nQweights", 9, &dq), path, "dimension nQweights");
   nc_check<OutputError>(nc_def_dim(id, "datum", n, &dd), path, "dimension datum");
@@ -178,6 +249,22 @@ void write_contact(const fs::path& path, const ContactFile& d) {
                           fmt::format("define variable {}", v.name));
     put_text(id, var, "long_name", v.long_name, path);
     if (v.units != nullptr) put_text(id, var, "units", v.units, path);
+    if ((v.extra & kLon) != 0) put_text(id, var, "standard_name", "longitude", path);
+    if ((v.extra & kLat) != 0) put_text(id, var, "standard_name", "latitude", path);
+    if ((v.extra & kFlags01) != 0) {
+      const int fv[2] = {0, 1};
+      nc_check<OutputError>(nc_put_att_int(id, var, "flag_values", NC_INT, 2, fv), path, "flag_values");
+      put_text(id, var, "flag_meanings", "false true", path);
+    }
+    if ((v.extra & kCoord) != 0) put_text(id, var, "coordinates", "Xrg Yrg", path);
+    if ((v.extra & kFill) != 0)
+      nc_check<OutputError>(nc_put_att_double(id, var, "_FillValue", NC_DOUBLE, 1, &kContactFill), path,
+                            fmt::format("{} _FillValue", v.name));
+    if ((v.extra & kIntFill) != 0) {
+      const int fill = -999;
+      nc_check<OutputError>(nc_put_att_int(id, var, "_FillValue", NC_INT, 1, &fill), path,
+                            fmt::format("{} _FillValue", v.name));
+    }
     vars.push_back(var);
   }
   const auto var_of = [&](const char* name) {
@@ -192,11 +279,21 @@ void write_contact(const fs::path& path, const ContactFile& d) {
     const int bv[5] = {0, 1, 2, 3, 4};
     nc_check<OutputError>(nc_put_att_int(id, var_of("on_boundary"), "flag_values", NC_INT, 5, bv), path, "flag_values");
     put_text(id, var_of("on_boundary"), "flag_meanings", "other western southern eastern northern", path);
+    const double mv[2] = {0.0, 1.0};
+    nc_check<OutputError>(nc_put_att_double(id, var_of("mask"), "flag_values", NC_DOUBLE, 2, mv), path, "flag_values");
+    put_text(id, var_of("mask"), "flag_meanings", "land water", path);
     put_text(id, var_of("Lweight"), "comment",
-             "corners (Idg,Jdg), (Idg+1,Jdg), (Idg+1,Jdg+1), (Idg,Jdg+1) of the donor cell of the point's type", path);
+             "donor points (Idg,Jdg), (Idg+1,Jdg), (Idg+1,Jdg+1), (Idg,Jdg+1) of the contact point's type, bilinear "
+             "in the donor's fractional index space; 0 for fine-to-coarse points (ROMS averages those)",
+             path);
+    put_text(id, var_of("Qweight"), "comment",
+             "donor points (Idg-1..Idg+1) x (Jdg-1..Jdg+1), I fastest: quadratic weights in fractional index space "
+             "plus the cell-average correction ((1/r)^2-1)/24 per direction; used by ROMS with QUADRATIC_WEIGHTS",
+             path);
   }
-  put_text(id, NC_GLOBAL, "type", "ROMS Nesting Contact Points file", path);
+  put_text(id, NC_GLOBAL, "type", "ROMS Nesting Contact Regions Data", path);
   put_text(id, NC_GLOBAL, "title", d.title, path);
+  if (!d.grid_files.empty()) put_text(id, NC_GLOBAL, "grid_files", d.grid_files, path);
   if (!d.history.empty()) put_text(id, NC_GLOBAL, "history", d.history, path);
   for (const auto& [key, value] : d.attributes) {
     if (const auto* s = std::get_if<std::string>(&value)) {
@@ -216,30 +313,40 @@ void write_contact(const fs::path& path, const ContactFile& d) {
   const auto put_d = [&](const char* name, const std::vector<double>& v) {
     nc_check<OutputError>(nc_put_var_double(id, var_of(name), v.data()), path, fmt::format("write {}", name));
   };
+  const auto per_region = [&](const char* name, auto get) { put_i(name, {get(d.regions[0]), get(d.regions[1])}); };
   put_i("spherical", {1});
   put_i("Lm", {d.Lm[0], d.Lm[1]});
   put_i("Mm", {d.Mm[0], d.Mm[1]});
   put_i("refine_factor", {d.refine_factor[0], d.refine_factor[1]});
-  put_i("coincident", {0});
-  put_i("composite", {0});
-  put_i("hybrid", {0});
-  put_i("mosaic", {0});
-  put_i("refinement", {1});
-  put_i("interpolate", {1});
-  put_i("donor_grid", {1});
-  put_i("receiver_grid", {2});
-  put_i("NstrR", {d.NstrR});
-  put_i("NendR", {d.NendR});
-  put_i("NstrU", {d.NstrU});
-  put_i("NendU", {d.NendU});
-  put_i("NstrV", {d.NstrV});
-  put_i("NendV", {d.NendV});
-  put_i("contact_region", std::vector<std::int32_t>(n, 1));
+  put_i("coincident", {0, 0});
+  put_i("composite", {0, 0});
+  put_i("mosaic", {0, 0});
+  put_i("refinement", {1, 1});
+  put_i("interpolate", {1, 1});
+  per_region("donor_grid", [](const ContactRegion& r) { return r.donor_grid; });
+  per_region("receiver_grid", [](const ContactRegion& r) { return r.receiver_grid; });
+  put_i("I_left", {-999, d.parent_box[0]});
+  put_i("I_right", {-999, d.parent_box[1]});
+  put_i("J_bottom", {-999, d.parent_box[2]});
+  put_i("J_top", {-999, d.parent_box[3]});
+  per_region("NstrR", [](const ContactRegion& r) { return r.NstrR; });
+  per_region("NendR", [](const ContactRegion& r) { return r.NendR; });
+  per_region("NstrU", [](const ContactRegion& r) { return r.NstrU; });
+  per_region("NendU", [](const ContactRegion& r) { return r.NendU; });
+  per_region("NstrV", [](const ContactRegion& r) { return r.NstrV; });
+  per_region("NendV", [](const ContactRegion& r) { return r.NendV; });
+  put_i("contact_region", d.contact_region);
   put_i("on_boundary", d.on_boundary);
   put_i("Idg", d.Idg);
   put_i("Jdg", d.Jdg);
   put_i("Irg", d.Irg);
   put_i("Jrg", d.Jrg);
+  put_d("xi_dg", d.xi_dg);
+  put_d("eta_dg", d.eta_dg);
+  put_d("xi_rg", d.xi_rg);
+  put_d("eta_rg", d.eta_rg);
+  put_d("Xdg", d.Xdg);
+  put_d("Ydg", d.Ydg);
   put_d("Xrg", d.Xrg);
   put_d("Yrg", d.Yrg);
   {
@@ -251,14 +358,14 @@ void write_contact(const fs::path& path, const ContactFile& d) {
     put_d("Lweight", lw);
     put_d("Qweight", qw);
   }
-  put_d("angle", d.angle);
-  put_d("dmde", d.dmde);
-  put_d("dndx", d.dndx);
-  put_d("f", d.f);
   put_d("h", d.h);
-  put_d("mask", d.mask);
+  put_d("f", d.f);
   put_d("pm", d.pm);
   put_d("pn", d.pn);
+  put_d("dndx", d.dndx);
+  put_d("dmde", d.dmde);
+  put_d("angle", d.angle);
+  put_d("mask", d.mask);
   nc_check<OutputError>(nc.close(), path, "close");
 }
 

@@ -1,0 +1,151 @@
+// `aquatoria regional` for a refinement grid: the Black Sea grid as the parent, its north-western
+// shelf (configs/black_sea_nw_shelf.toml) split 3 x 3. The fine grid's ψ points at every third
+// index are the parent's ψ points, its size follows the box, its ROMS file carries coarse2fine's
+// parent attributes, and <name>_contact.nc has the variables and values of ROMS's nesting.cdl
+// (c_contact.m) for both contact regions. Bad refinement settings stop with the config's name and
+// no output files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "curvilinear/cgrid.hpp"
+#include "io/contact_netcdf.hpp"
+#include "support/run_command.hpp"
+
+namespace fs = std::filesystem;
+using aq::test::run_aquatoria;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::string run_text(const std::string& cmd) {
+  std::string out;
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen((cmd + " 2>&1").c_str(), "r"), pclose);
+  char buf[4096];
+  while (p && fgets(buf, sizeof buf, p.get()) != nullptr) out += buf;
+  return out;
+}
+
+const std::string kChild = std::string(AQ_SOURCE_DIR) + "/configs/black_sea_nw_shelf.toml";
+
+}  // namespace
+
+class RefineCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("aq_refine_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    const auto r = run_aquatoria("regional -q -c " + std::string(AQ_SOURCE_DIR) + "/configs/black_sea.toml -o " +
+                                 (dir_ / "parent").string() + " --no-coastline");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    parent_ = dir_ / "parent" / "black_sea_grd.nc";
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static std::string child_args(const std::string& out, const std::string& more = "") {
+    return "regional -c " + kChild + " --set nesting.parent=\"" + parent_.string() + "\" -o " + (dir_ / out).string() +
+           " --no-coastline " + more;
+  }
+  static fs::path dir_, parent_;
+};
+fs::path RefineCli::dir_, RefineCli::parent_;
+
+TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
+  const auto c = run_aquatoria(child_args("child"));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_THAT(c.err, HasSubstr("refine: done"));
+  EXPECT_THAT(c.err, HasSubstr("contact: done"));
+  const fs::path out = dir_ / "child";
+  for (const char* f : {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
+                        "black_sea_nw_shelf_grid.png", "black_sea_nw_shelf_roms.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+
+  // Sizes: parent ψ I 6..24, J 28..47 split 3 x 3 → Lm = 54, Mm = 57, 56 x 59 ρ points.
+  const auto parent = aq::io::read_roms_grid_fields(parent_);
+  const auto fine = aq::io::read_roms_grid_fields(out / "black_sea_nw_shelf_grd.nc");
+  ASSERT_EQ(fine.L, 55);
+  ASSERT_EQ(fine.M, 58);
+  // Every parent ψ point in the box is the fine ψ point 3 (I − 6) + 1, 3 (J − 28) + 1 (ROMS indices).
+  double worst = 0;
+  for (int J = 28; J <= 47; ++J)
+    for (int I = 6; I <= 24; ++I) {
+      const auto pk = static_cast<std::size_t>((J - 1) * parent.L + (I - 1));
+      const auto fk = static_cast<std::size_t>(3 * (J - 28) * fine.L + 3 * (I - 6));
+      worst = std::max(worst, aq::curvilinear::great_circle_m(parent.lon_psi[pk], parent.lat_psi[pk],
+                                                              fine.lon_psi[fk], fine.lat_psi[fk], 6371000.0));
+    }
+  EXPECT_LT(worst, 1e-6) << "metres";
+  // The fine grid was made in the parent's plane and says where it came from.
+  EXPECT_EQ(fine.proj, parent.proj);
+  EXPECT_EQ(fine.rlat, parent.rlat);
+  const std::string gh = run_text("ncdump -h " + (out / "black_sea_nw_shelf_grd.nc").string());
+  EXPECT_THAT(gh, HasSubstr(":parent_Imin = 6 ;"));
+  EXPECT_THAT(gh, HasSubstr(":parent_Jmax = 47 ;"));
+  EXPECT_THAT(gh, HasSubstr(":refine_factor = 3 ;"));
+
+  // The contact file: c_contact.m's schema ...
+  const fs::path nc = out / "black_sea_nw_shelf_contact.nc";
+  const std::string h = run_text("ncdump -h " + nc.string());
+  for (const char* v :
+       {"Ngrids = 2 ;", "Ncontact = 2 ;", "nLweights = 4 ;", "nQweights = 9 ;", "int spherical ;", "int Lm(Ngrids) ;",
+        "int Mm(Ngrids) ;", "int refine_factor(Ngrids) ;", "int coincident(Ncontact) ;", "int composite(Ncontact) ;",
+        "int mosaic(Ncontact) ;", "int refinement(Ncontact) ;", "int interpolate(Ncontact) ;",
+        "int donor_grid(Ncontact) ;", "int receiver_grid(Ncontact) ;", "int I_left(Ngrids) ;", "int I_right(Ngrids) ;",
+        "int J_bottom(Ngrids) ;", "int J_top(Ngrids) ;", "int NstrR(Ncontact) ;", "int NendV(Ncontact) ;",
+        "int contact_region(datum) ;", "int on_boundary(datum) ;", "int Idg(datum) ;", "int Jdg(datum) ;",
+        "int Irg(datum) ;", "int Jrg(datum) ;", "double xi_dg(datum) ;", "double eta_dg(datum) ;",
+        "double xi_rg(datum) ;", "double eta_rg(datum) ;", "double Xdg(datum) ;", "double Ydg(datum) ;",
+        "double Xrg(datum) ;", "double Yrg(datum) ;", "double Lweight(datum, nLweights) ;",
+        "double Qweight(datum, nQweights) ;", "double h(datum) ;", "double f(datum) ;", "double pm(datum) ;",
+        "double pn(datum) ;", "double dndx(datum) ;", "double dmde(datum) ;", "double angle(datum) ;",
+        "double mask(datum) ;", "h:_FillValue = 1.e+37 ;", "I_left:_FillValue = -999 ;",
+        ":type = \"ROMS Nesting Contact Regions Data\" ;"})
+    EXPECT_THAT(h, HasSubstr(v));
+  EXPECT_THAT(h, ::testing::Not(HasSubstr("hybrid")));
+  // ... and values: the two regions, the box, the counts of the band and of the coarse points inside.
+  const std::string v = run_text("ncdump -v Lm,Mm,refine_factor,I_left,J_top,donor_grid,receiver_grid,refinement,"
+                                 "NstrR,NendR,NendV " +
+                                 nc.string());
+  for (const char* s : {"Lm = 64, 54 ;", "Mm = 49, 57 ;", "refine_factor = 0, 3 ;", "I_left = _, 6 ;",
+                        "J_top = _, 47 ;", "donor_grid = 1, 2 ;", "receiver_grid = 2, 1 ;", "refinement = 1, 1 ;",
+                        "NstrR = 1, 2465 ;", "NendR = 826, 2806 ;", "NendV = 2464, 3453 ;"})
+    EXPECT_THAT(v, HasSubstr(s));
+
+  // The report: the coarse ψ points coincide, the step ratio is the factor.
+  std::ifstream rf(out / "black_sea_nw_shelf_report.json");
+  std::stringstream ss;
+  ss << rf.rdbuf();
+  const auto j = nlohmann::json::parse(ss.str());
+  EXPECT_LT(j["contact"]["coarse_psi_coincidence_m"].get<double>(), 1e-6);
+  EXPECT_NEAR(j["contact"]["refinement_ratio_median"].get<double>(), 3.0, 0.01);
+  EXPECT_EQ(j["contact"]["fine_to_coarse"]["rho"].get<int>(), 18 * 19);
+  EXPECT_LT(j["quality"]["ortho_err_50"]["worst"].get<double>(), 1e-3);
+}
+
+TEST_F(RefineCli, BadRefinementSettingsStopWithTheConfigName) {
+  struct Case {
+    std::string set, message;
+  };
+  for (const Case& k : {Case{"--set nesting.refine_factor=4", "nesting.refine_factor"},
+                        Case{"--set nesting.parent_box=[1,10,28,47]", "must lie within the parent's psi points"},
+                        Case{"--set nesting.parent_box=[20,10,28,47]", "nesting.parent_box"},
+                        Case{"--set nesting.refine_factor=0", "only as a refinement"}}) {
+    const auto o = run_aquatoria(child_args("bad", k.set));
+    EXPECT_TRUE(o.exit_code == 1 || o.exit_code == 2) << k.set << ": " << o.exit_code;
+    EXPECT_THAT(o.err, HasSubstr("black_sea_nw_shelf.toml")) << k.set;
+    EXPECT_THAT(o.err, HasSubstr(k.message)) << k.set;
+    EXPECT_FALSE(fs::exists(dir_ / "bad" / "black_sea_nw_shelf_contact.nc")) << k.set;
+    EXPECT_FALSE(fs::exists(dir_ / "bad" / "black_sea_nw_shelf_grd.nc")) << k.set;
+  }
+  const auto m = run_aquatoria("regional -c " + kChild + " --set nesting.parent=/nonexistent/p_grd.nc -o " +
+                               (dir_ / "bad").string() + " --no-coastline");
+  EXPECT_TRUE(m.exit_code == 1 || m.exit_code == 2);
+  EXPECT_THAT(m.err, HasSubstr("/nonexistent/p_grd.nc"));
+}
