@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "curvilinear/cgrid.hpp"
 #include "handoff/contact_points.hpp"
+#include "io/roms_grid_png.hpp"
 
 #ifndef AQ_VERSION
 #define AQ_VERSION "dev"
@@ -48,8 +49,8 @@ curvilinear::RegionalParams parent_plane(const curvilinear::RegionalParams& base
   q.rlon = p.lon_psi[c];
   q.rota = 0.0;
   q.radius = radius_m;
-  source = fmt::format("a stereographic plane centred at {:.4f}E {:.4f}N (the parent file names no projection)",
-                       q.rlon, q.rlat);
+  source = fmt::format("a stereographic plane centred at {:.4f}E {:.4f}N (the parent file names no projection)", q.rlon,
+                       q.rlat);
   return q;
 }
 
@@ -60,9 +61,10 @@ curvilinear::Grid2D parent_supergrid(const io::RomsGridFields& p, const curvilin
   const auto put = [&](int I, int J, double lon, double lat) {
     const curvilinear::PlanePoint q = proj.forward(lon, lat);
     if (!std::isfinite(q.x) || !std::isfinite(q.y))
-      throw InputError(fmt::format("{}: the point {:.6f}E {:.6f}N (supergrid {}, {}) has no finite plane position in "
-                                   "the parent's projection",
-                                   parent_path, lon, lat, I, J));
+      throw InputError(
+          fmt::format("{}: the point {:.6f}E {:.6f}N (supergrid {}, {}) has no finite plane position in "
+                      "the parent's projection",
+                      parent_path, lon, lat, I, J));
     g.x[g.at(I, J)] = q.x;
     g.y[g.at(I, J)] = q.y;
   };
@@ -103,14 +105,14 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   g.box = {n.parent_box[0], n.parent_box[1], n.parent_box[2], n.parent_box[3], n.refine_factor};
   g.parent = io::read_roms_grid_fields(n.parent);
   if (const std::string bad = handoff::refinement_box_problem(g.box, g.parent.L, g.parent.M); !bad.empty())
-    throw ConfigError(
-        fmt::format("{}: nesting.parent_box = {} in nesting.parent = {}: {}", config_source, box_text(g.box), n.parent,
-                    bad));
+    throw ConfigError(fmt::format("{}: nesting.parent_box = {} in nesting.parent = {}: {}", config_source,
+                                  box_text(g.box), n.parent, bad));
 
   curvilinear::RegionalResult& r = g.result;
   r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, g.projection_source);
   const curvilinear::Projection proj(curvilinear::projection_params(r.params));
-  g.padded = curvilinear::refine_supergrid(parent_supergrid(g.parent, proj, n.parent), g.box, kRefinePad);
+  g.parent_plane = parent_supergrid(g.parent, proj, n.parent);
+  g.padded = curvilinear::refine_supergrid(g.parent_plane, g.box, kRefinePad);
   r.projection.emplace(proj);
   r.grid = curvilinear::unpad_supergrid(g.padded, kRefinePad);
   r.nx = g.box.L();
@@ -135,16 +137,16 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
                                    {"rho", {g.box.L() + 1, g.box.M() + 1}},
                                    {"plane", g.projection_source},
                                    {"dxi_over_deta", r.dxi_over_deta}};
-  stage.done(fmt::format("parent psi I {}..{} x J {}..{} of {} split {} x {}: {} x {} rho points (supergrid {} x {}) "
-                         "in {}",
-                         g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, n.parent, g.box.factor,
-                         g.box.factor, g.box.L() + 1, g.box.M() + 1, G.nx_pts, G.ny_pts, g.projection_source));
+  stage.done(
+      fmt::format("parent psi I {}..{} x J {}..{} of {} split {} x {}: {} x {} rho points (supergrid {} x {}) "
+                  "in {}",
+                  g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, n.parent, g.box.factor, g.box.factor,
+                  g.box.L() + 1, g.box.M() + 1, G.nx_pts, G.ny_pts, g.projection_source));
   return g;
 }
 
-void write_refinement_contact(const config::RegionalConfig& c, const std::string& config_source,
-                              const RefinedGrid& g, OutputSet& out, Json& outputs, Report& report,
-                              const Logger& log) {
+void write_refinement_contact(const config::RegionalConfig& c, const std::string& config_source, const RefinedGrid& g,
+                              OutputSet& out, Json& outputs, Report& report, const Logger& log) {
   StageScope stage("contact", &report, log);
   curvilinear::CGridOptions co;
   co.earth_radius_m = c.roms.earth_radius_m;
@@ -158,12 +160,12 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
   const int r = g.box.factor;
   for (int J = g.box.j_bottom; J <= g.box.j_top; ++J)
     for (int I = g.box.i_left; I <= g.box.i_right; ++I) {
-      const std::size_t ck = static_cast<std::size_t>(J - 1) * static_cast<std::size_t>(g.parent.L) +
-                             static_cast<std::size_t>(I - 1);
+      const std::size_t ck =
+          static_cast<std::size_t>(J - 1) * static_cast<std::size_t>(g.parent.L) + static_cast<std::size_t>(I - 1);
       const std::size_t fk = fine.psi.at(r * (I - g.box.i_left) + kRefinePad, r * (J - g.box.j_bottom) + kRefinePad);
-      coincide_m = std::max(coincide_m, curvilinear::great_circle_m(g.parent.lon_psi[ck], g.parent.lat_psi[ck],
-                                                                    fine.psi.lon_deg[fk], fine.psi.lat_deg[fk],
-                                                                    c.roms.earth_radius_m));
+      coincide_m = std::max(
+          coincide_m, curvilinear::great_circle_m(g.parent.lon_psi[ck], g.parent.lat_psi[ck], fine.psi.lon_deg[fk],
+                                                  fine.psi.lat_deg[fk], c.roms.earth_radius_m));
     }
 
   const std::string grd = c.name + "_grd.nc";
@@ -177,6 +179,18 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
   const std::string name = c.name + "_contact.nc";
   io::write_contact(out.temp_path(name), f);
   outputs.push_back(Json{{"file", name}, {"checksum_fnv1a64", file_checksum(out.pending_path(name))}});
+  // The parent with this grid outlined.
+  io::RomsPictureOptions po;
+  po.title =
+      fmt::format("{} in {}: psi I {}..{} x J {}..{} split {} x {} ({} x {} rho points)", c.name, c.nesting.parent,
+                  g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, r, r, g.box.L() + 1, g.box.M() + 1);
+  po.outlines.push_back(g.result.contour_samples);
+  std::vector<std::uint8_t> pmask(g.parent.mask_rho.size());
+  for (std::size_t k = 0; k < pmask.size(); ++k) pmask[k] = g.parent.mask_rho[k] > 0.5 ? 1 : 0;
+  const std::string png = c.name + "_in_parent.png";
+  io::write_roms_png(out.temp_path(png), g.parent_plane, pmask, g.parent.h, po);
+  outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
+
   const auto& a = sum.coarse_to_fine;
   const auto& b = sum.fine_to_coarse;
   report["contact"] = Json{{"file", name},
@@ -188,10 +202,10 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
                            {"refine_factor", r},
                            {"refinement_ratio_median", sum.ratio_median},
                            {"coarse_psi_coincidence_m", coincide_m}};
-  stage.done(fmt::format("{}: {} points, coarse->fine {} rho {} u {} v, fine->coarse {} rho {} u {} v ({} over water); "
-                         "fine/coarse step ratio {:.4g}; coarse psi points on the fine grid within {:.2g} m",
-                         name, sum.points, a[0], a[1], a[2], b[0], b[1], b[2], sum.wet_points, sum.ratio_median,
-                         coincide_m));
+  stage.done(fmt::format(
+      "{}: {} points, coarse->fine {} rho {} u {} v, fine->coarse {} rho {} u {} v ({} over water); "
+      "fine/coarse step ratio {:.4g}; coarse psi points on the fine grid within {:.2g} m; {}",
+      name, sum.points, a[0], a[1], a[2], b[0], b[1], b[2], sum.wet_points, sum.ratio_median, coincide_m, png));
 }
 
 }  // namespace aq::app

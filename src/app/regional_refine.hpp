@@ -26,6 +26,7 @@ inline constexpr int kRefinePad = 4;
 struct RefinedGrid {
   curvilinear::RegionalResult result;  ///< completed = grid: the fine supergrid and the parent's projection
   curvilinear::Grid2D padded;          ///< the fine supergrid kRefinePad cells wider on every side
+  curvilinear::Grid2D parent_plane;    ///< the parent's supergrid in the same plane
   curvilinear::RefineBox box;
   io::RomsGridFields parent;
   std::string projection_source;  ///< where the plane came from (the parent's attributes, or a fallback)
@@ -36,7 +37,8 @@ struct RefinedGrid {
 RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string& config_source, const Logger& log,
                              Report* report);
 
-/// Writes <name>_contact.nc for `grid` through `out`, appends it to `outputs`, adds a "contact"
+/// Writes <name>_contact.nc and <name>_in_parent.png (the parent's ROMS grid with this grid outlined)
+/// for `grid` through `out`, appends it to `outputs`, adds a "contact"
 /// report section and logs "contact: done ...".
 void write_refinement_contact(const config::RegionalConfig& c, const std::string& config_source,
                               const RefinedGrid& grid, OutputSet& out, Json& outputs, Report& report,

@@ -149,25 +149,29 @@ void write_roms_png(const std::filesystem::path& path, const curvilinear::Grid2D
     cairo_stroke(cr);
   }
 
-  // Coastline.
+  // Coastline, then the outlines.
+  const double max_jump = 0.5 * std::max(x1 - x0, y1 - y0);
+  const auto polylines = [&](const std::vector<std::vector<curvilinear::PlanePoint>>& lines, bool closed) {
+    for (const auto& line : lines) {
+      bool down = false;
+      curvilinear::PlanePoint prev{};
+      for (const auto& q : line) {
+        const bool ok = std::isfinite(q.x) && std::isfinite(q.y);
+        if (ok && down && std::hypot(q.x - prev.x, q.y - prev.y) <= max_jump) {
+          cairo_line_to(cr, px(q.x), py(q.y));
+        } else if (ok) {
+          cairo_move_to(cr, px(q.x), py(q.y));
+        }
+        down = ok;
+        prev = q;
+      }
+      if (closed) cairo_close_path(cr);
+      cairo_stroke(cr);
+    }
+  };
   cairo_set_source_rgb(cr, 0.35, 0.22, 0.08);
   cairo_set_line_width(cr, 1.0);
-  const double max_jump = 0.5 * std::max(x1 - x0, y1 - y0);
-  for (const auto& line : o.coastlines) {
-    bool down = false;
-    curvilinear::PlanePoint prev{};
-    for (const auto& q : line) {
-      const bool ok = std::isfinite(q.x) && std::isfinite(q.y);
-      if (ok && down && std::hypot(q.x - prev.x, q.y - prev.y) <= max_jump) {
-        cairo_line_to(cr, px(q.x), py(q.y));
-      } else if (ok) {
-        cairo_move_to(cr, px(q.x), py(q.y));
-      }
-      down = ok;
-      prev = q;
-    }
-    cairo_stroke(cr);
-  }
+  polylines(o.coastlines, false);
 
   // The contour (the supergrid's outline).
   cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
@@ -186,6 +190,10 @@ void write_roms_png(const std::filesystem::path& path, const curvilinear::Grid2D
   }
   cairo_close_path(cr);
   cairo_stroke(cr);
+
+  cairo_set_source_rgb(cr, 0.85, 0.1, 0.1);
+  cairo_set_line_width(cr, 2.4);
+  polylines(o.outlines, true);
 
   // Title and legend: land swatch, then the depth bar with 1-2-5 ticks.
   cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);

@@ -23,6 +23,8 @@ struct RomsPictureOptions {
   std::string title;        ///< drawn at the top
   /// Coastline polylines already in the plane (non-finite points cut a line).
   std::vector<std::vector<curvilinear::PlanePoint>> coastlines;
+  /// Closed outlines drawn in red over everything (e.g. a refinement grid nested in this one).
+  std::vector<std::vector<curvilinear::PlanePoint>> outlines;
 };
 
 /// Draws the grid of `supergrid` ((2L+1) × (2M+1) points) with `mask_rho` and `h` (ρ arrays of

@@ -63,8 +63,9 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
   EXPECT_THAT(c.err, HasSubstr("refine: done"));
   EXPECT_THAT(c.err, HasSubstr("contact: done"));
   const fs::path out = dir_ / "child";
-  for (const char* f : {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
-                        "black_sea_nw_shelf_grid.png", "black_sea_nw_shelf_roms.png"})
+  for (const char* f :
+       {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
+        "black_sea_nw_shelf_grid.png", "black_sea_nw_shelf_roms.png", "black_sea_nw_shelf_in_parent.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
 
   // Sizes: parent ψ I 6..24, J 28..47 split 3 x 3 → Lm = 54, Mm = 57, 56 x 59 ρ points.
@@ -78,8 +79,8 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
     for (int I = 6; I <= 24; ++I) {
       const auto pk = static_cast<std::size_t>((J - 1) * parent.L + (I - 1));
       const auto fk = static_cast<std::size_t>(3 * (J - 28) * fine.L + 3 * (I - 6));
-      worst = std::max(worst, aq::curvilinear::great_circle_m(parent.lon_psi[pk], parent.lat_psi[pk],
-                                                              fine.lon_psi[fk], fine.lat_psi[fk], 6371000.0));
+      worst = std::max(worst, aq::curvilinear::great_circle_m(parent.lon_psi[pk], parent.lat_psi[pk], fine.lon_psi[fk],
+                                                              fine.lat_psi[fk], 6371000.0));
     }
   EXPECT_LT(worst, 1e-6) << "metres";
   // The fine grid was made in the parent's plane and says where it came from.
@@ -93,26 +94,61 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
   // The contact file: c_contact.m's schema ...
   const fs::path nc = out / "black_sea_nw_shelf_contact.nc";
   const std::string h = run_text("ncdump -h " + nc.string());
-  for (const char* v :
-       {"Ngrids = 2 ;", "Ncontact = 2 ;", "nLweights = 4 ;", "nQweights = 9 ;", "int spherical ;", "int Lm(Ngrids) ;",
-        "int Mm(Ngrids) ;", "int refine_factor(Ngrids) ;", "int coincident(Ncontact) ;", "int composite(Ncontact) ;",
-        "int mosaic(Ncontact) ;", "int refinement(Ncontact) ;", "int interpolate(Ncontact) ;",
-        "int donor_grid(Ncontact) ;", "int receiver_grid(Ncontact) ;", "int I_left(Ngrids) ;", "int I_right(Ngrids) ;",
-        "int J_bottom(Ngrids) ;", "int J_top(Ngrids) ;", "int NstrR(Ncontact) ;", "int NendV(Ncontact) ;",
-        "int contact_region(datum) ;", "int on_boundary(datum) ;", "int Idg(datum) ;", "int Jdg(datum) ;",
-        "int Irg(datum) ;", "int Jrg(datum) ;", "double xi_dg(datum) ;", "double eta_dg(datum) ;",
-        "double xi_rg(datum) ;", "double eta_rg(datum) ;", "double Xdg(datum) ;", "double Ydg(datum) ;",
-        "double Xrg(datum) ;", "double Yrg(datum) ;", "double Lweight(datum, nLweights) ;",
-        "double Qweight(datum, nQweights) ;", "double h(datum) ;", "double f(datum) ;", "double pm(datum) ;",
-        "double pn(datum) ;", "double dndx(datum) ;", "double dmde(datum) ;", "double angle(datum) ;",
-        "double mask(datum) ;", "h:_FillValue = 1.e+37 ;", "I_left:_FillValue = -999 ;",
-        ":type = \"ROMS Nesting Contact Regions Data\" ;"})
+  for (const char* v : {"Ngrids = 2 ;",
+                        "Ncontact = 2 ;",
+                        "nLweights = 4 ;",
+                        "nQweights = 9 ;",
+                        "int spherical ;",
+                        "int Lm(Ngrids) ;",
+                        "int Mm(Ngrids) ;",
+                        "int refine_factor(Ngrids) ;",
+                        "int coincident(Ncontact) ;",
+                        "int composite(Ncontact) ;",
+                        "int mosaic(Ncontact) ;",
+                        "int refinement(Ncontact) ;",
+                        "int interpolate(Ncontact) ;",
+                        "int donor_grid(Ncontact) ;",
+                        "int receiver_grid(Ncontact) ;",
+                        "int I_left(Ngrids) ;",
+                        "int I_right(Ngrids) ;",
+                        "int J_bottom(Ngrids) ;",
+                        "int J_top(Ngrids) ;",
+                        "int NstrR(Ncontact) ;",
+                        "int NendV(Ncontact) ;",
+                        "int contact_region(datum) ;",
+                        "int on_boundary(datum) ;",
+                        "int Idg(datum) ;",
+                        "int Jdg(datum) ;",
+                        "int Irg(datum) ;",
+                        "int Jrg(datum) ;",
+                        "double xi_dg(datum) ;",
+                        "double eta_dg(datum) ;",
+                        "double xi_rg(datum) ;",
+                        "double eta_rg(datum) ;",
+                        "double Xdg(datum) ;",
+                        "double Ydg(datum) ;",
+                        "double Xrg(datum) ;",
+                        "double Yrg(datum) ;",
+                        "double Lweight(datum, nLweights) ;",
+                        "double Qweight(datum, nQweights) ;",
+                        "double h(datum) ;",
+                        "double f(datum) ;",
+                        "double pm(datum) ;",
+                        "double pn(datum) ;",
+                        "double dndx(datum) ;",
+                        "double dmde(datum) ;",
+                        "double angle(datum) ;",
+                        "double mask(datum) ;",
+                        "h:_FillValue = 1.e+37 ;",
+                        "I_left:_FillValue = -999 ;",
+                        ":type = \"ROMS Nesting Contact Regions Data\" ;"})
     EXPECT_THAT(h, HasSubstr(v));
   EXPECT_THAT(h, ::testing::Not(HasSubstr("hybrid")));
   // ... and values: the two regions, the box, the counts of the band and of the coarse points inside.
-  const std::string v = run_text("ncdump -v Lm,Mm,refine_factor,I_left,J_top,donor_grid,receiver_grid,refinement,"
-                                 "NstrR,NendR,NendV " +
-                                 nc.string());
+  const std::string v = run_text(
+      "ncdump -v Lm,Mm,refine_factor,I_left,J_top,donor_grid,receiver_grid,refinement,"
+      "NstrR,NendR,NendV " +
+      nc.string());
   for (const char* s : {"Lm = 64, 54 ;", "Mm = 49, 57 ;", "refine_factor = 0, 3 ;", "I_left = _, 6 ;",
                         "J_top = _, 47 ;", "donor_grid = 1, 2 ;", "receiver_grid = 2, 1 ;", "refinement = 1, 1 ;",
                         "NstrR = 1, 2465 ;", "NendR = 826, 2806 ;", "NendV = 2464, 3453 ;"})
