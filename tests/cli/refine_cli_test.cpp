@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <netcdf.h>
+
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -184,4 +186,33 @@ TEST_F(RefineCli, BadRefinementSettingsStopWithTheConfigName) {
                                (dir_ / "bad").string() + " --no-coastline");
   EXPECT_TRUE(m.exit_code == 1 || m.exit_code == 2);
   EXPECT_THAT(m.err, HasSubstr("/nonexistent/p_grd.nc"));
+}
+
+TEST_F(RefineCli, ParentWithoutProjectionAttributesUsesAStereographicPlane) {
+  // A ROMS grid file from another tool names no projection: the fine grid is cut in a stereographic
+  // plane centred on the box, and the parent's ψ points still lie on it.
+  const fs::path foreign = dir_ / "foreign_grd.nc";
+  fs::copy_file(parent_, foreign, fs::copy_options::overwrite_existing);
+  int nc = -1;
+  ASSERT_EQ(nc_open(foreign.c_str(), NC_WRITE, &nc), NC_NOERR);
+  ASSERT_EQ(nc_redef(nc), NC_NOERR);
+  for (const char* a : {"proj", "rlat", "rlon", "rota", "uscale", "aspect_ratio"}) nc_del_att(nc, NC_GLOBAL, a);
+  ASSERT_EQ(nc_close(nc), NC_NOERR);
+  const auto c = run_aquatoria("regional -c " + kChild + " --set nesting.parent=\"" + foreign.string() + "\" -o " +
+                               (dir_ / "foreign").string() + " --no-coastline");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_THAT(c.err, HasSubstr("stereographic plane centred"));
+  std::ifstream rf(dir_ / "foreign" / "black_sea_nw_shelf_report.json");
+  std::stringstream ss;
+  ss << rf.rdbuf();
+  const auto j = nlohmann::json::parse(ss.str());
+  EXPECT_LT(j["contact"]["coarse_psi_coincidence_m"].get<double>(), 1e-6);
+  EXPECT_LT(j["quality"]["ortho_err_50"]["worst"].get<double>(), 1e-3);
+}
+
+TEST_F(RefineCli, StoppingBeforeTheGridDoesNotApply) {
+  const auto o = run_aquatoria(child_args("stop", "--stop-after contour"));
+  EXPECT_EQ(o.exit_code, 2) << o.err;
+  EXPECT_THAT(o.err, HasSubstr("refinement grid"));
+  EXPECT_FALSE(fs::exists(dir_ / "stop" / "black_sea_nw_shelf_grid.png"));
 }
