@@ -7,11 +7,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <netcdf.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <netcdf.h>
 
 #include <nlohmann/json.hpp>
 #include <sstream>
