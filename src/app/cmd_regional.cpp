@@ -170,7 +170,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
 
   // Stage 5 on the sphere: the ROMS grid file <name>_grd.nc and <name>_roms.png (app/regional_roms.hpp).
   if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled)
-    write_regional_roms(c, loaded.source, result, out, outputs, report, log);
+    write_regional_roms(c, loaded.source, result, out, outputs, report, log,
+                        refined ? &refined->parent_h_on_grid : nullptr);
   // Nesting data beside it: boundary points in the global mesh (app/regional_nesting.hpp).
   if (wants_regional_nesting(c, result)) write_regional_nesting(c, loaded.source, result, out, outputs, report, log);
   // ROMS contact points of a refinement grid and its parent (app/regional_refine.hpp).

@@ -112,6 +112,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, g.projection_source);
   const curvilinear::Projection proj(curvilinear::projection_params(r.params));
   g.parent_plane = parent_supergrid(g.parent, proj, n.parent);
+  g.parent_h_on_grid = handoff::parent_rho_on_fine(g.parent, g.parent.h, g.box);
   g.padded = curvilinear::refine_supergrid(g.parent_plane, g.box, kRefinePad);
   r.projection.emplace(proj);
   r.grid = curvilinear::unpad_supergrid(g.padded, kRefinePad);

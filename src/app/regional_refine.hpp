@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "config/regional.hpp"
 #include "core/log.hpp"
@@ -29,7 +30,8 @@ struct RefinedGrid {
   curvilinear::Grid2D parent_plane;    ///< the parent's supergrid in the same plane
   curvilinear::RefineBox box;
   io::RomsGridFields parent;
-  std::string projection_source;  ///< where the plane came from (the parent's attributes, or a fallback)
+  std::vector<double> parent_h_on_grid;  ///< the parent's h at the fine ρ points (depth blending)
+  std::string projection_source;         ///< where the plane came from (the parent's attributes, or a fallback)
 };
 
 /// Reads nesting.parent and cuts the refinement grid. Throws InputError for an unreadable parent,

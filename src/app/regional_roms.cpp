@@ -42,7 +42,7 @@ config::Loaded<config::GlobalConfig> load_global_run(const config::RegionalConfi
 
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
                          const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
-                         const Logger& log) {
+                         const Logger& log, const std::vector<double>* parent_h) {
   if (result.completed != curvilinear::Stage::kGrid || !result.projection)
     throw InternalError("roms: the regional run did not complete the grid stage");
   StageScope rs("roms", &report, log);
@@ -101,7 +101,26 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   curvilinear::DepthOptions dopt;
   dopt.hmin_m = c.roms.hmin_m;
   dopt.rmax = c.roms.rmax;
-  const curvilinear::DepthResult depth = curvilinear::roms_depth(hraw, masks.rho, ni, nj, dopt);
+  // A refinement grid blends into the parent's depth towards the boundary, before clipping and
+  // smoothing, so that the r-factor bound holds for the blended depth too.
+  const int blend = parent_h != nullptr ? c.nesting.blend_cells : 0;
+  double blend_change = 0.0;
+  std::vector<double> hmodel = hraw;
+  if (parent_h != nullptr && blend > 0) {
+    if (parent_h->size() != nr)
+      throw InternalError(fmt::format("roms: {} parent depths for {} rho points", parent_h->size(), nr));
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) {
+        const int d = std::min({i, ni - 1 - i, j, nj - 1 - j});  // rows from the outer ring
+        if (d >= blend) continue;
+        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i);
+        const double w = 1.0 - static_cast<double>(d) / blend;
+        const double hb = w * (*parent_h)[k] + (1.0 - w) * hraw[k];
+        blend_change = std::max(blend_change, std::abs(hb - hraw[k]));
+        hmodel[k] = hb;
+      }
+  }
+  const curvilinear::DepthResult depth = curvilinear::roms_depth(hmodel, masks.rho, ni, nj, dopt);
   const curvilinear::CGridStats st = curvilinear::cgrid_stats(cg);
 
   // The file.
@@ -176,6 +195,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
     data.attributes.emplace("parent_Jmin", static_cast<std::int64_t>(b[2]));
     data.attributes.emplace("parent_Jmax", static_cast<std::int64_t>(b[3]));
     data.attributes.emplace("refine_factor", static_cast<std::int64_t>(c.nesting.refine_factor));
+    data.attributes.emplace("parent_depth_blend",
+                            fmt::format("h = w h_parent + (1-w) h over the {} rho rows next to the boundary, w = 1 - "
+                                        "d/{} at d rows from the outer ring (h_parent bilinear in the parent's index "
+                                        "space, as in the contact file), applied to hraw before clipping and smoothing",
+                                        blend, blend));
   }
   const std::string nc = c.name + "_grd.nc";
   io::write_roms_grid(out.temp_path(nc), data);
@@ -248,6 +272,8 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                        {"clipped_wet", depth.clipped_wet},
                                        {"rx0_before", depth.rx0_before},
                                        {"rx0_after", depth.rx0_after},
+                                       {"parent_blend_cells", blend},
+                                       {"parent_blend_max_change_m", blend_change},
                                        {"smoothed_points", depth.smoothed},
                                        {"max_deepening_m", depth.max_deepening_m},
                                        {"volume_added_rel", depth.volume_added_rel},

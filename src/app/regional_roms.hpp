@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "config/regional.hpp"
 #include "core/log.hpp"
@@ -20,9 +21,13 @@ namespace aq::app {
 /// report section and logs "roms: done ...". `config_source` names the regional config in
 /// messages and file attributes. Throws ConfigError for a bad roms.* value or global config,
 /// InputError when the grid leaves the bathymetry or contains no water of the global ocean
-/// (naming both configs), and what the writers throw.
+/// (naming both configs), and what the writers throw. `parent_h`, for a refinement grid, is the
+/// parent's h at this grid's ρ points (handoff::parent_rho_on_fine): over nesting.blend_cells rows
+/// from the boundary the model depth blends linearly from it (weight 1 on the outer ρ ring, where
+/// ROMS puts the contact file's parent depth) into the grid's own, before clipping and smoothing
+/// (hraw in the file stays the bathymetry's).
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
                          const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
-                         const Logger& log);
+                         const Logger& log, const std::vector<double>* parent_h = nullptr);
 
 }  // namespace aq::app

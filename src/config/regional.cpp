@@ -176,6 +176,9 @@ const S& schema() {
                            "point) or 0 for no refinement");
         },
         "");
+    t.add<int>(
+        "nesting", "blend_cells", [](RegionalConfig& c) -> int& { return c.nesting.blend_cells; },
+        [](const int& v) { return v >= 0 ? std::string() : std::string("must be >= 0 (0 = no blending)"); }, "");
     t.add_custom(
         "nesting", "parent_box",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {

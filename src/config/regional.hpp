@@ -42,6 +42,9 @@ struct NestingOptions {
   /// Parent ψ-point indices (ROMS's 1-based I, J of ψ) of the refinement grid's corners:
   /// I_left, I_right, J_bottom, J_top; all 0 = not set.
   std::array<int, 4> parent_box{0, 0, 0, 0};
+  /// Fine ρ rows next to the boundary over which the model depth h blends from the parent's h
+  /// (interpolated; what ROMS copies onto the outer ring) into the grid's own; 0 = no blending.
+  int blend_cells = 6;
 
   [[nodiscard]] bool refinement() const { return refine_factor > 0; }
 };

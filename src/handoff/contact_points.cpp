@@ -88,6 +88,27 @@ std::string refinement_box_problem(const curvilinear::RefineBox& b, int PL, int 
       b.i_left, b.i_right, b.j_bottom, b.j_top, PL - 1, PM - 1, PL, PM);
 }
 
+std::vector<double> parent_rho_on_fine(const io::RomsGridFields& parent, const std::vector<double>& field,
+                                       const curvilinear::RefineBox& box) {
+  if (const std::string bad = refinement_box_problem(box, parent.L, parent.M); !bad.empty()) throw ConfigError(bad);
+  if (field.size() != parent.lon_rho.size())
+    throw InternalError(
+        fmt::format("parent_rho_on_fine: {} values for {} parent rho points", field.size(), parent.lon_rho.size()));
+  const int L = box.L(), M = box.M();
+  std::vector<double> out(static_cast<std::size_t>(L + 1) * static_cast<std::size_t>(M + 1));
+  for (int j = 0; j <= M; ++j) {
+    const Axis ay = axis(j, box.j_bottom, box.factor, true);
+    for (int i = 0; i <= L; ++i) {
+      const Axis ax = axis(i, box.i_left, box.factor, true);
+      const auto at = [&](int a, int b) { return field[parent.rho_at(a, b)]; };
+      out[static_cast<std::size_t>(j) * static_cast<std::size_t>(L + 1) + static_cast<std::size_t>(i)] =
+          (1 - ax.p) * (1 - ay.p) * at(ax.donor, ay.donor) + ax.p * (1 - ay.p) * at(ax.donor + 1, ay.donor) +
+          ax.p * ay.p * at(ax.donor + 1, ay.donor + 1) + (1 - ax.p) * ay.p * at(ax.donor, ay.donor + 1);
+    }
+  }
+  return out;
+}
+
 io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvilinear::RefineBox& box,
                                    const curvilinear::CGrid& fine, int pad, ContactSummary* summary) {
   if (const std::string bad = refinement_box_problem(box, parent.L, parent.M); !bad.empty()) throw ConfigError(bad);

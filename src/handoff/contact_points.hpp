@@ -60,4 +60,11 @@ std::string refinement_box_problem(const curvilinear::RefineBox& box, int parent
 io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvilinear::RefineBox& box,
                                    const curvilinear::CGrid& fine, int pad, ContactSummary* summary = nullptr);
 
+/// A parent ρ field (e.g. h) at the refinement grid's ρ points 0..L × 0..M (value (i, j) at
+/// j·(L+1) + i), bilinear in the parent's fractional index space: the interpolation region 1 of
+/// refinement_contact uses, so on the fine grid's outer ρ ring it equals the contact file's value
+/// there (which ROMS copies into the fine grid). Throws ConfigError as refinement_contact does.
+std::vector<double> parent_rho_on_fine(const io::RomsGridFields& parent, const std::vector<double>& field,
+                                       const curvilinear::RefineBox& box);
+
 }  // namespace aq::handoff

@@ -156,6 +156,34 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
                         "NstrR = 1, 2465 ;", "NendR = 826, 2806 ;", "NendV = 2464, 3453 ;"})
     EXPECT_THAT(v, HasSubstr(s));
 
+  // The fine grid's depth on its outer ρ ring is the contact file's (the parent's, interpolated),
+  // which ROMS copies there; blending over 6 rows keeps the r-factor bound.
+  {
+    int id = -1, var = -1;
+    ASSERT_EQ(nc_open(nc.c_str(), NC_NOWRITE, &id), NC_NOERR);
+    int nend[2] = {0, 0};
+    ASSERT_EQ(nc_inq_varid(id, "NendR", &var), NC_NOERR);
+    ASSERT_EQ(nc_get_var_int(id, var, nend), NC_NOERR);
+    const auto n = static_cast<std::size_t>(nend[0]);
+    std::vector<int> irg(n), jrg(n);
+    std::vector<double> hc(n);
+    const std::size_t start = 0;
+    ASSERT_EQ(nc_inq_varid(id, "Irg", &var), NC_NOERR);
+    ASSERT_EQ(nc_get_vara_int(id, var, &start, &n, irg.data()), NC_NOERR);
+    ASSERT_EQ(nc_inq_varid(id, "Jrg", &var), NC_NOERR);
+    ASSERT_EQ(nc_get_vara_int(id, var, &start, &n, jrg.data()), NC_NOERR);
+    ASSERT_EQ(nc_inq_varid(id, "h", &var), NC_NOERR);
+    ASSERT_EQ(nc_get_vara_double(id, var, &start, &n, hc.data()), NC_NOERR);
+    nc_close(id);
+    int ring = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (irg[k] < 0 || jrg[k] < 0 || irg[k] > fine.L || jrg[k] > fine.M) continue;
+      EXPECT_NEAR(fine.h[fine.rho_at(irg[k], jrg[k])], hc[k], 1e-9 * hc[k]) << irg[k] << " " << jrg[k];
+      ++ring;
+    }
+    EXPECT_EQ(ring, 2 * (fine.L + 1) + 2 * (fine.M - 1));
+  }
+
   // The report: the coarse ψ points coincide, the step ratio is the factor.
   std::ifstream rf(out / "black_sea_nw_shelf_report.json");
   std::stringstream ss;
@@ -165,6 +193,8 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
   EXPECT_NEAR(j["contact"]["refinement_ratio_median"].get<double>(), 3.0, 0.01);
   EXPECT_EQ(j["contact"]["fine_to_coarse"]["rho"].get<int>(), 18 * 19);
   EXPECT_LT(j["quality"]["ortho_err_50"]["worst"].get<double>(), 1e-3);
+  EXPECT_EQ(j["roms"]["depth"]["parent_blend_cells"].get<int>(), 6);
+  EXPECT_LE(j["roms"]["depth"]["rx0_after"].get<double>(), 0.2 + 1e-12);
 }
 
 TEST_F(RefineCli, BadRefinementSettingsStopWithTheConfigName) {

@@ -280,3 +280,26 @@ TEST(ContactPoints, BoxTooCloseToTheParentEdgeIsRefused) {
 TEST(ContactPoints, MissingParentFileIsAnInputError) {
   EXPECT_THROW((void)aq::io::read_roms_grid_fields("/nonexistent/p_grd.nc"), aq::InputError);
 }
+
+TEST(ContactPoints, ParentFieldOnTheFineGridMatchesTheContactPoints) {
+  aq::testing::TempDir dir;
+  const ParentGrid s = parent_setup(dir);
+  const RefineBox b{6, 20, 5, 17, 3};
+  const auto f = aq::handoff::refinement_contact(s.parent, b, fine_grid(s, b), kPad);
+  const auto h = aq::handoff::parent_rho_on_fine(s.parent, s.parent.h, b);
+  const int L = b.L(), M = b.M();
+  ASSERT_EQ(h.size(), static_cast<std::size_t>((L + 1) * (M + 1)));
+  const auto at = [&](int i, int j) { return h[static_cast<std::size_t>(j * (L + 1) + i)]; };
+  // Fine ρ (2 + 3m, 2 + 3n) is coarse ρ (6 + m, 5 + n): the parent's value itself.
+  for (int n = 0; n < 12; ++n)
+    for (int m = 0; m < 14; ++m) EXPECT_EQ(at(2 + 3 * m, 2 + 3 * n), s.parent.h[s.parent.rho_at(6 + m, 5 + n)]);
+  // On the outer ring it is the region-1 contact value.
+  int ring = 0;
+  for (int k = 0; k < f.regions[0].NendR; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    if (f.Irg[kk] < 0 || f.Jrg[kk] < 0 || f.Irg[kk] > L || f.Jrg[kk] > M) continue;
+    EXPECT_EQ(at(f.Irg[kk], f.Jrg[kk]), f.h[kk]);
+    ++ring;
+  }
+  EXPECT_EQ(ring, 2 * (L + 1) + 2 * (M - 1));
+}
