@@ -168,12 +168,16 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
                         q.ortho_50.rms));
   }
 
-  // Stage 5 on the sphere: the ROMS grid file <name>_grd.nc and <name>_roms.png (app/regional_roms.hpp).
-  if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled)
-    write_regional_roms(c, loaded.source, result, out, outputs, report, log,
+  // Stage 5 on the sphere: the ROMS grid file <name>_grd.nc and <name>_roms.png (app/regional_roms.hpp),
+  // and the nesting data beside it, boundary points in the global mesh (app/regional_nesting.hpp),
+  // both from one run of the global configuration.
+  if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled) {
+    const RegionalGlobal global = run_regional_global(c, log);
+    write_regional_roms(c, loaded.source, result, global, out, outputs, report, log,
                         refined ? &refined->parent_h_on_grid : nullptr);
-  // Nesting data beside it: boundary points in the global mesh (app/regional_nesting.hpp).
-  if (wants_regional_nesting(c, result)) write_regional_nesting(c, loaded.source, result, out, outputs, report, log);
+    if (wants_regional_nesting(c, result))
+      write_regional_nesting(c, loaded.source, result, global, out, outputs, report, log);
+  }
   // ROMS contact points of a refinement grid and its parent (app/regional_refine.hpp).
   if (refined) write_refinement_contact(c, loaded.source, *refined, out, outputs, report, log);
 

@@ -20,18 +20,13 @@ bool wants_regional_nesting(const config::RegionalConfig& c, const curvilinear::
 }
 
 void write_regional_nesting(const config::RegionalConfig& c, const std::string& config_source,
-                            const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
-                            const Logger& log) {
+                            const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
+                            Json& outputs, Report& report, const Logger& log) {
   if (!wants_regional_nesting(c, result)) return;
-  auto loaded = config::load_global(c.roms.global_config, {});
-  config::GlobalConfig& g = loaded.options;
-  if (g.mesh.elements == "squares") g.mesh.elements = "triangles";  // the weights live on triangles
-  g.mask.passages = false;
-  log.info("nesting: the global mesh of {} (Δ0 = {}°, L = {})", loaded.source, g.quadtree.step_deg, g.quadtree.levels);
-  const GlobalSetup setup = prepare_global_run(g);
-  Logger quiet = log;  // the global run's stage lines and warnings were seen when it was built
-  quiet.set_level(LogLevel::kError);
-  const GlobalRun run = run_global_pipeline(g, setup, quiet, nullptr);
+  const config::GlobalConfig& g = global.loaded.options;
+  const GlobalRun& run = global.run;
+  log.info("nesting: the global mesh of {} (Δ0 = {}°, L = {})", global.loaded.source, g.quadtree.step_deg,
+           g.quadtree.levels);
 
   StageScope stage("nesting", &report, log);
   curvilinear::CGridOptions co;
@@ -42,13 +37,13 @@ void write_regional_nesting(const config::RegionalConfig& c, const std::string& 
   io::NestingFile f = handoff::global_nesting(result.grid, cg, run.mesh, &sum);
   f.history = fmt::format("aquatoria {} regional {}", AQ_VERSION, config_source);
   f.attributes.emplace(f.attributes.begin(), "regional_grid", c.name + "_grd.nc");
-  f.attributes.emplace(f.attributes.begin() + 1, "global_config", loaded.source);
+  f.attributes.emplace(f.attributes.begin() + 1, "global_config", global.loaded.source);
   const std::string name = c.name + "_nesting.nc";
   io::write_nesting(out.temp_path(name), f);
   outputs.push_back(Json{{"file", name}, {"checksum_fnv1a64", file_checksum(out.pending_path(name))}});
   const auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   report["nesting"] =
-      Json{{"global_config", loaded.source},
+      Json{{"global_config", global.loaded.source},
            {"global_mesh", {{"nodes", run.mesh.node_count()}, {"triangles", run.mesh.triangle_count()}}},
            {"boundary_points", sum.points},
            {"outside_global_mesh", sum.outside},

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "app/regional_roms.hpp"
 #include "config/regional.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
@@ -17,14 +18,14 @@ namespace aq::app {
 /// Whether write_regional_nesting() has work for this config and result.
 bool wants_regional_nesting(const config::RegionalConfig& c, const curvilinear::RegionalResult& result);
 
-/// Rebuilds the global mesh of roms.global_config (app/global_run.hpp: the same pipeline as
-/// `aquatoria mesh`, with triangles), builds the C-grid of `result` as the ROMS file does
+/// Takes the global mesh of roms.global_config from `global` (run once, shared with the ROMS
+/// step: the same pipeline as `aquatoria mesh`, with triangles), builds the C-grid of `result` as the ROMS file does
 /// (roms.earth_radius_m, roms.distances), locates every boundary ρ/u/v point and writes
 /// <name>_nesting.nc through `out`; appends it to `outputs`, adds a "nesting" report section and
 /// logs "nesting: done ...", with a warning when points fall outside the global wet mesh.
-/// Throws ConfigError for a bad global config, and what the pipeline and writer throw.
+/// Throws what the writer throws.
 void write_regional_nesting(const config::RegionalConfig& c, const std::string& config_source,
-                            const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
-                            const Logger& log);
+                            const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
+                            Json& outputs, Report& report, const Logger& log);
 
 }  // namespace aq::app

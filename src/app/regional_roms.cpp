@@ -28,47 +28,57 @@
 
 namespace aq::app {
 
-namespace {
-
-config::Loaded<config::GlobalConfig> load_global_run(const config::RegionalConfig& c) {
+RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log) {
+  const auto named = [&](const ConfigError& e) {
+    return ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
+  };
+  RegionalGlobal r;
   try {
-    return config::load_global(c.roms.global_config.empty() ? std::optional<std::string>() : c.roms.global_config, {});
+    r.loaded =
+        config::load_global(c.roms.global_config.empty() ? std::optional<std::string>() : c.roms.global_config, {});
   } catch (const ConfigError& e) {
-    throw ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
+    throw named(e);
   }
+  config::GlobalConfig& g = r.loaded.options;
+  if (g.mesh.elements == "squares") g.mesh.elements = "triangles";  // the nesting weights live on triangles
+  GlobalSetup setup;
+  try {
+    setup = prepare_global_run(g);
+  } catch (const ConfigError& e) {
+    throw named(e);
+  }
+  // Its stage lines and warnings belong to `aquatoria mesh`; here one summary line.
+  StageScope stage("global run", nullptr, log);
+  Logger quiet = log;
+  quiet.set_level(LogLevel::kError);
+  r.run = run_global_pipeline(g, setup, quiet, nullptr);
+  stage.done(
+      fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels, {} triangles "
+                  "(the ocean, depth and mesh this grid shares)",
+                  r.loaded.source, g.quadtree.step_deg, g.quadtree.levels, setup.lattice.pixel_deg() * 60.0,
+                  g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels, r.run.mesh.triangle_count()));
+  return r;
 }
 
-}  // namespace
-
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
-                         const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
-                         const Logger& log, const std::vector<double>* parent_h) {
+                         const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
+                         Json& outputs, Report& report, const Logger& log, const std::vector<double>* parent_h) {
   if (result.completed != curvilinear::Stage::kGrid || !result.projection)
     throw InternalError("roms: the regional run did not complete the grid stage");
   StageScope rs("roms", &report, log);
   const auto distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
 
   // The global run whose ocean the grid shares.
-  const auto global = load_global_run(c);
-  const config::GlobalConfig& g = global.options;
-  GlobalSetup setup;
-  try {
-    setup = prepare_global_run(g);
-  } catch (const ConfigError& e) {
-    throw ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
-  }
-  const Lattice& lattice = setup.lattice;
-  const PoleRotation& rot = setup.rotation;
-  const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
+  const config::GlobalConfig& g = global.loaded.options;
+  const Lattice& lattice = global.run.setup.lattice;
+  const PoleRotation& rot = global.run.setup.rotation;
   if (!c.input.path.empty() && c.input.path != g.input.path)
     log.warn("roms: depth and mask come from the global run's bathymetry {} ({}), not from [input] path {}",
-             g.input.path, global.source, c.input.path);
+             g.input.path, global.loaded.source, c.input.path);
   if (c.params.radius != c.roms.earth_radius_m)
     log.warn("roms: regional.radius = {} m but roms.earth_radius_m = {} m; the ROMS file uses roms.earth_radius_m",
              c.params.radius, c.roms.earth_radius_m);
-
-  const auto bathy_options = raster_options(g.input, limit > need ? limit - need : limit);
-  const auto bathy = raster::Bathymetry::open(bathy_options, log);
+  const raster::Bathymetry& bathy = *global.run.bathy;
 
   // C-grid on the Earth.
   curvilinear::CGridOptions co;
@@ -81,7 +91,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   // Depth at ρ with the global run's sampling; the global ocean; the masks.
   const std::vector<double> elevation =
       mask::sample_elevations(bathy, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), nr);
-  const mask::WetArea area = mask::compute_wet_area(bathy, lattice, rot, g.mask, log, nullptr);
+  const mask::WetArea& area = global.run.area;
   const mask::RomsMasks masks =
       mask::build_roms_masks(area.filled, lattice, rot, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), elevation.data(),
                              g.mask.min_depth_m, ni, nj, &area.wet);
@@ -93,8 +103,9 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
         "deeper than h (a lake, or a sea the fill does not reach at this lattice, e.g. the Black Sea behind the "
         "Bosphorus): add a seed in the region to mask.seeds of that global config, use a finer lattice or a smaller "
         "cursor, or set roms.enabled = false",
-        config_source, (ni - 2) * (nj - 2), c.roms.global_config, global.source, g.mask.cursor, g.mask.min_depth_m,
-        g.mask.seeds.size(), g.mask.seeds.size() == 1 ? "" : "s", lattice.pixel_deg() * 60.0, ms.deep_enough));
+        config_source, (ni - 2) * (nj - 2), c.roms.global_config, global.loaded.source, g.mask.cursor,
+        g.mask.min_depth_m, g.mask.seeds.size(), g.mask.seeds.size() == 1 ? "" : "s", lattice.pixel_deg() * 60.0,
+        ms.deep_enough));
 
   std::vector<double> hraw(nr);
   for (std::size_t k = 0; k < nr; ++k) hraw[k] = io::depth_below_datum_m(elevation[k]);
@@ -165,7 +176,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       {"earth_radius_m", c.roms.earth_radius_m},
       {"earth_rotation_rate_per_s", curvilinear::kEarthOmega},
       {"xy_metres_per_plane_unit", cg.xy_metres_per_unit},
-      {"global_config", global.source},
+      {"global_config", global.loaded.source},
       {"bathymetry", g.input.path},
       {"bathymetry_sampling", g.input.interpolation},
       {"mask_rule",
@@ -235,7 +246,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   report["roms"] = Json{{"file", nc},
                         {"xi_rho", ni},
                         {"eta_rho", nj},
-                        {"global_config", global.source},
+                        {"global_config", global.loaded.source},
                         {"bathymetry", g.input.path},
                         {"lattice", Json{{"nx", lattice.nx}, {"ny", lattice.ny}, {"pixel_deg", lattice.pixel_deg()}}},
                         {"global_filled_pixels", area.filled_pixels},

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "app/global_run.hpp"
+#include "config/load.hpp"
 #include "config/regional.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
@@ -14,6 +16,18 @@
 #include "curvilinear/regional.hpp"
 
 namespace aq::app {
+
+/// The global run a regional grid shares its ocean with (roms.global_config, or the built-in
+/// defaults when empty), run once per regional run for the ROMS file's mask and depth and the
+/// nesting data's mesh.
+struct RegionalGlobal {
+  config::Loaded<config::GlobalConfig> loaded;  ///< as used ("squares" elements become triangles)
+  GlobalRun run;
+};
+
+/// Loads and runs roms.global_config (logging its stages). Throws ConfigError prefixed with
+/// "roms.global_config = ...", and what the pipeline throws.
+RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log);
 
 /// Builds the C-grid (curvilinear/cgrid.hpp), depths (curvilinear/roms_depth.hpp) and masks
 /// (mask/regional_mask.hpp) of `result` (completed = grid) and writes <name>_grd.nc and
@@ -27,7 +41,8 @@ namespace aq::app {
 /// ROMS puts the contact file's parent depth) into the grid's own, before clipping and smoothing
 /// (hraw in the file stays the bathymetry's).
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
-                         const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
-                         const Logger& log, const std::vector<double>* parent_h = nullptr);
+                         const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
+                         Json& outputs, Report& report, const Logger& log,
+                         const std::vector<double>* parent_h = nullptr);
 
 }  // namespace aq::app
