@@ -172,7 +172,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   // and the nesting data beside it, boundary points in the global mesh (app/regional_nesting.hpp),
   // both from one run of the global configuration.
   if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled) {
-    const RegionalGlobal global = run_regional_global(c, log);
+    const RegionalGlobal global = run_regional_global(c, log, &report);
     write_regional_roms(c, loaded.source, result, global, out, outputs, report, log,
                         refined ? &refined->parent_h_on_grid : nullptr);
     if (wants_regional_nesting(c, result))

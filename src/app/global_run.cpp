@@ -49,7 +49,7 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
 }
 
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report) {
+                              Report* report, bool statistics) {
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -83,6 +83,7 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   }
   const auto leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
   run.mesh = mesh::build_mesh(leaves, lat, rot, bathy, c.mesh, log, report);
+  if (!statistics) return run;
 
   StageScope stat_stage("statistics", report, log);
   run.statistics = mesh::compute_statistics(run.mesh);

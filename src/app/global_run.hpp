@@ -45,12 +45,14 @@ struct GlobalRun {
 /// Raster open options from an [input] section (one place for the config -> raster mapping).
 raster::OpenOptions raster_options(const config::InputOptions& input, std::int64_t max_memory_bytes);
 
-/// Runs read -> mask -> quadtree -> mesh -> statistics for `c` (after prepare_global_run).
+/// Runs read -> mask -> quadtree -> mesh -> statistics for `c` (after prepare_global_run);
+/// `statistics = false` skips the last stage (WGS84 areas and the mesh checks, the slowest part on
+/// fine lattices) for callers that only locate points in a mesh `aquatoria mesh` has checked.
 /// Logs the stage lines, the passage table and warnings (pinches, the ocean at the North pole
 /// row); fills the report's "input", "lattice", "mask", "quadtree", "mesh" and "statistics"
 /// sections when `report` is given. Throws what the stages throw, and InternalError when a mesh
 /// check fails (nothing has been written then).
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report);
+                              Report* report, bool statistics = true);
 
 }  // namespace aq::app

@@ -28,7 +28,7 @@
 
 namespace aq::app {
 
-RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log) {
+RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log, Report* report) {
   const auto named = [&](const ConfigError& e) {
     return ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
   };
@@ -48,10 +48,10 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
     throw named(e);
   }
   // Its stage lines and warnings belong to `aquatoria mesh`; here one summary line.
-  StageScope stage("global run", nullptr, log);
+  StageScope stage("global run", report, log);
   Logger quiet = log;
   quiet.set_level(LogLevel::kError);
-  r.run = run_global_pipeline(g, setup, quiet, nullptr);
+  r.run = run_global_pipeline(g, setup, quiet, nullptr, false);
   stage.done(
       fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels, {} triangles "
                   "(the ocean, depth and mesh this grid shares)",

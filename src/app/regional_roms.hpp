@@ -25,9 +25,10 @@ struct RegionalGlobal {
   GlobalRun run;
 };
 
-/// Loads and runs roms.global_config (logging its stages). Throws ConfigError prefixed with
+/// Loads and runs roms.global_config up to its mesh (without the statistics stage), logging one
+/// summary line as the report stage "global run". Throws ConfigError prefixed with
 /// "roms.global_config = ...", and what the pipeline throws.
-RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log);
+RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log, Report* report);
 
 /// Builds the C-grid (curvilinear/cgrid.hpp), depths (curvilinear/roms_depth.hpp) and masks
 /// (mask/regional_mask.hpp) of `result` (completed = grid) and writes <name>_grd.nc and
