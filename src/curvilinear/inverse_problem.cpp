@@ -194,6 +194,7 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
   Anderson anderson(options.acceleration_depth);
   double prev_residual = 1.0;
   double tol = options.tolerance;
+  std::vector<double> full_residuals;  // residuals of the iterates with IZ89 converged to round-off
   for (int m = 1;; ++m) {
     // The distribution's round-off floor grows like Nb² (as IZ89's, see iz89.hpp): measured
     // 2e-13..6e-13 at Nb = 460 and 1e-11..4e-11 at Nb = 5060.
@@ -231,13 +232,27 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
         "{:.2e}{})",
         m, meas.residual, meas.aspect_ratio, nodes.nx_pts, nodes.ny_pts, passes, res.iz89_angle.back(),
         iz.converged ? "" : ", not converged");
-    const bool done = meas.residual <= tol && full;
+    // The round-off floor: three fully converged iterates that no longer halve the residual.
+    bool floor = false;
+    if (full) {
+      full_residuals.push_back(meas.residual);
+      const std::size_t n = full_residuals.size();
+      floor = n >= 3 && options.floor_residual > 0.0 && meas.residual <= options.floor_residual &&
+              meas.residual > 0.5 * std::min(full_residuals[n - 2], full_residuals[n - 3]);
+    }
+    const bool done = (meas.residual <= tol || floor) && full;
     if (done || m >= options.max_outer_iterations) {
       res.nodes = nodes;
       res.aspect_ratio = meas.aspect_ratio;
       res.residual = meas.residual;
       res.tolerance = tol;
       res.converged = done;
+      res.at_floor = done && meas.residual > tol;
+      if (res.at_floor)
+        log.info(
+            "inverse problem: the residual stalled at {:.2e} (tolerance {:.1e}): the round-off floor of this "
+            "contour's node distribution, accepted",
+            meas.residual, tol);
       res.rect_x = x;
       res.rect_y = y;
       if (!done && options.fail_on_limit)

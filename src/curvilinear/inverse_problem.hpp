@@ -62,6 +62,11 @@ struct InverseOptions {
   /// Outer convergence: max |t' − t'∞| (fraction of the side length), > 0. Raised to the
   /// round-off floor 4e-18·Nb² when that is larger (1e-10 at Nb = 5000 boundary nodes).
   double tolerance = 1e-12;
+  /// Stalled residual accepted as converged: when three successive iterates with IZ89 converged
+  /// to round-off no longer halve the residual and it is at most this, the distribution has
+  /// reached its round-off floor (seen at 4e-12 on a 4-point contour of 176 nodes, above the
+  /// 4e-18·Nb² model). 0 = never.
+  double floor_residual = 1e-10;
   /// Outer iterations before NumericalError (the message gives the residual reached).
   int max_outer_iterations = 40;
   /// Points of the Lagrange interpolation of s(t') in (26): 2 = linear (the paper's simplest
@@ -93,7 +98,8 @@ struct InverseResult {
   double aspect_ratio = 0.0;             ///< W/H of the rectangle of the final nodes
   double residual = 0.0;                 ///< residual of the final nodes
   double tolerance = 0.0;                ///< the tolerance applied (after the round-off floor)
-  bool converged = false;                ///< residual ≤ tolerance with IZ89 converged
+  bool converged = false;                ///< residual ≤ tolerance (or at its floor) with IZ89 converged
+  bool at_floor = false;                 ///< converged by the stalled-residual rule (floor_residual)
   std::vector<double> residual_history;  ///< r_m per outer iteration
   std::vector<double> aspect_history;    ///< W/H per outer iteration
   std::vector<int> nx_pts_history;       ///< L per outer iteration
