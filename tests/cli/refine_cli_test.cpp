@@ -246,3 +246,21 @@ TEST_F(RefineCli, StoppingBeforeTheGridDoesNotApply) {
   EXPECT_THAT(o.err, HasSubstr("refinement grid"));
   EXPECT_FALSE(fs::exists(dir_ / "stop" / "black_sea_nw_shelf_grid.png"));
 }
+
+TEST_F(RefineCli, SameBytesOnOneAndTwoThreads) {
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  };
+  for (const char* t : {"1", "2"}) {
+    const auto r = aq::test::run_command(std::string("OMP_NUM_THREADS=") + t + " " + AQ_BINARY + " -q " +
+                                         child_args(std::string("threads") + t));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* f : {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
+                        "black_sea_nw_shelf_in_parent.png"}) {
+    const std::string a = bytes(dir_ / "threads1" / f), b = bytes(dir_ / "threads2" / f);
+    EXPECT_FALSE(a.empty()) << f;
+    EXPECT_TRUE(a == b) << f;
+  }
+}
