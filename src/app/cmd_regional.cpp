@@ -94,6 +94,11 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
           fmt::format("{}: a refinement grid (nesting.refine_factor = {}) is cut from its parent in one "
                       "step; stopping after the {} stage does not apply",
                       path, c.nesting.refine_factor, curvilinear::stage_name(stage)));
+    if (!c.params.x.empty() || !c.contour_file.empty())
+      log.warn(
+          "{}: a refinement grid is cut from nesting.parent; the contour (regional.control_points{}) is not "
+          "used",
+          path, c.contour_file.empty() ? "" : ", regional.contour_file = " + c.contour_file);
     refined = build_refinement(c, loaded.source, log, &report);
     c.params = refined->result.params;  // the parent's plane, for the files' attributes
   } else {
