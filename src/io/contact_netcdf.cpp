@@ -122,15 +122,6 @@ constexpr VarSpec kVars[] = {
     {"mask", NC_DOUBLE, Dim::kDatum, "land-sea mask of contact points", nullptr, kCoord},
 };
 
-double global_number(int nc, const char* name) {
-  nc_type type = NC_NAT;
-  std::size_t len = 0;
-  double v = std::numeric_limits<double>::quiet_NaN();
-  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || len != 1 || type == NC_CHAR) return v;
-  if (nc_get_att_double(nc, NC_GLOBAL, name, &v) != NC_NOERR) return std::numeric_limits<double>::quiet_NaN();
-  return v;
-}
-
 }  // namespace
 
 RomsGridFields read_roms_grid_fields(const fs::path& path) {

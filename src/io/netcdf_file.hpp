@@ -6,6 +6,7 @@
 #include <netcdf.h>
 
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -33,6 +34,17 @@ inline std::string global_text(int nc, const char* name) {
   if (len > 0 && nc_get_att_text(nc, NC_GLOBAL, name, text.data()) != NC_NOERR) return {};
   while (!text.empty() && text.back() == '\0') text.pop_back();
   return text;
+}
+
+/// A numeric global attribute of one value, or NaN when it is missing or not numeric.
+inline double global_number(int nc, const char* name) {
+  nc_type type = NC_NAT;
+  std::size_t len = 0;
+  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || len != 1 || type == NC_CHAR || type == NC_STRING)
+    return std::numeric_limits<double>::quiet_NaN();
+  double v = 0.0;
+  if (nc_get_att_double(nc, NC_GLOBAL, name, &v) != NC_NOERR) return std::numeric_limits<double>::quiet_NaN();
+  return v;
 }
 
 /// An open netCDF file id, closed on scope exit (errors of that close are ignored: it only runs

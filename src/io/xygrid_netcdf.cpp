@@ -81,18 +81,6 @@ AttributeValue read_attribute(int nc, const char* name, const fs::path& path) {
   return text;
 }
 
-/// A numeric global attribute, or NaN if absent or not numeric.
-double global_number(int nc, const char* name) {
-  nc_type type = NC_NAT;
-  std::size_t len = 0;
-  if (nc_inq_att(nc, NC_GLOBAL, name, &type, &len) != NC_NOERR || len != 1 || type == NC_CHAR || type == NC_STRING) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  double v = 0.0;
-  if (nc_get_att_double(nc, NC_GLOBAL, name, &v) != NC_NOERR) return std::numeric_limits<double>::quiet_NaN();
-  return v;
-}
-
 }  // namespace
 
 void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::GridQuality* quality) {
