@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
+#include "curvilinear/cgrid.hpp"
 #include "curvilinear/grid_checks.hpp"
 #include "curvilinear/regional.hpp"
 #include "io/regional_pictures.hpp"
@@ -179,11 +180,12 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   // and the nesting data beside it, boundary points in the global mesh (app/regional_nesting.hpp),
   // both from one run of the global configuration.
   if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled) {
+    const curvilinear::CGrid cg = curvilinear::build_cgrid(result.grid, *result.projection, roms_cgrid_options(c));
     const RegionalGlobal global = run_regional_global(c, log, &report);
-    write_regional_roms(c, loaded.source, result, global, out, outputs, report, log,
+    write_regional_roms(c, loaded.source, result, cg, global, out, outputs, report, log,
                         refined ? &refined->parent_h_on_grid : nullptr);
     if (wants_regional_nesting(c, result))
-      write_regional_nesting(c, loaded.source, result, global, out, outputs, report, log);
+      write_regional_nesting(c, loaded.source, result, cg, global, out, outputs, report, log);
   }
   // ROMS contact points of a refinement grid and its parent (app/regional_refine.hpp).
   if (refined) write_refinement_contact(c, loaded.source, *refined, out, outputs, report, log);

@@ -20,8 +20,9 @@ bool wants_regional_nesting(const config::RegionalConfig& c, const curvilinear::
 }
 
 void write_regional_nesting(const config::RegionalConfig& c, const std::string& config_source,
-                            const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
-                            Json& outputs, Report& report, const Logger& log) {
+                            const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
+                            const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report,
+                            const Logger& log) {
   if (!wants_regional_nesting(c, result)) return;
   const config::GlobalConfig& g = global.loaded.options;
   const GlobalRun& run = global.run;
@@ -29,10 +30,6 @@ void write_regional_nesting(const config::RegionalConfig& c, const std::string& 
            g.quadtree.levels);
 
   StageScope stage("nesting", &report, log);
-  curvilinear::CGridOptions co;
-  co.earth_radius_m = c.roms.earth_radius_m;
-  co.distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
-  const curvilinear::CGrid cg = curvilinear::build_cgrid(result.grid, *result.projection, co);
   handoff::NestingSummary sum;
   io::NestingFile f = handoff::global_nesting(result.grid, cg, run.mesh, &sum);
   f.history = fmt::format("aquatoria {} regional {}", AQ_VERSION, config_source);

@@ -25,7 +25,8 @@ bool wants_regional_nesting(const config::RegionalConfig& c, const curvilinear::
 /// logs "nesting: done ...", with a warning when points fall outside the global wet mesh.
 /// Throws what the writer throws.
 void write_regional_nesting(const config::RegionalConfig& c, const std::string& config_source,
-                            const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
-                            Json& outputs, Report& report, const Logger& log);
+                            const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
+                            const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report,
+                            const Logger& log);
 
 }  // namespace aq::app

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/regional_roms.hpp"
 #include "core/error.hpp"
 #include "curvilinear/cgrid.hpp"
 #include "handoff/contact_points.hpp"
@@ -149,10 +150,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
 void write_refinement_contact(const config::RegionalConfig& c, const std::string& config_source, const RefinedGrid& g,
                               OutputSet& out, Json& outputs, Report& report, const Logger& log) {
   StageScope stage("contact", &report, log);
-  curvilinear::CGridOptions co;
-  co.earth_radius_m = c.roms.earth_radius_m;
-  co.distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
-  const curvilinear::CGrid fine = curvilinear::build_cgrid(g.padded, *g.result.projection, co);
+  const curvilinear::CGrid fine = curvilinear::build_cgrid(g.padded, *g.result.projection, roms_cgrid_options(c));
   handoff::ContactSummary sum;
   io::ContactFile f = handoff::refinement_contact(g.parent, g.box, fine, kRefinePad, &sum);
 

@@ -28,6 +28,13 @@
 
 namespace aq::app {
 
+curvilinear::CGridOptions roms_cgrid_options(const config::RegionalConfig& c) {
+  curvilinear::CGridOptions co;
+  co.earth_radius_m = c.roms.earth_radius_m;
+  co.distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
+  return co;
+}
+
 RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log, Report* report) {
   const auto named = [&](const ConfigError& e) {
     return ConfigError(fmt::format("roms.global_config = \"{}\": {}", c.roms.global_config, e.what()));
@@ -61,12 +68,13 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
 }
 
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
-                         const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
-                         Json& outputs, Report& report, const Logger& log, const std::vector<double>* parent_h) {
+                         const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
+                         const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report, const Logger& log,
+                         const std::vector<double>* parent_h) {
   if (result.completed != curvilinear::Stage::kGrid || !result.projection)
     throw InternalError("roms: the regional run did not complete the grid stage");
   StageScope rs("roms", &report, log);
-  const auto distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
+  const auto distances = cg.options.distances;
 
   // The global run whose ocean the grid shares.
   const config::GlobalConfig& g = global.loaded.options;
@@ -80,11 +88,6 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
              c.params.radius, c.roms.earth_radius_m);
   const raster::Bathymetry& bathy = *global.run.bathy;
 
-  // C-grid on the Earth.
-  curvilinear::CGridOptions co;
-  co.earth_radius_m = c.roms.earth_radius_m;
-  co.distances = distances;
-  const curvilinear::CGrid cg = curvilinear::build_cgrid(result.grid, *result.projection, co);
   const int ni = cg.L + 1, nj = cg.M + 1;
   const std::size_t nr = cg.rho.size();
 

@@ -13,6 +13,7 @@
 #include "core/log.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
+#include "curvilinear/cgrid.hpp"
 #include "curvilinear/regional.hpp"
 
 namespace aq::app {
@@ -25,13 +26,17 @@ struct RegionalGlobal {
   GlobalRun run;
 };
 
+/// The C-grid options of the ROMS file: roms.earth_radius_m and roms.distances (ConfigError
+/// naming roms.distances for an unknown model).
+curvilinear::CGridOptions roms_cgrid_options(const config::RegionalConfig& c);
+
 /// Loads and runs roms.global_config up to its mesh (without the statistics stage), logging one
 /// summary line as the report stage "global run". Throws ConfigError prefixed with
 /// "roms.global_config = ...", and what the pipeline throws.
 RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger& log, Report* report);
 
-/// Builds the C-grid (curvilinear/cgrid.hpp), depths (curvilinear/roms_depth.hpp) and masks
-/// (mask/regional_mask.hpp) of `result` (completed = grid) and writes <name>_grd.nc and
+/// From `cg`, the C-grid of `result` (completed = grid; built with roms_cgrid_options), builds the
+/// depths (curvilinear/roms_depth.hpp) and masks (mask/regional_mask.hpp) and writes <name>_grd.nc and
 /// <name>_roms.png through `out`; appends both to `outputs` (file and checksum), adds a "roms"
 /// report section and logs "roms: done ...". `config_source` names the regional config in
 /// messages and file attributes. Throws ConfigError for a bad roms.* value or global config,
@@ -42,8 +47,8 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
 /// ROMS puts the contact file's parent depth) into the grid's own, before clipping and smoothing
 /// (hraw in the file stays the bathymetry's).
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
-                         const curvilinear::RegionalResult& result, const RegionalGlobal& global, OutputSet& out,
-                         Json& outputs, Report& report, const Logger& log,
+                         const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
+                         const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report, const Logger& log,
                          const std::vector<double>* parent_h = nullptr);
 
 }  // namespace aq::app
