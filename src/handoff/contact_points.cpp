@@ -71,6 +71,18 @@ Axis axis(int index, int lo, int r, bool centred) {
   return a;
 }
 
+// Bilinear weights of the donor cell's corners (Idg,Jdg), (Idg+1,Jdg), (Idg+1,Jdg+1), (Idg,Jdg+1).
+std::array<double, 4> bilinear_weights(const Axis& ax, const Axis& ay) {
+  return {(1 - ax.p) * (1 - ay.p), ax.p * (1 - ay.p), ax.p * ay.p, (1 - ax.p) * ay.p};
+}
+
+// Σ w_k value(corner k) over those corners; value(I, J) takes the donor's indices.
+template <typename Value>
+double bilinear(const std::array<double, 4>& w, const Axis& ax, const Axis& ay, Value value) {
+  const int I = ax.donor, J = ay.donor;
+  return w[0] * value(I, J) + w[1] * value(I + 1, J) + w[2] * value(I + 1, J + 1) + w[3] * value(I, J + 1);
+}
+
 std::array<double, 3> quadratic(double p, double alpha) {
   return {0.5 * p * (p - 1.0) + alpha, 1.0 - p * p - 2.0 * alpha, 0.5 * p * (p + 1.0) + alpha};
 }
@@ -100,10 +112,8 @@ std::vector<double> parent_rho_on_fine(const io::RomsGridFields& parent, const s
     const Axis ay = axis(j, box.j_bottom, box.factor, true);
     for (int i = 0; i <= L; ++i) {
       const Axis ax = axis(i, box.i_left, box.factor, true);
-      const auto at = [&](int a, int b) { return field[parent.rho_at(a, b)]; };
       out[static_cast<std::size_t>(j) * static_cast<std::size_t>(L + 1) + static_cast<std::size_t>(i)] =
-          (1 - ax.p) * (1 - ay.p) * at(ax.donor, ay.donor) + ax.p * (1 - ay.p) * at(ax.donor + 1, ay.donor) +
-          ax.p * ay.p * at(ax.donor + 1, ay.donor + 1) + (1 - ax.p) * ay.p * at(ax.donor, ay.donor + 1);
+          bilinear(bilinear_weights(ax, ay), ax, ay, [&](int a, int b) { return field[parent.rho_at(a, b)]; });
     }
   }
   return out;
@@ -199,7 +209,7 @@ io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvi
       for (int i = i0; i <= L + 2; ++i) {
         if (i >= ia && i <= Lm && j >= ja && j <= Mm) continue;
         const Axis ax = axis(i, Io, r, t != kU), ay = axis(j, Jo, r, t != kV);
-        const std::array<double, 4> w = {(1 - ax.p) * (1 - ay.p), ax.p * (1 - ay.p), ax.p * ay.p, (1 - ax.p) * ay.p};
+        const std::array<double, 4> w = bilinear_weights(ax, ay);
         int boundary = 0;
         if (t == kU && j >= 1 && j <= Mm) boundary = i == 1 ? 1 : i == L ? 3 : 0;
         if (t == kV && i >= 1 && i <= Lm) boundary = j == 1 ? 2 : j == M ? 4 : 0;
@@ -219,16 +229,13 @@ io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvi
           push_fill();
           continue;
         }
-        const std::size_t c[4] = {C.at(ax.donor, ay.donor), C.at(ax.donor + 1, ay.donor),
-                                  C.at(ax.donor + 1, ay.donor + 1), C.at(ax.donor, ay.donor + 1)};
-        double h = 0, cor = 0, s = 0, co = 0, pm = 0;
-        for (std::size_t m = 0; m < 4; ++m) {
-          h += w[m] * parent.h[c[m]];
-          cor += w[m] * parent.f[c[m]];
-          s += w[m] * std::sin(parent.angle[c[m]]);
-          co += w[m] * std::cos(parent.angle[c[m]]);
-          pm += w[m] * parent.pm[c[m]];
-        }
+        const auto rho_field = [&](const std::vector<double>& v) {
+          return bilinear(w, ax, ay, [&](int a, int b) { return v[parent.rho_at(a, b)]; });
+        };
+        const double h = rho_field(parent.h), cor = rho_field(parent.f), pm = rho_field(parent.pm);
+        const double s = bilinear(w, ax, ay, [&](int a, int b) { return std::sin(parent.angle[parent.rho_at(a, b)]); });
+        const double co =
+            bilinear(w, ax, ay, [&](int a, int b) { return std::cos(parent.angle[parent.rho_at(a, b)]); });
         f.h.push_back(h);
         f.f.push_back(cor);
         f.angle.push_back(std::atan2(s, co));
