@@ -15,6 +15,7 @@ PACKAGES=(
   libfftw3-dev
   ferret-datasets
   gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy
+  gfortran xz-utils python3  # the ADCIRC client test (../shared/clients/adcirc, tests/adcirc)
 )
 
 missing=()

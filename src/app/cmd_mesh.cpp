@@ -93,7 +93,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   io::MeshOutputInfo oinfo;
   oinfo.elements = io::parse_element_kinds(c.mesh.elements);
   oinfo.source = fmt::format("aquatoria {} from {}", AQ_VERSION, ri.path);
-  const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo);
+  const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo, &report);
   Json outputs = Json::array();
   for (const auto& f : files) {
     outputs.push_back(Json{{"file", f.name},
@@ -149,6 +149,13 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
              seed->triangles, seed->nodes, m.triangle_count(), m.node_count(),
              100.0 * (static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles) - 1.0),
              100.0 * (static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes) - 1.0));
+  }
+  if (report.root().contains("geographic_mesh") && !report["geographic_mesh"]["poles"].empty()) {
+    const Json& g = report["geographic_mesh"];
+    log.info(
+        "written in geographic coordinates (ugrid, vtu, fort14, text): {} nodes, {} triangles (the pole rows "
+        "re-templated; the counts above are the lattice mesh's)",
+        g["nodes"].get<std::int64_t>(), g["triangles"].get<std::int64_t>());
   }
   log.info("outputs in {}/: {} files + {} ({:.2f} s, peak {:.0f} MB)", c.output.dir, files.size(), report_name,
            total.wall_s(), static_cast<double>(peak_rss_bytes()) / 1048576.0);

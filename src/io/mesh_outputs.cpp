@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "io/fort14_writer.hpp"
+#include "io/geographic_mesh.hpp"
 #include "io/msh_writer.hpp"
 #include "io/preview_png.hpp"
 #include "io/text_writer.hpp"
@@ -69,10 +71,28 @@ void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elem
 
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
                                             const config::OutputOptions& options, OutputSet& outputs, const Logger& log,
-                                            const MeshOutputInfo& info) {
+                                            const MeshOutputInfo& info, Report* report) {
   check_mesh_output_options(options, info.elements);
   check_elements(mesh, info.elements);
   std::vector<WrittenFile> written;
+
+  // Writers in geographic coordinates get the mesh without the degenerate pole row (made once,
+  // when the first of them needs it; fort.14 always writes triangles).
+  const ElevationSampler elevation = [&](const std::vector<double>& lon, const std::vector<double>& lat,
+                                         std::vector<double>& out) {
+    out.resize(lon.size());
+    bathy.sample_points(lon.data(), lat.data(), static_cast<std::int64_t>(lon.size()), out.data());
+  };
+  std::optional<GeographicMesh> geo, geo_triangles;
+  auto geographic = [&](ElementKinds kinds) -> const mesh::Mesh& {
+    std::optional<GeographicMesh>& g = kinds == info.elements ? geo : geo_triangles;
+    if (!g) {
+      g.emplace(mesh, kinds, elevation);
+      for (const auto& line : g->describe()) log.info("geographic mesh: {}", line);
+      if (report != nullptr && kinds == ElementKinds::kTriangles) (*report)["geographic_mesh"] = g->json();
+    }
+    return g->mesh();
+  };
 
   auto write = [&](const std::string& format, const std::string& file,
                    const std::function<WriteStats(const std::filesystem::path&)>& writer,
@@ -109,7 +129,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.source = info.source;
       o.history = fmt::format("written by aquatoria ({})", info.source);
       write(
-          format, name + ".nc", [&](const auto& p) { return write_ugrid(mesh, p, o); },
+          format, name + ".nc", [&](const auto& p) { return write_ugrid(geographic(info.elements), p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"faces", s.elements}};
           });
@@ -118,7 +138,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.coordinates = parse_vtu_coordinates(options.vtu_coordinates);
       o.elements = info.elements;
       write(
-          format, name + ".vtu", [&](const auto& p) { return write_vtu(mesh, p, o); },
+          format, name + ".vtu", [&](const auto& p) { return write_vtu(geographic(info.elements), p, o); },
           [](const WriteStats& s) {
             return Facts{{"points", s.nodes},
                          {"cells", s.elements},
@@ -129,7 +149,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       Fort14Options o;
       o.title = fmt::format("aquatoria mesh {} ({})", name, info.source);
       write(
-          format, name + ".14", [&](const auto& p) { return write_fort14(mesh, p, o); },
+          format, name + ".14", [&](const auto& p) { return write_fort14(geographic(ElementKinds::kTriangles), p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
           });
@@ -137,7 +157,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       TextOptions o;
       o.elements = info.elements;
       write(
-          format, name + ".txt", [&](const auto& p) { return write_text(mesh, p, o); },
+          format, name + ".txt", [&](const auto& p) { return write_text(geographic(info.elements), p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}};
           });

@@ -23,6 +23,7 @@
 #include "config/options.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
+#include "core/report.hpp"
 #include "io/element_kinds.hpp"
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
@@ -54,11 +55,14 @@ const std::vector<std::string>& known_output_formats();
 /// output.vtu_coordinates, output.png_width and output.png_zoom.
 void check_mesh_output_options(const config::OutputOptions& options, ElementKinds elements);
 
-/// Writes every requested format (see the table above). Throws ConfigError on bad options
-/// (before writing anything), OutputError naming the file on write failures.
+/// Writes every requested format (see the table above). The writers in geographic coordinates
+/// (ugrid, vtu, fort14, text) write the geographic mesh of io/geographic_mesh.hpp (pole cap or
+/// merged pole row; one log line per changed pole, and the "geographic_mesh" report section when
+/// `report` is given); msh (the λ–φ plane) and png draw the lattice mesh. Throws ConfigError on
+/// bad options (before writing anything), OutputError naming the file on write failures.
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
                                             const config::OutputOptions& options, OutputSet& outputs, const Logger& log,
-                                            const MeshOutputInfo& info);
+                                            const MeshOutputInfo& info, Report* report = nullptr);
 
 /// As above with the elements the mesh has (triangles if any, else squares).
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,

@@ -17,6 +17,7 @@
 #include "core/rotation.hpp"
 #include "core/types.hpp"
 #include "io/depth.hpp"
+#include "io/geographic_mesh.hpp"
 
 namespace aq::io {
 
@@ -277,20 +278,36 @@ void write_topology(NcFile& nc, const mesh::Mesh& mesh, const FaceSet& faces, co
     lev.resize(static_cast<std::size_t>(rows));
     for (std::int64_t r = 0; r < rows; ++r) {
       const int k = faces.nodes(f0 + r, p);
-      std::int64_t max_i = 0;
-      for (int a = 0; a < k; ++a) max_i = std::max(max_i, mesh.node_i[p[a]]);
-      double si = 0.0, sj = 0.0;
+      std::int64_t max_i = 0, min_i = 0;
       for (int a = 0; a < k; ++a) {
-        const std::int64_t i = mesh.node_i[p[a]];
-        si += static_cast<double>(i == 0 && max_i > nx / 2 ? nx : i);
-        sj += static_cast<double>(mesh.node_j[p[a]]);
+        max_i = std::max(max_i, mesh.node_i[p[a]]);
+        min_i = std::min(min_i, mesh.node_i[p[a]]);
       }
-      const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
-      const double rlat = -90.0 + sj / k * mesh.lattice.pixel_deg();
-      double lon = rlon, lat = rlat;
-      if (mesh.rotation.enabled) {
-        rotation.to_geographic(rlon, rlat, lon, lat);
-        lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
+      double lon = 0.0, lat = 0.0;
+      if (min_i < 0) {
+        // A face of a pole cap (io/geographic_mesh.hpp): the centre of its nodes on the sphere.
+        std::array<double, 3> c{0.0, 0.0, 0.0};
+        for (int a = 0; a < k; ++a) {
+          const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
+          for (int d = 0; d < 3; ++d) c[d] += u[d];
+        }
+        lon = wrap_lon_deg(std::atan2(c[1], c[0]) * kRadToDeg, mesh.lattice.lon0_deg);
+        lat = std::atan2(c[2], std::hypot(c[0], c[1])) * kRadToDeg;
+      } else {
+        double si = 0.0, sj = 0.0;
+        for (int a = 0; a < k; ++a) {
+          const std::int64_t i = mesh.node_i[p[a]];
+          si += static_cast<double>(i == 0 && max_i > nx / 2 ? nx : i);
+          sj += static_cast<double>(mesh.node_j[p[a]]);
+        }
+        const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
+        const double rlat = -90.0 + sj / k * mesh.lattice.pixel_deg();
+        lon = rlon;
+        lat = rlat;
+        if (mesh.rotation.enabled) {
+          rotation.to_geographic(rlon, rlat, lon, lat);
+          lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
+        }
       }
       const auto u = static_cast<std::size_t>(r);
       cx[u] = lon;
@@ -421,9 +438,9 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
 
   const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
   nc.text(flags, "long_name", "Node flags");
-  const signed char masks[5] = {1, 2, 4, 8, 16};
-  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, 5, masks), "attribute flag_masks");
-  nc.text(flags, "flag_meanings", "boundary midside_hanging_node centre_node pole seam");
+  const signed char masks[6] = {1, 2, 4, 8, 16, 32};
+  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, 6, masks), "attribute flag_masks");
+  nc.text(flags, "flag_meanings", "boundary midside_hanging_node centre_node pole seam pole_cap_node");
   nc.text(flags, "mesh", "mesh");
   nc.text(flags, "location", "node");
   nc.text(flags, "coordinates", all_node_coords);

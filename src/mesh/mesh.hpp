@@ -30,6 +30,8 @@ enum NodeFlag : std::uint8_t {
   kNodeCentre = 4,    ///< centre node added by a triangle template
   kNodePole = 8,      ///< on φ = ±90° of the lattice (all such nodes are one physical point)
   kNodeSeam = 16,     ///< on the seam I = 0
+  kNodeCap = 32,      ///< added by the pole cap of a geographic mesh (io/geographic_mesh.hpp): not a
+                      ///< lattice vertex, node_i = node_j = -1
 };
 
 /// One closed boundary polyline. Nodes are listed in order, anticlockwise around the wet area

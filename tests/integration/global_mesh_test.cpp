@@ -5,10 +5,19 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <netcdf.h>
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/PolygonArea.hpp>
+
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <tuple>
+#include <vector>
 
 #include "support/run_command.hpp"
 
@@ -134,19 +143,16 @@ TEST(GlobalMeshEtopo5, VtkReadsTheRealVtu) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   long points = 0, cells = 0;
   ASSERT_EQ(std::sscanf(r.out.c_str(), "%ld %ld", &points, &cells), 2) << r.out;
-  const auto tri = run.report.at("mesh_counts").at("triangles").get<long>();
-  const auto nodes = run.report.at("mesh_counts").at("nodes").get<long>();
-  // The pole row is merged into one point and the triangles degenerate there are dropped.
-  EXPECT_LT(points, nodes);
-  EXPECT_GT(points, nodes - 400);
-  EXPECT_LE(cells, tri);
-  EXPECT_GT(cells, tri - 400);
+  // The geographic mesh: the Arctic's polar row re-templated into the pole cap.
+  EXPECT_EQ(points, run.report.at("geographic_mesh").at("nodes").get<long>());
+  EXPECT_EQ(cells, run.report.at("geographic_mesh").at("triangles").get<long>());
 }
 
 TEST(GlobalMeshEtopo5, UgridAndFort14HeadersMatchTheReport) {
   const auto& run = mesh_run("");
-  const auto tri = run.report.at("mesh_counts").at("triangles").get<long>();
-  const auto nodes = run.report.at("mesh_counts").at("nodes").get<long>();
+  // The files hold the geographic mesh (pole cap), the report's mesh_counts the lattice mesh.
+  const auto tri = run.report.at("geographic_mesh").at("triangles").get<long>();
+  const auto nodes = run.report.at("geographic_mesh").at("nodes").get<long>();
   std::ifstream f14(run.dir / "seed_4deg_L3.14");
   std::string title;
   std::getline(f14, title);
@@ -185,4 +191,163 @@ TEST(GlobalMeshEtopo5, BadInputsFailCleanlyWithoutPartialFiles) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, ::testing::HasSubstr("quadtree.levels = 14"));
   EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir));
+}
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 unit_xyz(double lon_deg, double lat_deg) {
+  const double lo = lon_deg * M_PI / 180.0, la = lat_deg * M_PI / 180.0;
+  return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
+}
+
+// Geometry and topology facts of a triangle mesh given by geographic node positions.
+struct WrittenFacts {
+  std::int64_t duplicate_points = 0, zero_area = 0, clockwise = 0, bad_edges = 0;
+  std::set<std::pair<std::int64_t, std::int64_t>> boundary;  // undirected, smaller id first
+  double geodesic_area_km2 = 0.0;
+};
+
+WrittenFacts written_facts(const std::vector<double>& lon, const std::vector<double>& lat,
+                           const std::vector<std::array<std::int64_t, 3>>& tris) {
+  WrittenFacts f;
+  std::set<std::tuple<long long, long long, long long>> seen;
+  std::vector<Vec3> v;
+  for (std::size_t n = 0; n < lon.size(); ++n) {
+    v.push_back(unit_xyz(lon[n], lat[n]));
+    auto q = [](double x) { return std::llround(x * 1e9); };  // 6 mm on the Earth
+    if (!seen.insert({q(v.back()[0]), q(v.back()[1]), q(v.back()[2])}).second) ++f.duplicate_points;
+  }
+  std::map<std::pair<std::int64_t, std::int64_t>, int> half;
+  const GeographicLib::Geodesic& wgs84 = GeographicLib::Geodesic::WGS84();
+  for (const auto& t : tris) {
+    const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+    const Vec3 bc{b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
+    const double det = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+    const double den = 1.0 + a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + b[0] * c[0] + b[1] * c[1] + b[2] * c[2] +
+                       c[0] * a[0] + c[1] * a[1] + c[2] * a[2];
+    const double sr = 2.0 * std::atan2(det, den);
+    if (std::abs(sr) < 1e-12) ++f.zero_area;
+    if (sr < 0.0) ++f.clockwise;
+    GeographicLib::PolygonArea poly(wgs84);
+    for (const auto n : t) poly.AddPoint(lat[n], lon[n]);
+    double perimeter = 0.0, area = 0.0;
+    poly.Compute(false, true, perimeter, area);
+    f.geodesic_area_km2 += area * 1e-6;
+    for (int e = 0; e < 3; ++e) ++half[{t[e], t[(e + 1) % 3]}];
+  }
+  for (const auto& [e, k] : half) {
+    if (k != 1) ++f.bad_edges;
+    if (half.count({e.second, e.first}) == 0)
+      f.boundary.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
+  }
+  return f;
+}
+
+}  // namespace
+
+// Issue 11: the default run reaches φ = 90°; its fort.14 and UGRID used to hold 109 triangles with
+// two nodes at the pole (zero area on the Earth) and 109 nodes at one point. The written meshes
+// must have neither, stay conforming, and keep the filled area.
+TEST(GlobalMeshEtopo5, WrittenMeshesHaveNoDegenerateElements) {
+  const auto& run = mesh_run("");
+  const auto& geo = run.report.at("geographic_mesh");
+  ASSERT_EQ(geo.at("poles").size(), 1u);
+  const auto& cap = geo.at("poles")[0];
+  EXPECT_EQ(cap.at("pole"), "north");
+  EXPECT_EQ(cap.at("method"), "cap");
+  EXPECT_GE(cap.at("min_angle_deg").get<double>(), 30.0);
+  EXPECT_LE(cap.at("max_valence").get<int>(), 10);
+  EXPECT_LE(cap.at("pole_valence").get<int>(), 8);
+  const auto& area = run.report.at("statistics").at("area");
+  const double filled_km2 = area.at("filled_km2").get<double>();
+  const double lattice_km2 = area.at("triangles_km2").get<double>();
+  const double tolerance = 0.05 * 0.5 * M_PI / 180.0;  // the statistics' check: 0.05 × pixel (rad)
+
+  // fort.14: nodes, elements, land boundaries.
+  {
+    std::ifstream f(run.dir / "seed_4deg_L3.14");
+    std::string line;
+    std::getline(f, line);
+    std::int64_t ne = 0, np = 0;
+    f >> ne >> np;
+    std::vector<double> lon(static_cast<std::size_t>(np)), lat(lon.size());
+    for (std::int64_t k = 0; k < np; ++k) {
+      std::int64_t id = 0;
+      double depth = 0.0;
+      f >> id >> lon[static_cast<std::size_t>(k)] >> lat[static_cast<std::size_t>(k)] >> depth;
+      ASSERT_EQ(id, k + 1);
+    }
+    std::vector<std::array<std::int64_t, 3>> tris(static_cast<std::size_t>(ne));
+    for (auto& t : tris) {
+      std::int64_t id = 0, three = 0;
+      f >> id >> three >> t[0] >> t[1] >> t[2];
+      for (auto& v : t) --v;
+    }
+    std::int64_t nope = 0, neta = 0, nbou = 0, nvel = 0;
+    std::getline(f, line);
+    f >> nope;
+    std::getline(f, line);
+    f >> neta;
+    std::getline(f, line);
+    f >> nbou;
+    std::getline(f, line);
+    f >> nvel;
+    std::getline(f, line);
+    std::set<std::pair<std::int64_t, std::int64_t>> declared;
+    for (std::int64_t b = 0; b < nbou; ++b) {
+      std::int64_t nvell = 0, ibtype = 0, prev = -1;
+      f >> nvell >> ibtype;
+      std::getline(f, line);
+      for (std::int64_t k = 0; k < nvell; ++k) {
+        std::int64_t n = 0;
+        f >> n;
+        --n;
+        if (prev >= 0) declared.insert({std::min(prev, n), std::max(prev, n)});
+        prev = n;
+      }
+    }
+    ASSERT_TRUE(f.good());
+    const WrittenFacts w = written_facts(lon, lat, tris);
+    EXPECT_EQ(w.duplicate_points, 0);
+    EXPECT_EQ(w.zero_area, 0);
+    EXPECT_EQ(w.clockwise, 0);
+    EXPECT_EQ(w.bad_edges, 0);
+    EXPECT_EQ(w.boundary, declared);  // every edge in one triangle is a land boundary edge, and back
+    EXPECT_NEAR(w.geodesic_area_km2 / lattice_km2, 1.0, 1e-9);
+    EXPECT_NEAR(w.geodesic_area_km2 / filled_km2, 1.0, tolerance);
+    std::int64_t at_pole = 0;
+    for (const double la : lat) at_pole += la == 90.0 ? 1 : 0;
+    EXPECT_EQ(at_pole, 1);
+  }
+
+  // UGRID: the same mesh through netCDF.
+  {
+    int nc = -1, v = -1, d = -1;
+    ASSERT_EQ(nc_open((run.dir / "seed_4deg_L3.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
+    std::size_t np = 0, nf = 0;
+    ASSERT_EQ(nc_inq_dimid(nc, "nMesh_node", &d), NC_NOERR);
+    nc_inq_dimlen(nc, d, &np);
+    ASSERT_EQ(nc_inq_dimid(nc, "nMesh_face", &d), NC_NOERR);
+    nc_inq_dimlen(nc, d, &nf);
+    std::vector<double> lon(np), lat(np);
+    ASSERT_EQ(nc_inq_varid(nc, "mesh_node_x", &v), NC_NOERR);
+    nc_get_var_double(nc, v, lon.data());
+    ASSERT_EQ(nc_inq_varid(nc, "mesh_node_y", &v), NC_NOERR);
+    nc_get_var_double(nc, v, lat.data());
+    std::vector<long long> faces(3 * nf);
+    ASSERT_EQ(nc_inq_varid(nc, "mesh_face_nodes", &v), NC_NOERR);
+    nc_get_var_longlong(nc, v, faces.data());
+    nc_close(nc);
+    std::vector<std::array<std::int64_t, 3>> tris(nf);
+    for (std::size_t k = 0; k < nf; ++k) tris[k] = {faces[3 * k], faces[3 * k + 1], faces[3 * k + 2]};
+    const WrittenFacts w = written_facts(lon, lat, tris);
+    EXPECT_EQ(static_cast<std::int64_t>(np), geo.at("nodes").get<std::int64_t>());
+    EXPECT_EQ(w.duplicate_points, 0);
+    EXPECT_EQ(w.zero_area, 0);
+    EXPECT_EQ(w.clockwise, 0);
+    EXPECT_EQ(w.bad_edges, 0);
+    EXPECT_NEAR(w.geodesic_area_km2 / lattice_km2, 1.0, 1e-9);
+  }
 }

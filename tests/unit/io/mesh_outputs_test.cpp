@@ -55,14 +55,18 @@ TEST(MeshOutputs, EveryFormatWithItsFileNameAndOneLogLine) {
                                              "tiny_zoom.png"}));
   EXPECT_EQ(formats, (std::vector<std::string>{"msh", "ugrid", "vtu", "fort14", "text", "png", "png_zoom"}));
   EXPECT_EQ(files_in(dir.path()), std::set<std::string>(names.begin(), names.end()));
-  ASSERT_EQ(log.lines.size(), 7u);
-  EXPECT_NE(log.lines[2].find("tiny.vtu"), std::string::npos);
-  EXPECT_NE(log.lines[2].find("2 merged pole nodes"), std::string::npos) << log.lines[2];
-  EXPECT_NE(log.lines[2].find("2 dropped degenerate cells"), std::string::npos) << log.lines[2];
-  // The VTU facts are there for the run report.
-  const auto& vtu = w[2].facts;
-  EXPECT_NE(std::find(vtu.begin(), vtu.end(), std::make_pair(std::string("merged pole nodes"), std::int64_t{2})),
-            vtu.end());
+  // One line per file, and one for the geographic mesh before the first file that needs it: the
+  // tiny mesh's pole row is not all ocean, so it is merged (3 nodes into 1, 2 triangles dropped).
+  ASSERT_EQ(log.lines.size(), 8u);
+  EXPECT_NE(log.lines[1].find("geographic mesh: North pole: pole row merged into one node (2 nodes merged, 2 "
+                              "degenerate triangles dropped)"),
+            std::string::npos)
+      << log.lines[1];
+  EXPECT_NE(log.lines[3].find("tiny.vtu"), std::string::npos);
+  EXPECT_NE(log.lines[3].find("19 points, 15 cells"), std::string::npos) << log.lines[3];
+  // UGRID, VTU, fort.14 and text write the same geographic mesh; MSH (λ–φ plane) the lattice one.
+  for (const std::size_t k : {1, 2, 3, 4}) EXPECT_EQ(w[k].stats.nodes, 19) << w[k].name;
+  EXPECT_EQ(w[0].stats.nodes, 21 + 2);
   EXPECT_EQ(w[0].stats.seam_duplicates, 2);
 }
 

@@ -170,7 +170,8 @@ TEST(UgridWriter, NodeDataFlagsAndFaceLevels) {
   EXPECT_EQ(lon, m.lon_deg);
   const auto flags = nc.ints("node_flags");
   for (std::size_t n = 0; n < 21; ++n) EXPECT_EQ(flags[n], m.node_flags[n]);
-  EXPECT_EQ(nc.text("node_flags", "flag_meanings"), "boundary midside_hanging_node centre_node pole seam");
+  EXPECT_EQ(nc.text("node_flags", "flag_meanings"),
+            "boundary midside_hanging_node centre_node pole seam pole_cap_node");
   EXPECT_EQ(nc.text("level", "location"), "face");
   const auto level = nc.ints("level");
   for (std::size_t t = 0; t < 17; ++t) EXPECT_EQ(level[t], m.triangle_level[t]);
