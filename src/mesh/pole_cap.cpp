@@ -111,15 +111,30 @@ PoleCap make_pole_cap(const std::vector<double>& ring_rlon_deg, double ring_rlat
     outer.ids.push_back(static_cast<NodeId>(k));
     outer.points.push_back({r0, ring_rlon_deg[static_cast<std::size_t>(k)]});
   }
+  // Ring k's nodes are equally spaced in G = w·F0 + (1 − w)·(θ − θ0)/360, F0 the fraction of
+  // ring-0 nodes west of θ and w = 2^-k: ring 1 follows half of ring 0's uneven spacing (finer
+  // squares below it), the inner rings ever less, so no triangle between rings spans a 4:1 step.
+  auto ring0 = [&](std::int64_t i) {
+    return i < n0 ? ring_rlon_deg[static_cast<std::size_t>(i)] : ring_rlon_deg.front() + 360.0;
+  };
+  auto blend = [&](double w, std::int64_t i) {
+    return w * static_cast<double>(i) / static_cast<double>(n0) + (1.0 - w) * (ring0(i) - theta0) / 360.0;
+  };
   std::int64_t prev_n = n0;
   for (const double raw : radii) {
     const double rk = r0 - (r0 - raw) * stretch;
     const std::int64_t n =
         std::clamp<std::int64_t>(std::llround(2.0 * kPi * std::sin(rk) / size(raw)), std::int64_t{3}, prev_n);
     Ring inner;
+    const double w = std::pow(0.5, cap.rings + 1);
+    std::int64_t seg = 0;  // segment [a_seg, a_seg+1] of ring 0 holding the current target
     for (std::int64_t m = 0; m < n; ++m) {
+      const double target = (static_cast<double>(m) + 0.5) / static_cast<double>(n);
+      while (seg + 1 < n0 && blend(w, seg + 1) <= target) ++seg;
+      const double g0 = blend(w, seg), g1 = blend(w, seg + 1);
+      const double theta = ring0(seg) + (ring0(seg + 1) - ring0(seg)) * (target - g0) / (g1 - g0);
       inner.ids.push_back(static_cast<NodeId>(n0 + static_cast<std::int64_t>(points.size())));
-      const CapPoint p{rk, theta0 + (static_cast<double>(m) + 0.5) * 360.0 / static_cast<double>(n)};
+      const CapPoint p{rk, theta};
       inner.points.push_back(p);
       points.push_back(p);
     }
