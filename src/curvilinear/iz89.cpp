@@ -361,8 +361,8 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
 }
 
 // Chooses between one thread and `max_threads` by timing chunks of vertex maps: the results do
-// not depend on the choice, the speed does (each vertex map costs two barriers, which a busy
-// machine can make far slower than the work they split). The slower mode is re-timed now and
+// not depend on the choice, the speed does (each vertex map costs a barrier, which a busy
+// machine can make far slower than the work it splits). The slower mode is re-timed now and
 // then, less often the slower it was.
 class ThreadChooser {
  public:
