@@ -71,11 +71,16 @@ inline double small_angle(double cr, double dt) {
   return std::atan2(cr, dt);
 }
 
-// The barrier between the threads of a sweep, once per vertex map. It polls only briefly (the
-// threads' shares of a map end within microseconds of each other on an idle machine), then
-// sleeps in the kernel: a thread whose partner was descheduled hands its core over instead of
-// spinning it away, as OpenMP's barrier does for up to ~1 ms (measured: 2 threads on a loaded
-// machine burnt 25× the CPU time of one).
+}  // namespace
+
+namespace {
+
+// The barrier between the threads of a sweep, twice per vertex map. It polls for up to 0.2 ms
+// (a few vertex maps' work: on an idle machine the threads' shares end within that of each
+// other, and a sleep would cost a wake-up per map), then sleeps in the kernel: a thread whose
+// partner was descheduled hands its core over instead of spinning it away, as OpenMP's barrier
+// does (measured with 2 passes at Nb = 5200 on 2 threads beside 3 busy threads on 2 cores:
+// 6.3 s with OpenMP's barrier, 2.9 s with this one; the same on an idle machine).
 class SweepBarrier {
  public:
   /// Every one of the team's `threads` threads calls this.
@@ -87,282 +92,180 @@ class SweepBarrier {
       generation_.notify_all();
       return;
     }
-    for (int i = 0; i < kPolls; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    for (unsigned i = 1;; ++i) {
       if (generation_.load(std::memory_order_acquire) != gen) return;
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
 #endif
+      if ((i & 63U) == 0 && std::chrono::steady_clock::now() - start > kPoll) break;
     }
     while (generation_.load(std::memory_order_acquire) == gen) generation_.wait(gen, std::memory_order_acquire);
   }
 
  private:
-  static constexpr int kPolls = 1000;  // ~10–40 µs
+  static constexpr std::chrono::microseconds kPoll{200};
   std::atomic<int> arrived_{0};
   std::atomic<unsigned> generation_{0};
 };
 
-// Scratch of one iz89_straighten call, shared by the threads of a sweep. The polygon lives in
-// two buffers (the caller's arrays and a copy): vertex map k reads one and writes the other, so
-// a thread can start map k+1 on its own points while the others still apply map k to theirs.
-// θ and the block ranges are double-buffered the same way.
+// Scratch of one iz89_straighten call, shared by the threads of a sweep.
 struct Workspace {
-  double* px[2];
-  double* py[2];
-  std::vector<double> qx, qy;  // buffer 1
+  double* px;
+  double* py;
   const char* corner_flag;
   int nb, nwalk, nblocks;
-  std::vector<double> theta[2], block_min[2], block_max[2];
+  std::vector<double> theta, block_min, block_max;
 };
 
 struct SweepResult {
   double max_angle = 0.0;
   int clamped = 0;
   bool collapsed = false;
-  int maps_done = 0;  // vertex maps applied (all of them unless a collapse stopped the sweep)
 };
 
-// One vertex map's data, computed identically by every thread from z_{k−1}, z_k, z_{k+1}.
-struct VertexMap {
-  double xk = 0.0, yk = 0.0;
-  double ubx = 0.0, uby = 0.0;  // backward ray (unnormalised)
-  double inv_l2 = 0.0;
-  double ang = 0.0, a_int = 0.0, eps = 0.0;
-  bool collapsed = false;
-};
-
-VertexMap vertex_map(double xm, double ym, double xk, double yk, double xp, double yp, bool corner) {
-  VertexMap v;
-  v.xk = xk;
-  v.yk = yk;
-  const double ax = xk - xm, ay = yk - ym;
-  const double bx = xp - xk, by = yp - yk;
-  const double cr = ax * by - ay * bx, dt = ax * bx + ay * by;
-  const double l2 = ax * ax + ay * ay;
-  if (!(l2 > 0.0) || !(bx * bx + by * by > 0.0) || !std::isfinite(cr + dt)) {
-    v.collapsed = true;
-    return v;
-  }
-  if (corner) {
-    if (cr > 0.0) {
-      v.ang = std::atan2(-dt, cr);  // α' = α − π/2, small near convergence
-      v.a_int = kHalfPi - v.ang;
-    } else {  // reflex or straight "corner": α' leaves (−π/2, π/2)
-      v.a_int = kPi - std::atan2(cr, dt);
-      v.ang = kHalfPi - v.a_int;
-    }
-  } else {
-    v.ang = std::atan2(cr, dt);  // α, small near convergence
-    v.a_int = kPi - v.ang;
-  }
-  v.eps = v.ang / v.a_int;  // P − 1 = (T − A_int)/A_int
-  v.ubx = -ax;
-  v.uby = -ay;
-  v.inv_l2 = 1.0 / l2;
-  return v;
-}
-
-// The power map of one point with its continuous angle θ (the identity when ang = 0).
-inline void map_point(const VertexMap& v, double theta, double x, double y, double& ox, double& oy) {
-  if (v.ang == 0.0) {
-    ox = x;
-    oy = y;
-    return;
-  }
-  const double dx = x - v.xk, dy = y - v.yk;
-  const double lr = 0.5 * std::log((dx * dx + dy * dy) * v.inv_l2);
-  double fr = 1.0, fi = 0.0;
-  complex_exp(v.eps * lr, v.eps * theta, fr, fi);
-  ox = v.xk + (fr * dx - fi * dy);
-  oy = v.yk + (fi * dx + fr * dy);
-}
-
-// Phase 1 of one block: θ relative to the block's absolute start, and the block's range. The
-// block's last point comes from (lx, ly) when `last_given` (a point another thread writes).
-inline void block_angles(const VertexMap& v, const double* px, const double* py, int nb, int k, int wb, int we,
-                         bool last_given, double lx, double ly, double* theta, double& bmin, double& bmax) {
-  int j = k + wb;
-  if (j >= nb) j -= nb;
-  auto offset = [&](int w, int jj, double& dx, double& dy) {
-    const bool given = last_given && w == we - 1;
-    dx = (given ? lx : px[jj]) - v.xk;
-    dy = (given ? ly : py[jj]) - v.yk;
-  };
-  double pdx = 0.0, pdy = 0.0;
-  offset(wb, j, pdx, pdy);
-  double t = std::atan2(v.ubx * pdy - v.uby * pdx, v.ubx * pdx + v.uby * pdy);
-  double lo = t, hi = t;
-  theta[wb] = t;
-  for (int w = wb + 1; w < we; ++w) {
-    if (++j == nb) j = 0;
-    double dx = 0.0, dy = 0.0;
-    offset(w, j, dx, dy);
-    t += small_angle(pdx * dy - pdy * dx, pdx * dx + pdy * dy);
-    theta[w] = t;
-    lo = std::min(lo, t);
-    hi = std::max(hi, t);
-    pdx = dx;
-    pdy = dy;
-  }
-  bmin = lo;
-  bmax = hi;
-}
-
-// Vertex maps k0..k1−1 of a pass on `threads` threads (bit-identical for any count). One
-// barrier per vertex map: after it, every thread finds the 2π multiples and the span guard of
-// map k (a short serial prefix over all blocks' angles), applies map k to its points into the
-// other buffer, maps z_{k+1}, z_{k+2} and the first point of the next thread's range itself
-// (the same arithmetic as their owners, so the same bits), and computes its blocks' angles for
-// map k+1, whose walk is shifted by one point.
+// Vertex maps k0..k1−1 of a pass on `threads` threads (bit-identical for any count).
 SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
-  const int nb = ws.nb, nwalk = ws.nwalk, nblocks = ws.nblocks;
+  double* px = ws.px;
+  double* py = ws.py;
   const char* corner_flag = ws.corner_flag;
+  const int nb = ws.nb, nwalk = ws.nwalk, nblocks = ws.nblocks;
+  double* theta_p = ws.theta.data();
+  double* bmin_p = ws.block_min.data();
+  double* bmax_p = ws.block_max.data();
   SweepResult out;
 #ifndef _OPENMP
   (void)threads;
 #endif
   SweepBarrier barrier;
 #pragma omp parallel num_threads(threads) default(none) \
-    shared(out, ws, corner_flag, nb, nwalk, nblocks, k0, k1, barrier)
+    shared(out, px, py, corner_flag, theta_p, bmin_p, bmax_p, nb, nwalk, nblocks, k0, k1, barrier)
   {
     int tid = 0, nt = 1;
 #ifdef _OPENMP
     tid = omp_get_thread_num();
     nt = omp_get_num_threads();
 #endif
-    // My blocks: [b0, b1), ending at walk position w_hi.
+    // My blocks: [b0, b1).
     const int b0 = static_cast<int>(static_cast<long long>(nblocks) * tid / nt);
     const int b1 = static_cast<int>(static_cast<long long>(nblocks) * (tid + 1) / nt);
-    const int w_hi = std::min(1 + b1 * kBlock, nwalk + 1);
-    const bool walk_end = b1 == nblocks;  // I hold the walk's end and carry z_{k−1} over
-    auto block_end = [nwalk](int b) { return std::min(1 + (b + 1) * kBlock, nwalk + 1); };
-    std::vector<int> turns(static_cast<std::size_t>(nblocks));  // private: every thread computes all
+    std::vector<int> block_turns(static_cast<std::size_t>(nblocks));  // private: every thread computes all
+    int* turns_p = block_turns.data();
     double pass_max = 0.0;
     int clamped = 0;
     bool collapsed = false;
-    int done = 0;
-    VertexMap v;
-    {
-      const int km = k0 == 0 ? nb - 1 : k0 - 1;
-      const int kp = k0 == nb - 1 ? 0 : k0 + 1;
-      const double* x = ws.px[0];
-      const double* y = ws.py[0];
-      v = vertex_map(x[km], y[km], x[k0], y[k0], x[kp], y[kp], corner_flag[k0] != 0);
-      if (!v.collapsed && v.ang != 0.0)
-        for (int b = b0; b < b1; ++b)
-          block_angles(v, x, y, nb, k0, 1 + b * kBlock, block_end(b), false, 0.0, 0.0, ws.theta[0].data(),
-                       ws.block_min[0][static_cast<std::size_t>(b)], ws.block_max[0][static_cast<std::size_t>(b)]);
-    }
     for (int k = k0; k < k1; ++k) {
-      if (v.collapsed) {  // every thread sees the same vertex data
+      // Vertex data, computed identically by every thread from the shared polygon.
+      const int km = k == 0 ? nb - 1 : k - 1;
+      const int kp = k == nb - 1 ? 0 : k + 1;
+      const double xk = px[k], yk = py[k];
+      const double ax = xk - px[km], ay = yk - py[km];
+      const double bx = px[kp] - xk, by = py[kp] - yk;
+      const double cr = ax * by - ay * bx, dt = ax * bx + ay * by;
+      const double l2 = ax * ax + ay * ay;
+      if (!(l2 > 0.0) || !(bx * bx + by * by > 0.0) || !std::isfinite(cr + dt)) {
         collapsed = true;
         break;
       }
-      pass_max = std::max(pass_max, std::fabs(v.ang));
-      const int cur = (k - k0) & 1, nxt = cur ^ 1;
-      const double* cx = ws.px[cur];
-      const double* cy = ws.py[cur];
-      double* ox = ws.px[nxt];
-      double* oy = ws.py[nxt];
-      const double* th = ws.theta[cur].data();
+      double ang = 0.0, a_int = 0.0;  // turning angle from the target and interior angle
+      if (corner_flag[k] != 0) {
+        if (cr > 0.0) {
+          ang = std::atan2(-dt, cr);  // α' = α − π/2, small near convergence
+          a_int = kHalfPi - ang;
+        } else {  // reflex or straight "corner": α' leaves (−π/2, π/2)
+          a_int = kPi - std::atan2(cr, dt);
+          ang = kHalfPi - a_int;
+        }
+      } else {
+        ang = std::atan2(cr, dt);  // α, small near convergence
+        a_int = kPi - ang;
+      }
+      pass_max = std::max(pass_max, std::fabs(ang));
+      if (ang == 0.0) continue;           // the identity map
+      double eps = ang / a_int;           // P − 1 = (T − A_int)/A_int
+      const double ubx = -ax, uby = -ay;  // backward ray (unnormalised)
+
+      // Phase 1: θ within each of my blocks, relative to the block's absolute start, and the
+      // block's range of relative θ.
+      for (int b = b0; b < b1; ++b) {
+        const int wb = 1 + b * kBlock, we = std::min(wb + kBlock, nwalk + 1);
+        int j = k + wb;
+        if (j >= nb) j -= nb;
+        double pdx = px[j] - xk, pdy = py[j] - yk;
+        double t = std::atan2(ubx * pdy - uby * pdx, ubx * pdx + uby * pdy);
+        double lo = t, hi = t;
+        theta_p[wb] = t;
+        for (int w = wb + 1; w < we; ++w) {
+          if (++j == nb) j = 0;
+          const double dx = px[j] - xk, dy = py[j] - yk;
+          t += small_angle(pdx * dy - pdy * dx, pdx * dx + pdy * dy);
+          theta_p[w] = t;
+          lo = std::min(lo, t);
+          hi = std::max(hi, t);
+          pdx = dx;
+          pdy = dy;
+        }
+        bmin_p[b] = lo;
+        bmax_p[b] = hi;
+      }
       if (nt > 1) barrier.wait(nt);
-      if (v.ang != 0.0) {
-        // 2π multiples at the block joins (block starts lie in (−π, π], θ_{k+1} = −A_int),
-        // and the span of θ for the guard.
-        const double* bmin = ws.block_min[cur].data();
-        const double* bmax = ws.block_max[cur].data();
+      // Phase 2 (every thread, identically): 2π multiples at the block joins by a short serial
+      // prefix (block starts lie in (−π, π], θ_{k+1} = −A_int), and the span of θ.
+      {
         double lo = 0.0, hi = 0.0;  // θ_{k−1} = 0 is part of the span
-        int t = static_cast<int>(std::lround((-v.a_int - th[1]) / kTwoPi));
+        int turns = static_cast<int>(std::lround((-a_int - theta_p[1]) / kTwoPi));
         for (int b = 0; b < nblocks; ++b) {
           const int wb = 1 + b * kBlock;
           if (b > 0) {
-            const double prev_end = th[wb - 1] + kTwoPi * static_cast<double>(t);
-            t = static_cast<int>(std::lround((prev_end - th[wb]) / kTwoPi));
+            const double prev_end = theta_p[wb - 1] + kTwoPi * static_cast<double>(turns);
+            turns = static_cast<int>(std::lround((prev_end - theta_p[wb]) / kTwoPi));
           }
-          turns[static_cast<std::size_t>(b)] = t;
-          const double add = kTwoPi * static_cast<double>(t);
-          lo = std::min(lo, bmin[b] + add);  // rounding is monotone: = min over θ + add
-          hi = std::max(hi, bmax[b] + add);
+          turns_p[b] = turns;
+          const double add = kTwoPi * static_cast<double>(turns);
+          lo = std::min(lo, bmin_p[b] + add);  // rounding is monotone: = min over θ + add
+          hi = std::max(hi, bmax_p[b] + add);
         }
         // Guard on the mapped span (RECT's clamp).
         const double span = hi - lo;
-        if ((1.0 + v.eps) * span > kMaxSpan) {
-          v.eps = kMaxSpan / span - 1.0;
+        if ((1.0 + eps) * span > kMaxSpan) {
+          eps = kMaxSpan / span - 1.0;
           ++clamped;
         }
       }
-      auto angle = [&](int w, int b) {
-        return th[w] + kTwoPi * static_cast<double>(turns[static_cast<std::size_t>(b)]);
-      };
-      // The power map of my points.
-      for (int b = b0; b < b1; ++b) {
-        const int wb = 1 + b * kBlock, we = block_end(b);
-        int j = k + wb;
-        if (j >= nb) j -= nb;
-        for (int w = wb; w < we; ++w, ++j) {
-          if (j == nb) j = 0;
-          map_point(v, angle(w, b), cx[j], cy[j], ox[j], oy[j]);
-        }
-      }
-      if (walk_end && k == k0) {  // z_{k−1} (fixed); later maps find it there, as map k−1's centre
-        const int km = k == 0 ? nb - 1 : k - 1;
-        ox[km] = cx[km];
-        oy[km] = cy[km];
-      }
-      ++done;
-      if (k + 1 == k1) break;
-      // Map k+1: z_k stays, z_{k+1} and z_{k+2} are walk positions 1 and 2 of map k.
-      const int kp = k + 1 == nb ? 0 : k + 1;
-      const int kpp = kp + 1 == nb ? 0 : kp + 1;
-      double x1 = 0.0, y1 = 0.0, x2 = 0.0, y2 = 0.0;
-      map_point(v, angle(1, 0), cx[kp], cy[kp], x1, y1);
-      map_point(v, angle(2, 0), cx[kpp], cy[kpp], x2, y2);
-      const VertexMap vn = vertex_map(cx[k], cy[k], x1, y1, x2, y2, corner_flag[kp] != 0);
-      if (!vn.collapsed && vn.ang != 0.0 && b0 < b1) {
-        // My last point of map k+1 is the next thread's first point of map k.
-        double lx = 0.0, ly = 0.0;
-        if (!walk_end) {
-          int j = k + w_hi;
+      // Phase 3: the power map of my points.
+      {
+        const double inv_l2 = 1.0 / l2;
+        for (int b = b0; b < b1; ++b) {
+          const int wb = 1 + b * kBlock, we = std::min(wb + kBlock, nwalk + 1);
+          const double add = kTwoPi * static_cast<double>(turns_p[b]);
+          int j = k + wb;
           if (j >= nb) j -= nb;
-          map_point(v, angle(w_hi, b1), cx[j], cy[j], lx, ly);
+          for (int w = wb; w < we; ++w, ++j) {
+            if (j == nb) j = 0;
+            const double dx = px[j] - xk, dy = py[j] - yk;
+            const double lr = 0.5 * std::log((dx * dx + dy * dy) * inv_l2);
+            double fr = 1.0, fi = 0.0;
+            complex_exp(eps * lr, eps * (theta_p[w] + add), fr, fi);
+            px[j] = xk + (fr * dx - fi * dy);
+            py[j] = yk + (fi * dx + fr * dy);
+          }
         }
-        for (int b = b0; b < b1; ++b)
-          block_angles(vn, ox, oy, nb, kp, 1 + b * kBlock, block_end(b), !walk_end && b == b1 - 1, lx, ly,
-                       ws.theta[nxt].data(), ws.block_min[nxt][static_cast<std::size_t>(b)],
-                       ws.block_max[nxt][static_cast<std::size_t>(b)]);
       }
-      v = vn;
+      if (nt > 1) barrier.wait(nt);
     }
 #pragma omp master
     {
       out.max_angle = pass_max;
       out.clamped = clamped;
       out.collapsed = collapsed;
-      out.maps_done = done;
-    }
-  }
-  // The polygon after the last map is in buffer (maps_done mod 2), except its centre, which
-  // that map left in the other buffer.
-  const int done = out.maps_done;
-  if (done > 0) {
-    const int kl = k0 + done - 1;
-    if ((done & 1) == 1) {
-      for (int j = 0; j < nb; ++j)
-        if (j != kl) {
-          ws.px[0][j] = ws.px[1][j];
-          ws.py[0][j] = ws.py[1][j];
-        }
-    } else {
-      ws.px[0][kl] = ws.px[1][kl];
-      ws.py[0][kl] = ws.py[1][kl];
     }
   }
   return out;
 }
 
 // Chooses between one thread and `max_threads` by timing chunks of vertex maps: the results do
-// not depend on the choice, the speed does (each vertex map costs a barrier, which a busy
-// machine can make far slower than the work it splits). The slower mode is re-timed now and
+// not depend on the choice, the speed does (each vertex map costs two barriers, which a busy
+// machine can make slower than the work they split). The slower mode is re-timed now and
 // then, less often the slower it was.
 class ThreadChooser {
  public:
@@ -407,21 +310,15 @@ Iz89Result iz89_straighten(std::span<double> x, std::span<double> y, const std::
   // the small angles between consecutive points; a serial prefix over the blocks adds the 2π
   // multiples at the joins. Blocks do not depend on the thread count: bit-identical results.
   Workspace ws;
-  ws.qx.assign(static_cast<std::size_t>(nb), 0.0);
-  ws.qy.assign(static_cast<std::size_t>(nb), 0.0);
-  ws.px[0] = x.data();
-  ws.py[0] = y.data();
-  ws.px[1] = ws.qx.data();
-  ws.py[1] = ws.qy.data();
+  ws.px = x.data();
+  ws.py = y.data();
   ws.corner_flag = is_corner.data();
   ws.nb = nb;
   ws.nwalk = nb - 2;
   ws.nblocks = (ws.nwalk + kBlock - 1) / kBlock;
-  for (int i = 0; i < 2; ++i) {
-    ws.theta[i].assign(static_cast<std::size_t>(nb), 0.0);
-    ws.block_min[i].assign(static_cast<std::size_t>(ws.nblocks), 0.0);
-    ws.block_max[i].assign(static_cast<std::size_t>(ws.nblocks), 0.0);
-  }
+  ws.theta.assign(static_cast<std::size_t>(nb), 0.0);
+  ws.block_min.assign(static_cast<std::size_t>(ws.nblocks), 0.0);
+  ws.block_max.assign(static_cast<std::size_t>(ws.nblocks), 0.0);
   int max_threads = 1;
 #ifdef _OPENMP
   max_threads = options.threads > 0 ? options.threads : omp_get_max_threads();

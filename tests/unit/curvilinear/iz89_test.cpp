@@ -153,7 +153,7 @@ TEST(Iz89Test, BitIdenticalForOneAndTwoThreads) {
   for (double h : {1.0 / 16, 1.0 / 40}) {
     Polygon a = symmetric_l(h), b = a;
     Iz89Options one, two;
-    one.max_passes = two.max_passes = 3;  // each vertex map costs a barrier: keep it short
+    one.max_passes = two.max_passes = 3;  // each vertex map costs two barriers: keep it short
     one.threads = 1;
     two.threads = 2;
     two.min_parallel_vertices = 0;  // force the parallel path even for a small polygon
@@ -174,9 +174,8 @@ TEST(Iz89Test, BitIdenticalForOneAndTwoThreads) {
   }
 }
 
-// Three threads (unequal shares of blocks), an odd vertex count and sweeps of 128 maps that
-// start anywhere: each thread maps its neighbour's first point and the next vertex itself, and
-// a sweep leaves the polygon in either buffer; all of it must give the one-thread bits.
+// Three threads (unequal shares of blocks, three parties at each barrier), an odd vertex count
+// and sweeps of 128 maps that start anywhere must all give the one-thread bits.
 TEST(Iz89Test, BitIdenticalForThreeThreadsAndOddPolygons) {
   Polygon base = half_square_triangle(1.0 / 45);
   if (base.x.size() % 2 == 0) {  // make the vertex count odd: split the first edge once more
