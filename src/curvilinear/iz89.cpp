@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -75,40 +74,6 @@ inline double small_angle(double cr, double dt) {
 
 namespace {
 
-// The barrier between the threads of a sweep, twice per vertex map. It polls for up to 0.2 ms
-// (a few vertex maps' work: on an idle machine the threads' shares end within that of each
-// other, and a sleep would cost a wake-up per map), then sleeps in the kernel: a thread whose
-// partner was descheduled hands its core over instead of spinning it away, as OpenMP's barrier
-// does (measured with 2 passes at Nb = 5200 on 2 threads beside 3 busy threads on 2 cores:
-// 6.3 s with OpenMP's barrier, 2.9 s with this one; the same on an idle machine).
-class SweepBarrier {
- public:
-  /// Every one of the team's `threads` threads calls this.
-  void wait(int threads) {
-    const unsigned gen = generation_.load(std::memory_order_acquire);
-    if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == threads) {
-      arrived_.store(0, std::memory_order_relaxed);
-      generation_.store(gen + 1, std::memory_order_release);
-      generation_.notify_all();
-      return;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    for (unsigned i = 1;; ++i) {
-      if (generation_.load(std::memory_order_acquire) != gen) return;
-#if defined(__x86_64__) || defined(__i386__)
-      __builtin_ia32_pause();
-#endif
-      if ((i & 63U) == 0 && std::chrono::steady_clock::now() - start > kPoll) break;
-    }
-    while (generation_.load(std::memory_order_acquire) == gen) generation_.wait(gen, std::memory_order_acquire);
-  }
-
- private:
-  static constexpr std::chrono::microseconds kPoll{200};
-  std::atomic<int> arrived_{0};
-  std::atomic<unsigned> generation_{0};
-};
-
 // Scratch of one iz89_straighten call, shared by the threads of a sweep.
 struct Workspace {
   double* px;
@@ -137,9 +102,8 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
 #ifndef _OPENMP
   (void)threads;
 #endif
-  SweepBarrier barrier;
 #pragma omp parallel num_threads(threads) default(none) \
-    shared(out, px, py, corner_flag, theta_p, bmin_p, bmax_p, nb, nwalk, nblocks, k0, k1, barrier)
+    shared(out, px, py, corner_flag, theta_p, bmin_p, bmax_p, nb, nwalk, nblocks, k0, k1)
   {
     int tid = 0, nt = 1;
 #ifdef _OPENMP
@@ -208,7 +172,7 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
         bmin_p[b] = lo;
         bmax_p[b] = hi;
       }
-      if (nt > 1) barrier.wait(nt);
+#pragma omp barrier
       // Phase 2 (every thread, identically): 2π multiples at the block joins by a short serial
       // prefix (block starts lie in (−π, π], θ_{k+1} = −A_int), and the span of θ.
       {
@@ -251,7 +215,7 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
           }
         }
       }
-      if (nt > 1) barrier.wait(nt);
+#pragma omp barrier
     }
 #pragma omp master
     {
@@ -265,7 +229,7 @@ SweepResult sweep(Workspace& ws, int k0, int k1, int threads) {
 
 // Chooses between one thread and `max_threads` by timing chunks of vertex maps: the results do
 // not depend on the choice, the speed does (each vertex map costs two barriers, which a busy
-// machine can make slower than the work they split). The slower mode is re-timed now and
+// machine can make far slower than the work they split). The slower mode is re-timed now and
 // then, less often the slower it was.
 class ThreadChooser {
  public:

@@ -42,10 +42,8 @@ struct Iz89Options {
   double floor_threshold = 1e-10;
   /// OpenMP threads. 0 = choose, chunk by chunk of 128 vertex maps, between one thread and the
   /// OpenMP default by timing both (each vertex map costs two barriers, which on a busy machine
-  /// can cost far more than the work they split: at load 20 on 2 cores, 3 passes at Nb = 5200
-  /// took 23× the one-thread time on 2 threads with OpenMP's spinning barrier, 5× with the
-  /// sleeping one used now).
-  /// > 0 = exactly this many. Results are bit-identical for any choice.
+  /// can cost far more than the work they split: measured 10× slower with 2 threads at load 9
+  /// on 2 cores). > 0 = exactly this many. Results are bit-identical for any choice.
   int threads = 0;
   /// Polygons with fewer vertices always run on one thread (a vertex map must have thousands of
   /// points before splitting it pays for the barriers).
