@@ -39,12 +39,13 @@ loaded() {
   local name="$1" report="$2"
   shift 2
   local idle=() busy=() i
+  local err="$work/loaded.err"  # the runs' warnings were shown by the table's run; errors are shown
   for ((i = 0; i < ${AQ_BENCH_REPEAT:-1}; ++i)); do
-    "$@" >/dev/null
+    "$@" >/dev/null 2>"$err" || { cat "$err" >&2; exit 1; }
     idle+=("$(wall_of "$report")")
     bash -c 'while :; do :; done' &
     burner=$!
-    "$@" >/dev/null
+    "$@" >/dev/null 2>"$err" || { cat "$err" >&2; exit 1; }
     stop_burner
     busy+=("$(wall_of "$report")")
   done
