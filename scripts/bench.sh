@@ -4,6 +4,9 @@
 # target, it reports it.
 #   scripts/bench.sh            all cases (makes the 1' raster once, cached outside the repo)
 #   scripts/bench.sh quick      only the seed reference run and Black Sea
+# The regional cases also run beside a CPU burner (one busy-loop process, started and killed
+# here) and print the idle and loaded wall times and their ratio; AQ_BENCH_REPEAT=N (default 1)
+# repeats the idle/loaded pair back to back and prints medians.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -16,6 +19,44 @@ export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
 
 echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GB RAM, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
 echo "OMP_NUM_THREADS=$OMP_NUM_THREADS"
+
+burner=""
+stop_burner() {
+  if [ -n "$burner" ]; then
+    kill "$burner" 2>/dev/null || true
+    wait "$burner" 2>/dev/null || true
+    burner=""
+  fi
+}
+trap stop_burner EXIT
+trap 'stop_burner; exit 130' INT
+trap 'stop_burner; exit 143' TERM
+
+wall_of() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["total"]["wall_s"])' "$1"; }
+
+# Idle and loaded wall time of one run: loaded NAME REPORT COMMAND... (the command writes REPORT).
+loaded() {
+  local name="$1" report="$2"
+  shift 2
+  local idle=() busy=() i
+  local err="$work/loaded.err"  # the runs' warnings were shown by the table's run; errors are shown
+  for ((i = 0; i < ${AQ_BENCH_REPEAT:-1}; ++i)); do
+    "$@" >/dev/null 2>"$err" || { cat "$err" >&2; exit 1; }
+    idle+=("$(wall_of "$report")")
+    bash -c 'while :; do :; done' &
+    burner=$!
+    "$@" >/dev/null 2>"$err" || { cat "$err" >&2; exit 1; }
+    stop_burner
+    busy+=("$(wall_of "$report")")
+  done
+  python3 - "$name" "${idle[*]}" "${busy[*]}" <<'PY'
+import statistics, sys
+name, idle, busy = sys.argv[1], [float(v) for v in sys.argv[2].split()], [float(v) for v in sys.argv[3].split()]
+i, b = statistics.median(idle), statistics.median(busy)
+print(f"loaded: {name}: idle {i:.3f} s, beside a CPU burner {b:.3f} s, ratio {b / i:.2f} (target <= 1.3; "
+      f"median of {len(idle)}: idle {' '.join(f'{v:.2f}' for v in idle)}, loaded {' '.join(f'{v:.2f}' for v in busy)})")
+PY
+}
 
 table() {  # name target_wall_s report.json
   python3 - "$@" <<'PY'
@@ -48,6 +89,7 @@ table "seed reference: ETOPO5, Δ0=4°, L=3, K=2, h=0, all outputs (target < 0.5
 if [ -f configs/black_sea.toml ]; then
   $bin regional -q -c configs/black_sea.toml -o "$work/black_sea" >/dev/null
   table "regional Black Sea, all stages (target < 1 s)" 1 "$work/black_sea/black_sea_report.json"
+  loaded "Black Sea" "$work/black_sea/black_sea_report.json" $bin regional -q -c configs/black_sea.toml -o "$work/black_sea"
 fi
 [ "$mode" = quick ] && exit 0
 
@@ -60,5 +102,6 @@ table "1' global lattice 21600×10800 (Δ0=16', L=4) from a 1' raster, binary MS
 
 if [ -f configs/black_sea_fig16.toml ]; then
   $bin regional -q -c configs/black_sea_fig16.toml -o "$work/fig16" >/dev/null
-  table "regional 1703×913 supergrid (seed Fig. 16 size) (target < 30 s)" 30 "$work/fig16/black_sea_fig16_report.json"
+  table "regional 1705×913 supergrid (seed Fig. 16 size) (target < 30 s)" 30 "$work/fig16/black_sea_fig16_report.json"
+  loaded "Fig. 16 size" "$work/fig16/black_sea_fig16_report.json" $bin regional -q -c configs/black_sea_fig16.toml -o "$work/fig16"
 fi

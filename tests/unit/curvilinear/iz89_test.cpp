@@ -174,6 +174,34 @@ TEST(Iz89Test, BitIdenticalForOneAndTwoThreads) {
   }
 }
 
+// Three threads (unequal shares of blocks, three parties at each barrier), an odd vertex count
+// and sweeps of 128 maps that start anywhere must all give the one-thread bits.
+TEST(Iz89Test, BitIdenticalForThreeThreadsAndOddPolygons) {
+  Polygon base = half_square_triangle(1.0 / 45);
+  if (base.x.size() % 2 == 0) {  // make the vertex count odd: split the first edge once more
+    base.x.insert(base.x.begin() + 1, 0.5 * (base.x[0] + base.x[1]));
+    base.y.insert(base.y.begin() + 1, 0.5 * (base.y[0] + base.y[1]));
+    for (int c = 1; c < 4; ++c) ++base.corners[static_cast<std::size_t>(c)];
+  }
+  ASSERT_EQ(base.x.size() % 2, 1U);
+  ASSERT_GT(base.x.size(), 3U * 64);  // more blocks of 64 walk positions than threads
+  Polygon a = base, b = base, c = base;
+  Iz89Options one, three, chosen;
+  one.max_passes = three.max_passes = chosen.max_passes = 2;
+  one.threads = 1;
+  three.threads = 3;
+  three.min_parallel_vertices = chosen.min_parallel_vertices = 0;
+  const Iz89Result ra = iz89_straighten(a.x, a.y, a.corners, one);
+  const Iz89Result rb = iz89_straighten(b.x, b.y, b.corners, three);
+  (void)iz89_straighten(c.x, c.y, c.corners, chosen);  // sweeps of 128 maps, 1 or N threads each
+  EXPECT_EQ(ra.max_angle, rb.max_angle);
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_EQ(a.y, b.y);
+  EXPECT_EQ(a.x, c.x);
+  EXPECT_EQ(a.y, c.y);
+  EXPECT_NE(a.x, base.x);  // the maps did move the vertices
+}
+
 TEST(Iz89Test, RefusesDegeneratePolygons) {
   Polygon p = subdivide({{0, 0}, {3, 0}, {3, 2}, {0, 2}}, {0, 1, 2, 3}, 0.5);
   p.x[3] = p.x[2];
