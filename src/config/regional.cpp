@@ -229,6 +229,13 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "threads") return p.threads;
   if (key == "lwidth") return p.lwidth;
   if (key == "solver") return p.solver == curvilinear::LaplaceOptions::Solver::kDst ? "dst" : "sor";
+  if (key == "method") return p.method == curvilinear::RegionalMethod::kBvp ? "bvp" : "conformal";
+  if (key == "surface") return p.surface == curvilinear::RegionalSurface::kSphere ? "sphere" : "plane";
+  if (key == "bvp_iterations") return p.bvp_iterations;
+  if (key == "bvp_interpolation")
+    return p.bvp_interpolation == curvilinear::LevelInterpolation::kCubic ? "cubic" : "linear";
+  if (key == "bvp_ratio_xi") return p.bvp_ratio_xi;
+  if (key == "bvp_ratio_eta") return p.bvp_ratio_eta;
   if (key == "schedule") return curvilinear::inner_schedule_name(p.schedule);
   if (key == "param") return p.param == curvilinear::Parametrisation::kIndex ? "index" : "arclength";
   if (key == "points") return p.points_lonlat ? "lonlat" : "plane";

@@ -140,6 +140,44 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kUniform) return r;
 
+  // method = bvp: the orthogonal-family grid replaces stages 3 (inverse problem) and 4 (fill).
+  if (p.method == RegionalMethod::kBvp) {
+    StageScope scope("regional bvp", report, log);
+    const Timer t;
+    RegionalBvp b = regional_bvp(*r.contour, r.uniform_nodes, *r.projection, p);
+    r.grid = std::move(b.grid);
+    r.nodes = std::move(b.nodes);
+    r.nx = b.nx;
+    r.aspect_ratio = b.aspect_ratio;
+    r.dxi_over_deta = r.aspect_ratio * (r.nodes.ny_pts - 1) / (r.nodes.nx_pts - 1);
+    r.bvp = std::move(b.bvp);
+    r.bvp->grid = {};
+    r.stage_seconds[4] = t.wall_s();
+    r.completed = Stage::kGrid;
+    const BvpResult& h = *r.bvp;
+    if (section != nullptr) {
+      (*section)["method"] = "bvp";
+      (*section)["surface"] = p.surface == RegionalSurface::kSphere ? "sphere" : "plane";
+      (*section)["nx"] = r.nx;
+      (*section)["aspect_ratio"] = r.aspect_ratio;
+      (*section)["dxi_over_deta"] = r.dxi_over_deta;
+      (*section)["supergrid"] = {r.grid.nx_pts, r.grid.ny_pts};
+      (*section)["bvp_f_max"] = h.f_max;
+      (*section)["bvp_f_avg"] = h.f_avg;
+      (*section)["bvp_energy_product"] = h.energy_product;
+      (*section)["bvp_cg_iterations"] = h.cg_iterations;
+      (*section)["bvp_best_iteration"] = h.best_iteration;
+      (*section)["stage_seconds"] = r.stage_seconds;
+    }
+    scope.done(fmt::format("{} x {} supergrid on the {} (nx = {}, W/H = {:.6f}): f_max {:.3g} -> {:.3g}, f_avg {:.3g} "
+                           "-> {:.3g} in {} outer iterations (best {})",
+                           r.grid.nx_pts, r.grid.ny_pts, p.surface == RegionalSurface::kSphere ? "sphere" : "plane",
+                           r.nx, r.aspect_ratio, h.f_max.front(), h.f_max[static_cast<std::size_t>(h.best_iteration)],
+                           h.f_avg.front(), h.f_avg[static_cast<std::size_t>(h.best_iteration)], h.iterations,
+                           h.best_iteration));
+    return r;
+  }
+
   // Stage 3: inverse problem.
   {
     StageScope scope("regional conformal", report, log);
