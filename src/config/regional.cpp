@@ -100,6 +100,45 @@ const S& schema() {
         },
         "");
     t.add_custom(
+        "regional", "block2_points",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::vector<std::array<double, 2>> pts;
+          if (auto err = detail::convert(v, pts)) return p.add(o, "regional.block2_points", *err);
+          c.params.x2.clear();
+          c.params.y2.clear();
+          for (const auto& q : pts) {
+            c.params.x2.push_back(q[0]);
+            c.params.y2.push_back(q[1]);
+          }
+          c.params.corner2.assign(pts.size(), false);
+          if (!pts.empty()) c.params.corner2[0] = true;
+        },
+        [](const RegionalConfig& c) {
+          Json a = Json::array();
+          for (std::size_t k = 0; k < c.params.x2.size(); ++k) a.push_back({c.params.x2[k], c.params.y2[k]});
+          return a;
+        },
+        "");
+    t.add_custom(
+        "regional", "block2_corners",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::vector<int> idx;
+          if (auto err = detail::convert(v, idx)) return p.add(o, "regional.block2_corners", *err);
+          if (idx.empty()) return;
+          if (idx.size() != 4 || idx[0] != 1)
+            return p.add(o, "regional.block2_corners", "expected the 4 corner point numbers, SW first: [1, SE, NE, NW]");
+          c.corners2 = idx;
+        },
+        [](const RegionalConfig& c) {
+          Json a = Json::array();
+          for (std::size_t k = 0; k < c.params.corner2.size(); ++k)
+            if (c.params.corner2[k]) a.push_back(k + 1);
+          return a;
+        },
+        "");
+    t.add<int>(
+        "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
+    t.add_custom(
         "input", "path",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
           std::string x;
@@ -296,6 +335,18 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
                                         k, c.params.x.size()));
       } else {
         c.params.corner[static_cast<std::size_t>(k - 1)] = true;
+      }
+    }
+  }
+  if (!c.corners2.empty()) {
+    c.params.corner2.assign(c.params.x2.size(), false);
+    for (const int k : c.corners2) {
+      if (k < 1 || k > static_cast<int>(c.params.x2.size())) {
+        p.add_plain(999998, fmt::format("regional.block2_corners: point number {} is outside 1..{} "
+                                        "(regional.block2_points)",
+                                        k, c.params.x2.size()));
+      } else {
+        c.params.corner2[static_cast<std::size_t>(k - 1)] = true;
       }
     }
   }

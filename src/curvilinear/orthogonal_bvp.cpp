@@ -18,7 +18,7 @@ bool leveled_off(double prev, double now, double tol) {
 
 }  // namespace
 
-BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o) {
+BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o, const ThetaEta* initial_solution) {
   if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))
     throw ConfigError(fmt::format("bvp: max_iterations = {}, min_iterations = {}, level_off = {} (need >= 1, >= 1, >= 0)",
                                   o.max_iterations, o.min_iterations, o.level_off));
@@ -31,7 +31,9 @@ BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o) {
   const auto np = static_cast<int>(o.theta_levels.size()), nq = static_cast<int>(o.eta_levels.size());
   double best = std::numeric_limits<double>::infinity();
   for (int k = 1; k <= o.max_iterations; ++k) {
-    const ThetaEta te = solve_theta_eta(reference, o.solver, guess_theta, guess_eta);
+    const ThetaEta te = k == 1 && initial_solution != nullptr
+                            ? *initial_solution
+                            : solve_theta_eta(reference, o.solver, guess_theta, guess_eta);
     SurfaceGrid grid = level_intersections(reference, te.theta, te.eta, o.theta_levels, o.eta_levels, o.interpolation);
     if (o.project) o.project(grid);
     const SurfaceOrthogonality q = surface_orthogonality(grid);

@@ -43,8 +43,10 @@ struct BvpResult {
   std::vector<int> cg_iterations;           ///< CG iterations (θ + η) per iteration
 };
 
-/// Runs the outer iteration from `initial` (≥ 2 × 2 points, valid cells). Throws ConfigError for
-/// bad levels or options, NumericalError from the solver or the tracing.
-BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& options);
+/// Runs the outer iteration from `initial` (≥ 2 × 2 points, valid cells); `initial_solution`, when
+/// given, is solve_theta_eta(initial) already computed (e.g. for the conformal modulus). Throws
+/// ConfigError for bad levels or options, NumericalError from the solver or the tracing.
+BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& options,
+                         const ThetaEta* initial_solution = nullptr);
 
 }  // namespace aq::curvilinear

@@ -32,12 +32,17 @@ struct RegionalBvp {
   BvpResult bvp;        ///< outer-iteration history (f_max, f_avg on the plane or the sphere)
   double aspect_ratio = 0.0;  ///< W/H from the first solve (the conformal modulus, inverted)
   int nx = 0;                 ///< cells along ξ of the final (ρ) grid
+  double interface_kink = 0.0;  ///< two blocks: largest angle (rad) of an η-line at the interface
 };
 
 /// Builds the grid. `uniform` are the uniform boundary nodes of a (2nx0+1) × (2ny+1) supergrid
 /// (stage 2; they define the reference grid 0). Throws NumericalError from the solver or the
 /// level-line tracing, InputError when a node falls where the projection is singular.
+/// With `contour2` and `uniform2` (a second block whose west side is the first one's east side,
+/// bvp_two_blocks.hpp) the two grids (same ny) are merged into one supergrid of
+/// (2nx_A + 2nx_B + 1) × (2ny+1) points; `nodes` are then the first block's.
 RegionalBvp regional_bvp(const SplineContour& contour, const BoundaryNodes& uniform, const Projection& projection,
-                         const RegionalParams& params);
+                         const RegionalParams& params, const SplineContour* contour2 = nullptr,
+                         const BoundaryNodes* uniform2 = nullptr);
 
 }  // namespace aq::curvilinear

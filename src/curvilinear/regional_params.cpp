@@ -56,6 +56,12 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
         "must be within (0, 100] (1 = uniform)");
   check(p.method == RegionalMethod::kBvp || p.surface == RegionalSurface::kPlane, "surface", "sphere",
         "only the bvp method solves on the sphere (set method = bvp)");
+  check(p.nx2 >= 0, "block2_nx", std::to_string(p.nx2), "must be >= 0 (0 = from the conformal modulus)");
+  check(p.x2.empty() || p.method == RegionalMethod::kBvp, "block2_points", std::to_string(p.x2.size()) + " points",
+        "a second block needs method = bvp");
+  if (p.x2.size() != p.y2.size() || p.corner2.size() != p.x2.size())
+    bad.emplace_back("block2_points", fmt::format("block2_points: {} x, {} y and {} corner marks differ in number",
+                                                  p.x2.size(), p.y2.size(), p.corner2.size()));
   check(p.threads >= 0, "threads", std::to_string(p.threads), "must be >= 0 (0 = default)");
   check(!p.xygrid.empty(), "xygrid", "''", "must name a file");
   for (const auto& [key, v] : {std::pair{"west_edge", p.west_edge}, std::pair{"east_edge", p.east_edge},

@@ -123,6 +123,13 @@ struct RegionalParams {
   /// along ξ (west -> east) or η (south -> north) over the first, geometric in between; 1 = uniform.
   double bvp_ratio_xi = 1.0;
   double bvp_ratio_eta = 1.0;
+  /// bvp multi-block (TOML only: regional.block2_points, block2_corners, block2_nx): a second
+  /// block east of the first, its west side the first block's east side (the same curve), in the
+  /// same units as x, y. Empty = one block. The two grids are merged into one supergrid.
+  std::vector<double> x2, y2;
+  std::vector<bool> corner2;
+  /// Cells along ξ of the second block's ρ grid; 0 = from its conformal modulus.
+  int nx2 = 0;
 
   // --- fill (mode 4) -------------------------------------------------------------------------
   /// [solver] Laplace solver: "dst" (direct, default) or "sor" (the paper's 4-colour SOR).

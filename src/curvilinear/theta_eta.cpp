@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <exception>
 
 #include "core/error.hpp"
 
@@ -57,57 +58,80 @@ Stencil assemble(const SurfaceGrid& g) {
   return s;
 }
 
-// y = A x restricted to the free rows and columns (fixed entries of x are ignored, y = 0 there).
-void multiply(const Stencil& s, const std::vector<char>& fixed, const std::vector<double>& x, std::vector<double>& y) {
+// One problem's matrix on a grid padded by one ghost layer (index (i+1) + (j+1)(nx+2)), so that
+// the loops have no branches: couplings to fixed and ghost nodes are 0, a fixed row is the
+// identity. Unknowns are the corrections on free nodes (0 on fixed ones).
+struct Padded {
+  int nx = 0, ny = 0, w = 0;
+  std::vector<double> a;  // 9 per padded node
+  std::array<long, 9> off{};
+  [[nodiscard]] std::size_t pad(int i, int j) const {
+    return static_cast<std::size_t>(j + 1) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i + 1);
+  }
+};
+
+Padded padded(const Stencil& s, const std::vector<char>& fixed) {
+  Padded m;
+  m.nx = s.nx;
+  m.ny = s.ny;
+  m.w = s.nx + 2;
+  m.a.assign(9 * static_cast<std::size_t>(m.w) * static_cast<std::size_t>(s.ny + 2), 0.0);
+  for (int dj = -1; dj <= 1; ++dj)
+    for (int di = -1; di <= 1; ++di) m.off[static_cast<std::size_t>(3 * (dj + 1) + di + 1)] = dj * m.w + di;
   for (int j = 0; j < s.ny; ++j) {
     for (int i = 0; i < s.nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(s.nx) + static_cast<std::size_t>(i);
-      double acc = 0.0;
-      if (fixed[k] == 0) {
-        for (int dj = -1; dj <= 1; ++dj) {
-          if (j + dj < 0 || j + dj >= s.ny) continue;
-          for (int di = -1; di <= 1; ++di) {
-            if (i + di < 0 || i + di >= s.nx) continue;
-            const std::size_t m = static_cast<std::size_t>(static_cast<long>(k) + dj * s.nx + di);
-            if (fixed[m] == 0) acc += s.a[9 * k + static_cast<std::size_t>(3 * (dj + 1) + di + 1)] * x[m];
-          }
+      double* row = &m.a[9 * m.pad(i, j)];
+      if (fixed[k] != 0) {
+        row[4] = 1.0;
+        continue;
+      }
+      for (int dj = -1; dj <= 1; ++dj) {
+        if (j + dj < 0 || j + dj >= s.ny) continue;
+        for (int di = -1; di <= 1; ++di) {
+          if (i + di < 0 || i + di >= s.nx) continue;
+          const std::size_t mm = static_cast<std::size_t>(static_cast<long>(k) + dj * s.nx + di);
+          if (fixed[mm] == 0) row[3 * (dj + 1) + di + 1] = s.a[9 * k + static_cast<std::size_t>(3 * (dj + 1) + di + 1)];
         }
       }
+    }
+  }
+  return m;
+}
+
+// y = A x on the interior of the padded arrays.
+void multiply(const Padded& m, const std::vector<double>& x, std::vector<double>& y) {
+  for (int j = 0; j < m.ny; ++j) {
+    for (int i = 0; i < m.nx; ++i) {
+      const std::size_t k = m.pad(i, j);
+      const double* a = &m.a[9 * k];
+      double acc = 0.0;
+      for (std::size_t q = 0; q < 9; ++q) acc += a[q] * x[static_cast<std::size_t>(static_cast<long>(k) + m.off[q])];
       y[k] = acc;
     }
   }
 }
 
-// z = M⁻¹ r for the symmetric Gauss–Seidel preconditioner M = (D+L) D⁻¹ (D+U) on the free nodes.
-void precondition(const Stencil& s, const std::vector<char>& fixed, const std::vector<double>& r,
-                  std::vector<double>& z) {
-  const int nx = s.nx, ny = s.ny;
-  auto coef = [&](std::size_t k, int di, int dj) { return s.a[9 * k + static_cast<std::size_t>(3 * (dj + 1) + di + 1)]; };
-  auto sweep_row = [&](int j, int i, bool lower) {
-    const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
-    if (fixed[k] != 0) {
-      z[k] = 0.0;
-      return;
+// z = M⁻¹ r for the symmetric Gauss–Seidel preconditioner M = (D+L) D⁻¹ (D+U), natural order.
+void precondition(const Padded& m, const std::vector<double>& r, std::vector<double>& z) {
+  for (int j = 0; j < m.ny; ++j) {
+    for (int i = 0; i < m.nx; ++i) {
+      const std::size_t k = m.pad(i, j);
+      const double* a = &m.a[9 * k];
+      double acc = r[k];
+      for (std::size_t q = 0; q < 4; ++q) acc -= a[q] * z[static_cast<std::size_t>(static_cast<long>(k) + m.off[q])];
+      z[k] = acc / a[4];
     }
-    double acc = 0.0;
-    for (int dj = -1; dj <= 1; ++dj) {
-      if (j + dj < 0 || j + dj >= ny) continue;
-      for (int di = -1; di <= 1; ++di) {
-        if (i + di < 0 || i + di >= nx) continue;
-        const bool before = dj < 0 || (dj == 0 && di < 0);
-        const bool after = dj > 0 || (dj == 0 && di > 0);
-        if ((lower && !before) || (!lower && !after)) continue;
-        const std::size_t m = static_cast<std::size_t>(static_cast<long>(k) + dj * nx + di);
-        if (fixed[m] == 0) acc += coef(k, di, dj) * z[m];
-      }
+  }
+  for (int j = m.ny - 1; j >= 0; --j) {
+    for (int i = m.nx - 1; i >= 0; --i) {
+      const std::size_t k = m.pad(i, j);
+      const double* a = &m.a[9 * k];
+      double acc = 0.0;
+      for (std::size_t q = 5; q < 9; ++q) acc += a[q] * z[static_cast<std::size_t>(static_cast<long>(k) + m.off[q])];
+      z[k] -= acc / a[4];
     }
-    const double d = coef(k, 0, 0);
-    z[k] = lower ? (r[k] - acc) / d : z[k] - acc / d;
-  };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) sweep_row(j, i, true);
-  for (int j = ny - 1; j >= 0; --j)
-    for (int i = nx - 1; i >= 0; --i) sweep_row(j, i, false);
+  }
 }
 
 double dot_product(const std::vector<double>& a, const std::vector<double>& b) {
@@ -119,32 +143,37 @@ double dot_product(const std::vector<double>& a, const std::vector<double>& b) {
 // Solves A u = 0 with u = value on fixed nodes; u holds the guess on entry. Returns CG iterations.
 int solve(const Stencil& s, const std::vector<char>& fixed, std::vector<double>& u, const ThetaEtaOptions& o,
           const char* name) {
-  const std::size_t n = u.size();
-  // b = −A_{free,fixed} u_fixed.
-  std::vector<double> b(n, 0.0), r(n), z(n), p(n), q(n);
+  const Padded m = padded(s, fixed);
+  const std::size_t n = m.a.size() / 9;
+  // Right side b = −A u_guess (the full operator, Dirichlet values included) on free nodes: the
+  // correction x solves A_free x = b with x = 0 on fixed nodes.
+  std::vector<double> b(n, 0.0), x(n, 0.0), r(n), z(n, 0.0), p(n, 0.0), q(n, 0.0);
+  double bnorm2 = 0.0;
   for (int j = 0; j < s.ny; ++j) {
     for (int i = 0; i < s.nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(s.nx) + static_cast<std::size_t>(i);
       if (fixed[k] != 0) continue;
+      double acc = 0.0, dirichlet = 0.0;
       for (int dj = -1; dj <= 1; ++dj) {
         if (j + dj < 0 || j + dj >= s.ny) continue;
         for (int di = -1; di <= 1; ++di) {
           if (i + di < 0 || i + di >= s.nx) continue;
-          const std::size_t m = static_cast<std::size_t>(static_cast<long>(k) + dj * s.nx + di);
-          if (fixed[m] != 0) b[k] -= s.a[9 * k + static_cast<std::size_t>(3 * (dj + 1) + di + 1)] * u[m];
+          const std::size_t mm = static_cast<std::size_t>(static_cast<long>(k) + dj * s.nx + di);
+          const double c = s.a[9 * k + static_cast<std::size_t>(3 * (dj + 1) + di + 1)];
+          acc += c * u[mm];
+          if (fixed[mm] != 0) dirichlet += c * u[mm];
         }
       }
+      b[m.pad(i, j)] = -acc;
+      bnorm2 += dirichlet * dirichlet;
     }
   }
-  const double bnorm = std::sqrt(dot_product(b, b));
-  std::vector<double> x(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) x[k] = fixed[k] != 0 ? 0.0 : u[k];
-  multiply(s, fixed, x, q);
-  for (std::size_t k = 0; k < n; ++k) r[k] = b[k] - q[k];
+  const double bnorm = std::sqrt(bnorm2);  // the Dirichlet data's size: the scale of the residual
+  r = b;
   double rnorm = std::sqrt(dot_product(r, r));
   int it = 0;
   if (bnorm > 0.0 && rnorm > o.tolerance * bnorm) {
-    precondition(s, fixed, r, z);
+    precondition(m, r, z);
     p = z;
     double rz = dot_product(r, z);
     while (rnorm > o.tolerance * bnorm) {
@@ -152,22 +181,25 @@ int solve(const Stencil& s, const std::vector<char>& fixed, std::vector<double>&
         throw NumericalError(fmt::format("theta/eta equations: CG for {} did not converge in {} iterations "
                                          "(relative residual {:.2e})",
                                          name, o.max_iterations, rnorm / bnorm));
-      multiply(s, fixed, p, q);
+      multiply(m, p, q);
       const double alpha = rz / dot_product(p, q);
       for (std::size_t k = 0; k < n; ++k) {
         x[k] += alpha * p[k];
         r[k] -= alpha * q[k];
       }
       rnorm = std::sqrt(dot_product(r, r));
-      precondition(s, fixed, r, z);
+      precondition(m, r, z);
       const double rz_new = dot_product(r, z);
       const double beta = rz_new / rz;
       rz = rz_new;
       for (std::size_t k = 0; k < n; ++k) p[k] = z[k] + beta * p[k];
     }
   }
-  for (std::size_t k = 0; k < n; ++k)
-    if (fixed[k] == 0) u[k] = x[k];
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(s.nx) + static_cast<std::size_t>(i);
+      if (fixed[k] == 0) u[k] += x[m.pad(i, j)];
+    }
   return it;
 }
 
@@ -222,8 +254,25 @@ ThetaEta solve_theta_eta(const SurfaceGrid& reference, const ThetaEtaOptions& op
       }
     }
   }
-  out.iterations_theta = solve(s, fixed_theta, out.theta, options, "theta");
-  out.iterations_eta = solve(s, fixed_eta, out.eta, options, "eta");
+  // Two independent serial solves: one per thread when there are two (same bytes either way).
+  std::exception_ptr failure[2];
+#pragma omp parallel sections default(none) shared(s, fixed_theta, fixed_eta, out, options, failure)
+  {
+#pragma omp section
+    try {
+      out.iterations_theta = solve(s, fixed_theta, out.theta, options, "theta");
+    } catch (...) {
+      failure[0] = std::current_exception();
+    }
+#pragma omp section
+    try {
+      out.iterations_eta = solve(s, fixed_eta, out.eta, options, "eta");
+    } catch (...) {
+      failure[1] = std::current_exception();
+    }
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
   out.energy_theta = energy(s, out.theta);
   out.energy_eta = energy(s, out.eta);
   return out;
