@@ -56,9 +56,10 @@ TwoBlockResult orthogonal_bvp_two_blocks(const SurfaceGrid& a_initial, const Sur
     for (int q = 1; q + 1 < nq; ++q) {
       eb[static_cast<std::size_t>(q)] = eta_on_interface(ref_b, tb.eta, a(a.nx_pts - 1, q));
       if (!(eb[static_cast<std::size_t>(q)] > eb[static_cast<std::size_t>(q) - 1]))
-        throw NumericalError(fmt::format("two blocks: block B's eta is not increasing along the interface at level "
-                                         "{} (the blocks do not share the interface)",
-                                         q));
+        throw NumericalError(
+            fmt::format("two blocks: block B's eta is not increasing along the interface at level "
+                        "{} (the blocks do not share the interface)",
+                        q));
     }
     SurfaceGrid b = level_intersections(ref_b, tb.theta, tb.eta, b_theta_levels, eb, o.interpolation);
     if (b_project) b_project(b);

@@ -91,7 +91,8 @@ std::vector<IsoPoint> trace(const View& v, double level, const char* name) {
         entry = 2;
         break;
       case 1:
-        if (i + 2 >= nx) throw NumericalError(fmt::format("level line {} = {} leaves through a Dirichlet side", name, level));
+        if (i + 2 >= nx)
+          throw NumericalError(fmt::format("level line {} = {} leaves through a Dirichlet side", name, level));
         ++i;
         entry = 3;
         break;
@@ -101,7 +102,8 @@ std::vector<IsoPoint> trace(const View& v, double level, const char* name) {
         entry = 0;
         break;
       default:
-        if (i == 0) throw NumericalError(fmt::format("level line {} = {} leaves through a Dirichlet side", name, level));
+        if (i == 0)
+          throw NumericalError(fmt::format("level line {} = {} leaves through a Dirichlet side", name, level));
         --i;
         entry = 1;
         break;
@@ -184,8 +186,7 @@ std::vector<Vec3> intersections(const View& v, const std::vector<double>& f_leve
 void check_levels(const std::vector<double>& l, const char* name) {
   bool ok = l.size() >= 2 && l.front() == 0.0 && l.back() == 1.0;
   for (std::size_t k = 1; ok && k < l.size(); ++k) ok = l[k] > l[k - 1];
-  if (!ok)
-    throw ConfigError(fmt::format("{} levels must increase strictly from 0 to 1 ({} given)", name, l.size()));
+  if (!ok) throw ConfigError(fmt::format("{} levels must increase strictly from 0 to 1 ({} given)", name, l.size()));
 }
 
 }  // namespace

@@ -20,8 +20,9 @@ bool leveled_off(double prev, double now, double tol) {
 
 BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o, const ThetaEta* initial_solution) {
   if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))
-    throw ConfigError(fmt::format("bvp: max_iterations = {}, min_iterations = {}, level_off = {} (need >= 1, >= 1, >= 0)",
-                                  o.max_iterations, o.min_iterations, o.level_off));
+    throw ConfigError(
+        fmt::format("bvp: max_iterations = {}, min_iterations = {}, level_off = {} (need >= 1, >= 1, >= 0)",
+                    o.max_iterations, o.min_iterations, o.level_off));
   BvpResult r;
   const SurfaceOrthogonality q0 = surface_orthogonality(initial);
   r.f_max.push_back(q0.f_max);

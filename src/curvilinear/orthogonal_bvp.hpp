@@ -34,13 +34,13 @@ struct BvpOptions {
 };
 
 struct BvpResult {
-  SurfaceGrid grid;                         ///< the best iterate ((P+1) × (Q+1))
-  int best_iteration = 0;                   ///< its k (1-based)
-  int iterations = 0;                       ///< outer iterations run
-  std::vector<double> f_max, f_avg;         ///< k = 0 (the initial reference grid) .. iterations
-  std::vector<double> aspect_ratio;         ///< sqrt(E(η)/E(θ)) per iteration (W/H of the conformal map)
-  std::vector<double> energy_product;       ///< E(θ)·E(η) per iteration (≥ 1, → 1)
-  std::vector<int> cg_iterations;           ///< CG iterations (θ + η) per iteration
+  SurfaceGrid grid;                    ///< the best iterate ((P+1) × (Q+1))
+  int best_iteration = 0;              ///< its k (1-based)
+  int iterations = 0;                  ///< outer iterations run
+  std::vector<double> f_max, f_avg;    ///< k = 0 (the initial reference grid) .. iterations
+  std::vector<double> aspect_ratio;    ///< sqrt(E(η)/E(θ)) per iteration (W/H of the conformal map)
+  std::vector<double> energy_product;  ///< E(θ)·E(η) per iteration (≥ 1, → 1)
+  std::vector<int> cg_iterations;      ///< CG iterations (θ + η) per iteration
 };
 
 /// Runs the outer iteration from `initial` (≥ 2 × 2 points, valid cells); `initial_solution`, when

@@ -176,13 +176,7 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
     r.bvp->grid = {};
     if (contour2) {
       // The outline of the merged grid (the picture's extent), counter-clockwise from SW.
-      const Grid2D& g = r.grid;
-      r.contour_samples.clear();
-      const auto add = [&](int i, int j) { r.contour_samples.push_back({g.x[g.at(i, j)], g.y[g.at(i, j)]}); };
-      for (int i = 0; i < g.nx_pts - 1; ++i) add(i, 0);
-      for (int j = 0; j < g.ny_pts - 1; ++j) add(g.nx_pts - 1, j);
-      for (int i = g.nx_pts - 1; i > 0; --i) add(i, g.ny_pts - 1);
-      for (int j = g.ny_pts - 1; j >= 0; --j) add(0, j);
+      r.contour_samples = grid_outline(r.grid);
     }
     r.stage_seconds[4] = t.wall_s();
     r.completed = Stage::kGrid;
@@ -205,12 +199,12 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
       }
       (*section)["stage_seconds"] = r.stage_seconds;
     }
-    scope.done(fmt::format("{} x {} supergrid on the {} (nx = {}, W/H = {:.6f}): f_max {:.3g} -> {:.3g}, f_avg {:.3g} "
-                           "-> {:.3g} in {} outer iterations (best {})",
-                           r.grid.nx_pts, r.grid.ny_pts, p.surface == RegionalSurface::kSphere ? "sphere" : "plane",
-                           r.nx, r.aspect_ratio, h.f_max.front(), h.f_max[static_cast<std::size_t>(h.best_iteration)],
-                           h.f_avg.front(), h.f_avg[static_cast<std::size_t>(h.best_iteration)], h.iterations,
-                           h.best_iteration));
+    scope.done(fmt::format(
+        "{} x {} supergrid on the {} (nx = {}, W/H = {:.6f}): f_max {:.3g} -> {:.3g}, f_avg {:.3g} "
+        "-> {:.3g} in {} outer iterations (best {})",
+        r.grid.nx_pts, r.grid.ny_pts, p.surface == RegionalSurface::kSphere ? "sphere" : "plane", r.nx, r.aspect_ratio,
+        h.f_max.front(), h.f_max[static_cast<std::size_t>(h.best_iteration)], h.f_avg.front(),
+        h.f_avg[static_cast<std::size_t>(h.best_iteration)], h.iterations, h.best_iteration));
     return r;
   }
 

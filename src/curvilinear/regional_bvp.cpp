@@ -35,8 +35,9 @@ struct Embedding {
     const double lon = std::atan2(p.y, p.x) / kDeg, lat = std::atan2(p.z, std::hypot(p.x, p.y)) / kDeg;
     const PlanePoint q = projection.forward(lon, lat);
     if (!std::isfinite(q.x) || !std::isfinite(q.y))
-      throw InputError(fmt::format("bvp on the sphere: node at ({:.4f}, {:.4f}) lies where the {} projection is singular",
-                                   lon, lat, projection_code(projection.params().kind)));
+      throw InputError(
+          fmt::format("bvp on the sphere: node at ({:.4f}, {:.4f}) lies where the {} projection is singular", lon, lat,
+                      projection_code(projection.params().kind)));
     return q;
   }
 };
@@ -62,8 +63,7 @@ class SideProjector {
     const double lo = s_[best > 0 ? best - 1 : 0], hi = s_[std::min(best + 1, s_.size() - 1)];
     double s = s_[best];
     for (int it = 0; it < 20; ++it) {
-      const PlanePoint p = c_.point(s), d1 = c_.side_derivative(side_, s, 1),
-                       d2 = c_.side_derivative(side_, s, 2);
+      const PlanePoint p = c_.point(s), d1 = c_.side_derivative(side_, s, 1), d2 = c_.side_derivative(side_, s, 2);
       const double f = d1.x * (p.x - x.x) + d1.y * (p.y - x.y);
       const double df = d2.x * (p.x - x.x) + d2.y * (p.y - x.y) + d1.x * d1.x + d1.y * d1.y;
       if (!(df > 0.0)) break;

@@ -27,11 +27,11 @@
 namespace aq::curvilinear {
 
 struct RegionalBvp {
-  Grid2D grid;          ///< the supergrid in the projection plane
-  BoundaryNodes nodes;  ///< its boundary nodes as contour parameters
-  BvpResult bvp;        ///< outer-iteration history (f_max, f_avg on the plane or the sphere)
-  double aspect_ratio = 0.0;  ///< W/H from the first solve (the conformal modulus, inverted)
-  int nx = 0;                 ///< cells along ξ of the final (ρ) grid
+  Grid2D grid;                  ///< the supergrid in the projection plane
+  BoundaryNodes nodes;          ///< its boundary nodes as contour parameters
+  BvpResult bvp;                ///< outer-iteration history (f_max, f_avg on the plane or the sphere)
+  double aspect_ratio = 0.0;    ///< W/H from the first solve (the conformal modulus, inverted)
+  int nx = 0;                   ///< cells along ξ of the final (ρ) grid
   double interface_kink = 0.0;  ///< two blocks: largest angle (rad) of an η-line at the interface
 };
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "curvilinear/inverse_problem.hpp"
-#include "curvilinear/level_intersections.hpp"
 #include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/level_intersections.hpp"
 #include "curvilinear/projection.hpp"
 #include "curvilinear/spline_contour.hpp"
 

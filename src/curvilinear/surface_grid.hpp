@@ -30,7 +30,8 @@ struct SurfaceGrid {
   std::vector<Vec3> p;
 
   SurfaceGrid() = default;
-  SurfaceGrid(int nx, int ny) : nx_pts(nx), ny_pts(ny), p(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny)) {}
+  SurfaceGrid(int nx, int ny)
+      : nx_pts(nx), ny_pts(ny), p(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny)) {}
   [[nodiscard]] std::size_t at(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_pts) + static_cast<std::size_t>(i);
   }

@@ -51,8 +51,7 @@ Stencil assemble(const SurfaceGrid& g) {
         }
       }
       for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b)
-          s.at(i + kCi[a], j + kCj[a], kCi[b] - kCi[a], kCj[b] - kCj[a]) += k[a][b];
+        for (int b = 0; b < 4; ++b) s.at(i + kCi[a], j + kCj[a], kCi[b] - kCi[a], kCj[b] - kCj[a]) += k[a][b];
     }
   }
   return s;
@@ -178,9 +177,10 @@ int solve(const Stencil& s, const std::vector<char>& fixed, std::vector<double>&
     double rz = dot_product(r, z);
     while (rnorm > o.tolerance * bnorm) {
       if (++it > o.max_iterations)
-        throw NumericalError(fmt::format("theta/eta equations: CG for {} did not converge in {} iterations "
-                                         "(relative residual {:.2e})",
-                                         name, o.max_iterations, rnorm / bnorm));
+        throw NumericalError(
+            fmt::format("theta/eta equations: CG for {} did not converge in {} iterations "
+                        "(relative residual {:.2e})",
+                        name, o.max_iterations, rnorm / bnorm));
       multiply(m, p, q);
       const double alpha = rz / dot_product(p, q);
       for (std::size_t k = 0; k < n; ++k) {

@@ -39,7 +39,7 @@ TEST(RegionalBvpCli, BlackSeaInThePlane) {
   const auto& g = rep.at("regional");
   EXPECT_EQ(g.at("method"), "bvp");
   EXPECT_EQ(g.at("supergrid"), nlohmann::json::array({131, 101}));  // the conformal grid's size
-  EXPECT_NEAR(g.at("aspect_ratio").get<double>(), 1.300823, 2e-3);   // the conformal modulus
+  EXPECT_NEAR(g.at("aspect_ratio").get<double>(), 1.300823, 2e-3);  // the conformal modulus
   const auto& fmax = g.at("bvp_f_max");
   EXPECT_GT(fmax.front().get<double>(), 0.3);  // the TFI grid
   const double best = fmax.at(g.at("bvp_best_iteration").get<std::size_t>()).get<double>();
@@ -94,4 +94,19 @@ TEST(RegionalBvpCli, BadMethodOrSurfaceIsRefused) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("only the bvp method"));
   EXPECT_FALSE(fs::exists(out / "black_sea_xygrid.nc"));
+}
+
+TEST(RegionalBvpCli, TwoBlocksAreMergedIntoOneGrid) {
+  const fs::path out = fresh_dir("two");
+  const auto r = run_aquatoria("regional -q -c " + kConfigs + "two_blocks.toml -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "two_blocks_xygrid.nc"));
+  const auto g = report(out, "two_blocks").at("regional");
+  EXPECT_EQ(g.at("bvp_blocks"), 2);
+  EXPECT_EQ(g.at("supergrid").at(1), 51);
+  EXPECT_EQ(g.at("supergrid").at(0).get<int>() % 2, 1);
+  EXPECT_LT(g.at("bvp_interface_kink_rad").get<double>(), 0.1);  // C1 across the interface
+  EXPECT_LT(g.at("bvp_f_avg").back().get<double>(), 1e-3);
+  const auto rep = report(out, "two_blocks");
+  EXPECT_GT(rep.at("quality").at("f1").at("worst").get<double>(), 0.0);  // no folded cell at the seam
 }

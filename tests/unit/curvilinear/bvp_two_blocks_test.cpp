@@ -73,7 +73,8 @@ TEST(BvpTwoBlocks, LinesAreContinuousAndSmoothAcrossTheInterface) {
     }
     // B's levels are not uniform: the interface nodes come from A.
     double dev = 0.0;
-    for (int q = 0; q <= n; ++q) dev = std::max(dev, std::fabs(r.eta_levels_b[static_cast<std::size_t>(q)] - q / double(n)));
+    for (int q = 0; q <= n; ++q)
+      dev = std::max(dev, std::fabs(r.eta_levels_b[static_cast<std::size_t>(q)] - q / double(n)));
     EXPECT_GT(dev, 1e-3);
     // The angle between consecutive segments of a smooth line is O(h·curvature): C1 lines give a
     // kink that halves with h, C0-only lines one that stays O(1).

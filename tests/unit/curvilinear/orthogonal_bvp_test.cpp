@@ -198,7 +198,8 @@ TEST(OrthogonalBvp, ChannelFmaxFallsWithinThreeIterationsThenLevelsOff) {
   o.min_iterations = 2;
   o.project = project_channel;
   const BvpResult r = orthogonal_bvp(tfi_of(channel, 51, 51), o);
-  for (std::size_t k = 0; k < r.f_max.size(); ++k) std::printf("channel k = %zu: f_max %.6g, f_avg %.6g\n", k, r.f_max[k], r.f_avg[k]);
+  for (std::size_t k = 0; k < r.f_max.size(); ++k)
+    std::printf("channel k = %zu: f_max %.6g, f_avg %.6g\n", k, r.f_max[k], r.f_avg[k]);
   EXPECT_GT(r.f_max[0], 0.1);  // the TFI grid: O(0.5) in the paper (0.46)
   ASSERT_GE(r.f_max.size(), 4U);
   EXPECT_LT(std::min({r.f_max[1], r.f_max[2], r.f_max[3]}), 2e-2);  // O(1e-3 … 1e-2) within 3
