@@ -139,7 +139,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
       fmt::format("parent psi I {}..{} x J {}..{} of {} split {} x {}: {} x {} rho points (supergrid {} x {}) "
                   "in {}",
                   g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, n.parent, g.box.factor, g.box.factor,
-                  g.box.L() + 1, g.box.M() + 1, G.nx_pts, G.ny_pts, g.projection_source));
+                  g.box.L() + 1, g.box.M() + 1, r.grid.nx_pts, r.grid.ny_pts, g.projection_source));
   return g;
 }
 
