@@ -124,12 +124,8 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   r.aspect_ratio = r.dxi_over_deta * r.nx / r.ny;
   r.completed = curvilinear::Stage::kGrid;
   // The perimeter, counter-clockwise from the SW corner (the picture's extent).
-  const auto& G = r.grid;
-  const auto add = [&](int i, int j) { r.contour_samples.push_back({G.x[G.at(i, j)], G.y[G.at(i, j)]}); };
-  for (int i = 0; i < G.nx_pts - 1; ++i) add(i, 0);
-  for (int j = 0; j < G.ny_pts - 1; ++j) add(G.nx_pts - 1, j);
-  for (int i = G.nx_pts - 1; i > 0; --i) add(i, G.ny_pts - 1);
-  for (int j = G.ny_pts - 1; j >= 0; --j) add(0, j);
+  const std::vector<curvilinear::PlanePoint> outline = curvilinear::grid_outline(r.grid);
+  r.contour_samples.insert(r.contour_samples.end(), outline.begin(), outline.end());
   r.stage_seconds[4] = stage.wall_s();
   if (report != nullptr)
     (*report)["refinement"] = Json{{"parent_grid", n.parent},
@@ -143,7 +139,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
       fmt::format("parent psi I {}..{} x J {}..{} of {} split {} x {}: {} x {} rho points (supergrid {} x {}) "
                   "in {}",
                   g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, n.parent, g.box.factor, g.box.factor,
-                  g.box.L() + 1, g.box.M() + 1, G.nx_pts, G.ny_pts, g.projection_source));
+                  g.box.L() + 1, g.box.M() + 1, r.grid.nx_pts, r.grid.ny_pts, g.projection_source));
   return g;
 }
 

@@ -61,44 +61,62 @@ const S& schema() {
           },
           [key](const RegionalConfig& c) { return param_json(c.params, key); }, "");
     }
-    t.add_custom(
-        "regional", "control_points",
-        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-          std::vector<std::array<double, 2>> pts;
-          if (auto err = detail::convert(v, pts)) return p.add(o, "regional.control_points", *err);
-          if (pts.empty()) return;  // keep the points of contour_file, if any
-          c.params.x.clear();
-          c.params.y.clear();
-          for (const auto& q : pts) {
-            c.params.x.push_back(q[0]);
-            c.params.y.push_back(q[1]);
-          }
-          c.params.corner.assign(pts.size(), false);
-          if (!pts.empty()) c.params.corner[0] = true;
-        },
-        [](const RegionalConfig& c) {
-          Json a = Json::array();
-          for (std::size_t k = 0; k < c.params.x.size(); ++k) a.push_back({c.params.x[k], c.params.y[k]});
-          return a;
-        },
-        "");
-    t.add_custom(
-        "regional", "corners",
-        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-          std::vector<int> idx;
-          if (auto err = detail::convert(v, idx)) return p.add(o, "regional.corners", *err);
-          if (idx.empty()) return;
-          if (idx.size() != 4 || idx[0] != 1)
-            return p.add(o, "regional.corners", "expected the 4 corner point numbers, SW first: [1, SE, NE, NW]");
-          c.corners = idx;  // applied to the points once all keys are read
-        },
-        [](const RegionalConfig& c) {
-          Json a = Json::array();
-          for (std::size_t k = 0; k < c.params.corner.size(); ++k)
-            if (c.params.corner[k]) a.push_back(k + 1);
-          return a;
-        },
-        "");
+    // Control points and corner numbers of the (first) block and of the bvp method's block 2.
+    struct PointKeys {
+      const char* points;
+      const char* corners;
+      std::vector<double> curvilinear::RegionalParams::*x;
+      std::vector<double> curvilinear::RegionalParams::*y;
+      std::vector<bool> curvilinear::RegionalParams::*corner;
+      std::vector<int> RegionalConfig::*numbers;
+    };
+    using RP = curvilinear::RegionalParams;
+    for (const PointKeys& k :
+         {PointKeys{"control_points", "corners", &RP::x, &RP::y, &RP::corner, &RegionalConfig::corners},
+          PointKeys{"block2_points", "block2_corners", &RP::x2, &RP::y2, &RP::corner2, &RegionalConfig::corners2}}) {
+      const std::string pkey = std::string("regional.") + k.points, ckey = std::string("regional.") + k.corners;
+      t.add_custom(
+          "regional", k.points,
+          [k, pkey](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+            std::vector<std::array<double, 2>> pts;
+            if (auto err = detail::convert(v, pts)) return p.add(o, pkey, *err);
+            if (pts.empty()) return;  // keep the points of contour_file, if any
+            (c.params.*k.x).clear();
+            (c.params.*k.y).clear();
+            for (const auto& q : pts) {
+              (c.params.*k.x).push_back(q[0]);
+              (c.params.*k.y).push_back(q[1]);
+            }
+            (c.params.*k.corner).assign(pts.size(), false);
+            (c.params.*k.corner)[0] = true;
+          },
+          [k](const RegionalConfig& c) {
+            Json a = Json::array();
+            for (std::size_t n = 0; n < (c.params.*k.x).size(); ++n)
+              a.push_back({(c.params.*k.x)[n], (c.params.*k.y)[n]});
+            return a;
+          },
+          "");
+      t.add_custom(
+          "regional", k.corners,
+          [k, ckey](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+            std::vector<int> idx;
+            if (auto err = detail::convert(v, idx)) return p.add(o, ckey, *err);
+            if (idx.empty()) return;
+            if (idx.size() != 4 || idx[0] != 1)
+              return p.add(o, ckey, "expected the 4 corner point numbers, SW first: [1, SE, NE, NW]");
+            c.*k.numbers = idx;  // applied to the points once all keys are read
+          },
+          [k](const RegionalConfig& c) {
+            Json a = Json::array();
+            for (std::size_t n = 0; n < (c.params.*k.corner).size(); ++n)
+              if ((c.params.*k.corner)[n]) a.push_back(n + 1);
+            return a;
+          },
+          "");
+    }
+    t.add<int>(
+        "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
     t.add_custom(
         "input", "path",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
@@ -229,6 +247,13 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "threads") return p.threads;
   if (key == "lwidth") return p.lwidth;
   if (key == "solver") return p.solver == curvilinear::LaplaceOptions::Solver::kDst ? "dst" : "sor";
+  if (key == "method") return p.method == curvilinear::RegionalMethod::kBvp ? "bvp" : "conformal";
+  if (key == "surface") return p.surface == curvilinear::RegionalSurface::kSphere ? "sphere" : "plane";
+  if (key == "bvp_iterations") return p.bvp_iterations;
+  if (key == "bvp_interpolation")
+    return p.bvp_interpolation == curvilinear::LevelInterpolation::kCubic ? "cubic" : "linear";
+  if (key == "bvp_ratio_xi") return p.bvp_ratio_xi;
+  if (key == "bvp_ratio_eta") return p.bvp_ratio_eta;
   if (key == "schedule") return curvilinear::inner_schedule_name(p.schedule);
   if (key == "param") return p.param == curvilinear::Parametrisation::kIndex ? "index" : "arclength";
   if (key == "points") return p.points_lonlat ? "lonlat" : "plane";
@@ -281,17 +306,21 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
     schema().apply(c, doc, file.string(), base, p);
   }
   for (const auto& o : overrides) schema().apply_override(c, o, p);
-  if (!c.corners.empty()) {
-    c.params.corner.assign(c.params.x.size(), false);
-    for (const int k : c.corners) {
-      if (k < 1 || k > static_cast<int>(c.params.x.size())) {
-        p.add_plain(999998, fmt::format("regional.corners: point number {} is outside 1..{} (regional.control_points)",
-                                        k, c.params.x.size()));
+  const auto apply_corners = [&p](const std::vector<int>& numbers, std::size_t points, std::vector<bool>& corner,
+                                  const char* key, const char* points_key) {
+    if (numbers.empty()) return;
+    corner.assign(points, false);
+    for (const int k : numbers) {
+      if (k < 1 || k > static_cast<int>(points)) {
+        p.add_plain(999998, fmt::format("regional.{}: point number {} is outside 1..{} (regional.{})", key, k, points,
+                                        points_key));
       } else {
-        c.params.corner[static_cast<std::size_t>(k - 1)] = true;
+        corner[static_cast<std::size_t>(k - 1)] = true;
       }
     }
-  }
+  };
+  apply_corners(c.corners, c.params.x.size(), c.params.corner, "corners", "control_points");
+  apply_corners(c.corners2, c.params.x2.size(), c.params.corner2, "block2_corners", "block2_points");
   {
     const auto& n = c.nesting;
     const bool box = n.parent_box != std::array<int, 4>{0, 0, 0, 0};

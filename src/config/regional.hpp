@@ -55,6 +55,7 @@ struct RegionalConfig {
   std::string contour_file;            ///< [regional] contour_file: .izogrid file read first (resolved path)
   std::string stop_after;              ///< [regional] stop_after: map|contour|uniform|conformal|grid; empty = mode
   std::vector<int> corners;            ///< [regional] corners: 1-based point numbers of the 4 corners
+  std::vector<int> corners2;           ///< [regional] block2_corners: the same for block2_points
   InputOptions input;                  ///< [input] bathymetry for the coastline and depths
   double coast_level_m = 0.0;          ///< [input] coast_level_m: elevation of the drawn coastline
   std::string output_dir = "out";      ///< [output] dir

@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "curvilinear/plane_point.hpp"
+
 namespace aq::curvilinear {
 
 struct Grid2D {
@@ -28,5 +30,17 @@ struct Grid2D {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_pts) + static_cast<std::size_t>(i);
   }
 };
+
+/// The boundary of `g` as a polyline counter-clockwise from the SW corner back to it
+/// (2(nx_pts−1) + 2(ny_pts−1) + 1 points, the SW corner first and last).
+inline std::vector<PlanePoint> grid_outline(const Grid2D& g) {
+  std::vector<PlanePoint> out;
+  const auto add = [&](int i, int j) { out.push_back({g.x[g.at(i, j)], g.y[g.at(i, j)]}); };
+  for (int i = 0; i < g.nx_pts - 1; ++i) add(i, 0);
+  for (int j = 0; j < g.ny_pts - 1; ++j) add(g.nx_pts - 1, j);
+  for (int i = g.nx_pts - 1; i > 0; --i) add(i, g.ny_pts - 1);
+  for (int j = g.ny_pts - 1; j >= 0; --j) add(0, j);
+  return out;
+}
 
 }  // namespace aq::curvilinear

@@ -211,6 +211,45 @@ const std::map<std::string, Setter>& setters() {
          return {};
        }},
       {"xygrid", text(&RegionalParams::xygrid)},
+      {"method",
+       [](RegionalParams& p, std::string_view v) -> std::string {
+         const std::string s = lower(v);
+         if (s == "conformal") {
+           p.method = RegionalMethod::kConformal;
+         } else if (s == "bvp") {
+           p.method = RegionalMethod::kBvp;
+         } else {
+           return "is not a method (conformal or bvp)";
+         }
+         return {};
+       }},
+      {"surface",
+       [](RegionalParams& p, std::string_view v) -> std::string {
+         const std::string s = lower(v);
+         if (s == "plane") {
+           p.surface = RegionalSurface::kPlane;
+         } else if (s == "sphere") {
+           p.surface = RegionalSurface::kSphere;
+         } else {
+           return "is neither 'plane' nor 'sphere'";
+         }
+         return {};
+       }},
+      {"bvp_iterations", integer(&RegionalParams::bvp_iterations)},
+      {"bvp_interpolation",
+       [](RegionalParams& p, std::string_view v) -> std::string {
+         const std::string s = lower(v);
+         if (s == "linear") {
+           p.bvp_interpolation = LevelInterpolation::kLinear;
+         } else if (s == "cubic") {
+           p.bvp_interpolation = LevelInterpolation::kCubic;
+         } else {
+           return "is neither 'linear' nor 'cubic'";
+         }
+         return {};
+       }},
+      {"bvp_ratio_xi", real(&RegionalParams::bvp_ratio_xi)},
+      {"bvp_ratio_eta", real(&RegionalParams::bvp_ratio_eta)},
       {"threads", integer(&RegionalParams::threads)},
   };
   return table;

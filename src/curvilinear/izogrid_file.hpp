@@ -15,7 +15,8 @@
 // '#' starts a comment anywhere. Keys are the seed's (mode, gshhs_data, proj, rlat, rlon, rota,
 // south_edge, north_edge, west_edge, east_edge, latlongrid, uscale, spline_type, nx, ny, npass,
 // lwidth, xygrid) plus aquatoria's (lat1, lat2, radius, param, points, auto_nx, schedule,
-// tolerance, max_outer, max_inner, interp_points, inner_rtol, anderson, solver, threads); see
+// tolerance, max_outer, max_inner, interp_points, inner_rtol, anderson, solver, threads, method,
+// surface, bvp_iterations, bvp_interpolation, bvp_ratio_xi, bvp_ratio_eta); see
 // RegionalParams for meanings and ranges.
 #pragma once
 

@@ -140,6 +140,74 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kUniform) return r;
 
+  // method = bvp: the orthogonal-family grid replaces stages 3 (inverse problem) and 4 (fill).
+  if (p.method == RegionalMethod::kBvp) {
+    StageScope scope("regional bvp", report, log);
+    const Timer t;
+    // A second block (its west side is the first block's east side): its contour and nodes.
+    std::optional<SplineContour> contour2;
+    BoundaryNodes uniform2;
+    if (!p.x2.empty()) {
+      std::vector<double> x2 = p.x2, y2 = p.y2;
+      if (p.points_lonlat)
+        for (std::size_t k = 0; k < x2.size(); ++k) {
+          const PlanePoint q = r.projection->forward(p.x2[k], p.y2[k]);
+          x2[k] = q.x;
+          y2[k] = q.y;
+        }
+      ContourOptions co;
+      co.degree = p.spline_type == 3 ? 3 : 5;
+      co.parametrisation = p.param;
+      co.source = p.source + " (block2_points)";
+      contour2.emplace(x2, y2, p.corner2, co);
+      const double ratio = (contour2->side_length(Side::kSouth) + contour2->side_length(Side::kNorth)) /
+                           (contour2->side_length(Side::kEast) + contour2->side_length(Side::kWest));
+      const int nx2 = p.nx2 > 0 ? p.nx2 : std::max(1, static_cast<int>(std::lround(p.ny * ratio)));
+      uniform2 = uniform_boundary_nodes(*contour2, 2 * nx2 + 1, 2 * p.ny + 1);
+    }
+    RegionalBvp b = regional_bvp(*r.contour, r.uniform_nodes, *r.projection, p, contour2 ? &*contour2 : nullptr,
+                                 contour2 ? &uniform2 : nullptr);
+    r.grid = std::move(b.grid);
+    r.nodes = std::move(b.nodes);
+    r.nx = b.nx;
+    r.aspect_ratio = b.aspect_ratio;
+    r.dxi_over_deta = r.aspect_ratio * (r.nodes.ny_pts - 1) / (r.nodes.nx_pts - 1);
+    r.bvp = std::move(b.bvp);
+    r.bvp->grid = {};
+    if (contour2) {
+      // The outline of the merged grid (the picture's extent), counter-clockwise from SW.
+      r.contour_samples = grid_outline(r.grid);
+    }
+    r.stage_seconds[4] = t.wall_s();
+    r.completed = Stage::kGrid;
+    const BvpResult& h = *r.bvp;
+    if (section != nullptr) {
+      (*section)["method"] = "bvp";
+      (*section)["surface"] = p.surface == RegionalSurface::kSphere ? "sphere" : "plane";
+      (*section)["nx"] = r.nx;
+      (*section)["aspect_ratio"] = r.aspect_ratio;
+      (*section)["dxi_over_deta"] = r.dxi_over_deta;
+      (*section)["supergrid"] = {r.grid.nx_pts, r.grid.ny_pts};
+      (*section)["bvp_f_max"] = h.f_max;
+      (*section)["bvp_f_avg"] = h.f_avg;
+      (*section)["bvp_energy_product"] = h.energy_product;
+      (*section)["bvp_cg_iterations"] = h.cg_iterations;
+      (*section)["bvp_best_iteration"] = h.best_iteration;
+      if (contour2) {
+        (*section)["bvp_blocks"] = 2;
+        (*section)["bvp_interface_kink_rad"] = b.interface_kink;
+      }
+      (*section)["stage_seconds"] = r.stage_seconds;
+    }
+    scope.done(fmt::format(
+        "{} x {} supergrid on the {} (nx = {}, W/H = {:.6f}): f_max {:.3g} -> {:.3g}, f_avg {:.3g} "
+        "-> {:.3g} in {} outer iterations (best {})",
+        r.grid.nx_pts, r.grid.ny_pts, p.surface == RegionalSurface::kSphere ? "sphere" : "plane", r.nx, r.aspect_ratio,
+        h.f_max.front(), h.f_max[static_cast<std::size_t>(h.best_iteration)], h.f_avg.front(),
+        h.f_avg[static_cast<std::size_t>(h.best_iteration)], h.iterations, h.best_iteration));
+    return r;
+  }
+
   // Stage 3: inverse problem.
   {
     StageScope scope("regional conformal", report, log);

@@ -17,6 +17,7 @@
 #include "curvilinear/inverse_problem.hpp"
 #include "curvilinear/laplace_fill.hpp"
 #include "curvilinear/projection.hpp"
+#include "curvilinear/regional_bvp.hpp"
 #include "curvilinear/regional_params.hpp"
 #include "curvilinear/spline_contour.hpp"
 
@@ -63,6 +64,9 @@ struct RegionalResult {
   // Stage 4: the filled supergrid.
   Grid2D grid;
   LaplaceResult laplace;
+
+  // method = bvp: stages 3–4 are one bvp stage (regional_bvp.hpp); its history is here.
+  std::optional<BvpResult> bvp;
 
   /// Wall seconds per stage (map, contour, uniform, conformal, grid); 0 for stages not run.
   std::array<double, 5> stage_seconds{};

@@ -48,6 +48,20 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
         "must be within 2..8");
   check(p.inner_rtol >= 0.0 && p.inner_rtol <= 1.0, "inner_rtol", num(p.inner_rtol), "must be within [0, 1]");
   check(p.anderson >= 0 && p.anderson <= 8, "anderson", std::to_string(p.anderson), "must be within 0..8");
+  check(p.bvp_iterations >= 1 && p.bvp_iterations <= 50, "bvp_iterations", std::to_string(p.bvp_iterations),
+        "must be within 1..50");
+  check(p.bvp_ratio_xi > 0.0 && p.bvp_ratio_xi <= 100.0, "bvp_ratio_xi", num(p.bvp_ratio_xi),
+        "must be within (0, 100] (1 = uniform)");
+  check(p.bvp_ratio_eta > 0.0 && p.bvp_ratio_eta <= 100.0, "bvp_ratio_eta", num(p.bvp_ratio_eta),
+        "must be within (0, 100] (1 = uniform)");
+  check(p.method == RegionalMethod::kBvp || p.surface == RegionalSurface::kPlane, "surface", "sphere",
+        "only the bvp method solves on the sphere (set method = bvp)");
+  check(p.nx2 >= 0, "block2_nx", std::to_string(p.nx2), "must be >= 0 (0 = from the conformal modulus)");
+  check(p.x2.empty() || p.method == RegionalMethod::kBvp, "block2_points", std::to_string(p.x2.size()) + " points",
+        "a second block needs method = bvp");
+  if (p.x2.size() != p.y2.size() || p.corner2.size() != p.x2.size())
+    bad.emplace_back("block2_points", fmt::format("block2_points: {} x, {} y and {} corner marks differ in number",
+                                                  p.x2.size(), p.y2.size(), p.corner2.size()));
   check(p.threads >= 0, "threads", std::to_string(p.threads), "must be >= 0 (0 = default)");
   check(!p.xygrid.empty(), "xygrid", "''", "must name a file");
   for (const auto& [key, v] : {std::pair{"west_edge", p.west_edge}, std::pair{"east_edge", p.east_edge},

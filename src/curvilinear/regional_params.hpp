@@ -11,10 +11,17 @@
 
 #include "curvilinear/inverse_problem.hpp"
 #include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/level_intersections.hpp"
 #include "curvilinear/projection.hpp"
 #include "curvilinear/spline_contour.hpp"
 
 namespace aq::curvilinear {
+
+/// How the grid is made from the contour: the izogrid conformal method (inverse problem + Laplace
+/// fill, seed 000) or the orthogonal-family boundary-value problem (seed 003, regional_bvp.hpp).
+enum class RegionalMethod { kConformal, kBvp };
+/// Where the bvp method solves: in the projection plane or directly on the sphere (seed 003 Sec. 3.2).
+enum class RegionalSurface { kPlane, kSphere };
 
 struct RegionalParams {
   static constexpr double kAuto = std::numeric_limits<double>::quiet_NaN();
@@ -99,6 +106,30 @@ struct RegionalParams {
   double inner_rtol = 1e-2;
   /// [anderson] Anderson acceleration depth of the outer loop, 0..8 (0 = the paper's plain loop).
   int anderson = 0;
+
+  // --- method (aquatoria; seeds 000, 003) ------------------------------------------------------
+  /// [method] "conformal" (default: inverse problem + Laplace fill) or "bvp" (seed 003: θ, η
+  /// equations on a reference grid, nodes at level-line intersections, outer iterations).
+  RegionalMethod method = RegionalMethod::kConformal;
+  /// [surface] bvp only: "plane" (the projection plane) or "sphere" (3-D, no map projection; the
+  /// written _xygrid.nc holds the sphere grid's nodes projected to the plane).
+  RegionalSurface surface = RegionalSurface::kPlane;
+  /// [bvp_iterations] bvp: at most this many outer iterations (stops earlier when f_max and f_avg
+  /// change by < 1 %), 1..50.
+  int bvp_iterations = 10;
+  /// [bvp_interpolation] bvp: "linear" (the paper's examples) or "cubic" level-line interpolation.
+  LevelInterpolation bvp_interpolation = LevelInterpolation::kLinear;
+  /// [bvp_ratio_xi], [bvp_ratio_eta] bvp node clustering through the levels: the last level step
+  /// along ξ (west -> east) or η (south -> north) over the first, geometric in between; 1 = uniform.
+  double bvp_ratio_xi = 1.0;
+  double bvp_ratio_eta = 1.0;
+  /// bvp multi-block (TOML only: regional.block2_points, block2_corners, block2_nx): a second
+  /// block east of the first, its west side the first block's east side (the same curve), in the
+  /// same units as x, y. Empty = one block. The two grids are merged into one supergrid.
+  std::vector<double> x2, y2;
+  std::vector<bool> corner2;
+  /// Cells along ξ of the second block's ρ grid; 0 = from its conformal modulus.
+  int nx2 = 0;
 
   // --- fill (mode 4) -------------------------------------------------------------------------
   /// [solver] Laplace solver: "dst" (direct, default) or "sor" (the paper's 4-colour SOR).
