@@ -103,7 +103,15 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     refined = build_refinement(c, loaded.source, log, &report);
     c.params = refined->result.params;  // the parent's plane, for the files' attributes
   } else {
-    built = curvilinear::run_regional(c.params, stage, log, &report);
+    // A bathymetry-weighted control function (regional.weight_depth) samples the [input] raster.
+    std::optional<raster::Bathymetry> bathy;
+    curvilinear::DepthSampler depth;
+    if (c.params.weight_depth > 0.0 && c.params.method != curvilinear::GridMethod::kConformal &&
+        !c.input.path.empty()) {
+      bathy.emplace(raster::Bathymetry::open(raster_options(c.input, 0), log));
+      depth = [&bathy](double lon, double lat) { return -bathy->sample(lon, lat); };
+    }
+    built = curvilinear::run_regional(c.params, stage, log, &report, bathy ? &depth : nullptr);
   }
   const curvilinear::RegionalResult& result = refined ? refined->result : built;
 

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,14 @@
 #include "curvilinear/spline_contour.hpp"
 
 namespace aq::curvilinear {
+
+/// How the grid is built from the contour (key `method`): the conformal izogrid pipeline (seed 000)
+/// or one of seed 004's generators (regional_methods.hpp).
+enum class GridMethod { kConformal, kTfi, kStar, kEd2, kRl, kBest };
+/// "conformal", "tfi", "star", "ed2", "rl", "best".
+const char* grid_method_name(GridMethod m);
+/// Inverse of grid_method_name(); false for an unknown name.
+bool parse_grid_method(std::string_view text, GridMethod& out);
 
 struct RegionalParams {
   static constexpr double kAuto = std::numeric_limits<double>::quiet_NaN();
@@ -105,6 +114,28 @@ struct RegionalParams {
   LaplaceOptions::Solver solver = LaplaceOptions::Solver::kDst;
   /// [xygrid] output netCDF file name of the planar grid.
   std::string xygrid = "xygrid.nc";
+
+  // --- seed 004 methods (method != conformal; regional_methods.hpp) ------------------------
+  /// [method] grid generator: conformal (default), tfi, star, ed2, rl, best.
+  GridMethod method = GridMethod::kConformal;
+  /// [weight] control function w(x, y) ≥ 1 of the boundary nodes, sections, STAR rows and ED2, a
+  /// formula in plane coordinates (control_function.hpp); "1" = uniform.
+  std::string weight = "1";
+  /// [weight_depth] a ≥ 0 of w = weight · (1 + a·|∇h|/max|∇h|) from the [input] bathymetry (app
+  /// only; 0 = off).
+  double weight_depth = 0.0;
+  /// [relaxation] ω of the ED2/RL Picard update, (0, 1].
+  double relaxation = 0.7;
+  /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled).
+  double elliptic_tolerance = 1e-4;
+  /// [elliptic_iterations] ED2/RL Picard iterations at most, ≥ 1.
+  int elliptic_iterations = 200;
+  /// [best_final] the elliptic method `best` runs from the chosen initial grid: ed2 or rl.
+  GridMethod best_final = GridMethod::kEd2;
+  /// Internal sections of TFI (TOML `sections` only): each {q1, x1, y1, x2, y2, ...}: the section
+  /// at the grid column nearest q1·(L−1), 0 < q1 < 1, through the optional interior points (plane
+  /// units, or lon/lat when points = lonlat).
+  std::vector<std::vector<double>> sections;
 
   // --- execution and provenance --------------------------------------------------------------
   /// [threads] OpenMP threads for IZ89 and the fill; 0 = the OpenMP default. Results do not
