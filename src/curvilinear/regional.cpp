@@ -177,7 +177,12 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
     if (p.method == GridMethod::kBest) {
       conformal = r;
       conformal->params.method = GridMethod::kConformal;
-      conformal_stages(*conformal, Stage::kGrid, Logger::null(), nullptr, nullptr);
+      try {
+        conformal_stages(*conformal, Stage::kGrid, Logger::null(), nullptr, nullptr);
+      } catch (const NumericalError& e) {
+        log.info("regional best: no conformal candidate: {}", e.what());
+        conformal.reset();
+      }
     }
     r.method_run = build_method_grid(p, *r.contour, r.nodes, *r.projection, w, conformal ? &conformal->grid : nullptr,
                                      conformal ? &conformal->nodes : nullptr, log);
