@@ -236,6 +236,17 @@ PlanePoint star_fill(Grid2D& grid, const ControlFunction& w) {
   return pole;
 }
 
+int self_intersecting_cells(const Grid2D& g) {
+  int bad = 0;
+  for (int j = 0; j + 1 < g.ny_pts; ++j)
+    for (int i = 0; i + 1 < g.nx_pts; ++i) {
+      const PlanePoint p1 = node(g, i, j), p2 = node(g, i + 1, j), p3 = node(g, i + 1, j + 1), p4 = node(g, i, j + 1);
+      const double area = orient(p1, p2, p3) + orient(p1, p3, p4);
+      if (!(area > 0.0) || proper_intersection(p1, p2, p3, p4) || proper_intersection(p2, p3, p4, p1)) ++bad;
+    }
+  return bad;
+}
+
 int boundary_crossings(const Grid2D& g) {
   const int L = g.nx_pts, M = g.ny_pts;
   const std::vector<PlanePoint> ring = boundary_ring(g);

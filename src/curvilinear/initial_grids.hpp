@@ -62,6 +62,9 @@ PlanePoint star_fill(Grid2D& grid, const ControlFunction& w);
 /// The ring of boundary nodes counter-clockwise from SW (south, east, north reversed, west reversed).
 std::vector<PlanePoint> boundary_ring(const Grid2D& grid);
 
+/// Number of cells whose signed area is ≤ 0 or whose opposite edges cross (self-intersecting).
+int self_intersecting_cells(const Grid2D& grid);
+
 /// Number of segments between consecutive nodes of interior coordinate lines (rows 1..M−2 and
 /// columns 1..L−2, including their end segments at the boundary) that properly intersect a segment
 /// of the boundary-node ring (seed 004's "grid crosses the boundary" flag). Uses a bin grid.

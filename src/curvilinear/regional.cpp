@@ -50,6 +50,17 @@ std::vector<PlanePoint> RegionalResult::node_points(const BoundaryNodes& n) cons
 
 namespace {
 
+// ny, and nx0 = params.nx or, when 0, guessed from the contour's side lengths (square cells).
+void set_first_grid_size(RegionalResult& r) {
+  const RegionalParams& p = r.params;
+  r.ny = p.ny;
+  r.nx_initial = p.nx;
+  if (r.nx_initial <= 0) {
+    const double ratio = (r.side_length[0] + r.side_length[2]) / (r.side_length[1] + r.side_length[3]);
+    r.nx_initial = std::max(1, static_cast<int>(std::lround(p.ny * ratio)));
+  }
+}
+
 // Stages 2–4 of the conformal (izogrid) method.
 void conformal_stages(RegionalResult& r, Stage stop_after, const Logger& log, Report* report, Json* section) {
   const RegionalParams& p = r.params;
@@ -57,12 +68,7 @@ void conformal_stages(RegionalResult& r, Stage stop_after, const Logger& log, Re
   {
     StageScope scope("regional uniform", report, log);
     const Timer t;
-    r.ny = p.ny;
-    r.nx_initial = p.nx;
-    if (r.nx_initial <= 0) {
-      const double ratio = (r.side_length[0] + r.side_length[2]) / (r.side_length[1] + r.side_length[3]);
-      r.nx_initial = std::max(1, static_cast<int>(std::lround(p.ny * ratio)));
-    }
+    set_first_grid_size(r);
     r.uniform_nodes = uniform_boundary_nodes(*r.contour, 2 * r.nx_initial + 1, 2 * p.ny + 1, {}, &r.uniform_stats);
     r.stage_seconds[2] = t.wall_s();
     r.completed = Stage::kUniform;
@@ -154,12 +160,7 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
   {
     StageScope scope("regional uniform", report, log);
     const Timer t;
-    r.ny = p.ny;
-    r.nx_initial = p.nx;
-    if (r.nx_initial <= 0) {
-      const double ratio = (r.side_length[0] + r.side_length[2]) / (r.side_length[1] + r.side_length[3]);
-      r.nx_initial = std::max(1, static_cast<int>(std::lround(p.ny * ratio)));
-    }
+    set_first_grid_size(r);
     r.uniform_nodes = equidistributed_boundary_nodes(*r.contour, 2 * r.nx_initial + 1, 2 * p.ny + 1, w);
     r.nodes = r.uniform_nodes;
     r.nx = r.nx_initial;

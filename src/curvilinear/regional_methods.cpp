@@ -7,20 +7,10 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "curvilinear/grid_checks.hpp"
 
 namespace aq::curvilinear {
 
 namespace {
-
-struct P {
-  double x, y;
-};
-double orient(P a, P b, P c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
-bool crosses(P a, P b, P c, P d) {
-  const double d1 = orient(a, b, c), d2 = orient(a, b, d), d3 = orient(c, d, a), d4 = orient(c, d, b);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
-}
 
 EllipticOptions elliptic_options(const RegionalParams& p, GridMethod m) {
   EllipticOptions o;
@@ -61,18 +51,6 @@ void log_criteria_table(const std::vector<Candidate>& c, int chosen, const Logge
 }
 
 }  // namespace
-
-int self_intersecting_cells(const Grid2D& g) {
-  int bad = 0;
-  for (int j = 0; j + 1 < g.ny_pts; ++j)
-    for (int i = 0; i + 1 < g.nx_pts; ++i) {
-      const auto pt = [&](int a, int b) { return P{g.x[g.at(a, b)], g.y[g.at(a, b)]}; };
-      const P p1 = pt(i, j), p2 = pt(i + 1, j), p3 = pt(i + 1, j + 1), p4 = pt(i, j + 1);
-      const double area = orient(p1, p2, p3) + orient(p1, p3, p4);
-      if (!(area > 0.0) || crosses(p1, p2, p3, p4) || crosses(p2, p3, p4, p1)) ++bad;
-    }
-  return bad;
-}
 
 ControlFunction regional_weight(const RegionalParams& p) { return ControlFunction::parse(p.weight, "regional.weight"); }
 

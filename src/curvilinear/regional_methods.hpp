@@ -45,9 +45,6 @@ struct MethodRun {
   bool elliptic_rejected = false;          ///< the elliptic grid folded a valid initial grid: `grid` is the initial one
 };
 
-/// Number of cells whose signed area is ≤ 0 or whose opposite edges cross (self-intersecting).
-int self_intersecting_cells(const Grid2D& grid);
-
 /// The control function of `params.weight` (ConfigError naming regional.weight for a bad formula).
 ControlFunction regional_weight(const RegionalParams& params);
 

@@ -13,7 +13,6 @@
 
 #include "curvilinear/grid_checks.hpp"
 #include "curvilinear/initial_grids.hpp"
-#include "curvilinear/regional_methods.hpp"
 #include "unit/curvilinear/seed004_domains.hpp"
 
 namespace aq::curvilinear {

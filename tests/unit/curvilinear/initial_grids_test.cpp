@@ -9,7 +9,6 @@
 
 #include "core/error.hpp"
 #include "curvilinear/grid_checks.hpp"
-#include "curvilinear/regional_methods.hpp"
 #include "unit/curvilinear/seed004_domains.hpp"
 
 namespace aq::curvilinear {
