@@ -213,25 +213,29 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
         j["elliptic_last_move"] = m.elliptic->last_move;
         j["elliptic_rejected"] = m.elliptic_rejected;
       }
+      const auto table = [](const std::vector<Candidate>& cands) {
+        Json t = Json::array();
+        for (const Candidate& c : cands)
+          t.push_back(Json{{"name", c.name},
+                           {"f_worst", c.criteria.worst},
+                           {"f_average", c.criteria.average},
+                           {"self_intersecting_cells", c.self_intersecting_cells},
+                           {"boundary_crossings", c.boundary_crossings}});
+        return t;
+      };
       if (!m.candidates.empty()) {
-        Json table = Json::array();
-        for (const Candidate& c : m.candidates)
-          table.push_back(Json{{"name", c.name},
-                               {"f_worst", c.criteria.worst},
-                               {"f_average", c.criteria.average},
-                               {"self_intersecting_cells", c.self_intersecting_cells},
-                               {"boundary_crossings", c.boundary_crossings}});
-        j["candidates"] = table;
+        j["candidates"] = table(m.candidates);
         j["selection_steps"] = m.selection.steps;
         j["chosen"] = m.initial;
       }
+      if (!m.final_check.empty()) j["final_check"] = table(m.final_check);
     }
     std::string what = m.initial;
     if (m.elliptic)
       what = fmt::format("{} from {} ({} iterations, {} CG iterations{})",
                          grid_method_name(p.method == GridMethod::kBest ? p.best_final : p.method), m.initial,
                          m.elliptic->iterations, m.elliptic->cg_iterations,
-                         m.elliptic_rejected     ? ", folded: initial grid kept"
+                         m.elliptic_rejected     ? ", " + m.rejected_because + ": initial grid kept"
                          : m.elliptic->converged ? ""
                                                  : ", not settled");
     scope.done(

@@ -200,6 +200,29 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
                grid_method_name(elliptic), folded, run.initial);
       run.grid = std::move(initial);
       run.elliptic_rejected = true;
+      run.rejected_because = "folded";
+    } else if (p.method == GridMethod::kBest) {
+      // best never returns a grid worse than the winner: the elliptic grid replaces it only if B.6
+      // between the two (the same f1..f4 steps, ties to the winner) picks it.
+      const std::string final_name = grid_method_name(elliptic);
+      run.final_check = {run.candidates[static_cast<std::size_t>(run.selection.chosen)],
+                         make_candidate(final_name + " from " + run.initial, run.grid, w)};
+      const Selection keep = select_best_grid(run.final_check);
+      log.info(
+          "regional best: rule: the {} grid replaces the chosen {} grid only if the same selection between "
+          "the two (ties to {}) picks it",
+          final_name, run.initial, run.initial);
+      log_criteria_table(run.final_check, keep.chosen, log);
+      for (const auto& s : keep.steps) log.info("  {}", s);
+      if (keep.chosen == 0) {
+        log.info(
+            "regional best: the {} grid is worse than the {} grid by the selection criteria; the result is the {} "
+            "grid itself",
+            final_name, run.initial, run.initial);
+        run.grid = std::move(initial);
+        run.elliptic_rejected = true;
+        run.rejected_because = "worse than " + run.initial;
+      }
     }
   }
   return run;

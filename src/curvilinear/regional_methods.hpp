@@ -10,7 +10,8 @@
 //   rl    Ryskin–Leal from the tfi grid
 //   best  candidates STAR (when star-shaped), classic TFI, TFI with sections (those given, else one
 //         straight section at q1 = 1/2) and the conformal grid; B.6 chooses one (grid_selection.hpp)
-//         and best_final (ed2 or rl) runs from it
+//         and best_final (ed2 or rl) runs from it; the elliptic grid is kept only if B.6 between it
+//         and the chosen grid (ties to the chosen one) picks it, so best is never worse than the winner
 #pragma once
 
 #include <array>
@@ -42,7 +43,9 @@ struct MethodRun {
   Selection selection;                     ///< best
   int self_intersecting_cells = 0;         ///< of the initial grid
   int boundary_crossings = 0;              ///< of the initial grid
-  bool elliptic_rejected = false;          ///< the elliptic grid folded a valid initial grid: `grid` is the initial one
+  bool elliptic_rejected = false;      ///< `grid` is the initial one: the elliptic grid folded it, or (best) was worse
+  std::string rejected_because;        ///< "folded" or "worse than <initial>" when elliptic_rejected
+  std::vector<Candidate> final_check;  ///< best: {the chosen candidate, the elliptic grid} as compared by B.6
 };
 
 /// The control function of `params.weight` (ConfigError naming regional.weight for a bad formula).

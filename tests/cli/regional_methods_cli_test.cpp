@@ -63,6 +63,18 @@ TEST(RegionalMethodsCli, BlackSeaBestPrintsTheSelectionTable) {
   EXPECT_FALSE(g.at("selection_steps").empty());
   EXPECT_TRUE(fs::exists(out / "black_sea_xygrid.nc"));
   EXPECT_EQ(g.at("self_intersecting_cells"), 0);
+  // best is never worse than the winner: ED2 from the conformal grid loses its orthogonality
+  // (f2 0.995 -> 0.047), so the rule keeps the conformal grid itself.
+  EXPECT_THAT(r.err, HasSubstr("rule: the ed2 grid replaces the chosen"));
+  EXPECT_EQ(g.at("chosen"), "conformal");
+  const auto q = report(out, "black_sea").at("quality");
+  std::size_t winner = 0;
+  while (g.at("candidates").at(winner).at("name") != g.at("chosen")) ++winner;
+  const auto& f = g.at("candidates").at(winner).at("f_worst");
+  EXPECT_GE(q.at("f1").at("worst").get<double>(), f.at(0).get<double>());
+  EXPECT_GE(q.at("f2").at("worst").get<double>(), f.at(1).get<double>());
+  EXPECT_TRUE(g.at("elliptic_rejected").get<bool>());
+  ASSERT_EQ(g.at("final_check").size(), 2U);
 }
 
 TEST(RegionalMethodsCli, SwanFoldsWithoutTheSectionAndNotWithIt) {
