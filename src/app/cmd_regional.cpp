@@ -1,6 +1,7 @@
 // `aquatoria regional`: a regional orthogonal curvilinear grid by the izogrid method (seed 000,
 // ARCHITECTURE §5): map -> contour -> uniform boundary nodes -> inverse conformal problem ->
-// Laplace fill, stopping after any stage with a picture of what was built; or, with [nesting]
+// Laplace fill, or by a seed-004 method (regional.method; curvilinear/regional_methods.hpp),
+// stopping after any stage with a picture of what was built; or, with [nesting]
 // refine_factor, a refinement grid cut from a parent ROMS grid (app/regional_refine.hpp). The
 // full run writes the planar grid netCDF (<name>_xygrid.nc) with the quality fields, the ROMS
 // files and the run report.
@@ -103,7 +104,15 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     refined = build_refinement(c, loaded.source, log, &report);
     c.params = refined->result.params;  // the parent's plane, for the files' attributes
   } else {
-    built = curvilinear::run_regional(c.params, stage, log, &report);
+    // A bathymetry-weighted control function (regional.weight_depth) samples the [input] raster.
+    std::optional<raster::Bathymetry> bathy;
+    curvilinear::DepthSampler depth;
+    if (c.params.weight_depth > 0.0 && curvilinear::uses_weight(c.params.method) &&
+        !c.input.path.empty()) {
+      bathy.emplace(raster::Bathymetry::open(raster_options(c.input, 0), log));
+      depth = [&bathy](double lon, double lat) { return -bathy->sample(lon, lat); };
+    }
+    built = curvilinear::run_regional(c.params, stage, log, &report, bathy ? &depth : nullptr);
   }
   const curvilinear::RegionalResult& result = refined ? refined->result : built;
 
@@ -211,8 +220,9 @@ void add_regional_command(CLI::App& app, Context& ctx) {
   auto args = std::make_shared<RegionalArgs>();
   CLI::App* cmd = app.add_subcommand(
       "regional",
-      "Build a regional orthogonal curvilinear grid (izogrid method) from a TOML config or a .izogrid file, or a "
-      "ROMS refinement grid of a parent grid ([nesting] refine_factor, parent_box)");
+      "Build a regional curvilinear grid (the conformal izogrid method, or regional.method = bvp, tfi, star, ed2, rl, "
+      "best) from a TOML config or a .izogrid file, or a ROMS refinement grid of a parent grid ([nesting] "
+      "refine_factor, parent_box)");
   cmd->add_option("file", args->file, "A seed-format .izogrid file (or a .toml config)");
   cmd->add_option("-c,--config", args->config, "Configuration file (TOML); see configs/example_regional.toml");
   cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or 0..4)");

@@ -118,6 +118,14 @@ const S& schema() {
     t.add<int>(
         "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
     t.add_custom(
+        "regional", "sections",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::vector<std::vector<double>> secs;
+          if (auto err = detail::convert(v, secs)) return p.add(o, "regional.sections", *err);
+          c.params.sections = secs;  // checked by regional_params_problems()
+        },
+        [](const RegionalConfig& c) { return Json(c.params.sections); }, "");
+    t.add_custom(
         "input", "path",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
           std::string x;
@@ -245,9 +253,15 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "anderson") return p.anderson;
   if (key == "xygrid") return p.xygrid;
   if (key == "threads") return p.threads;
+  if (key == "method") return curvilinear::grid_method_name(p.method);
+  if (key == "best_final") return curvilinear::grid_method_name(p.best_final);
+  if (key == "weight") return p.weight;
+  if (key == "weight_depth") return p.weight_depth;
+  if (key == "relaxation") return p.relaxation;
+  if (key == "elliptic_tolerance") return p.elliptic_tolerance;
+  if (key == "elliptic_iterations") return p.elliptic_iterations;
   if (key == "lwidth") return p.lwidth;
   if (key == "solver") return p.solver == curvilinear::LaplaceOptions::Solver::kDst ? "dst" : "sor";
-  if (key == "method") return p.method == curvilinear::RegionalMethod::kBvp ? "bvp" : "conformal";
   if (key == "surface") return p.surface == curvilinear::RegionalSurface::kSphere ? "sphere" : "plane";
   if (key == "bvp_iterations") return p.bvp_iterations;
   if (key == "bvp_interpolation")

@@ -480,7 +480,7 @@ GridQuality check_grid(const Grid2D& g, const CheckOptions& options) {
     q.f3.values[c] = (ws[c] > 0.0 && c_law > 0.0) ? std::min(ws[c] / c_law, c_law / ws[c]) : 0.0;
   }
 
-  if (nx >= 3 && ny >= 3) {
+  if (nx >= 3 && ny >= 3 && !options.cells_only) {
     spline_form(g, rho, q.ortho_52);
     residual_field(g, rho, options.five_point, q.laplace_residual);
   }

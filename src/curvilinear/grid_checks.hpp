@@ -51,6 +51,9 @@ struct CheckOptions {
   /// Control function w(x, y) of criterion f3 (seed 004 (4.1)), evaluated at the cell centroid;
   /// empty means w ≡ 1 (f3 then measures uniformity of cell areas).
   std::function<double(double x, double y)> weight;
+  /// Only the cell fields (46), (50), (51) and f1–f4: skip the spline form (52) and the Laplace
+  /// residual (left empty), for callers that evaluate criteria every few iterations.
+  bool cells_only = false;
 };
 
 struct GridQuality {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "curvilinear/control_function.hpp"
 
 namespace aq::curvilinear {
 
@@ -193,6 +194,30 @@ const std::map<std::string, Setter>& setters() {
          return {};
        }},
       {"tolerance", real(&RegionalParams::tolerance)},
+      {"method",
+       [](RegionalParams& p, std::string_view v) -> std::string {
+         return parse_grid_method(lower(v), p.method)
+                    ? std::string()
+                    : std::string("is not one of conformal, bvp, tfi, star, ed2, rl, best");
+       }},
+      {"weight",
+       [](RegionalParams& p, std::string_view v) -> std::string {
+         try {
+           (void)ControlFunction::parse(v, "weight");
+         } catch (const ConfigError& e) {
+           return fmt::format("is not a formula in x, y ({})", e.what());
+         }
+         p.weight = std::string(v);
+         return {};
+       }},
+      {"weight_depth", real(&RegionalParams::weight_depth)},
+      {"relaxation", real(&RegionalParams::relaxation)},
+      {"elliptic_tolerance", real(&RegionalParams::elliptic_tolerance)},
+      {"elliptic_iterations", integer(&RegionalParams::elliptic_iterations)},
+      {"best_final",
+       [](RegionalParams& p, std::string_view v) -> std::string {
+         return parse_grid_method(lower(v), p.best_final) ? std::string() : std::string("is neither ed2 nor rl");
+       }},
       {"max_outer", integer(&RegionalParams::max_outer)},
       {"max_inner", integer(&RegionalParams::max_inner)},
       {"interp_points", integer(&RegionalParams::interp_points)},
@@ -211,18 +236,6 @@ const std::map<std::string, Setter>& setters() {
          return {};
        }},
       {"xygrid", text(&RegionalParams::xygrid)},
-      {"method",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lower(v);
-         if (s == "conformal") {
-           p.method = RegionalMethod::kConformal;
-         } else if (s == "bvp") {
-           p.method = RegionalMethod::kBvp;
-         } else {
-           return "is not a method (conformal or bvp)";
-         }
-         return {};
-       }},
       {"surface",
        [](RegionalParams& p, std::string_view v) -> std::string {
          const std::string s = lower(v);

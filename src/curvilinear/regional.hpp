@@ -1,5 +1,7 @@
 // The regional izogrid pipeline, stages 0–4 (seed 000 Sec. 1 "modes"; digest izogrid.md §1;
 // ARCHITECTURE §5): map -> contour -> uniform boundary nodes -> inverse problem -> Laplace fill.
+// With params.method other than conformal, stage 2 puts the boundary nodes by equidistribution,
+// stage 3 is skipped and stage 4 runs the seed-004 method (regional_methods.hpp).
 // Each stage can be the last one (the seed's `mode`); everything built so far is returned so the
 // caller can draw it (io/regional_pictures.hpp) or write it (io/xygrid_netcdf.hpp).
 #pragma once
@@ -18,6 +20,7 @@
 #include "curvilinear/laplace_fill.hpp"
 #include "curvilinear/projection.hpp"
 #include "curvilinear/regional_bvp.hpp"
+#include "curvilinear/regional_methods.hpp"
 #include "curvilinear/regional_params.hpp"
 #include "curvilinear/spline_contour.hpp"
 
@@ -61,9 +64,10 @@ struct RegionalResult {
   int ny = 0;                ///< cells along η of the final grid (supergrid 2ny+1 points)
   double dxi_over_deta = 0;  ///< ρ = Δξ/Δη of the supergrid's computational steps
 
-  // Stage 4: the filled supergrid.
+  // Stage 4: the filled supergrid (conformal), or the grid of a seed-004 method.
   Grid2D grid;
   LaplaceResult laplace;
+  std::optional<MethodRun> method_run;  ///< method != conformal: initial grid, ED2/RL, best's selection
 
   // method = bvp: stages 3–4 are one bvp stage (regional_bvp.hpp); its history is here.
   std::optional<BvpResult> bvp;
@@ -81,7 +85,8 @@ struct RegionalResult {
 /// W/H, residual history, timings). Throws ConfigError for invalid parameters, InputError for a bad contour (corners,
 /// self-intersection, orientation, points at a projection singularity), NumericalError when the inverse problem or the
 /// fill does not converge.
+/// `depth` (may be null) supplies the bathymetry of params.weight_depth > 0 (ConfigError without it).
 RegionalResult run_regional(const RegionalParams& params, Stage stop_after, const Logger& log = Logger::null(),
-                            Report* report = nullptr);
+                            Report* report = nullptr, const DepthSampler* depth = nullptr);
 
 }  // namespace aq::curvilinear

@@ -22,6 +22,37 @@ ProjectionParams projection_params(const RegionalParams& p) {
   return q;
 }
 
+const char* grid_method_name(GridMethod m) {
+  switch (m) {
+    case GridMethod::kConformal:
+      return "conformal";
+    case GridMethod::kBvp:
+      return "bvp";
+    case GridMethod::kTfi:
+      return "tfi";
+    case GridMethod::kStar:
+      return "star";
+    case GridMethod::kEd2:
+      return "ed2";
+    case GridMethod::kRl:
+      return "rl";
+    case GridMethod::kBest:
+      return "best";
+  }
+  return "?";
+}
+
+bool parse_grid_method(std::string_view text, GridMethod& out) {
+  for (const GridMethod m : {GridMethod::kConformal, GridMethod::kBvp, GridMethod::kTfi, GridMethod::kStar, GridMethod::kEd2,
+                             GridMethod::kRl, GridMethod::kBest}) {
+    if (text == grid_method_name(m)) {
+      out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
 std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p) {
   std::vector<std::pair<std::string, std::string>> bad;
   auto check = [&](bool ok, const char* key, const std::string& value, const char* what) {
@@ -54,16 +85,31 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
         "must be within (0, 100] (1 = uniform)");
   check(p.bvp_ratio_eta > 0.0 && p.bvp_ratio_eta <= 100.0, "bvp_ratio_eta", num(p.bvp_ratio_eta),
         "must be within (0, 100] (1 = uniform)");
-  check(p.method == RegionalMethod::kBvp || p.surface == RegionalSurface::kPlane, "surface", "sphere",
+  check(p.method == GridMethod::kBvp || p.surface == RegionalSurface::kPlane, "surface", "sphere",
         "only the bvp method solves on the sphere (set method = bvp)");
   check(p.nx2 >= 0, "block2_nx", std::to_string(p.nx2), "must be >= 0 (0 = from the conformal modulus)");
-  check(p.x2.empty() || p.method == RegionalMethod::kBvp, "block2_points", std::to_string(p.x2.size()) + " points",
+  check(p.x2.empty() || p.method == GridMethod::kBvp, "block2_points", std::to_string(p.x2.size()) + " points",
         "a second block needs method = bvp");
   if (p.x2.size() != p.y2.size() || p.corner2.size() != p.x2.size())
     bad.emplace_back("block2_points", fmt::format("block2_points: {} x, {} y and {} corner marks differ in number",
                                                   p.x2.size(), p.y2.size(), p.corner2.size()));
   check(p.threads >= 0, "threads", std::to_string(p.threads), "must be >= 0 (0 = default)");
   check(!p.xygrid.empty(), "xygrid", "''", "must name a file");
+  check(p.weight_depth >= 0.0 && std::isfinite(p.weight_depth), "weight_depth", num(p.weight_depth),
+        "must be >= 0 (0 = no bathymetry weight)");
+  check(p.relaxation > 0.0 && p.relaxation <= 1.0, "relaxation", num(p.relaxation), "must be within (0, 1]");
+  check(p.elliptic_tolerance > 0.0 && p.elliptic_tolerance < 1.0, "elliptic_tolerance", num(p.elliptic_tolerance),
+        "must be within (0, 1)");
+  check(p.elliptic_iterations >= 1, "elliptic_iterations", std::to_string(p.elliptic_iterations), "must be >= 1");
+  check(p.best_final == GridMethod::kEd2 || p.best_final == GridMethod::kRl, "best_final",
+        grid_method_name(p.best_final), "must be ed2 or rl");
+  for (std::size_t k = 0; k < p.sections.size(); ++k) {
+    const auto& sec = p.sections[k];
+    if (sec.empty() || !(sec[0] > 0.0 && sec[0] < 1.0) || sec.size() % 2 != 1)
+      bad.emplace_back("sections", fmt::format("sections[{}]: expected [q1, x1, y1, x2, y2, ...] with 0 < q1 < 1 "
+                                               "and pairs of coordinates",
+                                               k + 1));
+  }
   for (const auto& [key, v] : {std::pair{"west_edge", p.west_edge}, std::pair{"east_edge", p.east_edge},
                                std::pair{"south_edge", p.south_edge}, std::pair{"north_edge", p.north_edge}})
     check(std::isnan(v) || std::isfinite(v), key, num(v), "must be a finite number");

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -17,9 +18,17 @@
 
 namespace aq::curvilinear {
 
-/// How the grid is made from the contour: the izogrid conformal method (inverse problem + Laplace
-/// fill, seed 000) or the orthogonal-family boundary-value problem (seed 003, regional_bvp.hpp).
-enum class RegionalMethod { kConformal, kBvp };
+/// How the grid is built from the contour (key `method`): the conformal izogrid pipeline (seed 000),
+/// the orthogonal-family boundary-value problem (seed 003, regional_bvp.hpp) or one of seed 004's
+/// generators (regional_methods.hpp).
+enum class GridMethod { kConformal, kBvp, kTfi, kStar, kEd2, kRl, kBest };
+/// "conformal", "bvp", "tfi", "star", "ed2", "rl", "best".
+const char* grid_method_name(GridMethod m);
+/// Inverse of grid_method_name(); false for an unknown name.
+bool parse_grid_method(std::string_view text, GridMethod& out);
+/// True for seed 004's methods (tfi, star, ed2, rl, best): boundary nodes by equidistribution of the
+/// control function `weight` (regional_methods.hpp); false for conformal and bvp.
+constexpr bool uses_weight(GridMethod m) { return m != GridMethod::kConformal && m != GridMethod::kBvp; }
 /// Where the bvp method solves: in the projection plane or directly on the sphere (seed 003 Sec. 3.2).
 enum class RegionalSurface { kPlane, kSphere };
 
@@ -107,10 +116,7 @@ struct RegionalParams {
   /// [anderson] Anderson acceleration depth of the outer loop, 0..8 (0 = the paper's plain loop).
   int anderson = 0;
 
-  // --- method (aquatoria; seeds 000, 003) ------------------------------------------------------
-  /// [method] "conformal" (default: inverse problem + Laplace fill) or "bvp" (seed 003: θ, η
-  /// equations on a reference grid, nodes at level-line intersections, outer iterations).
-  RegionalMethod method = RegionalMethod::kConformal;
+  // --- bvp method (seed 003; regional_bvp.hpp) ------------------------------------------------
   /// [surface] bvp only: "plane" (the projection plane) or "sphere" (3-D, no map projection; the
   /// written _xygrid.nc holds the sphere grid's nodes projected to the plane).
   RegionalSurface surface = RegionalSurface::kPlane;
@@ -136,6 +142,29 @@ struct RegionalParams {
   LaplaceOptions::Solver solver = LaplaceOptions::Solver::kDst;
   /// [xygrid] output netCDF file name of the planar grid.
   std::string xygrid = "xygrid.nc";
+
+  // --- method; seed 004 methods (regional_methods.hpp) ----------------------------------------
+  /// [method] grid generator: conformal (default: inverse problem + Laplace fill, seed 000), bvp
+  /// (seed 003: θ, η equations, nodes at level-line intersections), tfi, star, ed2, rl, best (seed 004).
+  GridMethod method = GridMethod::kConformal;
+  /// [weight] control function w(x, y) ≥ 1 of the boundary nodes, sections, STAR rows and ED2, a
+  /// formula in plane coordinates (control_function.hpp); "1" = uniform.
+  std::string weight = "1";
+  /// [weight_depth] a ≥ 0 of w = weight · (1 + a·|∇h|/max|∇h|) from the [input] bathymetry (app
+  /// only; 0 = off).
+  double weight_depth = 0.0;
+  /// [relaxation] ω of the ED2/RL Picard update, (0, 1].
+  double relaxation = 0.7;
+  /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled).
+  double elliptic_tolerance = 1e-4;
+  /// [elliptic_iterations] ED2/RL Picard iterations at most, ≥ 1.
+  int elliptic_iterations = 200;
+  /// [best_final] the elliptic method `best` runs from the chosen initial grid: ed2 or rl.
+  GridMethod best_final = GridMethod::kEd2;
+  /// Internal sections of TFI (TOML `sections` only): each {q1, x1, y1, x2, y2, ...}: the section
+  /// at the grid column nearest q1·(L−1), 0 < q1 < 1, through the optional interior points (plane
+  /// units, or lon/lat when points = lonlat).
+  std::vector<std::vector<double>> sections;
 
   // --- execution and provenance --------------------------------------------------------------
   /// [threads] OpenMP threads for IZ89 and the fill; 0 = the OpenMP default. Results do not

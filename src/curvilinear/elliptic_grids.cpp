@@ -1,0 +1,253 @@
+// ED2 and Ryskin–Leal grids by Picard iteration with IC(0)-preconditioned CG (seed 004 Sec. 3;
+// digest B.4); see elliptic_grids.hpp.
+#include "curvilinear/elliptic_grids.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "curvilinear/grid_checks.hpp"
+
+namespace aq::curvilinear {
+
+namespace {
+
+// Grids with fewer nodes compute their coefficients on one thread (a parallel region costs more).
+constexpr std::size_t kParallelNodes = 40000;
+
+// The interior operator K (boundary values zero), its IC(0) factor and PCG for K δ = r.
+class FaceOperator {
+ public:
+  FaceOperator(int nx, int ny) : L_(nx), M_(ny), a_(static_cast<std::size_t>(nx) * ny), b_(a_.size()), d_(a_.size()) {}
+  std::vector<double>& a() { return a_; }
+  std::vector<double>& b() { return b_; }
+
+  void factor() {
+    for (int j = 1; j < M_ - 1; ++j)
+      for (int i = 1; i < L_ - 1; ++i) {
+        const std::size_t p = idx(i, j);
+        double d = a_[p] + a_[p - 1] + b_[p] + b_[p - s()];
+        if (i > 1) d -= a_[p - 1] * a_[p - 1] / d_[p - 1];
+        if (j > 1) d -= b_[p - s()] * b_[p - s()] / d_[p - s()];
+        d_[p] = d;
+      }
+  }
+
+  // Residual of the nodal equations at the current coordinates u (boundary included): Σ coef (u_nb − u_p).
+  void residual(const std::vector<double>& u, std::vector<double>& r) const {
+    std::fill(r.begin(), r.end(), 0.0);
+    for (int j = 1; j < M_ - 1; ++j)
+      for (int i = 1; i < L_ - 1; ++i) {
+        const std::size_t p = idx(i, j);
+        r[p] = a_[p] * (u[p + 1] - u[p]) - a_[p - 1] * (u[p] - u[p - 1]) + b_[p] * (u[p + s()] - u[p]) -
+               b_[p - s()] * (u[p] - u[p - s()]);
+      }
+  }
+
+  // δ ≈ K⁻¹ r by PCG from δ = 0; returns the iterations used.
+  int solve(const std::vector<double>& r, std::vector<double>& delta, double rel_tol, int max_iterations) {
+    const std::size_t n = a_.size();
+    delta.assign(n, 0.0);
+    res_ = r;
+    z_.assign(n, 0.0);
+    precondition(res_, z_);
+    p_ = z_;
+    q_.assign(n, 0.0);
+    double rz = dot(res_, z_);
+    const double r0 = std::sqrt(dot(res_, res_));
+    if (!(r0 > 0.0)) return 0;
+    int it = 0;
+    for (; it < max_iterations; ++it) {
+      apply(p_, q_);
+      const double pq = dot(p_, q_);
+      if (!(pq > 0.0)) break;
+      const double alpha = rz / pq;
+      for (int j = 1; j < M_ - 1; ++j)
+        for (int i = 1; i < L_ - 1; ++i) {
+          const std::size_t k = idx(i, j);
+          delta[k] += alpha * p_[k];
+          res_[k] -= alpha * q_[k];
+        }
+      if (std::sqrt(dot(res_, res_)) < rel_tol * r0) {
+        ++it;
+        break;
+      }
+      precondition(res_, z_);
+      const double rz_new = dot(res_, z_);
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      for (int j = 1; j < M_ - 1; ++j)
+        for (int i = 1; i < L_ - 1; ++i) {
+          const std::size_t k = idx(i, j);
+          p_[k] = z_[k] + beta * p_[k];
+        }
+    }
+    return it;
+  }
+
+ private:
+  int L_, M_;
+  std::vector<double> a_, b_, d_, res_, z_, p_, q_;
+  [[nodiscard]] std::size_t s() const { return static_cast<std::size_t>(L_); }
+  [[nodiscard]] std::size_t idx(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(L_) + static_cast<std::size_t>(i);
+  }
+  [[nodiscard]] double dot(const std::vector<double>& u, const std::vector<double>& v) const {
+    double sum = 0.0;
+    for (int j = 1; j < M_ - 1; ++j)
+      for (int i = 1; i < L_ - 1; ++i) sum += u[idx(i, j)] * v[idx(i, j)];
+    return sum;
+  }
+  void apply(const std::vector<double>& u, std::vector<double>& out) const {
+    for (int j = 1; j < M_ - 1; ++j)
+      for (int i = 1; i < L_ - 1; ++i) {
+        const std::size_t p = idx(i, j);
+        const double d = a_[p] + a_[p - 1] + b_[p] + b_[p - s()];
+        out[p] = d * u[p] - a_[p] * u[p + 1] - a_[p - 1] * u[p - 1] - b_[p] * u[p + s()] - b_[p - s()] * u[p - s()];
+      }
+  }
+  // z = (D + Lo)⁻ᵀ D (D + Lo)⁻¹ r; boundary entries of z stay 0.
+  void precondition(const std::vector<double>& r, std::vector<double>& z) const {
+    for (int j = 1; j < M_ - 1; ++j)
+      for (int i = 1; i < L_ - 1; ++i) {
+        const std::size_t p = idx(i, j);
+        z[p] = (r[p] + a_[p - 1] * z[p - 1] + b_[p - s()] * z[p - s()]) / d_[p];
+      }
+    for (int j = M_ - 2; j >= 1; --j)
+      for (int i = L_ - 2; i >= 1; --i) {
+        const std::size_t p = idx(i, j);
+        z[p] += (a_[p] * z[p + 1] + b_[p] * z[p + s()]) / d_[p];
+      }
+  }
+};
+
+double weight_at(const ControlFunction& w, double x, double y) {
+  const double v = w(x, y);
+  if (!(v > 0.0) || !std::isfinite(v))
+    throw InputError(fmt::format("control function w = {} at ({:.6g}, {:.6g}): must be positive and finite", v, x, y));
+  return v;
+}
+
+// Face coefficients of ED2 or RL from the current grid (see the header's formulas).
+void face_coefficients(const Grid2D& g, const ControlFunction& w, EllipticMethod method, double floor,
+                       std::vector<double>& A, std::vector<double>& B) {
+  const int L = g.nx_pts, M = g.ny_pts;
+  const auto s = static_cast<std::size_t>(L);
+  const double* x = g.x.data();
+  const double* y = g.y.data();
+  const bool ed2 = method == EllipticMethod::kEd2;
+  double* pa = A.data();
+  double* pb = B.data();
+  const ControlFunction* pw = &w;
+  const bool parallel = static_cast<std::size_t>(L) * static_cast<std::size_t>(M) >= kParallelNodes;
+#pragma omp parallel for default(none) shared(x, y, pa, pb, pw) firstprivate(L, M, s, ed2, floor) \
+    schedule(static) if (parallel)
+  for (int j = 0; j < M; ++j) {
+    for (int i = 0; i < L; ++i) {
+      const std::size_t p = static_cast<std::size_t>(j) * s + static_cast<std::size_t>(i);
+      if (i + 1 < L && j >= 1 && j + 1 < M) {  // a at (i+½, j)
+        const double tx = 0.25 * (x[p + s] + x[p + s + 1] - x[p - s] - x[p - s + 1]);
+        const double ty = 0.25 * (y[p + s] + y[p + s + 1] - y[p - s] - y[p - s + 1]);
+        const double g22 = tx * tx + ty * ty;
+        if (ed2) {
+          pa[p] = std::max(weight_at(*pw, 0.5 * (x[p] + x[p + 1]), 0.5 * (y[p] + y[p + 1])) * g22, floor);
+        } else {
+          const double ex = x[p + 1] - x[p], ey = y[p + 1] - y[p];
+          pa[p] = std::clamp(std::sqrt(g22 / std::max(ex * ex + ey * ey, floor)), 1e-3, 1e3);
+        }
+      }
+      if (j + 1 < M && i >= 1 && i + 1 < L) {  // b at (i, j+½)
+        const double tx = 0.25 * (x[p + 1] + x[p + s + 1] - x[p - 1] - x[p + s - 1]);
+        const double ty = 0.25 * (y[p + 1] + y[p + s + 1] - y[p - 1] - y[p + s - 1]);
+        const double g11 = tx * tx + ty * ty;
+        if (ed2) {
+          pb[p] = std::max(weight_at(*pw, 0.5 * (x[p] + x[p + s]), 0.5 * (y[p] + y[p + s])) * g11, floor);
+        } else {
+          const double ex = x[p + s] - x[p], ey = y[p + s] - y[p];
+          pb[p] = std::clamp(std::sqrt(g11 / std::max(ex * ex + ey * ey, floor)), 1e-3, 1e3);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+const char* elliptic_method_name(EllipticMethod m) { return m == EllipticMethod::kEd2 ? "ed2" : "rl"; }
+
+Criteria grid_criteria(const Grid2D& grid, const ControlFunction& w) {
+  CheckOptions co;
+  co.cells_only = true;
+  co.dxi_over_deta = 1.0;
+  if (!w.is_unity()) co.weight = [&w](double x, double y) { return w(x, y); };
+  const GridQuality q = check_grid(grid, co);
+  Criteria c;
+  const QualityField* f[4] = {&q.f1, &q.f2, &q.f3, &q.f4};
+  for (std::size_t k = 0; k < 4; ++k) {
+    c.worst[k] = f[k]->worst;
+    c.average[k] = f[k]->average;
+  }
+  return c;
+}
+
+EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const EllipticOptions& o) {
+  if (!(o.relaxation > 0.0 && o.relaxation <= 1.0) || !(o.tolerance > 0.0) || !(o.criteria_tolerance > 0.0) ||
+      o.max_iterations < 1 || o.check_every < 1 || !(o.inner_tolerance > 0.0 && o.inner_tolerance < 1.0) ||
+      o.inner_iterations < 1)
+    throw ConfigError(
+        fmt::format("elliptic grid: relaxation {} must be in (0, 1], tolerances > 0, iterations >= 1", o.relaxation));
+  const int L = g.nx_pts, M = g.ny_pts;
+  if (L < 3 || M < 3) throw InternalError("elliptic_smooth: need at least 3 x 3 points");
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    x0 = std::min(x0, g.x[k]), x1 = std::max(x1, g.x[k]), y0 = std::min(y0, g.y[k]), y1 = std::max(y1, g.y[k]);
+  }
+  const double diam = std::hypot(x1 - x0, y1 - y0);
+  const double floor = o.method == EllipticMethod::kEd2 ? 1e-24 * diam * diam * diam * diam : 1e-30 * diam * diam;
+
+  EllipticResult res;
+  res.history.push_back(grid_criteria(g, w));
+  FaceOperator op(L, M);
+  std::vector<double> r(g.x.size()), dx, dy;
+  const auto changed = [&](const Criteria& a, const Criteria& b) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double dw = std::fabs(a.worst[k] - b.worst[k]), da = std::fabs(a.average[k] - b.average[k]);
+      if (!(dw < o.criteria_tolerance) && std::isfinite(a.worst[k])) return true;
+      if (!(da < o.criteria_tolerance) && std::isfinite(a.average[k])) return true;
+      if (std::isfinite(a.worst[k]) != std::isfinite(b.worst[k])) return true;
+    }
+    return false;
+  };
+  for (int it = 1; it <= o.max_iterations; ++it) {
+    face_coefficients(g, w, o.method, floor, op.a(), op.b());
+    op.factor();
+    op.residual(g.x, r);
+    res.cg_iterations += op.solve(r, dx, o.inner_tolerance, o.inner_iterations);
+    op.residual(g.y, r);
+    res.cg_iterations += op.solve(r, dy, o.inner_tolerance, o.inner_iterations);
+    double move = 0.0;
+    for (int j = 1; j < M - 1; ++j)
+      for (int i = 1; i < L - 1; ++i) {
+        const std::size_t p = g.at(i, j);
+        g.x[p] += o.relaxation * dx[p];
+        g.y[p] += o.relaxation * dy[p];
+        move = std::max(move, o.relaxation * std::hypot(dx[p], dy[p]));
+      }
+    res.iterations = it;
+    res.last_move = move / diam;
+    if (it % o.check_every == 0 || it == o.max_iterations) {
+      const Criteria c = grid_criteria(g, w);
+      const bool settled = !changed(c, res.history.back());
+      res.history.push_back(c);
+      if (settled && res.last_move < o.tolerance) {
+        res.converged = true;
+        break;
+      }
+    }
+  }
+  return res;
+}
+
+}  // namespace aq::curvilinear
