@@ -83,7 +83,8 @@ def xygrid(path, nx, ny, fmt):
     d.close()
 make = {"roms_grid": lambda p, f: grd(p, 4, 3, f), "nesting": lambda p, f: nesting(p, 4, f),
         "xygrid": lambda p, f: xygrid(p, 3, 2, f)}[target]
-for f in ["NETCDF3_CLASSIC", "NETCDF3_64BIT_OFFSET", "NETCDF3_64BIT_DATA"]:
+# The nesting file has 64-bit integers: only CDF-5 holds them among the classic formats.
+for f in ["NETCDF3_64BIT_DATA"] if target == "nesting" else ["NETCDF3_CLASSIC", "NETCDF3_64BIT_OFFSET", "NETCDF3_64BIT_DATA"]:
     make(f"{out}/{target}_{f.lower()}.nc", f)
 PY
     ;;
