@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Configures and builds one flavour of aquatoria.
-#   scripts/build.sh [release|asan|noomp]   (default release) -> build/, build-asan/, build-noomp/
+# Configures and builds one flavour of aquatoria: everything, or only the given CMake targets.
+#   scripts/build.sh [release|asan|noomp] [TARGET...]   (default release, all targets)
+#     -> build/, build-asan/, build-noomp/;  e.g. scripts/build.sh release aquatoria
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flavour="${1:-release}"
@@ -8,10 +9,13 @@ case "$flavour" in
   release) dir=build;       args=(-DCMAKE_BUILD_TYPE=Release) ;;
   asan)    dir=build-asan;  args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DAQ_SANITIZE=ON -DAQ_OPENMP=OFF) ;;
   noomp)   dir=build-noomp; args=(-DCMAKE_BUILD_TYPE=Release -DAQ_OPENMP=OFF) ;;
-  *) echo "usage: scripts/build.sh [release|asan|noomp]" >&2; exit 2 ;;
+  *) echo "usage: scripts/build.sh [release|asan|noomp] [TARGET...]" >&2; exit 2 ;;
 esac
+shift $(( $# > 0 ? 1 : 0 ))
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
 jobs="${AQ_JOBS:-$(nproc)}"
 cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
 start=$(date +%s)
-cmake --build "$dir" -j "$jobs"
+cmake --build "$dir" -j "$jobs" "${targets[@]}"
 echo "build ($flavour): $(( $(date +%s) - start )) s" >&2

@@ -3,6 +3,7 @@
 // depths → statistics → mesh files, pictures and the run report. With no -c it runs the seed's
 // reference configuration (Δ0 = 4°, L = 3, K = 2, h = 0) on the installed ETOPO5.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <cstdio>
@@ -55,10 +56,17 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   Timer total;
   auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
   if (!a.config) {
-    // The seed's reference run: base name says so.
+    // No config file: the base name says what was run (the seed's reference run, or the
+    // parameters that differ from it).
     bool name_set = false;
     for (const auto& s : a.sets) name_set = name_set || s.rfind("output.name=", 0) == 0;
-    if (!name_set) loaded.options.output.name = "seed_4deg_L3";
+    if (!name_set) {
+      const config::RunName rn = config::default_run_name(loaded.options);
+      loaded.options.output.name = rn.name;
+      if (!rn.changed.empty())
+        log.info("name: {} (no -c and no output.name; differs from the seed's reference run in {})", rn.name,
+                 fmt::join(rn.changed, ", "));
+    }
   }
   if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
   const config::GlobalConfig& c = loaded.options;

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "app/commands.hpp"
+#include "app/interrupt.hpp"
 #include "core/error.hpp"
 
 #ifndef AQ_VERSION
@@ -13,6 +14,7 @@
 #endif
 
 int main(int argc, char** argv) {
+  aq::app::install_interrupt_handlers();
   aq::app::Context ctx;
   CLI::App app{"aquatoria: global finite-element ocean meshes and regional orthogonal grids from bathymetry"};
   app.set_version_flag("--version", std::string("aquatoria ") + AQ_VERSION);

@@ -1,6 +1,8 @@
 // The key table of the global run (ARCHITECTURE §7) and its validation. Adding a key here
 // without documenting it in configs/example.toml fails tests/unit/config/example_toml_test.
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 
 #include "config/load.hpp"
 #include "config/schema.hpp"
@@ -336,6 +338,40 @@ Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const s
   cross_check(out.options, p);
   p.throw_if_any(out.source);
   out.echo = schema().echo(out.options);
+  return out;
+}
+
+RunName default_run_name(const GlobalConfig& c) {
+  RunName out;
+  const GlobalConfig d;
+  const Json now = schema().echo(c), def = schema().echo(d);
+  for (const auto& [sec, keys] : now.items()) {
+    if (sec == "output" || sec == "blocks") continue;
+    for (const auto& [key, value] : keys.items())
+      if (!def.contains(sec) || !def[sec].contains(key) || def[sec][key] != value)
+        out.changed.push_back(fmt::format("{}.{} = {}", sec, key, value.dump()));
+  }
+  if (out.changed.empty()) {
+    out.name = "seed_4deg_L3";
+    return out;
+  }
+  const auto step_s = static_cast<long long>(std::llround(c.quadtree.step_deg * 3600.0));
+  const std::string step = step_s % 3600 == 0 ? fmt::format("{}deg", step_s / 3600)
+                           : step_s % 60 == 0 ? fmt::format("{}min", step_s / 60)
+                                              : fmt::format("{}sec", step_s);
+  out.name = fmt::format("global_{}_L{}", step, c.quadtree.levels);
+  if (c.mask.min_depth_m != d.mask.min_depth_m) out.name += fmt::format("_h{:g}", c.mask.min_depth_m);
+  if (c.mask.cursor != d.mask.cursor) out.name += fmt::format("_K{}", c.mask.cursor);
+  if (c.rotation.enabled) out.name += "_rot";
+  if (c.input.path != d.input.path) {
+    std::string stem = std::filesystem::path(c.input.path).stem().string();
+    for (char& ch : stem)  // a file-name part: keep letters, digits, '-', '.'
+      if (std::isalnum(static_cast<unsigned char>(ch)) == 0 && ch != '-' && ch != '.') ch = '_';
+    if (!stem.empty()) out.name += "_" + stem;
+  }
+  if (c.quadtree.balance != d.quadtree.balance) out.name += "_" + c.quadtree.balance;
+  if (c.quadtree.coast_band != d.quadtree.coast_band) out.name += fmt::format("_cb{}", c.quadtree.coast_band);
+  if (c.mesh.elements != d.mesh.elements) out.name += "_" + c.mesh.elements;
   return out;
 }
 

@@ -27,4 +27,20 @@ Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const s
 /// Every key of the global configuration as "section.key", in documentation order.
 std::vector<std::string> global_keys();
 
+/// The base name of a run without a config file and without output.name, and why.
+struct RunName {
+  std::string name;
+  /// Keys outside [output] and [blocks] whose effective value differs from the built-in
+  /// default, as "section.key = value", in documentation order; empty for the seed's run.
+  std::vector<std::string> changed;
+};
+
+/// "seed_4deg_L3" when the mesh-defining values of `c` (every section but [output] and [blocks])
+/// are the built-in defaults (the seed's reference run); otherwise a name that follows them:
+/// "global_<Δ0>_L<L>" with Δ0 as "<n>deg", "<n>min" or "<n>sec" (the step in whole arc-seconds),
+/// then "_h<h>" (h ≠ 0), "_K<K>" (K ≠ 2), "_rot" (rotated pole), "_<raster stem>" (another
+/// input.path), "_corner" (corner balance), "_cb<n>" (coast_band ≠ 2), "_squares" / "_both"
+/// (elements); e.g. global_1deg_L3, global_16min_L4_h200_K3_rot.
+RunName default_run_name(const GlobalConfig& c);
+
 }  // namespace aq::config

@@ -57,6 +57,41 @@ class Problems {
   std::vector<Item> items_;
 };
 
+/// True when `s` is UTF-8 text without control characters (tab allowed): what a --set value that
+/// is not a TOML value may be taken as a string from.
+inline bool is_plain_text(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      if ((c < 0x20 && c != '\t') || c == 0x7f) return false;
+      ++i;
+      continue;
+    }
+    const int extra = (c & 0xe0) == 0xc0 ? 1 : (c & 0xf0) == 0xe0 ? 2 : (c & 0xf8) == 0xf0 ? 3 : -1;
+    if (extra < 0 || c == 0xc0 || c == 0xc1 || c > 0xf4 || s.size() - i <= static_cast<std::size_t>(extra))
+      return false;
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(s[i + static_cast<std::size_t>(k)]) & 0xc0) != 0x80) return false;
+    i += static_cast<std::size_t>(extra) + 1;
+  }
+  return true;
+}
+
+/// `s` for a message: when it is not plain text, bytes other than printable ASCII as \xNN.
+inline std::string printable(const std::string& s) {
+  if (is_plain_text(s)) return s;
+  std::string out;
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f)
+      out.push_back(ch);
+    else
+      out += fmt::format("\\x{:02x}", c);
+  }
+  return out;
+}
+
 inline Origin origin_of(const toml::value& v, const std::string& file, const std::filesystem::path& base) {
   const auto loc = v.location();
   Origin o;
@@ -198,32 +233,37 @@ class Schema {
   /// when it is not valid TOML (so --set output.dir=out2 works without quotes).
   void apply_override(T& t, const std::string& text, Problems& p) const {
     Origin o;
-    o.where = "--set " + text;
+    o.where = "--set " + printable(text);
     o.line = 1000000;  // after every file position
     o.base_dir = std::filesystem::current_path();
     const auto eq = text.find('=');
     const std::string path = eq == std::string::npos ? text : text.substr(0, eq);
     const auto dot = path.find('.');
     if (eq == std::string::npos || dot == std::string::npos) {
-      p.add(o, path, "expected --set section.key=value");
+      p.add(o, printable(path), "expected --set section.key=value");
       return;
     }
     const std::string sec = path.substr(0, dot), name = path.substr(dot + 1);
     const Key* k = find(sec, name);
     if (k == nullptr) {
-      p.add(o, path, fmt::format("unknown key{}", has_section(sec) ? suggest_key(sec, name) : suggest_section(sec)));
+      p.add(o, printable(path),
+            fmt::format("unknown key{}", has_section(sec) ? suggest_key(sec, name) : suggest_section(sec)));
       return;
     }
     const std::string raw = text.substr(eq + 1);
-    toml::value doc;
+    toml::value value;
     try {
       std::istringstream in("v = " + raw);
-      doc = toml::parse(in, "--set");
+      value = toml::parse(in, "--set").as_table().at("v");
     } catch (const std::exception&) {
-      std::istringstream in("v = " + toml::format(toml::value(raw)));
-      doc = toml::parse(in, "--set");
+      // Not a TOML value: the text itself is the (string) value, when it is text.
+      if (!is_plain_text(raw)) {
+        p.add(o, path, "value is neither TOML nor plain text (control characters or invalid UTF-8)");
+        return;
+      }
+      value = toml::value(raw);
     }
-    k->set(t, doc.as_table().at("v"), o, p);
+    k->set(t, value, o, p);
   }
 
   /// The effective configuration as JSON: {section: {key: value}} in table order.

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "core/error.hpp"
+#include "core/temp_registry.hpp"
 
 namespace aq {
 
@@ -50,9 +51,10 @@ OutputSet::OutputSet(fs::path dir) : dir_(std::move(dir)) {
 
 OutputSet::~OutputSet() {
   if (committed_) return;
-  for (const auto& [tmp, fin] : files_) {
+  for (const Pending& f : files_) {
     std::error_code ec;
-    fs::remove(tmp, ec);
+    fs::remove(f.tmp, ec);
+    TempRegistry::release(f.slot);
   }
 }
 
@@ -61,28 +63,31 @@ fs::path OutputSet::temp_path(const std::string& name) {
   const fs::path tmp = dir_ / fmt::format(".{}.tmp{}", name, static_cast<long>(getpid()));
   std::error_code ec;
   fs::create_directories(fin.parent_path(), ec);
-  files_.emplace_back(tmp, fin);
+  files_.push_back({tmp, fin, TempRegistry::add(tmp, fin)});
   return tmp;
 }
 
 fs::path OutputSet::pending_path(const std::string& name) const {
   const fs::path fin = dir_ / name;
-  for (const auto& [tmp, f] : files_)
-    if (f == fin) return tmp;
+  for (const Pending& f : files_)
+    if (f.fin == fin) return f.tmp;
   throw InternalError(fmt::format("output {} was never reserved", fin.string()));
 }
 
 std::vector<fs::path> OutputSet::commit() {
   std::vector<fs::path> out;
-  for (const auto& [tmp, fin] : files_) {
+  for (const Pending& f : files_) {
     std::error_code ec;
-    if (!fs::exists(tmp)) {
-      throw InternalError(fmt::format("output {} was reserved but never written", fin.string()));
+    if (!fs::exists(f.tmp)) {
+      throw InternalError(fmt::format("output {} was reserved but never written", f.fin.string()));
     }
-    fs::rename(tmp, fin, ec);
-    if (ec) throw OutputError(fmt::format("{}: cannot rename into place: {}", fin.string(), ec.message()));
-    out.push_back(fin);
+    TempRegistry::renaming(f.slot);
+    fs::rename(f.tmp, f.fin, ec);
+    if (ec) throw OutputError(fmt::format("{}: cannot rename into place: {}", f.fin.string(), ec.message()));
+    TempRegistry::renamed(f.slot);
+    out.push_back(f.fin);
   }
+  for (const Pending& f : files_) TempRegistry::release(f.slot);
   committed_ = true;
   return out;
 }

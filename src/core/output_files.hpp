@@ -1,6 +1,8 @@
 // All-or-nothing output (ARCHITECTURE §4.8, §9): every file is written under a temporary name
 // in the destination folder and renamed only when the whole run succeeded. If the run fails
 // (an exception unwinds past the OutputSet), the temporaries are removed: no partial outputs.
+// Every temporary is also in the TempRegistry (core/temp_registry.hpp), so that an interrupt
+// handler can remove them (and the renamed files of an unfinished commit) too.
 #pragma once
 
 #include <cstdint>
@@ -37,7 +39,11 @@ class OutputSet {
 
  private:
   std::filesystem::path dir_;
-  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, final
+  struct Pending {
+    std::filesystem::path tmp, fin;
+    int slot;  // in the TempRegistry
+  };
+  std::vector<Pending> files_;
   bool committed_ = false;
 };
 

@@ -127,7 +127,7 @@ constexpr VarSpec kVars[] = {
 RomsGridFields read_roms_grid_fields(const fs::path& path) {
   if (!fs::exists(path)) throw InputError(fmt::format("{}: no such ROMS grid file", path.string()));
   NcFile nc;
-  nc_check<InputError>(nc_open(path.c_str(), NC_NOWRITE, nc.out()), path, "open");
+  open_for_reading(path, nc);
   const int id = nc.id();
   const std::size_t xr = dim_len(id, "xi_rho", path), er = dim_len(id, "eta_rho", path);
   if (xr < 3 || er < 3) throw InputError(fmt::format("{}: a ROMS grid needs xi_rho, eta_rho >= 3", path.string()));

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "io/netcdf_file.hpp"
@@ -126,12 +127,37 @@ void write_nesting(const fs::path& path, const NestingFile& d) {
 
 NestingFile read_nesting(const fs::path& path) {
   NcFile nc;
-  nc_check<InputError>(nc_open(path.c_str(), NC_NOWRITE, nc.out()), path, "open");
+  open_for_reading(path, nc);
   const int id = nc.id();
   int dim_p = -1;
   std::size_t n = 0;
   nc_check<InputError>(nc_inq_dimid(id, "point", &dim_p), path, "dimension point");
   nc_check<InputError>(nc_inq_dimlen(id, dim_p, &n), path, "dimension point");
+  // A per-point variable: (point) or (point, 3) as write_nesting makes it; any other shape would
+  // make nc_get_var write past the buffers sized for n points.
+  const auto var = [&](const char* name) {
+    int v = -1;
+    nc_check<InputError>(nc_inq_varid(id, name, &v), path, fmt::format("variable {}", name));
+    int ndims = 0;
+    int dims[NC_MAX_VAR_DIMS];
+    nc_check<InputError>(nc_inq_var(id, v, nullptr, nullptr, &ndims, dims, nullptr), path, name);
+    bool ok = false, per_vertex = false;
+    for (const VarSpec& spec : kVars) {
+      if (std::string_view(spec.name) != name) continue;
+      per_vertex = spec.per_vertex;
+      ok = ndims == (per_vertex ? 2 : 1) && dims[0] == dim_p;
+      if (ok && per_vertex) {
+        std::size_t len = 0;
+        ok = nc_inq_dimlen(id, dims[1], &len) == NC_NOERR && len == 3;
+      }
+    }
+    if (!ok)
+      throw InputError(fmt::format("{}: variable {} is not of shape ({}) as in a nesting file", path.string(), name,
+                                   per_vertex ? "point, 3" : "point"));
+    return v;
+  };
+  if (n > 0)  // every variable's shape first: n then is the length of data that is in the file
+    for (const VarSpec& spec : kVars) (void)var(spec.name);
   NestingFile d;
   d.point_type.resize(n);
   d.boundary.resize(n);
@@ -148,11 +174,6 @@ NestingFile read_nesting(const fs::path& path) {
   d.global_element_size_m.resize(n);
   d.regional_cell_size_m.resize(n);
   d.refinement_ratio.resize(n);
-  const auto var = [&](const char* name) {
-    int v = -1;
-    nc_check<InputError>(nc_inq_varid(id, name, &v), path, fmt::format("variable {}", name));
-    return v;
-  };
   if (n > 0) {
     std::vector<long long> element(n), nodes(3 * n);
     std::vector<double> w(3 * n);

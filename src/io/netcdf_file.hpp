@@ -71,4 +71,12 @@ class NcFile {
   int id_ = -1;
 };
 
+/// Checks a classic netCDF file's header (CDF-1/2/5; io/netcdf_header.cpp): every count within
+/// the file and every variable's data inside it. Other files (netCDF-4) pass unchecked. Throws
+/// InputError naming the path and what is damaged.
+void check_netcdf_header(const std::filesystem::path& path);
+
+/// check_netcdf_header() then nc_open for reading into `nc`; InputError naming the path.
+void open_for_reading(const std::filesystem::path& path, NcFile& nc);
+
 }  // namespace aq::io

@@ -188,7 +188,7 @@ void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::G
 
 XyGrid read_xygrid(const fs::path& path) {
   NcFile nc;
-  nc_check<InputError>(nc_open(path.c_str(), NC_NOWRITE, nc.out()), path, "open");
+  open_for_reading(path, nc);
   const int id = nc.id();
   XyGrid out;
 

@@ -140,3 +140,35 @@ TEST(Config, ShippedConfigsLoad) {
     EXPECT_NO_THROW((void)load_global(p.string(), {})) << name;
   }
 }
+
+// Names say what was run (issue 11): config::default_run_name.
+TEST(RunName, SeedRunKeepsTheSeedName) {
+  const auto c =
+      load_global(std::nullopt, {"output.formats=[\"text\"]", "output.dir=x", "blocks.top=3", "quadtree.levels=3"});
+  const auto n = aq::config::default_run_name(c.options);
+  EXPECT_EQ(n.name, "seed_4deg_L3");
+  EXPECT_TRUE(n.changed.empty());
+}
+
+TEST(RunName, FollowsTheParameters) {
+  const auto name = [](const std::vector<std::string>& sets) {
+    return aq::config::default_run_name(load_global(std::nullopt, sets).options).name;
+  };
+  EXPECT_EQ(name({"quadtree.step_deg=1", "quadtree.levels=3"}), "global_1deg_L3");
+  EXPECT_EQ(name({"quadtree.step_deg=0.2666666666666667", "quadtree.levels=4", "mask.min_depth_m=200", "mask.cursor=3",
+                  "rotation.enabled=true"}),
+            "global_16min_L4_h200_K3_rot");
+  EXPECT_EQ(name({"quadtree.step_deg=0.5"}), "global_30min_L3");
+  EXPECT_EQ(name({"quadtree.step_deg=0.0625"}), "global_225sec_L3");
+  EXPECT_EQ(name({"input.path=/data/my etopo1.nc", "quadtree.balance=\"corner\"", "quadtree.coast_band=0",
+                  "mesh.elements=\"squares\""}),
+            "global_4deg_L3_my_etopo1_corner_cb0_squares");
+  // A key that changes the mesh but has no part in the name still gives a parameter name.
+  EXPECT_EQ(name({"mesh.diagonal=\"nw\""}), "global_4deg_L3");
+}
+
+TEST(RunName, ListsWhatDiffersFromTheSeedRun) {
+  const auto n = aq::config::default_run_name(
+      load_global(std::nullopt, {"quadtree.step_deg=1", "mask.min_depth_m=10", "output.name=ignored"}).options);
+  EXPECT_THAT(n.changed, ::testing::ElementsAre("mask.min_depth_m = 10.0", "quadtree.step_deg = 1.0"));
+}

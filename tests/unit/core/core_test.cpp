@@ -1,4 +1,5 @@
 // Core: all-or-nothing outputs, lattice validation, bitmaps, angle helpers, the run report.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -11,6 +12,7 @@
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
+#include "core/temp_registry.hpp"
 #include "core/types.hpp"
 
 namespace fs = std::filesystem;
@@ -40,6 +42,49 @@ TEST(OutputSet, CommitRenamesEverything) {
   EXPECT_TRUE(fs::exists(dir / "a.txt"));
   EXPECT_EQ(aq::file_checksum(dir / "b.txt"), aq::file_checksum(dir / "b.txt"));
   EXPECT_NE(aq::file_checksum(dir / "a.txt"), aq::file_checksum(dir / "b.txt"));
+}
+
+// What an interrupt handler removes (core/temp_registry.hpp): every temporary of an unfinished
+// output set, and the renamed files of an unfinished commit; nothing once the set is committed.
+TEST(TempRegistry, RemovesTemporariesOfUnfinishedOutputSets) {
+  const fs::path dir = fs::temp_directory_path() / "aq_core_registry";
+  fs::remove_all(dir);
+  const int before = aq::TempRegistry::in_use();
+  {
+    aq::OutputSet out(dir);
+    for (int k = 0; k < 40; ++k)  // more than one chunk of slots
+      std::ofstream(out.temp_path(fmt::format("f{}.txt", k))) << k;
+    EXPECT_EQ(aq::TempRegistry::in_use(), before + 40);
+    EXPECT_EQ(aq::TempRegistry::remove_registered_temporaries(), 40);
+    EXPECT_TRUE(fs::is_empty(dir));
+  }
+  EXPECT_EQ(aq::TempRegistry::in_use(), before);
+  {
+    aq::OutputSet out(dir);
+    std::ofstream(out.temp_path("a.txt")) << "A";
+    out.commit();
+    EXPECT_EQ(aq::TempRegistry::in_use(), before);
+    EXPECT_EQ(aq::TempRegistry::remove_registered_temporaries(), 0);
+    EXPECT_TRUE(fs::exists(dir / "a.txt"));
+  }
+}
+
+TEST(TempRegistry, AnInterruptedCommitRemovesTheRenamedFilesToo) {
+  const fs::path dir = fs::temp_directory_path() / "aq_core_registry_commit";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "tmp_a") << "A";
+  std::ofstream(dir / "tmp_b") << "B";
+  const int a = aq::TempRegistry::add(dir / "tmp_a", dir / "a");
+  const int b = aq::TempRegistry::add(dir / "tmp_b", dir / "b");
+  aq::TempRegistry::renaming(a);
+  fs::rename(dir / "tmp_a", dir / "a");
+  aq::TempRegistry::renamed(a);  // b not renamed yet: the set is partial
+  EXPECT_EQ(aq::TempRegistry::remove_registered_temporaries(), 2);
+  EXPECT_TRUE(fs::is_empty(dir));
+  aq::TempRegistry::release(a);
+  aq::TempRegistry::release(b);
+  EXPECT_THROW(aq::TempRegistry::add(dir / std::string(5000, 'x'), dir / "c"), aq::OutputError);
 }
 
 TEST(OutputSet, UnwritableDirectoryIsAnOutputError) {

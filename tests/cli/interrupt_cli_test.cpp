@@ -1,0 +1,86 @@
+// Clean interruption (issue 11): SIGINT or SIGTERM during the writing stage of a real run removes
+// every temporary file, leaves no output at all (no partial set), prints one line on stderr and
+// exits with 130 / 143. The run (the seed's reference run, every format, an 8000-pixel-wide
+// preview) writes for about a second after 0.3 s of work; the test waits until the first temporary
+// `.NAME.ext.tmpPID` appears and then sends the signal.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/run_command.hpp"
+#include "support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+namespace {
+
+struct Interrupted {
+  int exit_code = -1;
+  bool saw_temporary = false;
+  std::string err;
+  std::vector<std::string> left;  // every file left in the output folder
+};
+
+Interrupted interrupt_run(int sig) {
+  aq::testing::TempDir dir;
+  const fs::path out = dir / "out", err = dir / "stderr.txt";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (std::freopen(err.c_str(), "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
+      ::_exit(99);
+    ::execl(AQ_BINARY, AQ_BINARY, "mesh", "--set", "output.png_width=8000", "-o", out.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(98);
+  }
+  Interrupted r;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline && !r.saw_temporary) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) break;  // finished before writing: the test fails
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(out, ec))
+      r.saw_temporary = r.saw_temporary || e.path().filename().string().find(".tmp") != std::string::npos;
+    if (!r.saw_temporary) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  if (r.saw_temporary) {
+    ::kill(pid, sig);
+    ::waitpid(pid, &status, 0);
+  } else if (::waitpid(pid, &status, WNOHANG) == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  r.err = aq::test::slurp(err);
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(out, ec)) r.left.push_back(e.path().filename().string());
+  return r;
+}
+
+void expect_clean(const Interrupted& r, int code, const char* name) {
+  ASSERT_TRUE(r.saw_temporary) << "the run ended before its writing stage: " << r.err;
+  EXPECT_EQ(r.exit_code, code) << r.err;
+  EXPECT_THAT(r.left, ::testing::IsEmpty());
+  // One line, the last one on stderr, saying how many temporaries it removed (at least the one seen).
+  const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+  EXPECT_THAT(last, ::testing::MatchesRegex(std::string("aquatoria: interrupted by ") + name +
+                                            "; [1-9][0-9]* temporary file\\(s\\) removed\n"));
+  EXPECT_EQ(r.err.find("interrupted"), r.err.rfind("interrupted"));
+}
+
+TEST(CliInterrupt, SigtermWhileWritingLeavesNothingAndExits143) {
+  expect_clean(interrupt_run(SIGTERM), 143, "SIGTERM");
+}
+
+TEST(CliInterrupt, SigintWhileWritingLeavesNothingAndExits130) { expect_clean(interrupt_run(SIGINT), 130, "SIGINT"); }
+
+}  // namespace
