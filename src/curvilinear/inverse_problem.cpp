@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/finite.hpp"
 #include "core/timer.hpp"
 #include "curvilinear/iz89.hpp"
 
@@ -165,7 +166,7 @@ RectangleMeasure measure_rectangle(const std::vector<double>& x, const std::vect
     m.side_length[static_cast<std::size_t>(si)] = len;
     for (int k = 1; k < n - 1; ++k)
       m.residual =
-          std::max(m.residual, std::fabs(c[static_cast<std::size_t>(k)] / len - static_cast<double>(k) / (n - 1)));
+          nan_max(m.residual, std::fabs(c[static_cast<std::size_t>(k)] / len - static_cast<double>(k) / (n - 1)));
   }
   m.aspect_ratio = (m.side_length[0] + m.side_length[2]) / (m.side_length[1] + m.side_length[3]);
   return m;
@@ -219,6 +220,15 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
       passes += iz.passes;
       meas = measure_rectangle(x, y, nodes);
       full = iz.converged;
+    }
+    if (!std::isfinite(meas.residual)) {
+      std::int64_t k = first_non_finite(x);
+      if (k < 0) k = first_non_finite(y);
+      const auto at = static_cast<std::size_t>(std::max<std::int64_t>(k, 0));
+      throw NumericalError(fmt::format(
+          "inverse problem: the rectangle residual is {} in outer iteration {}{}", meas.residual, m,
+          k < 0 ? std::string(" (the node positions are finite: a side of zero length)")
+                : fmt::format(" (first non-finite straightened vertex {} = ({}, {}))", k, x[at], y[at])));
     }
     prev_residual = meas.residual;
     res.residual_history.push_back(meas.residual);
