@@ -40,11 +40,12 @@ std::array<double, 3> min_median_max(std::vector<double>& v) {
   return {mn, *mid, mx};
 }
 
-/// Geodesic area (m², signed: anticlockwise positive) of a triangle given in lattice coordinates.
-double triangle_area_m2(const Lattice& lat, const PoleRotation& rot, const std::array<double, 3>& ui,
-                        const std::array<double, 3>& uj) {
+/// Geodesic area (m², signed: anticlockwise positive) of a polygon of n <= 8 vertices given in
+/// lattice coordinates.
+double polygon_area_m2(const Lattice& lat, const PoleRotation& rot, const std::array<double, 8>& ui,
+                       const std::array<double, 8>& uj, int n) {
   GeographicLib::PolygonArea poly(GeographicLib::Geodesic::WGS84());
-  for (int v = 0; v < 3; ++v) {
+  for (int v = 0; v < n; ++v) {
     double lon = 0.0, la = 0.0;
     rot.to_geographic(lat.lon0_deg + ui[static_cast<std::size_t>(v)] * lat.pixel_deg(),
                       -90.0 + uj[static_cast<std::size_t>(v)] * lat.pixel_deg(), lon, la);
@@ -80,7 +81,7 @@ std::vector<std::string> MeshStatistics::failed_checks() const {
     f.push_back(fmt::format("triangle area {} px² differs from the filled area {} px²",
                             static_cast<double>(twice_triangle_area_px2) / 2.0, filled_pixels));
   }
-  if (geodesic && triangles > 0 && !finite_at_most(area_relative_difference, area_tolerance)) {
+  if (geodesic && edges > 0 && !finite_at_most(area_relative_difference, area_tolerance)) {
     f.push_back(fmt::format(
         "triangle area {:.1f} km² differs from the filled area {:.1f} km² by {:.2e} (> {:.2e}, twice the bound of the "
         "lenses between the boundary edges' geodesics and the lattice lines: third order in the pixel size per edge)",
@@ -114,11 +115,44 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     if (q < 0 || q >= m.square_count())
       throw InternalError(fmt::format("mesh statistics: square id {} out of range", q));
 
-  // Unwrapped lattice coordinates of a triangle's vertices: I below its square's SW corner wrapped.
+  // Faces: the triangles; or, for a mesh of squares only (mesh.elements = "squares"), the squares
+  // as polygons through their corners and midside nodes (SW, S, SE, E, NE, N, NW, W), so that
+  // conformity, Euler, orientation and the areas are checked on the elements that are written.
+  const bool square_faces = ntri == 0 && !m.squares.empty();
+  std::vector<std::int64_t> poly_start{0};
+  std::vector<NodeId> poly_nodes;
+  if (square_faces) {
+    for (std::size_t q = 0; q < m.squares.size(); ++q) {
+      for (std::size_t c = 0; c < 4; ++c) {
+        poly_nodes.push_back(m.squares[q][c]);
+        const NodeId mid = q < m.square_midside.size() ? m.square_midside[q][c] : -1;
+        if (mid >= 0) poly_nodes.push_back(mid);
+      }
+      poly_start.push_back(static_cast<std::int64_t>(poly_nodes.size()));
+    }
+    for (const NodeId v : poly_nodes)
+      if (v < 0 || v >= s.nodes) throw InternalError(fmt::format("mesh statistics: node id {} out of range", v));
+  }
+  const std::int64_t nfaces = square_faces ? m.square_count() : ntri;
+  const auto face_size = [&](std::int64_t f) {
+    return square_faces ? static_cast<int>(poly_start[static_cast<std::size_t>(f) + 1] - poly_start[static_cast<std::size_t>(f)])
+                        : 3;
+  };
+  const auto face_node = [&](std::int64_t f, int k) {
+    return square_faces ? poly_nodes[static_cast<std::size_t>(poly_start[static_cast<std::size_t>(f)] + k)]
+                        : m.triangles[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)];
+  };
+  const auto face_level = [&](std::int64_t f) {
+    return square_faces ? m.square_level[static_cast<std::size_t>(f)] : m.triangle_level[static_cast<std::size_t>(f)];
+  };
+  const auto face_square = [&](std::int64_t f) {
+    return static_cast<std::size_t>(square_faces ? f : m.triangle_square[static_cast<std::size_t>(f)]);
+  };
+
+  // Unwrapped lattice coordinates of a face's vertices: I below its square's SW corner wrapped.
   const auto vertex_ij = [&](std::int64_t t, int v, std::int64_t& i, std::int64_t& j) {
-    const auto tt = static_cast<std::size_t>(t);
-    const auto n = static_cast<std::size_t>(m.triangles[tt][static_cast<std::size_t>(v)]);
-    const auto sq = static_cast<std::size_t>(m.triangle_square[tt]);
+    const auto n = static_cast<std::size_t>(face_node(t, v));
+    const auto sq = face_square(t);
     const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
     i = m.node_i[n];
     if (i < i0) i += nx;
@@ -180,23 +214,41 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
   }
 
+  if (square_faces) {  // squares: twice the area by the shoelace formula, exact in lattice units
+    for (std::int64_t f = 0; f < nfaces; ++f) {
+      const int n = face_size(f);
+      std::int64_t cross = 0;
+      for (int v = 0; v < n; ++v) {
+        std::int64_t xa = 0, ya = 0, xb = 0, yb = 0;
+        vertex_ij(f, v, xa, ya);
+        vertex_ij(f, (v + 1) % n, xb, yb);
+        cross += xa * yb - xb * ya;
+      }
+      s.twice_triangle_area_px2 += cross;
+      const std::int64_t side = lat.pixels_per_square(m.square_level[static_cast<std::size_t>(f)]);
+      if (cross != 2 * side * side) ++s.clockwise;  // clockwise, degenerate or not the square's area
+    }
+  }
+
   // Edges: half-edges bucketed by their smaller node (counting sort), each bucket sorted by the
   // other node; a group of 1 is a boundary edge, of 2 (opposite directions) an interior one.
-  if (ntri >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 triangles or more");
+  if (nfaces >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 elements or more");
   const auto nn = static_cast<std::size_t>(s.nodes);
   std::vector<std::int64_t> start(nn + 1, 0);
-  for (const auto& tr : m.triangles)
-    for (int e = 0; e < 3; ++e)
-      ++start[static_cast<std::size_t>(
-                  std::min(tr[static_cast<std::size_t>(e)], tr[static_cast<std::size_t>((e + 1) % 3)])) +
-              1];
+  std::int64_t half_edges = 0;
+  for (std::int64_t f = 0; f < nfaces; ++f) {
+    const int n = face_size(f);
+    half_edges += n;
+    for (int e = 0; e < n; ++e)
+      ++start[static_cast<std::size_t>(std::min(face_node(f, e), face_node(f, (e + 1) % n))) + 1];
+  }
   for (std::size_t v = 0; v < nn; ++v) start[v + 1] += start[v];
   // rec = other node << 32 | triangle << 1 | (half-edge runs from the larger node to the smaller).
-  std::vector<std::uint64_t> rec(static_cast<std::size_t>(3 * ntri));
-  for (std::int64_t t = 0; t < ntri; ++t) {
-    const auto& tr = m.triangles[static_cast<std::size_t>(t)];
-    for (int e = 0; e < 3; ++e) {
-      const NodeId a = tr[static_cast<std::size_t>(e)], b = tr[static_cast<std::size_t>((e + 1) % 3)];
+  std::vector<std::uint64_t> rec(static_cast<std::size_t>(half_edges));
+  for (std::int64_t t = 0; t < nfaces; ++t) {
+    const int n = face_size(t);
+    for (int e = 0; e < n; ++e) {
+      const NodeId a = face_node(t, e), b = face_node(t, (e + 1) % n);
       const auto lo = static_cast<std::size_t>(std::min(a, b));
       rec[static_cast<std::size_t>(start[lo]++)] =
           static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint64_t>(t) << 1 | (a > b ? 1U : 0U);
@@ -210,8 +262,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (std::int64_t v = 0; v < nbuckets; ++v) {
     std::sort(rec.begin() + start[static_cast<std::size_t>(v)], rec.begin() + start[static_cast<std::size_t>(v) + 1]);
   }
-  std::vector<std::int64_t> parent(static_cast<std::size_t>(ntri));
-  for (std::int64_t t = 0; t < ntri; ++t) parent[static_cast<std::size_t>(t)] = t;
+  std::vector<std::int64_t> parent(static_cast<std::size_t>(nfaces));
+  for (std::int64_t t = 0; t < nfaces; ++t) parent[static_cast<std::size_t>(t)] = t;
   std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
   std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
   const auto tri_of = [](std::uint64_t r) { return static_cast<std::int64_t>((r & 0xffffffffULL) >> 1); };
@@ -225,13 +277,13 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       edge_a.push_back(static_cast<std::uint32_t>(a));
       edge_b.push_back(static_cast<std::uint32_t>(b));
       edge_t.push_back(static_cast<std::uint32_t>(t0));
-      std::uint8_t level = m.triangle_level[static_cast<std::size_t>(t0)];
+      std::uint8_t level = face_level(t0);
       if (e - k == 1) {
         ++s.boundary_edges;
       } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {
         ++s.interior_edges;
         const std::int64_t t1 = tri_of(rec[k + 1]);
-        level = std::max(level, m.triangle_level[static_cast<std::size_t>(t1)]);
+        level = std::max(level, face_level(t1));
         const std::int64_t r1 = find_root(parent, t0), r2 = find_root(parent, t1);
         if (r1 != r2) parent[static_cast<std::size_t>(std::max(r1, r2))] = std::min(r1, r2);
       } else {
@@ -242,13 +294,13 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
   }
   s.edges = static_cast<std::int64_t>(edge_a.size());
-  for (std::int64_t t = 0; t < ntri; ++t) s.components += find_root(parent, t) == t;
+  for (std::int64_t t = 0; t < nfaces; ++t) s.components += find_root(parent, t) == t;
   std::vector<std::int64_t>().swap(parent);
   std::vector<char> used(static_cast<std::size_t>(s.nodes), 0);
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t) used[static_cast<std::size_t>(v)] = 1;
+  for (std::int64_t f = 0; f < nfaces; ++f)
+    for (int k = 0; k < face_size(f); ++k) used[static_cast<std::size_t>(face_node(f, k))] = 1;
   for (const char u : used) s.used_nodes += u;
-  if (ntri > 0) {
+  if (nfaces > 0) {
     // Every Mesh boundary edge a -> b must be a triangle edge used once, in the same direction.
     std::int64_t matched = 0;
     for (const auto& be : m.boundary_edges) {
@@ -267,7 +319,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
     s.boundary_mismatch =
         std::abs(s.boundary_edges - matched) + (static_cast<std::int64_t>(m.boundary_edges.size()) - matched);
-    s.euler = s.used_nodes - s.edges + ntri;
+    s.euler = s.used_nodes - s.edges + nfaces;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
   std::vector<std::uint64_t>().swap(rec);
@@ -401,7 +453,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (int l = 0; l <= levels; ++l) {
     row_offset[static_cast<std::size_t>(l) + 1] = row_offset[static_cast<std::size_t>(l)] + (lat.ny >> (levels - l));
   }
-  const bool memo = !m.rotation.enabled;
+  const bool memo = !m.rotation.enabled && !square_faces;
   const auto row_of = [&](std::int64_t t) {
     const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
     const int l = m.square_level[sq];
@@ -409,18 +461,19 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
            m.node_j[static_cast<std::size_t>(m.squares[sq][0])] / lat.pixels_per_square(l);
   };
   const auto lattice_area = [&](std::int64_t t) {
-    std::array<double, 3> ui{}, uj{};
-    for (int v = 0; v < 3; ++v) {
+    std::array<double, 8> ui{}, uj{};
+    const int n = face_size(t);
+    for (int v = 0; v < n; ++v) {
       std::int64_t i = 0, j = 0;
       vertex_ij(t, v, i, j);
       ui[static_cast<std::size_t>(v)] = static_cast<double>(i);
       uj[static_cast<std::size_t>(v)] = static_cast<double>(j);
     }
-    return triangle_area_m2(lat, rot, ui, uj);
+    return polygon_area_m2(lat, rot, ui, uj, n);
   };
 
-  // Triangle areas.
-  std::vector<double> area(static_cast<std::size_t>(ntri));
+  // Element areas.
+  std::vector<double> area(static_cast<std::size_t>(nfaces));
   if (memo) {
     std::vector<std::int32_t> shape_id(729, -1);
     std::vector<std::int32_t> shapes;
@@ -455,21 +508,21 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                 : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
     }
   } else {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 256)) shared(area, ntri, lattice_area) \
-    schedule(dynamic, 256)
-    for (std::int64_t t = 0; t < ntri; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 256)) \
+    shared(area, nfaces, lattice_area) schedule(dynamic, 256)
+    for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
   }
-  const auto triangle_where = [&](std::int64_t t) {
-    const auto& tr = m.triangles[static_cast<std::size_t>(t)];
-    std::string w = fmt::format("triangle {} (level {}), nodes", t, m.triangle_level[static_cast<std::size_t>(t)]);
-    for (const NodeId v : tr) {
+  const auto face_where = [&](std::int64_t t) {
+    std::string w = fmt::format("{} {} (level {}), nodes", square_faces ? "square" : "triangle", t, face_level(t));
+    for (int k = 0; k < face_size(t); ++k) {
+      const NodeId v = face_node(t, k);
       const auto n = static_cast<std::size_t>(v);
       w += fmt::format(" {} (λ = {}°, φ = {}°; lattice I = {}, J = {})", v, m.lon_deg[n], m.lat_deg[n], m.node_i[n],
                        m.node_j[n]);
     }
     return w;
   };
-  finite.values("geodesic triangle area (m²)", area, triangle_where);
+  finite.values(square_faces ? "geodesic square area (m²)" : "geodesic triangle area (m²)", area, face_where);
   double total_m2 = 0.0;
   for (const double a : area) total_m2 += a;  // serial: the same sum for any thread count
   s.triangle_area_km2 = total_m2 * 1e-6;
@@ -478,7 +531,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // No triangles: nothing to compare. Otherwise a filled area that is not positive and finite
   // makes the difference NaN, which fails the check (finite_at_most) instead of passing as 0.
   s.area_relative_difference =
-      ntri == 0 ? 0.0
+      nfaces == 0 ? 0.0
                 : (s.filled_area_km2 > 0.0 ? std::abs(s.triangle_area_km2 - s.filled_area_km2) / s.filled_area_km2
                                            : std::numeric_limits<double>::quiet_NaN());
 
@@ -540,8 +593,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // Per level.
   for (int l = 0; l <= levels; ++l) {
     std::vector<double> a, len;
-    for (std::int64_t t = 0; t < ntri; ++t)
-      if (m.triangle_level[static_cast<std::size_t>(t)] == l) a.push_back(area[static_cast<std::size_t>(t)]);
+    for (std::int64_t t = 0; t < nfaces; ++t)
+      if (face_level(t) == l) a.push_back(area[static_cast<std::size_t>(t)]);
     if (a.empty()) continue;
     for (std::int64_t e = 0; e < nedges; ++e)
       if (edge_level[static_cast<std::size_t>(e)] == l) len.push_back(length[static_cast<std::size_t>(e)]);

@@ -17,6 +17,10 @@
 //    areas differ by lenses along the boundary; the check accepts twice their bound
 //    (StatisticsOptions::area_tolerance).
 //
+// A mesh of squares only (mesh.elements = "squares") is checked on its squares instead, as
+// polygons through corners and midside nodes (topology, Euler, orientation and exact area in
+// lattice units, geodesic areas; the right-isosceles and similarity checks are for triangles).
+//
 // Without rotation, areas and lengths depend only on the rows, not on λ, and are computed once per
 // (level, row, template shape) and looked up; with rotation every element is computed (parallel).
 #pragma once
@@ -54,7 +58,7 @@ struct MeshStatistics {
   std::vector<std::int64_t> similarity;      ///< triangles per k (legs Δ0·(√2)^-k), k = 0..2L
   // On WGS84.
   bool geodesic = false;                  ///< the physical sizes below were computed
-  double triangle_area_km2 = 0.0;         ///< Σ geodesic triangle areas (the total wet area)
+  double triangle_area_km2 = 0.0;         ///< Σ geodesic triangle (or square) areas: the total wet area
   double filled_area_km2 = 0.0;           ///< Σ lattice cell areas of the squares
   double area_relative_difference = 0.0;  ///< |triangle − filled| / filled
   double area_tolerance = 0.0;            ///< the tolerance used

@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-json mesh_report(const aq::test::TempDir& dir, const std::string& sets, const std::string& name) {
+json mesh_report(const aq::testing::TempDir& dir, const std::string& sets, const std::string& name) {
   const auto r = run_command(std::string(AQ_BINARY) + " mesh -o " + dir.path().string() +
                              " --set output.name=" + name + " " + sets);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -37,7 +37,7 @@ json mesh_report(const aq::test::TempDir& dir, const std::string& sets, const st
 // `--set quadtree.step_deg=0.2666666666666667` (16' with 16 digits) used to print "all checks passed;
 // wet area nan": the lattice kept the typed decimal, its last row sat at φ = 90.00000000000003°.
 TEST(MeshChecksEtopo5, StepWithinRoundingGivesTheExactLatticeAndAFiniteCorrectWetArea) {
-  const aq::test::TempDir dir;
+  const aq::testing::TempDir dir;
   const int levels = 1;
   const json r = mesh_report(dir,
                              "--set quadtree.step_deg=0.2666666666666667 --set quadtree.levels=1 "
@@ -99,7 +99,7 @@ TEST(MeshChecksEtopo5, StepWithinRoundingGivesTheExactLatticeAndAFiniteCorrectWe
 // authalic sphere, the triangles on the ellipsoid. Now both are on WGS84 and agree to the lens
 // error along the coast, like the unrotated run, under a tolerance derived from that error.
 TEST(MeshChecksEtopo5, RotatedH200PassesBecauseBothAreasAreOnTheEllipsoid) {
-  const aq::test::TempDir dir;
+  const aq::testing::TempDir dir;
   const json rot = mesh_report(dir, "--set rotation.enabled=true --set mask.min_depth_m=200 --set 'output.formats=[]'",
                                "rot200");
   const json plain = mesh_report(dir, "--set mask.min_depth_m=200 --set 'output.formats=[]'", "plain200");
