@@ -120,7 +120,10 @@ def run_global(binary, raster, part, tmp):
         sets = [f"input.path={ETOPO}/{raster}.cdf", f"mask.min_depth_m={r['h']}", f"mask.cursor={r['K']}",
                 f"quadtree.step_deg={STEP[r['L']]}", f"quadtree.levels={r['L']}", f"quadtree.balance={r['balance']}",
                 f"rotation.enabled={'true' if r['rot'] else 'false'}", f"mesh.elements={r['elements']}",
-                f"output.name={name}", 'output.formats=["msh","ugrid","fort14"]']
+                f"output.name={name}",
+                # fort14 is triangular: refused (a config error) with squares only
+                'output.formats=["msh","ugrid","fort14"]' if r["elements"] == "triangles" else
+                'output.formats=["msh","ugrid"]']
         cmd = f"{shlex.quote(binary)} mesh -o {shlex.quote(out)} " + " ".join(f"--set {shlex.quote(s)}" for s in sets)
         f.run(cmd, tmp, global_check(out, name))
     return f
