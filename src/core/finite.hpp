@@ -21,7 +21,9 @@ namespace aq {
 
 /// max(a, b) that keeps a NaN (std::max(a, NaN) returns a, so a running maximum of errors would
 /// silently drop it).
-[[nodiscard]] inline double nan_max(double a, double b) { return std::isnan(a) || std::isnan(b) ? NAN : (a < b ? b : a); }
+[[nodiscard]] inline double nan_max(double a, double b) {
+  return std::isnan(a) || std::isnan(b) ? NAN : (a < b ? b : a);
+}
 
 /// Index of the first non-finite value of `values`, or -1.
 [[nodiscard]] std::int64_t first_non_finite(std::span<const double> values);

@@ -22,8 +22,8 @@ std::string Lattice::step_problem(double step0_deg) {
         arcsec, 960.0 / 3600.0);
   }
   if (std::fmod(648000.0, rounded) != 0.0) {
-    return fmt::format(
-        "Δ0 = {}\" does not divide 180° = 648000\" (need 648000 % Δ0\" == 0), e.g. 4, 2, 1, 0.5, 16/60", rounded);
+    return fmt::format("Δ0 = {}\" does not divide 180° = 648000\" (need 648000 % Δ0\" == 0), e.g. 4, 2, 1, 0.5, 16/60",
+                       rounded);
   }
   return {};
 }

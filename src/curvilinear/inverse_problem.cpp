@@ -228,10 +228,10 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
       std::int64_t k = first_non_finite(x);
       if (k < 0) k = first_non_finite(y);
       const auto at = static_cast<std::size_t>(std::max<std::int64_t>(k, 0));
-      throw NumericalError(fmt::format(
-          "inverse problem: the rectangle residual is {} in outer iteration {}{}", meas.residual, m,
-          k < 0 ? std::string(" (the node positions are finite: a side of zero length)")
-                : fmt::format(" (first non-finite straightened vertex {} = ({}, {}))", k, x[at], y[at])));
+      throw NumericalError(
+          fmt::format("inverse problem: the rectangle residual is {} in outer iteration {}{}", meas.residual, m,
+                      k < 0 ? std::string(" (the node positions are finite: a side of zero length)")
+                            : fmt::format(" (first non-finite straightened vertex {} = ({}, {}))", k, x[at], y[at])));
     }
     prev_residual = meas.residual;
     res.residual_history.push_back(meas.residual);

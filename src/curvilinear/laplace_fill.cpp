@@ -141,7 +141,7 @@ void solve_sor(std::vector<double>& u, std::vector<double>& v, int nx, int ny, c
   for (int m = 1; m <= opt.max_iterations; ++m) {
     if (m >= 2) omega = 1.0 / (1.0 - 0.25 * omega * r2);
     max_dq = 0.0;
-    max_dq = sor_half_sweep(u.data(), v.data(), nx, ny, 0, w, omega);                    // colours 0, 1
+    max_dq = sor_half_sweep(u.data(), v.data(), nx, ny, 0, w, omega);                   // colours 0, 1
     max_dq = nan_max(max_dq, sor_half_sweep(u.data(), v.data(), nx, ny, 1, w, omega));  // colours 2, 3
     result.residual_history.push_back(max_dq / extent);
     result.iterations = m;

@@ -135,8 +135,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   }
   const std::int64_t nfaces = square_faces ? m.square_count() : ntri;
   const auto face_size = [&](std::int64_t f) {
-    return square_faces ? static_cast<int>(poly_start[static_cast<std::size_t>(f) + 1] - poly_start[static_cast<std::size_t>(f)])
-                        : 3;
+    return square_faces
+               ? static_cast<int>(poly_start[static_cast<std::size_t>(f) + 1] - poly_start[static_cast<std::size_t>(f)])
+               : 3;
   };
   const auto face_node = [&](std::int64_t f, int k) {
     return square_faces ? poly_nodes[static_cast<std::size_t>(poly_start[static_cast<std::size_t>(f)] + k)]
@@ -328,8 +329,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   FiniteChecks finite;
   const auto node_where = [&](std::int64_t k) {
     const auto n = static_cast<std::size_t>(k);
-    return fmt::format("node {} (lattice I = {}, J = {}; λ = {}°, φ = {}°)", k, m.node_i[n], m.node_j[n],
-                       m.lon_deg[n], m.lat_deg[n]);
+    return fmt::format("node {} (lattice I = {}, J = {}; λ = {}°, φ = {}°)", k, m.node_i[n], m.node_j[n], m.lon_deg[n],
+                       m.lat_deg[n]);
   };
   if (m.lon_deg.size() == nn && m.lat_deg.size() == nn) {
     finite.values("node longitude", m.lon_deg, node_where);
@@ -433,14 +434,16 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const double phi = lat.lat_of(m.node_j[na]) * kDegToRad;
       const double dlam = static_cast<double>(di) * pixel_rad;
       const double len = std::max(dlam * std::cos(phi), static_cast<double>(dj) * pixel_rad);
-      if (dj == 0) bound_m2 += a2 * dlam * dlam * dlam * std::fabs(std::sin(phi)) * std::cos(phi) * std::cos(phi) / 12.0;
+      if (dj == 0)
+        bound_m2 += a2 * dlam * dlam * dlam * std::fabs(std::sin(phi)) * std::cos(phi) * std::cos(phi) / 12.0;
       bound_m2 += e2 * a2 * len * len * len / 4.0;
     }
     for (const double e : quadrature_error) bound_m2 += e;
-    bound_m2 += 8.0 * std::numeric_limits<double>::epsilon() * static_cast<double>(nsquares + ntri) * std::fabs(filled_m2);
+    bound_m2 +=
+        8.0 * std::numeric_limits<double>::epsilon() * static_cast<double>(nsquares + ntri) * std::fabs(filled_m2);
   }
-  s.area_tolerance = options.area_tolerance > 0.0 ? options.area_tolerance
-                                                  : (filled_m2 > 0.0 ? 2.0 * bound_m2 / filled_m2 : 0.0);
+  s.area_tolerance =
+      options.area_tolerance > 0.0 ? options.area_tolerance : (filled_m2 > 0.0 ? 2.0 * bound_m2 / filled_m2 : 0.0);
 
   // Position (0..8) of vertex v of triangle t inside its square, from shape[t]; -1 if unknown.
   const auto local_pos = [&](std::int64_t t, int v) {
@@ -508,8 +511,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                 : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
     }
   } else {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 256)) \
-    shared(area, nfaces, lattice_area) schedule(dynamic, 256)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 256)) shared(area, nfaces, lattice_area) \
+    schedule(dynamic, 256)
     for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
   }
   const auto face_where = [&](std::int64_t t) {
@@ -532,8 +535,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // makes the difference NaN, which fails the check (finite_at_most) instead of passing as 0.
   s.area_relative_difference =
       nfaces == 0 ? 0.0
-                : (s.filled_area_km2 > 0.0 ? std::abs(s.triangle_area_km2 - s.filled_area_km2) / s.filled_area_km2
-                                           : std::numeric_limits<double>::quiet_NaN());
+                  : (s.filled_area_km2 > 0.0 ? std::abs(s.triangle_area_km2 - s.filled_area_km2) / s.filled_area_km2
+                                             : std::numeric_limits<double>::quiet_NaN());
 
   // Edge lengths, memoised by (level, row, shape) of a triangle holding the edge.
   const auto nedges = s.edges;

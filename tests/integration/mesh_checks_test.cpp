@@ -24,8 +24,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 json mesh_report(const aq::testing::TempDir& dir, const std::string& sets, const std::string& name) {
-  const auto r = run_command(std::string(AQ_BINARY) + " mesh -o " + dir.path().string() +
-                             " --set output.name=" + name + " " + sets);
+  const auto r = run_command(std::string(AQ_BINARY) + " mesh -o " + dir.path().string() + " --set output.name=" + name +
+                             " " + sets);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("all checks passed"), std::string::npos) << r.err;
   std::ifstream f(dir / (name + "_report.json"));
@@ -83,7 +83,8 @@ TEST(MeshChecksEtopo5, StepWithinRoundingGivesTheExactLatticeAndAFiniteCorrectWe
       in >> id >> level >> sw;
       const long side = 1L << (levels - level);
       const long j0 = node_j.at(sw);
-      area_m2 += rq2 * static_cast<double>(side) * pixel_arcsec / 3600.0 * kPi / 180.0 * (sin_xi(j0 + side) - sin_xi(j0));
+      area_m2 +=
+          rq2 * static_cast<double>(side) * pixel_arcsec / 3600.0 * kPi / 180.0 * (sin_xi(j0 + side) - sin_xi(j0));
       ++squares;
     }
   }
@@ -100,8 +101,8 @@ TEST(MeshChecksEtopo5, StepWithinRoundingGivesTheExactLatticeAndAFiniteCorrectWe
 // error along the coast, like the unrotated run, under a tolerance derived from that error.
 TEST(MeshChecksEtopo5, RotatedH200PassesBecauseBothAreasAreOnTheEllipsoid) {
   const aq::testing::TempDir dir;
-  const json rot = mesh_report(dir, "--set rotation.enabled=true --set mask.min_depth_m=200 --set 'output.formats=[]'",
-                               "rot200");
+  const json rot =
+      mesh_report(dir, "--set rotation.enabled=true --set mask.min_depth_m=200 --set 'output.formats=[]'", "rot200");
   const json plain = mesh_report(dir, "--set mask.min_depth_m=200 --set 'output.formats=[]'", "plain200");
   ASSERT_FALSE(rot.is_null());
   ASSERT_FALSE(plain.is_null());
@@ -109,7 +110,7 @@ TEST(MeshChecksEtopo5, RotatedH200PassesBecauseBothAreasAreOnTheEllipsoid) {
     const auto& a = r->at("statistics").at("area");
     const double diff = a.at("relative_difference").get<double>(), tol = a.at("tolerance").get<double>();
     EXPECT_LE(diff, tol);
-    EXPECT_LT(diff, 2e-5);  // was 4.85e-4 rotated
+    EXPECT_LT(diff, 2e-5);   // was 4.85e-4 rotated
     EXPECT_LT(tol, 4.4e-4);  // tighter than the old fixed 0.05 × pixel
   }
 }

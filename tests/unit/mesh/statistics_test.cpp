@@ -225,7 +225,7 @@ TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
     EXPECT_EQ(s.twice_triangle_area_px2, 2 * s.filled_pixels);
     EXPECT_EQ(s.filled_area_km2, t.filled_area_km2);
     EXPECT_NEAR(s.triangle_area_km2 / t.triangle_area_km2, 1.0, 1e-9);  // the same geodesic boundary
-    Mesh broken = sq;  // a square turned clockwise
+    Mesh broken = sq;                                                   // a square turned clockwise
     std::swap(broken.squares[4][1], broken.squares[4][3]);
     std::swap(broken.square_midside[4][0], broken.square_midside[4][3]);
     std::swap(broken.square_midside[4][1], broken.square_midside[4][2]);
