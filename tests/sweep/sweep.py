@@ -9,15 +9,16 @@ key and every pair of keys appears (the assignment is checked below):
   K        = (ih + ir + iL + shift) mod 4
   balance  = (ih + iL + shift) mod 2
   elements = (ih + ir + shift) mod 2
-with shift 0 for ETOPO5 and 1 for ETOPO60. Δ0 per L keeps each run small: Δ0 = 2° for L = 2, 3
-(0.5°, 0.25° pixels), 4° for L = 4, 5 (0.25°, 0.125° pixels).
+with shift 0 for ETOPO5 and 1 for ETOPO60. Δ0 per L keeps each run small (lattices up to
+1920 × 960 pixels) and varies Δ0 too: 2°, 4°, 5°, 6° for L = 2, 3, 4, 5.
 
 Regional part, on the Black Sea contour: every projection × spline type × param × solver ×
 schedule in a pairwise design (12 runs), one full run per projection with the ROMS stage, and
 ROMS refinement grids with factors 3, 5 and 7 of the Black Sea parent.
 
   sweep.py BINARY PART        PART: global-etopo5-N, global-etopo60-N (N = 0..3: a quarter of the
-                              runs each, so ctest -j2 runs them in parallel), regional, refine
+                              runs each, so ctest -j2 runs them in parallel), regional-ME,
+                              regional-LC, regional-ST (one projection each), refine
 A failed run prints the exact command that reproduces it.
 """
 import itertools
@@ -37,7 +38,7 @@ LS = [2, 3, 4, 5]
 KS = [1, 2, 3, 4]
 BAL = ["face", "corner"]
 ELEM = ["triangles", "squares"]
-STEP = {2: 2, 3: 2, 4: 4, 5: 4}
+STEP = {2: 2, 3: 4, 4: 5, 5: 6}  # Δ0 per L: pixels of 30', 30', 18.75', 11.25'; four Δ0 values
 PARTS = 4
 
 
@@ -146,7 +147,7 @@ def regional_check(out, name, roms):
     return check
 
 
-def run_regional(binary, src, tmp):
+def run_regional(binary, src, tmp, only_proj):
     f = Failures()
     contour = os.path.join(src, "configs", "black_sea.izogrid")
     bs = os.path.join(src, "configs", "black_sea.toml")
@@ -154,6 +155,8 @@ def run_regional(binary, src, tmp):
     # rows of a 2-level orthogonal array L4(2^3) plus the fourth factor from the projection index.
     oa = [(0, 0, 0), (0, 1, 1), (1, 0, 1), (1, 1, 0)]
     for ip, proj in enumerate(["ME", "LC", "ST"]):
+        if proj != only_proj:
+            continue
         for row in oa:
             spline = [3, 5][row[0]]
             param = ["index", "arclength"][row[1]]
@@ -206,8 +209,8 @@ def main():
         if part.startswith("global-"):
             _, raster, n = part.split("-")
             f = run_global(binary, raster, int(n), tmp)
-        elif part == "regional":
-            f = run_regional(binary, src, tmp)
+        elif part.startswith("regional-"):
+            f = run_regional(binary, src, tmp, part.split("-")[1])
         elif part == "refine":
             f = run_refine(binary, src, tmp)
         else:
