@@ -212,11 +212,7 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
     int passes = iz.passes;
     RectangleMeasure meas = measure_rectangle(x, y, nodes);
     bool full = iz.converged && io.angle_tolerance <= options.iz89_angle_tolerance;
-    // A candidate also at the round-off floor's level, so that the floor rule below (three full
-    // iterates) can fire: with the "sqrt" schedule full iterates were otherwise too rare and LC
-    // Black Sea (quintic, arclength) stalled at 1.5e-11 until the outer limit.
-    const bool at_floor_level = options.floor_residual > 0.0 && meas.residual <= options.floor_residual;
-    if ((meas.residual <= tol || at_floor_level) && !full) {
+    if (meas.residual <= tol && !full) {
       // A candidate: resume IZ89 on the same polygon to round-off and measure again. Also when the
       // inexact solve ran out of passes: with the "sqrt" schedule (9 passes at m = 40) the residual
       // can be below the tolerance while IZ89 never converges within one outer iteration, and the
