@@ -13,7 +13,8 @@ with shift 0 for ETOPO5 and 1 for ETOPO60. Δ0 per L keeps each run small (latti
 1920 × 960 pixels) and varies Δ0 too: 2°, 4°, 5°, 6° for L = 2, 3, 4, 5.
 
 Regional part, on the Black Sea contour: every projection × spline type × param × solver ×
-schedule in a pairwise design (12 runs), one full run per projection with the ROMS stage, and
+schedule in a pairwise design (12 runs; sqrt with max_outer = 80), one full run per projection
+with the ROMS stage, and
 ROMS refinement grids with factors 3, 5 and 7 of the Black Sea parent.
 
   sweep.py BINARY PART        PART: global-etopo5-N, global-etopo60-N (N = 0..3: a quarter of the
