@@ -116,6 +116,11 @@ int run_check(const CheckArgs& a, const Logger& log) {
   if (!xy.has_steps) log.warn("{}: no dxi/deta attributes; estimating the step ratio from the grid", input.string());
   const curvilinear::GridQuality q = curvilinear::check_grid(xy.grid, options);
   print_table(input.string(), q, xy.has_steps);
+  if (!q.non_finite.empty()) {
+    std::string list;
+    for (const auto& f : q.non_finite) list += "; " + f;
+    throw NumericalError(fmt::format("{}: grid checks failed{}; no files were written", input.string(), list));
+  }
 
   const fs::path stem = input.parent_path() / input.stem();
   const fs::path nc_path = a.out_nc.empty() ? fs::path(stem.string() + "_check.nc") : fs::path(a.out_nc);

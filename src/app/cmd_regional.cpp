@@ -150,6 +150,11 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     curvilinear::CheckOptions co;
     co.dxi_over_deta = result.dxi_over_deta;
     const curvilinear::GridQuality q = curvilinear::check_grid(result.grid, co);
+    if (!q.non_finite.empty()) {
+      std::string list;
+      for (const auto& f : q.non_finite) list += "; " + f;
+      throw NumericalError("grid checks failed" + list);
+    }
     io::XyGrid xy;
     xy.grid = result.grid;
     xy.units = "1";  // plane units: unit-sphere radians divided by uscale

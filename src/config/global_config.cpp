@@ -183,12 +183,8 @@ const S& schema() {
     t.add<double>(
         "quadtree", "step_deg", [](GlobalConfig& c) -> double& { return c.quadtree.step_deg; },
         [](const double& v) {
-          try {
-            (void)Lattice::make(v, 0, -180.0);
-          } catch (const ConfigError&) {
-            return fmt::format("{}: Δ0 must divide 180° in whole arc-seconds (648000 % Δ0\" == 0)", v);
-          }
-          return std::string();
+          const std::string problem = Lattice::step_problem(v);
+          return problem.empty() ? problem : fmt::format("{}: {}", v, problem);
         },
         "");
     t.add<int>(

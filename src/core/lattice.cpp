@@ -4,31 +4,53 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <string>
 
 #include "core/error.hpp"
 
 namespace aq {
 
-Lattice Lattice::make(double step0_deg, int levels, double lon0_deg) {
+std::string Lattice::step_problem(double step0_deg) {
   const double arcsec = step0_deg * 3600.0;
   const double rounded = std::round(arcsec);
-  if (!(step0_deg > 0.0) || std::abs(arcsec - rounded) > 1e-6 || rounded < 1.0 || std::fmod(648000.0, rounded) != 0.0) {
-    throw ConfigError(
-        fmt::format("quadtree.step_deg = {}: Δ0 must divide 180° exactly (in whole arc-seconds, 648000 % Δ0\" == 0), "
-                    "e.g. 4, 2, 1, 0.5, 16/60",
-                    step0_deg));
+  // "Within rounding": a decimal of 16 or 17 significant digits is within 1e-12 relative of the
+  // arc-second value it stands for; 1e-6" is far above that and far below any other valid step.
+  if (!(step0_deg > 0.0) || !std::isfinite(step0_deg) || std::abs(arcsec - rounded) > 1e-6 || rounded < 1.0) {
+    return fmt::format(
+        "Δ0 = {:.9g}\" is not a whole number of arc-seconds (to within 1e-6\"); Δ0 must divide 180° in whole "
+        "arc-seconds, e.g. 4, 2, 1, 0.5, 16/60 = {}",
+        arcsec, 960.0 / 3600.0);
   }
+  if (std::fmod(648000.0, rounded) != 0.0) {
+    return fmt::format("Δ0 = {}\" does not divide 180° = 648000\" (need 648000 % Δ0\" == 0), e.g. 4, 2, 1, 0.5, 16/60",
+                       rounded);
+  }
+  return {};
+}
+
+Lattice Lattice::make(double step0_deg, int levels, double lon0_deg) {
+  const std::string problem = step_problem(step0_deg);
+  if (!problem.empty()) throw ConfigError(fmt::format("quadtree.step_deg = {}: {}", step0_deg, problem));
+  const double rounded = std::round(step0_deg * 3600.0);
   if (levels < 0 || levels > 20) {
     throw ConfigError(fmt::format("quadtree.levels = {}: must be between 0 and 20", levels));
   }
   if (!std::isfinite(lon0_deg)) throw ConfigError("quadtree.lon0_deg: must be a finite number");
   Lattice l;
   l.lon0_deg = lon0_deg;
-  l.step0_deg = step0_deg;
+  // The lattice is the whole arc-second value, not the typed decimal: a step within rounding of
+  // it (16' typed as 0.2666666666666667 rather than 0.26666666666666666) would otherwise put the
+  // last lattice row at φ = -90 + ny·Δ_L = 90.00000000000003°, beyond the pole (the authalic
+  // latitude and the cell areas there are NaN). rounded / 3600 gives -90 + ny·Δ_L = 90 exactly
+  // for every valid Δ0 and L (the assertion below keeps it so).
+  l.step0_deg = rounded / 3600.0;
   l.levels = levels;
   l.n0 = static_cast<std::int64_t>(648000.0 / rounded);
   l.ny = l.n0 << levels;
   l.nx = 2 * l.ny;
+  if (l.lat_of(0) != -90.0 || l.lat_of(l.ny) != 90.0)
+    throw InternalError(fmt::format("lattice Δ0 = {}\", L = {}: the rows end at φ = {:.17g}, not at ±90°", rounded,
+                                    levels, l.lat_of(l.ny)));
   return l;
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace aq {
 
@@ -19,8 +20,12 @@ struct Lattice {
   std::int64_t ny = 360;     ///< pixels along φ: n0·2^L
 
   /// Builds and validates; throws ConfigError (naming `key_prefix`.step_deg / levels) when Δ0 does
-  /// not divide 180° exactly in arc-seconds or L is outside 0..20.
+  /// not divide 180° exactly in arc-seconds or L is outside 0..20. A step within rounding of a
+  /// whole arc-second value (1e-6") becomes exactly that value: 0.2666666666666667 and
+  /// 0.26666666666666666 give the same lattice (step0_deg = 960/3600), whose rows end at ±90°.
   static Lattice make(double step0_deg, int levels, double lon0_deg);
+  /// Why `step0_deg` is not a valid Δ0 (one sentence without the key), or "" when it is.
+  static std::string step_problem(double step0_deg);
 
   [[nodiscard]] double pixel_deg() const { return step0_deg / static_cast<double>(std::int64_t{1} << levels); }
   [[nodiscard]] double lon_of(std::int64_t i) const { return lon0_deg + static_cast<double>(i) * pixel_deg(); }

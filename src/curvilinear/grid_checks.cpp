@@ -32,6 +32,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/finite.hpp"
 #include "curvilinear/laplace_fill.hpp"
 
 namespace aq::curvilinear {
@@ -497,6 +498,30 @@ GridQuality check_grid(const Grid2D& g, const CheckOptions& options) {
     q.isotropy_ratio_max = std::max(q.isotropy_ratio_max, r);
   }
   for (const double v : q.f1.values) q.non_convex_cells += v <= 0.0 ? 1 : 0;
+
+  // NaN where a criterion is defined fails the check (finish_stats skips NaN as "undefined").
+  FiniteChecks finite;
+  for (const QualityField* f : q.fields()) {
+    const bool cell = f->location == FieldLocation::kCell;
+    const int n_i = cell ? cx : nx;
+    const auto defined = [&](std::int64_t k) {
+      const auto i = static_cast<int>(k % n_i), j = static_cast<int>(k / n_i);
+      return cell || (nx >= 3 && ny >= 3 && i > 0 && j > 0 && i < nx - 1 && j < ny - 1);
+    };
+    finite.indexed(
+        f->name + " (" + f->long_name + ")", static_cast<std::int64_t>(f->values.size()),
+        [&](std::int64_t k) {
+          const double v = f->values[static_cast<std::size_t>(k)];
+          return defined(k) && std::isnan(v) ? v : 0.0;
+        },
+        [&](std::int64_t k) {
+          const int i = static_cast<int>(k % n_i), j = static_cast<int>(k / n_i);
+          const std::size_t p = g.at(i, j);
+          return fmt::format("{} ({}, {}) with {} node at ({}, {})", cell ? "cell" : "node", i, j,
+                             cell ? "south-west" : "its", g.x[p], g.y[p]);
+        });
+  }
+  q.non_finite = finite.failures();
   return q;
 }
 

@@ -72,6 +72,11 @@ struct GridQuality {
   double isotropy_ratio_min = 0.0;  ///< range of |ℓξ|/|ℓη| (51), unnormalised (target ρ)
   double isotropy_ratio_max = 0.0;
   int non_convex_cells = 0;  ///< cells with f1 ≤ 0 (degenerate, non-convex, inverted)
+  /// One message per field that is NaN where it is defined (every cell; interior nodes for the
+  /// node fields), naming the first such cell / node and its corner coordinates. ±∞ are not
+  /// listed: they are the documented worst values of degenerate cells (f1 = −∞ inverted, isotropy
+  /// and residual +∞ for a zero side) and show as the field's worst. Non-empty = the check failed.
+  std::vector<std::string> non_finite;
 
   /// All fields in table order.
   [[nodiscard]] std::vector<const QualityField*> fields() const;
@@ -79,7 +84,8 @@ struct GridQuality {
 
 /// Computes every criterion. Requires nx_pts, ny_pts ≥ 2 and finite coordinates (the spline form
 /// and the Laplace residual need ≥ 3 points in each direction and are left empty otherwise).
-/// Throws InputError for a grid that is too small or has non-finite nodes (naming the node).
+/// Throws InputError for a grid that is too small or has non-finite nodes (naming the node);
+/// a NaN criterion from finite nodes is listed in GridQuality::non_finite.
 GridQuality check_grid(const Grid2D& grid, const CheckOptions& options = {});
 
 /// ρ = Δξ/Δη estimated from the grid as Σ_cells(|a0| + |a1|) / Σ_cells(|b0| + |b1|) (ξ-edge over

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/finite.hpp"
 #include "core/timer.hpp"
 #include "curvilinear/iz89.hpp"
 
@@ -165,7 +166,7 @@ RectangleMeasure measure_rectangle(const std::vector<double>& x, const std::vect
     m.side_length[static_cast<std::size_t>(si)] = len;
     for (int k = 1; k < n - 1; ++k)
       m.residual =
-          std::max(m.residual, std::fabs(c[static_cast<std::size_t>(k)] / len - static_cast<double>(k) / (n - 1)));
+          nan_max(m.residual, std::fabs(c[static_cast<std::size_t>(k)] / len - static_cast<double>(k) / (n - 1)));
   }
   m.aspect_ratio = (m.side_length[0] + m.side_length[2]) / (m.side_length[1] + m.side_length[3]);
   return m;
@@ -211,14 +212,26 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
     int passes = iz.passes;
     RectangleMeasure meas = measure_rectangle(x, y, nodes);
     bool full = iz.converged && io.angle_tolerance <= options.iz89_angle_tolerance;
-    if (meas.residual <= tol && !full && iz.converged) {
-      // A candidate: resume IZ89 on the same polygon to round-off and measure again.
+    if (meas.residual <= tol && !full) {
+      // A candidate: resume IZ89 on the same polygon to round-off and measure again. Also when the
+      // inexact solve ran out of passes: with the "sqrt" schedule (9 passes at m = 40) the residual
+      // can be below the tolerance while IZ89 never converges within one outer iteration, and the
+      // loop used to run out of outer iterations (LC Black Sea; found by the configuration sweep).
       io.angle_tolerance = options.iz89_angle_tolerance;
       io.max_passes = std::max(1, options.max_inner_passes - passes);
       iz = iz89_straighten(x, y, nodes.corner_indices(), io);
       passes += iz.passes;
       meas = measure_rectangle(x, y, nodes);
       full = iz.converged;
+    }
+    if (!std::isfinite(meas.residual)) {
+      std::int64_t k = first_non_finite(x);
+      if (k < 0) k = first_non_finite(y);
+      const auto at = static_cast<std::size_t>(std::max<std::int64_t>(k, 0));
+      throw NumericalError(
+          fmt::format("inverse problem: the rectangle residual is {} in outer iteration {}{}", meas.residual, m,
+                      k < 0 ? std::string(" (the node positions are finite: a side of zero length)")
+                            : fmt::format(" (first non-finite straightened vertex {} = ({}, {}))", k, x[at], y[at])));
     }
     prev_residual = meas.residual;
     res.residual_history.push_back(meas.residual);

@@ -16,6 +16,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "core/finite.hpp"
 #include "core/timer.hpp"
 #include "core/types.hpp"
 
@@ -94,7 +95,7 @@ inline double sor_row_colour(double* u, double* v, std::size_t row, int i0, int 
     const double dv = scale * apply_stencil(v, p, stride, w);
     u[p] += du;
     v[p] += dv;
-    max_dq = std::max(max_dq, std::max(std::fabs(du), std::fabs(dv)));
+    max_dq = nan_max(max_dq, nan_max(std::fabs(du), std::fabs(dv)));
   }
   return max_dq;
 }
@@ -123,7 +124,7 @@ double sor_half_sweep(double* u, double* v, int nx, int ny, int cj, StencilWeigh
     const std::size_t row = static_cast<std::size_t>(j0 + 2 * k) * stride;
     const double even = sor_row_colour(u, v, row, 2, nx, stride, w, scale);
     const double odd = sor_row_colour(u, v, row, 1, nx, stride, w, scale);
-    max_dq = std::max(max_dq, std::max(even, odd));
+    max_dq = nan_max(max_dq, nan_max(even, odd));
   }
   return max_dq;
 }
@@ -142,8 +143,8 @@ void solve_sor(std::vector<double>& u, std::vector<double>& v, int nx, int ny, c
   for (int m = 1; m <= opt.max_iterations; ++m) {
     if (m >= 2) omega = 1.0 / (1.0 - 0.25 * omega * r2);
     max_dq = 0.0;
-    max_dq = sor_half_sweep(u.data(), v.data(), nx, ny, 0, w, omega);                    // colours 0, 1
-    max_dq = std::max(max_dq, sor_half_sweep(u.data(), v.data(), nx, ny, 1, w, omega));  // colours 2, 3
+    max_dq = sor_half_sweep(u.data(), v.data(), nx, ny, 0, w, omega);                   // colours 0, 1
+    max_dq = nan_max(max_dq, sor_half_sweep(u.data(), v.data(), nx, ny, 1, w, omega));  // colours 2, 3
     result.residual_history.push_back(max_dq / extent);
     result.iterations = m;
     if (!std::isfinite(max_dq)) break;
@@ -253,7 +254,7 @@ double max_residual(const Grid2D& g, const StencilWeights& w) {
       const double rx = std::fabs(apply_stencil(x, p, stride, w)) * inv;
       const double ry = std::fabs(apply_stencil(y, p, stride, w)) * inv;
       if (!std::isfinite(rx) || !std::isfinite(ry)) ++bad;
-      r = std::max(r, std::max(rx, ry));
+      r = nan_max(r, nan_max(rx, ry));
     }
   }
   return bad > 0 ? HUGE_VAL : r;
@@ -335,7 +336,14 @@ LaplaceResult laplace_fill(Grid2D& grid, double dxi, double deta, const LaplaceO
   }
   result.residual = max_residual(grid, w) / extent;
   if (!std::isfinite(result.residual)) {
-    throw NumericalError(fmt::format("laplace_fill: the {}x{} solution is not finite", nx, ny));
+    std::int64_t k = first_non_finite(grid.x);
+    if (k < 0) k = first_non_finite(grid.y);
+    const auto at = static_cast<std::size_t>(std::max<std::int64_t>(k, 0));
+    throw NumericalError(fmt::format(
+        "laplace_fill: the {}x{} solution is not finite: the Laplace residual is {}{}", nx, ny, result.residual,
+        k < 0 ? std::string()
+              : fmt::format("; first non-finite node ({}, {}) = ({}, {})", at % static_cast<std::size_t>(nx),
+                            at / static_cast<std::size_t>(nx), grid.x[at], grid.y[at])));
   }
   if (options.solver == LaplaceOptions::Solver::kDst) result.residual_history.push_back(result.residual);
   result.seconds = timer.wall_s();

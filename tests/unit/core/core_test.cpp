@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "core/bitmap.hpp"
 #include "core/error.hpp"
+#include "core/finite.hpp"
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
@@ -127,6 +129,73 @@ TEST(Lattice, RejectsStepsThatDoNotDivide180) {
   EXPECT_THROW((void)aq::Lattice::make(0.0, 3, -180.0), aq::ConfigError);
   EXPECT_THROW((void)aq::Lattice::make(4.0, 21, -180.0), aq::ConfigError);
   EXPECT_NO_THROW((void)aq::Lattice::make(1.0 / 60.0, 0, -180.0));
+}
+
+// Issue 11: 16' typed as 0.2666666666666667 (16 digits) was kept as typed, so the last lattice row
+// sat at φ = 90.00000000000003° and the pole row's cell area was NaN. A step within rounding of a
+// whole arc-second value is now exactly that value, and every valid Δ0 and L ends at ±90° exactly.
+TEST(Lattice, AStepWithinRoundingIsExactlyTheArcSecondLattice) {
+  const auto typed = aq::Lattice::make(0.2666666666666667, 4, -180.0);
+  const auto exact = aq::Lattice::make(0.26666666666666666, 4, -180.0);
+  EXPECT_EQ(typed.step0_deg, 960.0 / 3600.0);
+  EXPECT_EQ(typed.step0_deg, exact.step0_deg);
+  EXPECT_EQ(typed.pixel_deg(), exact.pixel_deg());
+  EXPECT_EQ(typed.ny, 10800);
+  EXPECT_EQ(typed.lat_of(typed.ny), 90.0);
+  EXPECT_EQ(typed.lat_of(0), -90.0);
+  int checked = 0;
+  for (std::int64_t arcsec = 1; arcsec <= 648000; ++arcsec) {
+    if (648000 % arcsec != 0) continue;
+    const double step = static_cast<double>(arcsec) / 3600.0;
+    for (const double typed_step : {std::nextafter(step, 0.0), step, std::nextafter(step, 1e9), step * (1 + 1e-13)}) {
+      for (int levels = 0; levels <= 20 && (std::int64_t{648000 / arcsec} << levels) <= (std::int64_t{1} << 26);
+           ++levels) {
+        const auto l = aq::Lattice::make(typed_step, levels, -180.0);
+        ASSERT_EQ(l.step0_deg, step) << typed_step;
+        ASSERT_EQ(l.lat_of(l.ny), 90.0) << arcsec << "\" L = " << levels;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(Lattice, StepsNotWithinRoundingAreRefusedWithTheReason) {
+  try {
+    (void)aq::Lattice::make(0.26667, 4, -180.0);
+    FAIL() << "0.26667 was accepted";
+  } catch (const aq::ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("quadtree.step_deg = 0.26667"));
+    EXPECT_THAT(e.what(), HasSubstr("960.012\" is not a whole number of arc-seconds"));
+  }
+  EXPECT_THAT(aq::Lattice::step_problem(7.0), HasSubstr("does not divide 180°"));
+  EXPECT_THAT(aq::Lattice::step_problem(std::nan("")), HasSubstr("not a whole number"));
+  EXPECT_EQ(aq::Lattice::step_problem(0.2666666666666667), "");
+}
+
+// Checks that must fail on NaN (issue 11): a comparison with NaN is false.
+TEST(Finite, ComparisonsAndMaximaFailOnNonFiniteValues) {
+  const double nan = std::nan("");
+  const double inf = HUGE_VAL;
+  EXPECT_TRUE(aq::finite_at_most(0.5, 1.0));
+  EXPECT_FALSE(aq::finite_at_most(1.5, 1.0));
+  EXPECT_FALSE(aq::finite_at_most(nan, 1.0));
+  EXPECT_FALSE(aq::finite_at_most(0.5, nan));
+  EXPECT_FALSE(aq::finite_at_most(-inf, 1.0));
+  EXPECT_TRUE(std::isnan(aq::nan_max(1.0, nan)));
+  EXPECT_TRUE(std::isnan(aq::nan_max(nan, 1.0)));
+  EXPECT_EQ(aq::nan_max(1.0, 2.0), 2.0);
+  const std::vector<double> v{1.0, 2.0, nan, 3.0, inf};
+  EXPECT_EQ(aq::first_non_finite(v), 2);
+  EXPECT_EQ(aq::first_non_finite(std::vector<double>{1.0}), -1);
+  aq::FiniteChecks c;
+  c.values("area", v, [](std::int64_t k) { return "element " + std::to_string(k); });
+  c.scalar("total", 4.0);
+  c.scalar("sum", nan, "the sum over all elements");
+  ASSERT_EQ(c.failures().size(), 2U);
+  EXPECT_EQ(c.failures()[0], "area is nan at element 2 (first of 2 non-finite values)");
+  EXPECT_EQ(c.failures()[1], "sum is nan at the sum over all elements");
+  EXPECT_FALSE(c.ok());
 }
 
 TEST(Bitmap, SetGetCountAcrossWordBoundaries) {

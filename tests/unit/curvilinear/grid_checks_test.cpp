@@ -265,3 +265,35 @@ TEST(GridChecks, FieldsAreListedWithNamesAndLocations) {
 
 }  // namespace
 }  // namespace aq::curvilinear
+
+namespace aq::curvilinear {
+namespace {
+
+// Issue 11: a criterion that is NaN where it is defined fails the check and says where. Finite
+// nodes of 1e200 overflow the products (inf / inf = NaN); the statistics skip NaN as undefined,
+// so without GridQuality::non_finite the worst value would look fine.
+TEST(GridChecks, NaNCriteriaFromFiniteNodesAreListedWithTheCell) {
+  Grid2D g(3, 3);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      g.x[g.at(i, j)] = 1e200 * i;
+      g.y[g.at(i, j)] = 1e200 * j;
+    }
+  }
+  const GridQuality q = check_grid(g);
+  ASSERT_FALSE(q.non_finite.empty());
+  EXPECT_NE(q.non_finite.front().find("ortho_err_50 (orthogonality error"), std::string::npos) << q.non_finite.front();
+  EXPECT_NE(q.non_finite.front().find("nan at cell (0, 0) with south-west node at (0, 0)"), std::string::npos)
+      << q.non_finite.front();
+  Grid2D fine(3, 3);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      fine.x[fine.at(i, j)] = i;
+      fine.y[fine.at(i, j)] = j;
+    }
+  }
+  EXPECT_TRUE(check_grid(fine).non_finite.empty());  // boundary NaN of the node fields is "undefined"
+}
+
+}  // namespace
+}  // namespace aq::curvilinear

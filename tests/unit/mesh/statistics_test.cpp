@@ -8,6 +8,7 @@
 #include <GeographicLib/PolygonArea.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "quadtree/bits.hpp"
 #include "unit/mesh/mesh_fixtures.hpp"
@@ -135,6 +136,100 @@ TEST(Statistics, ChecksFailOnBrokenMeshes) {
     const MeshStatistics s = compute_statistics(m, StatisticsOptions{false, 0.0});
     EXPECT_NE(s.euler, s.euler_expected);
     EXPECT_FALSE(s.failed_checks().empty());
+  }
+}
+
+// Issue 11: with the lattice's last row beyond the pole (Δ0 kept as typed, 0.2666666666666667, as
+// Lattice::make used to do) the pole row's cell area is NaN; the area check compared NaN and
+// passed ("all checks passed; wet area nan"). Every non-finite value now fails, naming where.
+TEST(Statistics, ANonFiniteAreaFailsAndSaysWhere) {
+  Lattice lat = make_lattice(0.26666666666666666, 0);
+  lat.step0_deg = 0.2666666666666667;  // the old lattice: lat_of(ny) = 90.00000000000003
+  ASSERT_GT(lat.lat_of(lat.ny), 90.0);
+  Bitmap m(lat.nx, lat.ny);
+  for (std::int64_t j = lat.ny - 2; j < lat.ny; ++j) quadtree::bits::set_range(m.row(j), 0, lat.nx);
+  const Mesh mesh = build_all(m, lat, {}, {}, PoleRotation(), testing::synthetic_bathymetry()).mesh;
+  const MeshStatistics s = compute_statistics(mesh);
+  const auto failed = s.failed_checks();
+  ASSERT_FALSE(failed.empty());
+  EXPECT_NE(failed.front().find("lattice row sine of latitude (cell areas) is nan at lattice row J = 675"),
+            std::string::npos)
+      << failed.front();
+  EXPECT_FALSE(statistics_json(s)["ok"].get<bool>());
+  {
+    Mesh broken = small_mesh();  // a NaN node latitude
+    broken.lat_deg[7] = std::nan("");
+    const auto f = compute_statistics(broken).failed_checks();
+    ASSERT_FALSE(f.empty());
+    EXPECT_NE(f.front().find("node latitude is nan at node 7 (lattice I = "), std::string::npos) << f.front();
+  }
+  {
+    Mesh broken = small_mesh();  // a NaN depth
+    broken.depth_m[3] = std::nan("");
+    const auto f = compute_statistics(broken, StatisticsOptions{false, 0.0}).failed_checks();
+    ASSERT_EQ(f.size(), 1U);
+    EXPECT_NE(f.front().find("node depth is nan at node 3"), std::string::npos) << f.front();
+  }
+}
+
+// The area tolerance bounds the lenses between boundary geodesics and lattice parallels: it
+// shrinks like the pixel size squared, and the difference stays below it, with and without
+// rotation (the rotated cells are integrated on the ellipsoid, not on the authalic sphere).
+TEST(Statistics, AreaToleranceFollowsTheErrorModel) {
+  const PoleRotation greenland(-44.858333, 78.141667);
+  for (const bool rotated : {false, true}) {
+    double previous = 0.0;
+    for (const int levels : {1, 2, 3}) {
+      const Lattice lat = make_lattice(5.0, levels);
+      // The same set at every resolution: a band 15°S..30°N, 0..90°E and a polar cap 75..90°N.
+      Bitmap m(lat.nx, lat.ny);
+      const std::int64_t p = std::int64_t{1} << levels;  // pixels per 5°
+      for (std::int64_t j = 15 * p; j < 24 * p; ++j) quadtree::bits::set_range(m.row(j), 36 * p, 54 * p);
+      for (std::int64_t j = 33 * p; j < lat.ny; ++j) quadtree::bits::set_range(m.row(j), 0, lat.nx);
+      Mesh mesh = build_all(m, lat, {}, {}, rotated ? greenland : PoleRotation(), testing::synthetic_bathymetry()).mesh;
+      if (rotated) {
+        mesh.rotation.enabled = true;
+        mesh.rotation.pole_lon_deg = -44.858333;
+        mesh.rotation.pole_lat_deg = 78.141667;
+      }
+      const MeshStatistics s = compute_statistics(mesh);
+      EXPECT_TRUE(s.failed_checks().empty()) << rotated << " L = " << levels << ": " << s.failed_checks().front();
+      EXPECT_LE(s.area_relative_difference, s.area_tolerance);
+      if (previous > 0.0) {
+        EXPECT_NEAR(s.area_tolerance / previous, 0.25, 0.1) << rotated << " L = " << levels;
+      }
+      previous = s.area_tolerance;
+    }
+  }
+}
+
+// Found by the sweep: `mesh.elements = "squares"` always failed the checks ("nodes are in no
+// triangle", "triangle area 0 px²"). A squares-only mesh is now checked on its squares.
+TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
+  const PoleRotation greenland(-44.858333, 78.141667);
+  for (const bool rotated : {false, true}) {
+    const Lattice lat = make_lattice(45.0, 4);
+    const Bitmap m = random_mask(lat.nx, lat.ny, 5u, 0.6, 0.01, 8);
+    config::MeshOptions squares, triangles;
+    squares.elements = "squares";
+    const PoleRotation rot = rotated ? greenland : PoleRotation();
+    const Mesh sq = build_all(m, lat, {}, squares, rot, testing::synthetic_bathymetry()).mesh;
+    const Mesh tr = build_all(m, lat, {}, triangles, rot, testing::synthetic_bathymetry()).mesh;
+    ASSERT_TRUE(sq.triangles.empty());
+    const MeshStatistics s = compute_statistics(sq), t = compute_statistics(tr);
+    EXPECT_TRUE(s.failed_checks().empty()) << s.failed_checks().front();
+    EXPECT_EQ(s.used_nodes, s.nodes);
+    EXPECT_EQ(s.euler, s.euler_expected);
+    EXPECT_EQ(s.components, t.components);
+    EXPECT_EQ(s.boundary_edges, t.boundary_edges);
+    EXPECT_EQ(s.twice_triangle_area_px2, 2 * s.filled_pixels);
+    EXPECT_EQ(s.filled_area_km2, t.filled_area_km2);
+    EXPECT_NEAR(s.triangle_area_km2 / t.triangle_area_km2, 1.0, 1e-9);  // the same geodesic boundary
+    Mesh broken = sq;                                                   // a square turned clockwise
+    std::swap(broken.squares[4][1], broken.squares[4][3]);
+    std::swap(broken.square_midside[4][0], broken.square_midside[4][3]);
+    std::swap(broken.square_midside[4][1], broken.square_midside[4][2]);
+    EXPECT_FALSE(compute_statistics(broken).failed_checks().empty());
   }
 }
 
