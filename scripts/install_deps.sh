@@ -15,6 +15,8 @@ PACKAGES=(
   libfftw3-dev
   ferret-datasets
   gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy
+  # ROMS as a client test (tests/roms; ../shared/clients/roms/roms.sh builds ROMS with these)
+  gfortran libnetcdff-dev make perl patch xz-utils
 )
 
 missing=()

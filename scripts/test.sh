@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: Release (with OpenMP), then the sanitizer build
-# (ASan+UBSan, OpenMP off, so the no-OpenMP build is tested too), then the slow label.
+# (ASan+UBSan, OpenMP off, so the no-OpenMP build is tested too), then the slow label (which
+# includes the ROMS client tests, label roms: ../shared/clients/roms builds ROMS once into
+# $ROMS_CACHE, default ~/.cache/aq-roms, and runs it on our files; skipped when that folder is absent).
 #   scripts/test.sh           everything (what CI runs)
 #   scripts/test.sh --quick   Release only, without the slow label (local iteration)
 set -euo pipefail
