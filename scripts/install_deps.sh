@@ -15,7 +15,8 @@ PACKAGES=(
   libfftw3-dev
   ferret-datasets
   gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy
-  gfortran xz-utils python3  # the ADCIRC client test (../shared/clients/adcirc, tests/adcirc)
+  # the ADCIRC and ROMS client tests (../shared/clients/adcirc and roms build the models with these)
+  gfortran libnetcdff-dev make perl patch xz-utils python3
 )
 
 missing=()

@@ -196,12 +196,12 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   if (result.completed == curvilinear::Stage::kGrid && c.roms.enabled) {
     const curvilinear::CGrid cg = curvilinear::build_cgrid(result.grid, *result.projection, roms_cgrid_options(c));
     const RegionalGlobal global = run_regional_global(c, log, &report);
-    write_regional_roms(c, loaded.source, result, cg, global, out, outputs, report, log,
-                        refined ? &refined->parent_h_on_grid : nullptr);
+    write_regional_roms(c, loaded.source, result, cg, global, out, outputs, report, log, refined ? &*refined : nullptr);
     if (wants_regional_nesting(c, result))
       write_regional_nesting(c, loaded.source, result, cg, global, out, outputs, report, log);
   }
-  // ROMS contact points of a refinement grid and its parent (app/regional_refine.hpp).
+  // The parent made consistent with a refinement grid, and the ROMS contact points of the two
+  // (app/regional_refine.hpp).
   if (refined) write_refinement_contact(c, loaded.source, *refined, out, outputs, report, log);
 
   report["outputs"] = outputs;

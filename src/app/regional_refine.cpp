@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "app/regional_roms.hpp"
 #include "core/error.hpp"
 #include "curvilinear/cgrid.hpp"
 #include "handoff/contact_points.hpp"
+#include "handoff/nested_bathymetry.hpp"
+#include "io/roms_grid.hpp"
 #include "io/roms_grid_png.hpp"
 
 #ifndef AQ_VERSION
@@ -17,6 +20,8 @@
 #endif
 
 namespace aq::app {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -98,12 +103,24 @@ double step_ratio(const io::RomsGridFields& p) {
 
 }  // namespace
 
+std::string nested_parent_file(const config::RegionalConfig& c) { return c.name + "_parent_grd.nc"; }
+
 RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string& config_source, const Logger& log,
                              Report* report) {
   StageScope stage("refine", report, log);
   RefinedGrid g;
   const auto& n = c.nesting;
   g.box = {n.parent_box[0], n.parent_box[1], n.parent_box[2], n.parent_box[3], n.refine_factor};
+  // The parent made consistent with this grid is a new file: never the input parent itself.
+  if (c.roms.enabled) {
+    std::error_code ec;
+    const fs::path target = fs::weakly_canonical(fs::path(c.output_dir) / nested_parent_file(c), ec);
+    if (target == fs::weakly_canonical(n.parent, ec))
+      throw ConfigError(
+          fmt::format("{}: the updated parent grid {} would overwrite nesting.parent = {}; give this grid another "
+                      "regional.name or output.dir",
+                      config_source, (fs::path(c.output_dir) / nested_parent_file(c)).string(), n.parent));
+  }
   g.parent = io::read_roms_grid_fields(n.parent);
   if (const std::string bad = handoff::refinement_box_problem(g.box, g.parent.L, g.parent.M); !bad.empty())
     throw ConfigError(fmt::format("{}: nesting.parent_box = {} in nesting.parent = {}: {}", config_source,
@@ -113,7 +130,6 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, g.projection_source);
   const curvilinear::Projection proj(curvilinear::projection_params(r.params));
   g.parent_plane = parent_supergrid(g.parent, proj, n.parent);
-  g.parent_h_on_grid = handoff::parent_rho_on_fine(g.parent, g.parent.h, g.box);
   g.padded = curvilinear::refine_supergrid(g.parent_plane, g.box, kRefinePad);
   r.projection.emplace(proj);
   r.grid = curvilinear::unpad_supergrid(g.padded, kRefinePad);
@@ -143,12 +159,142 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   return g;
 }
 
+NestedDepths nest_in_parent(const config::RegionalConfig& c, const curvilinear::CGrid& cg,
+                            const std::vector<double>& hraw, const curvilinear::DepthOptions& dopt,
+                            mask::RomsMasks& masks, RefinedGrid& g, const Logger& log) {
+  const std::size_t nr = cg.rho.size();
+  const int ni = cg.L + 1, nj = cg.M + 1, blend = c.nesting.blend_cells;
+  const io::RomsGridFields& p0 = g.parent;
+  const curvilinear::RefineBox& box = g.box;
+  if (box.L() != cg.L || box.M() != cg.M)
+    throw InternalError(fmt::format("roms: the refinement box gives {} x {} rho points, the grid {} x {}", box.L() + 1,
+                                    box.M() + 1, ni, nj));
+  const auto bytes = [](const std::vector<double>& v) {
+    std::vector<std::uint8_t> b(v.size());
+    for (std::size_t k = 0; k < v.size(); ++k) b[k] = v[k] > 0.5 ? 1 : 0;
+    return b;
+  };
+  std::vector<std::uint8_t> prho = bytes(p0.mask_rho), pu = bytes(p0.mask_u), pv = bytes(p0.mask_v),
+                            ppsi = bytes(p0.mask_psi);
+  const std::vector<std::uint8_t> prho0 = prho;
+  const handoff::NestedMaskStats nm =
+      handoff::nest_masks(box, p0.L, p0.M, prho, pu, pv, ppsi, masks.rho, masks.u, masks.v, masks.psi);
+  const auto wet = [](const std::vector<std::uint8_t>& m) {
+    return static_cast<std::int64_t>(std::count(m.begin(), m.end(), std::uint8_t{1}));
+  };
+  masks.stats.wet_rho = wet(masks.rho);
+  masks.stats.wet_u = wet(masks.u);
+  masks.stats.wet_v = wet(masks.v);
+  masks.stats.wet_psi = wet(masks.psi);
+
+  handoff::NestedDepthInput in;
+  in.box = box;
+  in.parent_L = p0.L;
+  in.parent_M = p0.M;
+  in.parent_h = p0.h;
+  in.parent_mask = prho;
+  // The parent keeps the bound it already has when that is looser than roms.rmax (a parent
+  // smoothed less is not smoothed anew far from the refinement).
+  const double parent_rx0_input = curvilinear::max_r_factor(p0.h, prho0, p0.L + 1, p0.M + 1);
+  in.parent_rmax = c.roms.rmax > 0.0 ? std::max(c.roms.rmax, parent_rx0_input) : 0.0;
+  in.child_hraw = hraw;
+  in.child_mask = masks.rho;
+  in.child_area.resize(nr);
+  for (std::size_t k = 0; k < nr; ++k) in.child_area[k] = 1.0 / (cg.pm[k] * cg.pn[k]);
+  in.child_options = dopt;
+  in.blend_cells = blend;
+  handoff::NestedDepthResult nd = handoff::nested_depth(in);
+  if (!nd.settled)
+    log.warn(
+        "roms: the parent/child depth rounds did not settle in {} rounds (last change {:.3g} m); the parent's h "
+        "is the child's block average, the r-factors are {:.6g} (child) and {:.6g} (parent)",
+        nd.rounds, nd.last_round_change_m, nd.child_rx0, nd.parent_rx0);
+  NestedDepths out;
+  out.depth = std::move(nd.child_depth);
+  out.depth.h = nd.child_h;
+  out.depth.rx0_after = nd.child_rx0;
+  out.blend_change_m = nd.blend_max_change_m;
+
+  io::RomsGridFields& pn = g.parent_nested;
+  pn = p0;
+  pn.h = nd.parent_h;
+  const auto doubles = [](const std::vector<std::uint8_t>& b) { return std::vector<double>(b.begin(), b.end()); };
+  pn.mask_rho = doubles(prho);
+  pn.mask_u = doubles(pu);
+  pn.mask_v = doubles(pv);
+  if (!p0.mask_psi.empty()) pn.mask_psi = doubles(ppsi);
+  g.receiver = handoff::ReceiverValues{nd.child_h, masks.rho, masks.u, masks.v};
+  g.parent_rmax = in.parent_rmax;
+  g.nested = true;
+  g.nested_summary = fmt::format(
+      "h over the footprint (parent rho cells I {}..{}, J {}..{}) = the refinement's h averaged per cell "
+      "(weights 1/(pm pn) of its wet points); r-factor <= {:.6g} by deepening only ({} points changed, {} "
+      "outside the footprint, max |change| {:.4g} m, mean change over the wet footprint {:.4g} m); mask_rho "
+      "over the footprint = the refinement's at each cell's centre ({} changed), mask_u/v/psi products",
+      box.i_left, box.i_right - 1, box.j_bottom, box.j_top - 1, in.parent_rmax, nd.parent_points_changed,
+      nd.parent_outside_changed, nd.parent_max_change_m, nd.parent_mean_change_wet_m, nm.parent_rho_changed);
+  out.report = Json{{"parent_file", nested_parent_file(c)},
+                    {"rounds", nd.rounds},
+                    {"settled", nd.settled},
+                    {"last_round_change_m", nd.last_round_change_m},
+                    {"parent_rmax", in.parent_rmax},
+                    {"parent_rx0_input", parent_rx0_input},
+                    {"parent_rx0", nd.parent_rx0},
+                    {"child_rx0", nd.child_rx0},
+                    {"parent_points_changed", nd.parent_points_changed},
+                    {"parent_points_changed_outside_footprint", nd.parent_outside_changed},
+                    {"parent_max_change_m", nd.parent_max_change_m},
+                    {"parent_mean_change_wet_footprint_m", nd.parent_mean_change_wet_m},
+                    {"blocks_deepened", nd.blocks_raised},
+                    {"block_deepening_max_m", nd.block_raise_max_m},
+                    {"parent_mask_changed", nm.parent_rho_changed},
+                    {"ring_mask_changed", nm.child_ring_changed},
+                    {"invariant_residual_m", nd.invariant_residual_m}};
+  out.line = fmt::format(
+      "; parent {} over the footprint: h = the block averages to {:.2g} m after {} round{} ({} parent points "
+      "changed, max {:.4g} m; {} blocks deepened, max {:.4g} m), rx0 {:.3g} (parent) and {:.3g}, masks: {} "
+      "parent cells and {} ring points changed",
+      nested_parent_file(c), nd.invariant_residual_m, nd.rounds, nd.rounds == 1 ? "" : "s", nd.parent_points_changed,
+      nd.parent_max_change_m, nd.blocks_raised, nd.block_raise_max_m, nd.parent_rx0, nd.child_rx0,
+      nm.parent_rho_changed, nm.child_ring_changed);
+  return out;
+}
+
 void write_refinement_contact(const config::RegionalConfig& c, const std::string& config_source, const RefinedGrid& g,
                               OutputSet& out, Json& outputs, Report& report, const Logger& log) {
   StageScope stage("contact", &report, log);
   const curvilinear::CGrid fine = curvilinear::build_cgrid(g.padded, *g.result.projection, roms_cgrid_options(c));
+  const std::string grd = c.name + "_grd.nc";
+
+  // The parent made consistent with this grid, as a new file beside it.
+  std::string parent_file = c.nesting.parent;
+  if (g.nested) {
+    parent_file = nested_parent_file(c);
+    io::RomsGridUpdate u;
+    const io::RomsGridFields& p = g.parent_nested;
+    u.h = p.h;
+    u.mask_rho = p.mask_rho;
+    u.mask_u = p.mask_u;
+    u.mask_v = p.mask_v;
+    u.mask_psi = p.mask_psi;
+    const auto& b = g.box;
+    u.attributes = {{"nested_child_grid", grd},
+                    {"nested_child_config", config_source},
+                    {"nested_source_grid", c.nesting.parent},
+                    {"nested_parent_box", fmt::format("{} {} {} {}", b.i_left, b.i_right, b.j_bottom, b.j_top)},
+                    {"nested_refine_factor", static_cast<std::int64_t>(b.factor)},
+                    {"nested_rmax", g.parent_rmax},
+                    {"nested_update", g.nested_summary}};
+    u.history_append =
+        fmt::format("aquatoria {} regional {}: h and masks over the refinement {} made consistent with it", AQ_VERSION,
+                    config_source, grd);
+    io::write_updated_roms_grid(c.nesting.parent, out.temp_path(parent_file), u);
+    outputs.push_back(Json{{"file", parent_file}, {"checksum_fnv1a64", file_checksum(out.pending_path(parent_file))}});
+  }
+  const io::RomsGridFields& parent = g.nested ? g.parent_nested : g.parent;
   handoff::ContactSummary sum;
-  io::ContactFile f = handoff::refinement_contact(g.parent, g.box, fine, kRefinePad, &sum);
+  io::ContactFile f =
+      handoff::refinement_contact(parent, g.box, fine, kRefinePad, &sum, g.nested ? &g.receiver : nullptr);
 
   // The coarse ψ points inside and on the fine grid are fine ψ points: how closely, on the Earth.
   double coincide_m = 0.0;
@@ -163,10 +309,10 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
                                                   fine.psi.lat_deg[fk], c.roms.earth_radius_m));
     }
 
-  const std::string grd = c.name + "_grd.nc";
-  f.grid_files = fmt::format(" \n{} \n{}", c.nesting.parent, grd);
+  f.grid_files = fmt::format(" \n{} \n{}", parent_file, grd);
   f.history = fmt::format("aquatoria {} regional {}", AQ_VERSION, config_source);
-  f.attributes = {{"parent_grid", c.nesting.parent},
+  f.attributes = {{"parent_grid", parent_file},
+                  {"parent_grid_source", c.nesting.parent},
                   {"receiver_grid_file", grd},
                   {"refine_factor", static_cast<std::int64_t>(r)},
                   {"coarse_psi_coincidence_m", coincide_m},
@@ -176,20 +322,20 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
   outputs.push_back(Json{{"file", name}, {"checksum_fnv1a64", file_checksum(out.pending_path(name))}});
   // The parent with this grid outlined.
   io::RomsPictureOptions po;
-  po.title =
-      fmt::format("{} in {}: psi I {}..{} x J {}..{} split {} x {} ({} x {} rho points)", c.name, c.nesting.parent,
-                  g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, r, r, g.box.L() + 1, g.box.M() + 1);
+  po.title = fmt::format("{} in {}: psi I {}..{} x J {}..{} split {} x {} ({} x {} rho points)", c.name, parent_file,
+                         g.box.i_left, g.box.i_right, g.box.j_bottom, g.box.j_top, r, r, g.box.L() + 1, g.box.M() + 1);
   po.outlines.push_back(g.result.contour_samples);
-  std::vector<std::uint8_t> pmask(g.parent.mask_rho.size());
-  for (std::size_t k = 0; k < pmask.size(); ++k) pmask[k] = g.parent.mask_rho[k] > 0.5 ? 1 : 0;
+  std::vector<std::uint8_t> pmask(parent.mask_rho.size());
+  for (std::size_t k = 0; k < pmask.size(); ++k) pmask[k] = parent.mask_rho[k] > 0.5 ? 1 : 0;
   const std::string png = c.name + "_in_parent.png";
-  io::write_roms_png(out.temp_path(png), g.parent_plane, pmask, g.parent.h, po);
+  io::write_roms_png(out.temp_path(png), g.parent_plane, pmask, parent.h, po);
   outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
 
   const auto& a = sum.coarse_to_fine;
   const auto& b = sum.fine_to_coarse;
   report["contact"] = Json{{"file", name},
-                           {"parent_grid", c.nesting.parent},
+                           {"parent_grid", parent_file},
+                           {"parent_grid_source", c.nesting.parent},
                            {"points", sum.points},
                            {"coarse_to_fine", {{"rho", a[0]}, {"u", a[1]}, {"v", a[2]}}},
                            {"fine_to_coarse", {{"rho", b[0]}, {"u", b[1]}, {"v", b[2]}}},
@@ -197,10 +343,11 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
                            {"refine_factor", r},
                            {"refinement_ratio_median", sum.ratio_median},
                            {"coarse_psi_coincidence_m", coincide_m}};
-  stage.done(fmt::format(
-      "{}: {} points, coarse->fine {} rho {} u {} v, fine->coarse {} rho {} u {} v ({} over water); "
-      "fine/coarse step ratio {:.4g}; coarse psi points on the fine grid within {:.2g} m; {}",
-      name, sum.points, a[0], a[1], a[2], b[0], b[1], b[2], sum.wet_points, sum.ratio_median, coincide_m, png));
+  stage.done(
+      fmt::format("{}{}: {} points, coarse->fine {} rho {} u {} v, fine->coarse {} rho {} u {} v ({} over water); "
+                  "fine/coarse step ratio {:.4g}; coarse psi points on the fine grid within {:.2g} m; {}",
+                  g.nested ? parent_file + ", " : std::string(), name, sum.points, a[0], a[1], a[2], b[0], b[1], b[2],
+                  sum.wet_points, sum.ratio_median, coincide_m, png));
 }
 
 }  // namespace aq::app

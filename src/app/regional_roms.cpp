@@ -70,7 +70,7 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
                          const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
                          const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report, const Logger& log,
-                         const std::vector<double>* parent_h) {
+                         RefinedGrid* refined) {
   if (result.completed != curvilinear::Stage::kGrid || !result.projection)
     throw InternalError("roms: the regional run did not complete the grid stage");
   StageScope rs("roms", &report, log);
@@ -95,7 +95,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   const std::vector<double> elevation =
       mask::sample_elevations(bathy, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), nr);
   const mask::WetArea& area = global.run.area;
-  const mask::RomsMasks masks =
+  mask::RomsMasks masks =
       mask::build_roms_masks(area.filled, lattice, rot, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), elevation.data(),
                              g.mask.min_depth_m, ni, nj, &area.wet);
   const auto& ms = masks.stats;
@@ -115,26 +115,21 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   curvilinear::DepthOptions dopt;
   dopt.hmin_m = c.roms.hmin_m;
   dopt.rmax = c.roms.rmax;
-  // A refinement grid blends into the parent's depth towards the boundary, before clipping and
-  // smoothing, so that the r-factor bound holds for the blended depth too.
-  const int blend = parent_h != nullptr ? c.nesting.blend_cells : 0;
+  curvilinear::DepthResult depth;
+  const int blend = refined != nullptr ? c.nesting.blend_cells : 0;
   double blend_change = 0.0;
-  std::vector<double> hmodel = hraw;
-  if (parent_h != nullptr && blend > 0) {
-    if (parent_h->size() != nr)
-      throw InternalError(fmt::format("roms: {} parent depths for {} rho points", parent_h->size(), nr));
-    for (int j = 0; j < nj; ++j)
-      for (int i = 0; i < ni; ++i) {
-        const int d = std::min({i, ni - 1 - i, j, nj - 1 - j});  // rows from the outer ring
-        if (d >= blend) continue;
-        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i);
-        const double w = 1.0 - static_cast<double>(d) / blend;
-        const double hb = w * (*parent_h)[k] + (1.0 - w) * hraw[k];
-        blend_change = std::max(blend_change, std::abs(hb - hraw[k]));
-        hmodel[k] = hb;
-      }
+  Json nested_report;
+  std::string nested_line;
+  if (refined == nullptr) {
+    depth = curvilinear::roms_depth(hraw, masks.rho, ni, nj, dopt);
+  } else {
+    // A refinement grid and its parent: consistent masks, then consistent depths.
+    NestedDepths nd = nest_in_parent(c, cg, hraw, dopt, masks, *refined, log);
+    depth = std::move(nd.depth);
+    blend_change = nd.blend_change_m;
+    nested_report = std::move(nd.report);
+    nested_line = std::move(nd.line);
   }
-  const curvilinear::DepthResult depth = curvilinear::roms_depth(hmodel, masks.rho, ni, nj, dopt);
   const curvilinear::CGridStats st = curvilinear::cgrid_stats(cg);
 
   // The file.
@@ -209,11 +204,23 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
     data.attributes.emplace("parent_Jmin", static_cast<std::int64_t>(b[2]));
     data.attributes.emplace("parent_Jmax", static_cast<std::int64_t>(b[3]));
     data.attributes.emplace("refine_factor", static_cast<std::int64_t>(c.nesting.refine_factor));
-    data.attributes.emplace("parent_depth_blend",
-                            fmt::format("h = w h_parent + (1-w) h over the {} rho rows next to the boundary, w = 1 - "
-                                        "d/{} at d rows from the outer ring (h_parent bilinear in the parent's index "
-                                        "space, as in the contact file), applied to hraw before clipping and smoothing",
-                                        blend, blend));
+    data.attributes.emplace("parent_grid_nested", nested_parent_file(c));
+    data.attributes.emplace(
+        "parent_depth_blend",
+        fmt::format("h = w h_parent + (1-w) hraw over the {} rho rows next to the boundary, w = 1 - d/{} at d rows "
+                    "from the outer ring (h_parent: the h of {}, bilinear in the parent's index space as in the "
+                    "contact file), before clipping and smoothing",
+                    blend, blend, nested_parent_file(c)));
+    data.attributes.emplace(
+        "parent_consistency",
+        std::string("the parent's h over this grid (parent_grid_nested) is this h averaged over each parent cell "
+                    "(weights 1/(pm pn) of the wet points); where the parent's r-factor bound needed more, the "
+                    "cell's points were deepened by the difference (aquatoria handoff/nested_bathymetry.hpp)"));
+    data.attributes["mask_rule"] =
+        std::get<std::string>(data.attributes["mask_rule"]) +
+        "; refinement grid: the outer rho ring takes the mask of the parent rho cell holding the point (the contact "
+        "file's, which ROMS copies there), and the parent's cells over this grid take the mask of this grid's rho "
+        "point at their centre";
   }
   const std::string nc = c.name + "_grd.nc";
   io::write_roms_grid(out.temp_path(nc), data);
@@ -293,12 +300,13 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                        {"volume_added_rel", depth.volume_added_rel},
                                        {"sweeps", depth.sweeps},
                                        {"h_max_wet_m", hmax}}}};
-  rs.done(
-      fmt::format("{} ({} x {} ρ points, {} wet; land although deeper than h: {} in unconnected water, {} in "
-                  "coastal pixels); dx {:.4g}..{:.4g} km, max |pm/pn-1| "
-                  "{:.3g} (interior {:.3g}); rx0 {:.3g} -> {:.3g} ({} points deepened); {}",
-                  nc, ni, nj, ms.wet_rho, ms.lake_points, ms.coastal_points, st.dx_min_m / 1000.0, st.dx_max_m / 1000.0,
-                  st.isotropy_max, st.isotropy_max_interior, depth.rx0_before, depth.rx0_after, depth.smoothed, png));
+  if (refined != nullptr) report["nested"] = nested_report;
+  rs.done(fmt::format(
+      "{} ({} x {} ρ points, {} wet; land although deeper than h: {} in unconnected water, {} in "
+      "coastal pixels); dx {:.4g}..{:.4g} km, max |pm/pn-1| "
+      "{:.3g} (interior {:.3g}); rx0 {:.3g} -> {:.3g} ({} points deepened); {}{}",
+      nc, ni, nj, ms.wet_rho, ms.lake_points, ms.coastal_points, st.dx_min_m / 1000.0, st.dx_max_m / 1000.0,
+      st.isotropy_max, st.isotropy_max_interior, depth.rx0_before, depth.rx0_after, depth.smoothed, png, nested_line));
 }
 
 }  // namespace aq::app

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/global_run.hpp"
+#include "app/regional_refine.hpp"
 #include "config/load.hpp"
 #include "config/regional.hpp"
 #include "core/log.hpp"
@@ -41,14 +42,16 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
 /// report section and logs "roms: done ...". `config_source` names the regional config in
 /// messages and file attributes. Throws ConfigError for a bad roms.* value or global config,
 /// InputError when the grid leaves the bathymetry or contains no water of the global ocean
-/// (naming both configs), and what the writers throw. `parent_h`, for a refinement grid, is the
-/// parent's h at this grid's ρ points (handoff::parent_rho_on_fine): over nesting.blend_cells rows
-/// from the boundary the model depth blends linearly from it (weight 1 on the outer ρ ring, where
-/// ROMS puts the contact file's parent depth) into the grid's own, before clipping and smoothing
-/// (hraw in the file stays the bathymetry's).
+/// (naming both configs), and what the writers throw. `refined`, for a refinement grid, is its
+/// parent: the masks and depths of both grids are then made consistent
+/// (handoff/nested_bathymetry.hpp: the outer ring's mask from the parent, the depth blended into
+/// the parent's over nesting.blend_cells rows, the parent's h over the footprint the grid's block
+/// averages, both r-factor bounds kept; hraw in the file stays the bathymetry's), a "nested"
+/// report section is added, and the updated parent and this grid's values are stored in
+/// `refined` for write_refinement_contact.
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
                          const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
                          const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report, const Logger& log,
-                         const std::vector<double>* parent_h = nullptr);
+                         RefinedGrid* refined = nullptr);
 
 }  // namespace aq::app

@@ -65,6 +65,32 @@ double max_r_factor(const std::vector<double>& h, const std::vector<std::uint8_t
   return r;
 }
 
+int smooth_r_factor(std::vector<double>& h, const std::vector<std::uint8_t>& mask, int ni, int nj, double rmax) {
+  if (!(rmax >= 0.0 && rmax < 1.0))
+    throw ConfigError(fmt::format("roms.rmax = {} must be in [0, 1) (0 = no smoothing; 0.2 is common)", rmax));
+  check_sizes(h, mask, ni, nj, "smooth_r_factor");
+  if (rmax == 0.0 || max_r_factor(h, mask, ni, nj) <= rmax) return 0;
+  const double c = (1.0 - rmax) / (1.0 + rmax);
+  int sweeps = 0;
+  bool changed = true;
+  while (changed) {
+    if (sweeps >= kMaxSweeps)
+      throw NumericalError(
+          fmt::format("roms.rmax = {}: depth smoothing did not settle in {} sweeps", rmax, kMaxSweeps));
+    changed = false;
+    const bool forward = sweeps % 2 == 0;
+    for (int jj = 0; jj < nj; ++jj) {
+      const int j = forward ? jj : nj - 1 - jj;
+      for (int ii = 0; ii < ni; ++ii) {
+        const int i = forward ? ii : ni - 1 - ii;
+        changed |= visit(h, mask, ni, nj, i, j, c);
+      }
+    }
+    ++sweeps;
+  }
+  return sweeps;
+}
+
 DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::uint8_t>& mask, int ni, int nj,
                        const DepthOptions& o) {
   if (!(o.hmin_m > 0.0) || !std::isfinite(o.hmin_m))
@@ -89,23 +115,7 @@ DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::u
   if (o.rmax == 0.0 || r.rx0_before <= o.rmax) return r;
 
   const std::vector<double> before = r.h;
-  const double c = (1.0 - o.rmax) / (1.0 + o.rmax);
-  bool changed = true;
-  while (changed) {
-    if (r.sweeps >= kMaxSweeps)
-      throw NumericalError(
-          fmt::format("roms.rmax = {}: depth smoothing did not settle in {} sweeps", o.rmax, kMaxSweeps));
-    changed = false;
-    const bool forward = r.sweeps % 2 == 0;
-    for (int jj = 0; jj < nj; ++jj) {
-      const int j = forward ? jj : nj - 1 - jj;
-      for (int ii = 0; ii < ni; ++ii) {
-        const int i = forward ? ii : ni - 1 - ii;
-        changed |= visit(r.h, mask, ni, nj, i, j, c);
-      }
-    }
-    ++r.sweeps;
-  }
+  r.sweeps = smooth_r_factor(r.h, mask, ni, nj, o.rmax);
   double sum_before = 0.0, sum_added = 0.0;
   for (std::size_t k = 0; k < r.h.size(); ++k) {
     if (mask[k] == 0) continue;

@@ -44,6 +44,13 @@ struct DepthResult {
 DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::uint8_t>& mask_rho, int ni, int nj,
                        const DepthOptions& options);
 
+/// Step 2 alone on `h` in place: raises depths (never lowers them) to the least field ≥ h with
+/// r ≤ rmax on every wet face; returns the number of Gauss–Seidel sweeps (0 when rmax = 0 or the
+/// bound already holds). No clipping: a parent grid whose own hmin is unknown keeps its depths.
+/// Throws ConfigError naming roms.rmax for rmax outside [0, 1), InternalError for inconsistent
+/// sizes, NumericalError if it does not settle.
+int smooth_r_factor(std::vector<double>& h, const std::vector<std::uint8_t>& mask_rho, int ni, int nj, double rmax);
+
 /// Largest r-factor |h_a − h_b|/(h_a + h_b) over u and v faces whose two ρ points are wet.
 double max_r_factor(const std::vector<double>& h, const std::vector<std::uint8_t>& mask_rho, int ni, int nj);
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/error.hpp"
 
@@ -102,31 +103,54 @@ std::string refinement_box_problem(const curvilinear::RefineBox& b, int PL, int 
 
 std::vector<double> parent_rho_on_fine(const io::RomsGridFields& parent, const std::vector<double>& field,
                                        const curvilinear::RefineBox& box) {
-  if (const std::string bad = refinement_box_problem(box, parent.L, parent.M); !bad.empty()) throw ConfigError(bad);
-  if (field.size() != parent.lon_rho.size())
-    throw InternalError(
-        fmt::format("parent_rho_on_fine: {} values for {} parent rho points", field.size(), parent.lon_rho.size()));
+  return parent_rho_on_fine(field, parent.L, parent.M, box);
+}
+
+std::vector<double> parent_rho_on_fine(const std::vector<double>& field, int parent_L, int parent_M,
+                                       const curvilinear::RefineBox& box) {
+  if (const std::string bad = refinement_box_problem(box, parent_L, parent_M); !bad.empty()) throw ConfigError(bad);
+  const std::size_t pni = static_cast<std::size_t>(parent_L) + 1;
+  if (field.size() != pni * (static_cast<std::size_t>(parent_M) + 1))
+    throw InternalError(fmt::format("parent_rho_on_fine: {} values for {} x {} parent rho points", field.size(),
+                                    parent_L + 1, parent_M + 1));
   const int L = box.L(), M = box.M();
   std::vector<double> out(static_cast<std::size_t>(L + 1) * static_cast<std::size_t>(M + 1));
   for (int j = 0; j <= M; ++j) {
     const Axis ay = axis(j, box.j_bottom, box.factor, true);
     for (int i = 0; i <= L; ++i) {
       const Axis ax = axis(i, box.i_left, box.factor, true);
-      out[static_cast<std::size_t>(j) * static_cast<std::size_t>(L + 1) + static_cast<std::size_t>(i)] =
-          bilinear(bilinear_weights(ax, ay), ax, ay, [&](int a, int b) { return field[parent.rho_at(a, b)]; });
+      out[static_cast<std::size_t>(j) * static_cast<std::size_t>(L + 1) + static_cast<std::size_t>(i)] = bilinear(
+          bilinear_weights(ax, ay), ax, ay,
+          [&](int a, int b) { return field[static_cast<std::size_t>(b) * pni + static_cast<std::size_t>(a)]; });
     }
   }
   return out;
 }
 
 io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvilinear::RefineBox& box,
-                                   const curvilinear::CGrid& fine, int pad, ContactSummary* summary) {
+                                   const curvilinear::CGrid& fine, int pad, ContactSummary* summary,
+                                   const ReceiverValues* receiver) {
   if (const std::string bad = refinement_box_problem(box, parent.L, parent.M); !bad.empty()) throw ConfigError(bad);
   const int r = box.factor, L = box.L(), M = box.M(), Lm = L - 1, Mm = M - 1;
   const int Io = box.i_left, Ie = box.i_right, Jo = box.j_bottom, Je = box.j_top;
   if (pad < 4 || fine.L != L + 2 * pad || fine.M != M + 2 * pad)
     throw InternalError(fmt::format("refinement_contact: the fine C-grid is {} x {} with pad {}, expected {} x {}",
                                     fine.L, fine.M, pad, L + 2 * pad, M + 2 * pad));
+  if (receiver != nullptr) {
+    const auto n = [](int a, int b) { return static_cast<std::size_t>(a) * static_cast<std::size_t>(b); };
+    if (receiver->h.size() != n(L + 1, M + 1) || receiver->mask_rho.size() != n(L + 1, M + 1) ||
+        receiver->mask_u.size() != n(L, M + 1) || receiver->mask_v.size() != n(L + 1, M))
+      throw InternalError(
+          fmt::format("refinement_contact: the receiver's values do not fit {} x {} rho points", L + 1, M + 1));
+  }
+  // The fine grid file's value at a point of it (ROMS indices), if given and inside the grid.
+  const auto receiver_at = [&](Type t, int i, int j) -> std::optional<std::size_t> {
+    if (receiver == nullptr) return std::nullopt;
+    const int fi = t == kU ? i - 1 : i, fj = t == kV ? j - 1 : j;  // file indices
+    const int ni = t == kU ? L : L + 1, nj = t == kV ? M : M + 1;
+    if (fi < 0 || fj < 0 || fi >= ni || fj >= nj) return std::nullopt;
+    return static_cast<std::size_t>(fj) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(fi);
+  };
   const double alpha = (1.0 / (r * r) - 1.0) / 24.0;
   const Family coarse[3] = {parent_family(parent, kRho), parent_family(parent, kU), parent_family(parent, kV)};
   // Fine points by ROMS index in the padded C-grid.
@@ -213,9 +237,11 @@ io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvi
         int boundary = 0;
         if (t == kU && j >= 1 && j <= Mm) boundary = i == 1 ? 1 : i == L ? 3 : 0;
         if (t == kV && i >= 1 && i <= Lm) boundary = j == 1 ? 2 : j == M ? 4 : 0;
-        const double mask = t == kRho ? fine_rho_mask(i, j)
-                            : t == kU ? fine_rho_mask(i - 1, j) * fine_rho_mask(i, j)
-                                      : fine_rho_mask(i, j - 1) * fine_rho_mask(i, j);
+        const std::optional<std::size_t> own = receiver_at(t, i, j);
+        double mask = t == kRho ? fine_rho_mask(i, j)
+                      : t == kU ? fine_rho_mask(i - 1, j) * fine_rho_mask(i, j)
+                                : fine_rho_mask(i, j - 1) * fine_rho_mask(i, j);
+        if (own) mask = (t == kRho ? receiver->mask_rho : t == kU ? receiver->mask_u : receiver->mask_v)[*own];
         const std::size_t dk = C.at(ax.donor, ay.donor), fk = fine_point(t, i, j);
         push_common(1, boundary, ax.donor, ay.donor, i, j, ax.xi_dg, ay.xi_dg, ax.xi, ay.xi,
                     {(*C.lon)[dk], (*C.lat)[dk]}, fine_lonlat(t, fk), mask);
@@ -236,7 +262,7 @@ io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvi
         const double s = bilinear(w, ax, ay, [&](int a, int b) { return std::sin(parent.angle[parent.rho_at(a, b)]); });
         const double co =
             bilinear(w, ax, ay, [&](int a, int b) { return std::cos(parent.angle[parent.rho_at(a, b)]); });
-        f.h.push_back(h);
+        f.h.push_back(own ? receiver->h[*own] : h);
         f.f.push_back(cor);
         f.angle.push_back(std::atan2(s, co));
         f.pm.push_back(fine.pm[fk]);

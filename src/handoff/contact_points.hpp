@@ -20,6 +20,9 @@
 // (angle through sine and cosine) and pm, pn, dndx, dmde of the fine grid (from `fine`, which
 // extends `pad` fine cells past the grid); u and v slots carry kContactFill. mask: the coarse ρ mask
 // at the coarse ρ cell holding the point, u and v as products of the two adjacent such ρ masks.
+// With the fine grid file's values (ReceiverValues), the points inside the fine grid (the ρ ring
+// i = 0, L or j = 0, M; u and v on it or across it) take its h and masks instead, which ROMS then
+// copies onto themselves (handoff/nested_bathymetry.hpp makes the ring's mask the coarse cell's).
 // Xrg, Yrg: the fine point; Xdg, Ydg: the donor point (Idg, Jdg).
 //
 // Region 2 (fine → coarse): the coarse points inside the fine grid, which ROMS replaces by the
@@ -28,7 +31,8 @@
 //   u  i = Io+1..Ie−1, j = Jo..Je−1: Idg = 1 + (i−Io)·r,       Jdg as ρ;
 //   v  i = Io..Ie−1, j = Jo+1..Je−1: Idg as ρ,                 Jdg = 1 + (j−Jo)·r;
 // weights 0, on_boundary 0, fields and mask the coarse grid's own values (ROMS copies them into the
-// coarse grid), Xrg, Yrg the coarse point, Xdg, Ydg the fine point.
+// coarse grid, so `parent` must be the parent grid file ROMS runs with), Xrg, Yrg the coarse point,
+// Xdg, Ydg the fine point.
 // Within each region and type the points run j outer, i inner.
 #pragma once
 
@@ -53,18 +57,33 @@ struct ContactSummary {
 /// xi_rho − 1). "" when `box` fits, else the reason, naming the indices and the parent's range.
 std::string refinement_box_problem(const curvilinear::RefineBox& box, int parent_L, int parent_M);
 
+/// The refinement grid file's own h and masks (ρ (L+1) × (M+1), u L × (M+1), v (L+1) × M, file
+/// layout). ROMS overwrites the refinement grid's values at its region-1 points with the contact
+/// file's; given these, region-1 points inside the grid (the outer ρ ring, the boundary u and v
+/// points) carry them, so the two files agree there.
+struct ReceiverValues {
+  std::vector<double> h;
+  std::vector<std::uint8_t> mask_rho, mask_u, mask_v;
+};
+
 /// Both contact regions of the refinement `box` of `parent`. `fine` is the C-grid of the fine grid
-/// padded by `pad` ≥ 4 cells on every side (refine_supergrid(..., pad) → build_cgrid). Throws
-/// ConfigError (from refinement_box_problem) for a box too close to the parent's edge,
-/// InternalError when `fine` does not have the box's padded size.
+/// padded by `pad` ≥ 4 cells on every side (refine_supergrid(..., pad) → build_cgrid); `receiver`
+/// (optional) the fine grid file's h and masks. Throws ConfigError (from refinement_box_problem)
+/// for a box too close to the parent's edge, InternalError when `fine` or `receiver` does not have
+/// the box's size.
 io::ContactFile refinement_contact(const io::RomsGridFields& parent, const curvilinear::RefineBox& box,
-                                   const curvilinear::CGrid& fine, int pad, ContactSummary* summary = nullptr);
+                                   const curvilinear::CGrid& fine, int pad, ContactSummary* summary = nullptr,
+                                   const ReceiverValues* receiver = nullptr);
 
 /// A parent ρ field (e.g. h) at the refinement grid's ρ points 0..L × 0..M (value (i, j) at
 /// j·(L+1) + i), bilinear in the parent's fractional index space: the interpolation region 1 of
 /// refinement_contact uses, so on the fine grid's outer ρ ring it equals the contact file's value
 /// there (which ROMS copies into the fine grid). Throws ConfigError as refinement_contact does.
 std::vector<double> parent_rho_on_fine(const io::RomsGridFields& parent, const std::vector<double>& field,
+                                       const curvilinear::RefineBox& box);
+
+/// The same for a parent ρ field of (parent_L + 1) × (parent_M + 1) values.
+std::vector<double> parent_rho_on_fine(const std::vector<double>& field, int parent_L, int parent_M,
                                        const curvilinear::RefineBox& box);
 
 }  // namespace aq::handoff

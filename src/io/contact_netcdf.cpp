@@ -145,6 +145,8 @@ RomsGridFields read_roms_grid_fields(const fs::path& path) {
   g.mask_v = read_2d(id, "mask_v", er - 1, xr, path);
   g.lon_psi = read_2d(id, "lon_psi", er - 1, xr - 1, path);
   g.lat_psi = read_2d(id, "lat_psi", er - 1, xr - 1, path);
+  int psi_var = -1;
+  if (nc_inq_varid(id, "mask_psi", &psi_var) == NC_NOERR) g.mask_psi = read_2d(id, "mask_psi", er - 1, xr - 1, path);
   g.h = read_2d(id, "h", er, xr, path);
   g.f = read_2d(id, "f", er, xr, path);
   g.pm = read_2d(id, "pm", er, xr, path);

@@ -42,6 +42,7 @@ struct RomsGridFields {
   int L = 0, M = 0;  ///< xi_rho = L+1, eta_rho = M+1
   std::vector<double> lon_rho, lat_rho, lon_u, lat_u, lon_v, lat_v, lon_psi, lat_psi;
   std::vector<double> mask_rho, mask_u, mask_v;
+  std::vector<double> mask_psi;  ///< empty when the file has none
   std::vector<double> h, f, pm, pn, dndx, dmde, angle;
   /// Global attributes of aquatoria's regional grids ("" / NaN when absent): the projection the
   /// grid was made in and the computational step ratio.

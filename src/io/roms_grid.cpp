@@ -250,4 +250,76 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
   nc.close();
 }
 
+void write_updated_roms_grid(const fs::path& source, const fs::path& path, const RomsGridUpdate& u) {
+  for (const auto& [key, value] : u.attributes)
+    for (const char* r : kReserved)
+      if (key.empty() || key == r)
+        throw InternalError(
+            fmt::format("write_updated_roms_grid {}: attribute name '{}' is reserved or empty", path.string(), key));
+  if (!fs::exists(source)) throw InputError(fmt::format("{}: no such ROMS grid file", source.string()));
+  std::error_code ec;
+  fs::copy_file(source, path, fs::copy_options::overwrite_existing, ec);
+  if (ec) throw OutputError(fmt::format("{}: cannot copy {}: {}", path.string(), source.string(), ec.message()));
+  fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::add, ec);
+
+  NcFile nc;
+  check(nc_open(path.c_str(), NC_WRITE, nc.out()), path, "open the copy");
+  const int id = nc.id();
+  // The variables first, so that a source without one fails before anything is written.
+  struct Target {
+    const char* name;
+    const std::vector<double>* data;
+    int var = -1;
+  };
+  std::array<Target, 5> targets = {{{"h", &u.h},
+                                    {"mask_rho", &u.mask_rho},
+                                    {"mask_u", &u.mask_u},
+                                    {"mask_v", &u.mask_v},
+                                    {"mask_psi", &u.mask_psi}}};
+  for (Target& t : targets) {
+    if (t.data->empty()) continue;
+    nc_check<InputError>(nc_inq_varid(id, t.name, &t.var), source, fmt::format("variable {}", t.name));
+    int ndims = 0;
+    nc_check<InputError>(nc_inq_varndims(id, t.var, &ndims), source, t.name);
+    std::array<int, NC_MAX_VAR_DIMS> dims{};
+    nc_check<InputError>(nc_inq_vardimid(id, t.var, dims.data()), source, t.name);
+    std::size_t n = 1;
+    for (int k = 0; k < ndims; ++k) {
+      std::size_t len = 0;
+      nc_check<InputError>(nc_inq_dimlen(id, dims[static_cast<std::size_t>(k)], &len), source, t.name);
+      n *= len;
+    }
+    if (n != t.data->size())
+      throw InputError(fmt::format("{}: {} has {} values, the update {}", source.string(), t.name, n, t.data->size()));
+  }
+  check(nc_redef(id), path, "define mode");
+  const auto text = [&](const char* name, const std::string& v) {
+    check(nc_put_att_text(id, NC_GLOBAL, name, v.size(), v.c_str()), path, fmt::format("attribute {}", name));
+  };
+  if (!u.history_append.empty()) {
+    const std::string old = global_text(id, "history");
+    text("history", old.empty() ? u.history_append : old + "\n" + u.history_append);
+  }
+  for (const auto& [key, value] : u.attributes) {
+    if (const auto* s = std::get_if<std::string>(&value)) {
+      text(key.c_str(), *s);
+    } else if (const auto* x = std::get_if<double>(&value)) {
+      check(nc_put_att_double(id, NC_GLOBAL, key.c_str(), NC_DOUBLE, 1, x), path, fmt::format("attribute {}", key));
+    } else {
+      const std::int64_t v = std::get<std::int64_t>(value);
+      if (v >= -2147483647LL && v <= 2147483647LL) {
+        const int i = static_cast<int>(v);
+        check(nc_put_att_int(id, NC_GLOBAL, key.c_str(), NC_INT, 1, &i), path, fmt::format("attribute {}", key));
+      } else {
+        const double d = static_cast<double>(v);
+        check(nc_put_att_double(id, NC_GLOBAL, key.c_str(), NC_DOUBLE, 1, &d), path, fmt::format("attribute {}", key));
+      }
+    }
+  }
+  check(nc_enddef(id), path, "end of definitions");
+  for (const Target& t : targets)
+    if (t.var >= 0) check(nc_put_var_double(id, t.var, t.data->data()), path, fmt::format("write {}", t.name));
+  check(nc.close(), path, "close (disk full?)");
+}
+
 }  // namespace aq::io

@@ -50,6 +50,21 @@ struct RomsGridData {
 /// reserved attribute name.
 void write_roms_grid(const std::filesystem::path& path, const RomsGridData& data);
 
+/// New depth and masks for an existing ROMS grid file (e.g. the parent of a refinement made
+/// consistent with it). Arrays in the file's layout; an empty array leaves its variable alone.
+struct RomsGridUpdate {
+  std::vector<double> h, mask_rho, mask_u, mask_v, mask_psi;
+  AttributeMap attributes;     ///< global attributes added or replaced (not type/Conventions/title/source)
+  std::string history_append;  ///< appended to the history attribute on a new line
+};
+
+/// Copies the ROMS grid file `source` to `path` (callers pass OutputSet::temp_path; `path` must not
+/// be `source`) and writes `update` into the copy; every other variable and attribute stays as in
+/// `source`. Throws InputError naming `source` when it cannot be read or lacks a variable that is
+/// updated or has another size, OutputError naming `path` on a write failure.
+void write_updated_roms_grid(const std::filesystem::path& source, const std::filesystem::path& path,
+                             const RomsGridUpdate& update);
+
 /// The variable names of grd_spherical.cdl, in the order they are written.
 const std::vector<std::string>& roms_grid_variables();
 

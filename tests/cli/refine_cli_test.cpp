@@ -19,6 +19,7 @@
 
 #include "curvilinear/cgrid.hpp"
 #include "io/contact_netcdf.hpp"
+#include "support/nest_invariant.hpp"
 #include "support/run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -36,6 +37,45 @@ std::string run_text(const std::string& cmd) {
 }
 
 const std::string kChild = std::string(AQ_SOURCE_DIR) + "/configs/black_sea_nw_shelf.toml";
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+std::vector<double> nc_doubles(const fs::path& path, const char* name) {
+  int id = -1, var = -1, ndims = 0, dims[NC_MAX_VAR_DIMS];
+  std::vector<double> v;
+  if (nc_open(path.c_str(), NC_NOWRITE, &id) != NC_NOERR) return v;
+  if (nc_inq_varid(id, name, &var) == NC_NOERR && nc_inq_varndims(id, var, &ndims) == NC_NOERR &&
+      nc_inq_vardimid(id, var, dims) == NC_NOERR) {
+    std::size_t n = 1;
+    for (int k = 0; k < ndims; ++k) {
+      std::size_t len = 0;
+      nc_inq_dimlen(id, dims[k], &len);
+      n *= len;
+    }
+    v.resize(n);
+    nc_get_var_double(id, var, v.data());
+  }
+  nc_close(id);
+  return v;
+}
+
+// Largest r-factor |h1 - h2|/(h1 + h2) over faces between wet rho points of a ROMS grid file.
+double file_rx0(const fs::path& path) {
+  const auto g = aq::io::read_roms_grid_fields(path);
+  double r = 0.0;
+  const auto pair = [&](std::size_t a, std::size_t b) {
+    if (g.mask_rho[a] > 0.5 && g.mask_rho[b] > 0.5) r = std::max(r, std::abs(g.h[a] - g.h[b]) / (g.h[a] + g.h[b]));
+  };
+  for (int j = 0; j <= g.M; ++j)
+    for (int i = 0; i <= g.L; ++i) {
+      if (i < g.L) pair(g.rho_at(i, j), g.rho_at(i + 1, j));
+      if (j < g.M) pair(g.rho_at(i, j), g.rho_at(i, j + 1));
+    }
+  return r;
+}
 
 }  // namespace
 
@@ -65,9 +105,9 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
   EXPECT_THAT(c.err, HasSubstr("refine: done"));
   EXPECT_THAT(c.err, HasSubstr("contact: done"));
   const fs::path out = dir_ / "child";
-  for (const char* f :
-       {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
-        "black_sea_nw_shelf_grid.png", "black_sea_nw_shelf_roms.png", "black_sea_nw_shelf_in_parent.png"})
+  for (const char* f : {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
+                        "black_sea_nw_shelf_grid.png", "black_sea_nw_shelf_roms.png",
+                        "black_sea_nw_shelf_in_parent.png", "black_sea_nw_shelf_parent_grd.nc"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
 
   // Sizes: parent ψ I 6..24, J 28..47 split 3 x 3 → Lm = 54, Mm = 57, 56 x 59 ρ points.
@@ -197,6 +237,68 @@ TEST_F(RefineCli, NorthWesternShelfNestedInTheBlackSea) {
   EXPECT_LE(j["roms"]["depth"]["rx0_after"].get<double>(), 0.2 + 1e-12);
 }
 
+// ROMS two-way nesting (issue 13): the parent's h over the refinement is the refinement's h averaged
+// over each parent cell (area-weighted), masks follow one rule, and the contact file's receiver h
+// and masks are the grid files' values at every contact point inside them, with the r-factor bound
+// on both grids. The input parent is not touched: the consistent parent is a new file.
+TEST_F(RefineCli, ParentRefinementAndContactFileAgreeForTwoWayNesting) {
+  const std::string parent_before = file_bytes(parent_);
+  const auto c = run_aquatoria(child_args("twoway"));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const fs::path out = dir_ / "twoway";
+  const fs::path nested = out / "black_sea_nw_shelf_parent_grd.nc", child = out / "black_sea_nw_shelf_grd.nc",
+                 contact = out / "black_sea_nw_shelf_contact.nc";
+  EXPECT_EQ(file_bytes(parent_), parent_before) << "the input parent grid must not change";
+  EXPECT_TRUE(fs::exists(nested)) << "the updated parent grid " << nested << " was not written";
+
+  // The parent ROMS runs with (without the updated file: the input parent, as before issue 13).
+  const fs::path roms_parent = fs::exists(nested) ? nested : parent_;
+  const aq::test::NestInvariant inv = aq::test::check_nest_invariant(roms_parent, child, contact);
+  EXPECT_TRUE(inv.holds()) << inv.summary();
+  ASSERT_TRUE(fs::exists(nested));
+  EXPECT_EQ(inv.footprint_cells, 18 * 19);
+  // Region 1 inside the refinement (ring ρ, boundary u and v: L = 55, M = 58) and all of region 2.
+  EXPECT_EQ(inv.contact_points_in_grids, (2 * 56 + 2 * 57) + (2 * 59 + 2 * 53) + (2 * 56 + 2 * 56) + 342 + 323 + 324);
+  EXPECT_LE(file_rx0(nested), 0.2 + 1e-12);
+  EXPECT_LE(file_rx0(child), 0.2 + 1e-12);
+
+  // What ROMS was given before: the input parent breaks the invariant (deeper over the shelf).
+  const aq::test::NestInvariant before = aq::test::check_nest_invariant(parent_, child, contact);
+  EXPECT_GT(before.h_mismatches, 100) << before.summary();
+
+  // The new parent is the input parent but for h and the masks.
+  for (const char* v : {"lon_rho", "lat_psi", "pm", "pn", "f", "angle", "hraw", "x_u", "dmde"})
+    EXPECT_EQ(nc_doubles(nested, v), nc_doubles(parent_, v)) << v;
+  EXPECT_NE(nc_doubles(nested, "h"), nc_doubles(parent_, "h"));
+  const std::string nh = run_text("ncdump -h " + nested.string());
+  EXPECT_THAT(nh, HasSubstr(":nested_child_grid = \"black_sea_nw_shelf_grd.nc\""));
+  EXPECT_THAT(nh, HasSubstr(":type = \"ROMS GRID file\""));
+  EXPECT_THAT(run_text("ncdump -h " + contact.string()),
+              HasSubstr(":parent_grid = \"black_sea_nw_shelf_parent_grd.nc\""));
+  EXPECT_THAT(run_text("ncdump -h " + child.string()),
+              HasSubstr(":parent_grid_nested = \"black_sea_nw_shelf_parent_grd.nc\""));
+  std::ifstream rf(out / "black_sea_nw_shelf_report.json");
+  std::stringstream ss;
+  ss << rf.rdbuf();
+  const auto j = nlohmann::json::parse(ss.str());
+  EXPECT_TRUE(j["nested"]["settled"].get<bool>());
+  EXPECT_EQ(j["nested"]["invariant_residual_m"].get<double>(), 0.0);
+}
+
+TEST_F(RefineCli, TheUpdatedParentNeverOverwritesTheInputParent) {
+  // A refinement named "x" whose parent is x_parent_grd.nc in its own output folder.
+  const fs::path d = dir_ / "self";
+  fs::create_directories(d);
+  fs::copy_file(parent_, d / "x_parent_grd.nc", fs::copy_options::overwrite_existing);
+  const std::string before = file_bytes(d / "x_parent_grd.nc");
+  const auto o = run_aquatoria("regional -c " + kChild + " --set nesting.parent=\"" + (d / "x_parent_grd.nc").string() +
+                               "\" --set regional.name=\"x\" -o " + d.string() + " --no-coastline");
+  EXPECT_EQ(o.exit_code, 2) << o.err;
+  EXPECT_THAT(o.err, HasSubstr("would overwrite nesting.parent"));
+  EXPECT_EQ(file_bytes(d / "x_parent_grd.nc"), before);
+  EXPECT_FALSE(fs::exists(d / "x_grd.nc"));
+}
+
 TEST_F(RefineCli, BadRefinementSettingsStopWithTheConfigName) {
   struct Case {
     std::string set, message;
@@ -258,7 +360,7 @@ TEST_F(RefineCli, SameBytesOnOneAndTwoThreads) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   for (const char* f : {"black_sea_nw_shelf_grd.nc", "black_sea_nw_shelf_contact.nc", "black_sea_nw_shelf_xygrid.nc",
-                        "black_sea_nw_shelf_in_parent.png"}) {
+                        "black_sea_nw_shelf_in_parent.png", "black_sea_nw_shelf_parent_grd.nc"}) {
     const std::string a = bytes(dir_ / "threads1" / f), b = bytes(dir_ / "threads2" / f);
     EXPECT_FALSE(a.empty()) << f;
     EXPECT_TRUE(a == b) << f;

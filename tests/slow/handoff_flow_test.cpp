@@ -3,6 +3,7 @@
 //   aquatoria regional -c DIR/blocks/block_001.toml
 // Each step's files and pictures exist; the nesting file beside the ROMS grid has one record per
 // boundary ρ/u/v point with valid weights, and the refinement ratio is about blocks.refinement.
+// A block is no ROMS refinement: it gets neither contact points nor an updated parent grid.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -36,6 +37,9 @@ TEST(HandoffFlow, MeshBlocksRegionalOnTheOneDegreeL5Run) {
   EXPECT_TRUE(fs::exists(b / "block_001_grd.nc"));
   EXPECT_TRUE(fs::exists(b / "block_001_roms.png"));
   ASSERT_TRUE(fs::exists(b / "block_001_nesting.nc")) << regional.err;
+  // A block is nested in the global mesh, not a ROMS refinement: no contact points, no parent grid.
+  EXPECT_FALSE(fs::exists(b / "block_001_contact.nc"));
+  EXPECT_FALSE(fs::exists(b / "block_001_parent_grd.nc"));
 
   const aq::io::NestingFile n = aq::io::read_nesting(b / "block_001_nesting.nc");
   ASSERT_GT(n.size(), 100u);

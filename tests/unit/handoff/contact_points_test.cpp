@@ -303,3 +303,59 @@ TEST(ContactPoints, ParentFieldOnTheFineGridMatchesTheContactPoints) {
   }
   EXPECT_EQ(ring, 2 * (L + 1) + 2 * (M - 1));
 }
+
+TEST(ContactPoints, ReceiverValuesInsideTheFineGridComeFromItsFile) {
+  // With the fine grid file's h and masks, region-1 points inside the fine grid carry them (ROMS
+  // copies them onto the grid: the files then agree); points outside keep the coarse values.
+  aq::testing::TempDir dir;
+  const ParentGrid s = parent_setup(dir);
+  const RefineBox b{6, 20, 5, 17, 3};
+  const int L = b.L(), M = b.M();
+  aq::handoff::ReceiverValues rv;
+  rv.h.resize(static_cast<std::size_t>((L + 1) * (M + 1)));
+  for (std::size_t k = 0; k < rv.h.size(); ++k) rv.h[k] = 1000.0 + static_cast<double>(k);
+  rv.mask_rho.assign(rv.h.size(), 0);
+  rv.mask_u.assign(static_cast<std::size_t>(L * (M + 1)), 0);
+  rv.mask_v.assign(static_cast<std::size_t>((L + 1) * M), 0);
+  rv.mask_u[static_cast<std::size_t>(3 * L + 0)] = 1;  // u I = 1, J = 3 (file 0, 3)
+  const auto plain = aq::handoff::refinement_contact(s.parent, b, fine_grid(s, b), kPad);
+  const auto f = aq::handoff::refinement_contact(s.parent, b, fine_grid(s, b), kPad, nullptr, &rv);
+  ASSERT_EQ(f.size(), plain.size());
+  int inside = 0, outside = 0;
+  const auto& r1 = f.regions[0];
+  for (int k = 0; k < r1.NendV; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const int I = f.Irg[kk], J = f.Jrg[kk];
+    const bool rho = k < r1.NendR, u = !rho && k < r1.NendU;
+    const int fi = u ? I - 1 : I, fj = (!rho && !u) ? J - 1 : J;
+    const int ni = u ? L : L + 1, nj = (!rho && !u) ? M : M + 1;
+    if (fi < 0 || fj < 0 || fi >= ni || fj >= nj) {
+      EXPECT_EQ(f.mask[kk], plain.mask[kk]) << k;
+      EXPECT_EQ(f.h[kk], plain.h[kk]) << k;
+      ++outside;
+      continue;
+    }
+    ++inside;
+    const auto at = static_cast<std::size_t>(fj * ni + fi);
+    if (rho) {
+      EXPECT_EQ(f.h[kk], rv.h[at]) << k;
+      EXPECT_EQ(f.mask[kk], 0.0) << k;
+    } else {
+      EXPECT_EQ(f.mask[kk], (u ? rv.mask_u : rv.mask_v)[at]) << k;
+    }
+  }
+  EXPECT_GT(outside, 0);
+  // The ring's ρ points, the boundary u (I = 1, L and along rows 0, M) and v points.
+  EXPECT_EQ(inside, (2 * (L + 1) + 2 * (M - 1)) + (2 * (M + 1) + 2 * (L - 2)) + (2 * (L + 1) + 2 * (M - 2)));
+  // Region 2 and everything but h and mask is untouched.
+  for (std::size_t k = static_cast<std::size_t>(r1.NendV); k < f.size(); ++k) {
+    EXPECT_EQ(f.h[k], plain.h[k]);
+    EXPECT_EQ(f.mask[k], plain.mask[k]);
+  }
+  EXPECT_EQ(f.Lweight, plain.Lweight);
+  EXPECT_EQ(f.pm, plain.pm);
+  aq::handoff::ReceiverValues short_rv = rv;
+  short_rv.mask_v.pop_back();
+  EXPECT_THROW((void)aq::handoff::refinement_contact(s.parent, b, fine_grid(s, b), kPad, nullptr, &short_rv),
+               aq::InternalError);
+}

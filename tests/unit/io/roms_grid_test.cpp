@@ -190,6 +190,68 @@ TEST(RomsGridFile, RefusesInconsistentData) {
   EXPECT_THROW(write_roms_grid(dir / "no_such_dir" / "x.nc", h.data), OutputError);
 }
 
+TEST(RomsGridFile, UpdatedCopyChangesDepthAndMasksOnly) {
+  // The parent of a refinement: a copy of the file with new h and masks and added attributes;
+  // every other variable, and the source file, unchanged.
+  Fixture f;
+  testing::TempDir dir;
+  write_roms_grid(dir / "parent_grd.nc", f.data);
+  const auto bytes = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string source = bytes(dir / "parent_grd.nc");
+  RomsGridUpdate u;
+  u.h.assign(f.grid.rho.size(), 77.0);
+  u.mask_rho.assign(f.grid.rho.size(), 1.0);
+  u.mask_u.assign(f.grid.u.size(), 0.0);
+  u.attributes = {
+      {"nested_child_grid", std::string("child_grd.nc")}, {"nested_refine_factor", std::int64_t{3}}, {"rlat", 1.5}};
+  u.history_append = "updated";
+  write_updated_roms_grid(dir / "parent_grd.nc", dir / "nested_grd.nc", u);
+  EXPECT_EQ(bytes(dir / "parent_grd.nc"), source);
+
+  int nc = -1;
+  ASSERT_EQ(nc_open((dir / "nested_grd.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  const auto var = [&](const char* name) {
+    int v = -1;
+    EXPECT_EQ(nc_inq_varid(nc, name, &v), NC_NOERR) << name;
+    return v;
+  };
+  std::vector<double> h(f.grid.rho.size()), mr(h.size()), mu(f.grid.u.size()), mv(f.grid.v.size()), pm(h.size()),
+      hraw(h.size());
+  nc_get_var_double(nc, var("h"), h.data());
+  nc_get_var_double(nc, var("mask_rho"), mr.data());
+  nc_get_var_double(nc, var("mask_u"), mu.data());
+  nc_get_var_double(nc, var("mask_v"), mv.data());
+  nc_get_var_double(nc, var("pm"), pm.data());
+  nc_get_var_double(nc, var("hraw"), hraw.data());
+  EXPECT_EQ(h, u.h);
+  EXPECT_EQ(mr, u.mask_rho);
+  EXPECT_EQ(mu, u.mask_u);
+  EXPECT_EQ(mv, std::vector<double>(mv.size(), 0.0));  // not in the update: as written
+  EXPECT_EQ(pm, f.grid.pm);
+  EXPECT_EQ(hraw, f.data.hraw);
+  EXPECT_EQ(text_att(nc, NC_GLOBAL, "history"), "test\nupdated");
+  EXPECT_EQ(text_att(nc, NC_GLOBAL, "nested_child_grid"), "child_grd.nc");
+  EXPECT_EQ(text_att(nc, NC_GLOBAL, "proj"), "ME");
+  double rlat = 0.0;
+  nc_get_att_double(nc, NC_GLOBAL, "rlat", &rlat);
+  EXPECT_EQ(rlat, 1.5);
+  int r = 0;
+  nc_get_att_int(nc, NC_GLOBAL, "nested_refine_factor", &r);
+  EXPECT_EQ(r, 3);
+  nc_close(nc);
+
+  RomsGridUpdate wrong;
+  wrong.h.assign(3, 1.0);
+  EXPECT_THROW(write_updated_roms_grid(dir / "parent_grd.nc", dir / "x.nc", wrong), InputError);
+  EXPECT_THROW(write_updated_roms_grid(dir / "missing_grd.nc", dir / "y.nc", u), InputError);
+  RomsGridUpdate reserved;
+  reserved.attributes = {{"type", std::string("x")}};
+  EXPECT_THROW(write_updated_roms_grid(dir / "parent_grd.nc", dir / "z.nc", reserved), InternalError);
+}
+
 TEST(RomsPicture, ShowsLandAndShadedWater) {
   Fixture f;
   testing::TempDir dir;
