@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -17,15 +18,9 @@ using ::testing::HasSubstr;
 namespace {
 const std::string kConfigs = std::string(AQ_SOURCE_DIR) + "/configs/";
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aq_bvp_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
+fs::path fresh_dir(const std::string& name) { return aq::test::fresh_dir("bvp_cli", name); }
 
-nlohmann::json report(const fs::path& dir, const std::string& name) {
-  return nlohmann::json::parse(std::ifstream(dir / (name + "_report.json")));
-}
+nlohmann::json report(const fs::path& dir, const std::string& name) { return aq::test::read_report(dir, name); }
 }  // namespace
 
 TEST(RegionalBvpCli, BlackSeaInThePlane) {

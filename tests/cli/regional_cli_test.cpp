@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -17,11 +18,7 @@ using ::testing::HasSubstr;
 namespace {
 const std::string kConfigs = std::string(AQ_SOURCE_DIR) + "/configs/";
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aq_regional_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
+fs::path fresh_dir(const std::string& name) { return aq::test::fresh_dir("regional_cli", name); }
 
 fs::path write_izogrid(const std::string& name, const std::string& points) {
   const fs::path dir = fs::temp_directory_path() / "aq_regional_cli_inputs";
