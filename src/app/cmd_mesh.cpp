@@ -166,9 +166,10 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
                      ? fmt::format("{} and {} squares", elements, g["squares"].get<std::int64_t>())
                      : fmt::format("{} squares", g["squares"].get<std::int64_t>());
     }
-    log.info("written in geographic coordinates: {} nodes, {} (the pole rows {}; the counts above are the lattice "
-             "mesh's)",
-             g["nodes"].get<std::int64_t>(), elements, g.contains("squares") ? "merged" : "re-templated");
+    log.info(
+        "written in geographic coordinates: {} nodes, {} (the pole rows {}; the counts above are the lattice "
+        "mesh's)",
+        g["nodes"].get<std::int64_t>(), elements, g.contains("squares") ? "merged" : "re-templated");
   }
   log.info("outputs in {}/: {} files + {} ({:.2f} s, peak {:.0f} MB)", c.output.dir, files.size(), report_name,
            total.wall_s(), static_cast<double>(peak_rss_bytes()) / 1048576.0);

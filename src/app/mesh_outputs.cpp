@@ -91,7 +91,8 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       for (const auto& line : g->describe()) log.info("geographic mesh: {}", line);
       // "geographic_mesh": the mesh of UGRID/text/VTU; with mesh.elements = "both" fort.14 writes
       // the triangles with the pole cap, reported as "geographic_mesh_fort14".
-      if (report != nullptr) (*report)[kinds == info.elements ? "geographic_mesh" : "geographic_mesh_fort14"] = g->json();
+      if (report != nullptr)
+        (*report)[kinds == info.elements ? "geographic_mesh" : "geographic_mesh_fort14"] = g->json();
     }
     return g->mesh();
   };

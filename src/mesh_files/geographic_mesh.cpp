@@ -109,9 +109,10 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     if (!has_row) continue;
     PoleChange c;
     c.north = north;
-    c.reason = squares_out ? fmt::format("mesh.elements = \"{}\" writes the squares, which a cap of triangles "
-                                         "cannot replace",
-                                         element_kinds_name(kinds))
+    c.reason = squares_out ? fmt::format(
+                                 "mesh.elements = \"{}\" writes the squares, which a cap of triangles "
+                                 "cannot replace",
+                                 element_kinds_name(kinds))
                            : cap_obstacle(lm, r);
     c.method = c.reason.empty() ? "cap" : "merge";
     if (c.reason.empty()) {
