@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "config/schema.hpp"
-#include "curvilinear/izogrid_file.hpp"
+#include "grid_params/izogrid_file.hpp"
 
 namespace aq::config {
 
@@ -261,7 +261,7 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "elliptic_tolerance") return p.elliptic_tolerance;
   if (key == "elliptic_iterations") return p.elliptic_iterations;
   if (key == "lwidth") return p.lwidth;
-  if (key == "solver") return p.solver == curvilinear::LaplaceOptions::Solver::kDst ? "dst" : "sor";
+  if (key == "solver") return p.solver == curvilinear::LaplaceSolver::kDst ? "dst" : "sor";
   if (key == "surface") return p.surface == curvilinear::RegionalSurface::kSphere ? "sphere" : "plane";
   if (key == "bvp_iterations") return p.bvp_iterations;
   if (key == "bvp_interpolation")

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "curvilinear/boundary_equidistribution.hpp"
-#include "curvilinear/control_function.hpp"
 #include "curvilinear/grid2d.hpp"
 #include "curvilinear/plane_point.hpp"
+#include "grid_params/control_function.hpp"
 
 namespace aq::curvilinear {
 

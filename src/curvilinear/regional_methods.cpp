@@ -128,7 +128,8 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
   GridMethod elliptic = p.method;
   switch (p.method) {
     case GridMethod::kConformal:
-      throw InternalError("build_method_grid: the conformal method is the izogrid pipeline");
+    case GridMethod::kBvp:
+      throw InternalError("build_method_grid: the conformal and bvp methods are the izogrid pipeline's stages");
     case GridMethod::kStar: {
       run.grid = Grid2D(nodes.nx_pts, nodes.ny_pts);
       set_grid_boundary(contour, nodes, run.grid);

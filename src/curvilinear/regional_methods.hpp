@@ -22,14 +22,14 @@
 
 #include "core/log.hpp"
 #include "curvilinear/boundary_nodes.hpp"
-#include "curvilinear/control_function.hpp"
 #include "curvilinear/elliptic_grids.hpp"
 #include "curvilinear/grid2d.hpp"
 #include "curvilinear/grid_selection.hpp"
 #include "curvilinear/initial_grids.hpp"
 #include "curvilinear/projection.hpp"
-#include "curvilinear/regional_params.hpp"
 #include "curvilinear/spline_contour.hpp"
+#include "grid_params/control_function.hpp"
+#include "grid_params/regional_params.hpp"
 
 namespace aq::curvilinear {
 

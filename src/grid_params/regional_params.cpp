@@ -1,5 +1,5 @@
 // Validation of RegionalParams (seed 000 Appendix 1 ranges; digest izogrid.md §2.2).
-#include "curvilinear/regional_params.hpp"
+#include "grid_params/regional_params.hpp"
 
 #include <fmt/format.h>
 
@@ -8,50 +8,6 @@
 #include "core/error.hpp"
 
 namespace aq::curvilinear {
-
-ProjectionParams projection_params(const RegionalParams& p) {
-  ProjectionParams q;
-  q.kind = p.proj;
-  q.rlat_deg = p.rlat;
-  q.rlon_deg = p.rlon;
-  q.rota_deg = p.rota;
-  q.lat1_deg = p.lat1;
-  q.lat2_deg = p.lat2;
-  q.uscale = p.uscale;
-  q.radius_m = p.radius;
-  return q;
-}
-
-const char* grid_method_name(GridMethod m) {
-  switch (m) {
-    case GridMethod::kConformal:
-      return "conformal";
-    case GridMethod::kBvp:
-      return "bvp";
-    case GridMethod::kTfi:
-      return "tfi";
-    case GridMethod::kStar:
-      return "star";
-    case GridMethod::kEd2:
-      return "ed2";
-    case GridMethod::kRl:
-      return "rl";
-    case GridMethod::kBest:
-      return "best";
-  }
-  return "?";
-}
-
-bool parse_grid_method(std::string_view text, GridMethod& out) {
-  for (const GridMethod m : {GridMethod::kConformal, GridMethod::kBvp, GridMethod::kTfi, GridMethod::kStar,
-                             GridMethod::kEd2, GridMethod::kRl, GridMethod::kBest}) {
-    if (text == grid_method_name(m)) {
-      out = m;
-      return true;
-    }
-  }
-  return false;
-}
 
 std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p) {
   std::vector<std::pair<std::string, std::string>> bad;
