@@ -117,14 +117,19 @@ const S& schema() {
     }
     t.add<int>(
         "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
-    t.add_custom(
-        "regional", "sections",
-        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-          std::vector<std::vector<double>> secs;
-          if (auto err = detail::convert(v, secs)) return p.add(o, "regional.sections", *err);
-          c.params.sections = secs;  // checked by regional_params_problems()
-        },
-        [](const RegionalConfig& c) { return Json(c.params.sections); }, "");
+    using Sections = std::vector<std::vector<double>>;
+    for (const auto& [name, member] : {std::pair{"sections", &curvilinear::RegionalParams::sections},
+                                       std::pair{"sections_eta", &curvilinear::RegionalParams::sections_eta}}) {
+      const std::string key = std::string("regional.") + name;
+      t.add_custom(
+          "regional", name,
+          [member, key](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+            Sections secs;
+            if (auto err = detail::convert(v, secs)) return p.add(o, key, *err);
+            c.params.*member = secs;  // checked by regional_params_problems()
+          },
+          [member](const RegionalConfig& c) { return Json(c.params.*member); }, "");
+    }
     t.add_custom(
         "input", "path",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {

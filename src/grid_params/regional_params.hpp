@@ -147,6 +147,10 @@ struct RegionalParams {
   /// at the grid column nearest q1·(L−1), 0 < q1 < 1, through the optional interior points (plane
   /// units, or lon/lat when points = lonlat).
   std::vector<std::vector<double>> sections;
+  /// Internal sections along η (TOML `sections_eta` only): each {q2, x1, y1, ...}: the section at
+  /// the grid row nearest q2·(M−1), 0 < q2 < 1, from the west side to the east side. Not together
+  /// with `sections`: TFI blends between the sections of one direction.
+  std::vector<std::vector<double>> sections_eta;
 
   // --- execution and provenance --------------------------------------------------------------
   /// [threads] OpenMP threads for IZ89 and the fill; 0 = the OpenMP default. Results do not
