@@ -14,12 +14,12 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/mesh_outputs.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "io/mesh_outputs.hpp"
 #include "mesh/statistics.hpp"
 #include "raster/bathymetry.hpp"
 
