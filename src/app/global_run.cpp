@@ -18,16 +18,20 @@ namespace {
 
 // The memory model of a global run (README "Big rasters"; the estimate is printed before the run
 // and written to the report beside the measured peak):
-//   raster   held whole: 4 bytes per raster cell (16 with bicubic slopes);
+//   raster   held whole: 4 bytes per raster cell (16 with bicubic slopes) and a 64 MB read chunk;
 //            streamed: two bands of rows (~64 MB each as float32) and their read buffers;
-//   lattice  12 full-lattice bitmaps at peak (wet vertices, classes, fill, pinches, quadtree
-//            levels): 12 bits = 1.5 bytes per lattice pixel;
-//   mesh     kMeshBytesPerTriangle per triangle (nodes, squares, triangles, statistics, writers),
-//            with the triangle count guessed before the run as kTrianglesPerSqrtPixel·√(nx·ny)
-//            (the refinement follows the coast, whose length in pixels grows like the side of the
-//            lattice; measured on ETOPO5 resamples at 1', 30" and 15").
-constexpr double kLatticeBitsPerPixel = 12.0;
-constexpr double kMeshBytesPerTriangle = 130.0;
+//   lattice  kLatticeBitsPerPixel: the wet-vertex, class, fill and quadtree bitmaps alive at the
+//            fill/quadtree peak (about 7 full-lattice bitmaps measured at 15"; 8 bits = 1 byte per
+//            lattice pixel);
+//   mesh     kMeshBytesPerTriangle per triangle (nodes, squares, triangles, statistics, writers;
+//            120 measured at 15", 130 at 1'), with the triangle count guessed before the run as
+//            kTrianglesPerSqrtPixel·√(nx·ny): the refinement follows the coast, whose length in
+//            pixels grows like the side of the lattice (1': 5.3 million triangles, 15": 20.1 million
+//            on ETOPO5 resamples).
+// Measured peak / estimate: 1' whole 2.07 / 2.04 GB, 1' streamed 1.17 / 1.32 GB, 15" streamed
+// 5.76 / 7.06 GB.
+constexpr double kLatticeBitsPerPixel = 8.0;
+constexpr double kMeshBytesPerTriangle = 140.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 64LL << 20;  // program, GDAL cache, small tables
 

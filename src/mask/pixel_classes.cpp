@@ -207,7 +207,7 @@ Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& latti
   bathy.sample_rows(
       cols, lats.data(), nv,
       [&wv, nx, threshold](std::int64_t J, const float* values) { threshold_row(values, nx, threshold, wv.row(J)); },
-      progress ? ProgressFn([&progress](double f, std::string_view) { progress(f, "vertices"); }) : ProgressFn());
+      progress);
   return wv;
 }
 

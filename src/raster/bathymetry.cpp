@@ -467,7 +467,8 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
   }
 }
 
-void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out) const {
+void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                               const ProgressFn& progress) const {
   const Impl* im = impl_.get();
   if (!im->info.streamed) {
 #pragma omp parallel for default(none) shared(im, lon_deg, lat_deg, n, out) schedule(static) if (n > 20000)
@@ -518,7 +519,7 @@ void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std
       out[k] = bilinear4(p0[c0], p0[c1], p1[c0], p1[c1], t, u);
     }
   };
-  im->stream(wanted, work, nullptr, {}, "points");
+  im->stream(wanted, work, nullptr, progress, "bands of raster rows");
 }
 
 Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n) const {
@@ -620,7 +621,7 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
       }
     }
   };
-  im.stream(wanted, work, stats, progress, "rows");
+  im.stream(wanted, work, stats, progress, "bands of raster rows");
   if (stats != nullptr) {
     im.set_stats(im.stats_rows);
     im.stats_rows = {};
@@ -817,9 +818,8 @@ RasterPlan plan_raster(const OpenOptions& options) {
   p.streamed = i.streamed;
   p.block_rows = i.block_rows;
   p.band_rows = i.band_rows;
-  p.bytes = i.streamed
-                ? i.memory_bytes
-                : estimate_raster_bytes(i.ncols, i.nrows) * (options.interpolation == Interpolation::kBicubic ? 4 : 1);
+  const std::int64_t factor = options.interpolation == Interpolation::kBicubic ? 4 : 1;
+  p.bytes = i.streamed ? i.memory_bytes : estimate_raster_bytes(i.ncols, i.nrows) * factor + (64LL << 20);
   return p;
 }
 

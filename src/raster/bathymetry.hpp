@@ -108,7 +108,8 @@ class Bathymetry {
   [[nodiscard]] double sample(double lon_deg, double lat_deg) const;
   /// Samples n points; thread-safe, parallel inside (OpenMP) when n is large. Streamed: one
   /// banded pass over the rows the points need (points grouped by row), same values bit for bit.
-  void sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out) const;
+  void sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                     const ProgressFn& progress = {}) const;
 
   /// Fast separable sampling of a lattice row: out[k] = sample(lons[k], lat) for k < n, using
   /// precomputed column weights (`prepare_columns`). Thread-safe.
