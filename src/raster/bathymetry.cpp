@@ -610,7 +610,8 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
   const auto work = [&](std::int64_t s, const float* buf) {
     const std::vector<std::int64_t>& ks = rows[static_cast<std::size_t>(s)];
     const std::int64_t lo = g.lo(s), m = static_cast<std::int64_t>(ks.size());
-#pragma omp parallel default(none) shared(ks, buf, cols, sink, r0s, r1s, us, lo, m, nc, ncols) if (parallel)
+#pragma omp parallel default(none) \
+    shared(ks, buf, cols, sink, r0s, r1s, us, lo, m, nc, ncols) if (m * nc >= (std::int64_t{1} << 16))
     {
       std::vector<float> out(static_cast<std::size_t>(nc));
 #pragma omp for schedule(static)
