@@ -11,10 +11,6 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "app/global_run.hpp"
 #include "config/load.hpp"
 #include "mask/pixel_classes.hpp"
@@ -35,14 +31,6 @@ raster::Bathymetry open(const std::string& path, bool streamed, std::int64_t ban
   return raster::Bathymetry::open(o);
 }
 
-void set_threads(int n) {
-#ifdef _OPENMP
-  omp_set_num_threads(n);
-#else
-  (void)n;
-#endif
-}
-
 void expect_same_classes(const std::string& path, const Lattice& lat, std::int64_t block_rows) {
   mask::ClassifyOptions co;
   co.min_depth_m = 10.0;
@@ -51,7 +39,7 @@ void expect_same_classes(const std::string& path, const Lattice& lat, std::int64
   EXPECT_GT(whole.coastal_count, 0);
   for (const std::int64_t band : {std::int64_t{1}, std::int64_t{7}, block_rows}) {
     for (const int threads : {1, 2}) {
-      set_threads(threads);
+      test::set_threads(threads);
       const raster::Bathymetry s = open(path, true, band);
       ASSERT_TRUE(s.info().streamed);
       const mask::PixelClasses pc = mask::classify_pixels(s, lat, PoleRotation(), co);
@@ -62,7 +50,7 @@ void expect_same_classes(const std::string& path, const Lattice& lat, std::int64
       EXPECT_EQ(pc.coastal_count, whole.coastal_count);
     }
   }
-  set_threads(2);
+  test::set_threads(2);
 }
 
 TEST(StreamedInput, Etopo5ClassesEqualWholeRaster) {

@@ -1,4 +1,5 @@
-// Test helper: small synthetic global rasters written through GDAL (streamed-input tests).
+// Test helpers of the streamed-input tests: small synthetic global rasters written through GDAL,
+// and the OpenMP thread count.
 #pragma once
 
 #include <gdal_priv.h>
@@ -12,9 +13,22 @@
 #include <string>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace aq::test {
 
 namespace fs = std::filesystem;
+
+/// OpenMP threads for what follows (1 vs 2 threads must give the same bits).
+inline void set_threads(int n) {
+#ifdef _OPENMP
+  omp_set_num_threads(n);
+#else
+  (void)n;
+#endif
+}
 
 /// A per-process scratch folder for the rasters.
 inline fs::path synthetic_dir() {

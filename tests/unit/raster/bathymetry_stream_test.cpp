@@ -16,10 +16,6 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "raster/bathymetry.hpp"
 #include "support/synthetic_raster.hpp"
 
@@ -88,14 +84,6 @@ void expect_same_stats(const Bathymetry& a, const Bathymetry& b) {
   EXPECT_EQ(a.info().mean_m, b.info().mean_m);
 }
 
-void set_threads(int n) {
-#ifdef _OPENMP
-  omp_set_num_threads(n);
-#else
-  (void)n;
-#endif
-}
-
 struct FileCase {
   const char* name;
   bool north_up, tiled;
@@ -113,7 +101,7 @@ TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
   // Band heights 1, 7, the block height (16 rows tiled, 1 striped) and the default.
   for (const std::int64_t band : {std::int64_t{1}, std::int64_t{7}, std::int64_t{16}, std::int64_t{0}}) {
     for (const int threads : {1, 2}) {
-      set_threads(threads);
+      aq::test::set_threads(threads);
       const Bathymetry s = open(p, true, band);
       ASSERT_TRUE(s.info().streamed);
       EXPECT_EQ(s.info().block_rows, fc.tiled ? 16 : 1);
@@ -129,7 +117,7 @@ TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
       EXPECT_TRUE(same_bits(va, vb));
     }
   }
-  set_threads(2);
+  aq::test::set_threads(2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Layouts, StreamedTiff,
