@@ -646,6 +646,8 @@ Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, 
   auto im = std::make_unique<Impl>();
   im->v = std::move(values);
   im->interp = interpolation;
+  im->row_lo = 0;
+  im->row_hi = nrows;
   auto& i = im->info;
   i.path = "<memory>";
   i.driver = "memory";
