@@ -106,6 +106,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   report["config"]["blocks"]["top"] = c.blocks.top;
 
   const GlobalSetup setup = prepare_global_run(c);
+  log_memory_estimate(setup, log);
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;
   log.info(

@@ -86,6 +86,8 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
            c.rotation.enabled ? fmt::format(", pole at ({}, {})", c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
                               : std::string());
 
+  log_memory_estimate(setup, log);
+
   // Fail on an unwritable output folder before the work, not after.
   OutputSet out(c.output.dir);
 
@@ -129,6 +131,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
              {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
              {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
   }
+  report["memory"] = memory_json(setup);
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
   const std::string report_name = c.output.name + "_report.json";

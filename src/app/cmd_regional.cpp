@@ -41,6 +41,14 @@ struct RegionalArgs {
 };
 
 // Longitude/latitude box of the picture: the edges given, else the contour's extent padded.
+// Raster options reading only the rows of [lat_min, lat_max] with a 0.5° margin.
+raster::OpenOptions window_options(const config::InputOptions& input, double lat_min, double lat_max) {
+  raster::OpenOptions o = raster_options(input, 0);
+  o.lat_min = std::max(-90.0, lat_min - 0.5);
+  o.lat_max = std::min(90.0, lat_max + 0.5);
+  return o;
+}
+
 std::array<double, 4> picture_box(const curvilinear::RegionalResult& r) {
   const auto& p = r.params;
   if (std::isfinite(p.west_edge) && std::isfinite(p.east_edge) && std::isfinite(p.south_edge) &&
@@ -121,8 +129,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   po.title = fmt::format("{}: {}", c.name, curvilinear::stage_name(result.completed));
   if (!a.no_coastline && !c.input.path.empty() && result.projection) {
     StageScope cs("coastline", &report, log);
-    const auto bathy = raster::Bathymetry::open(raster_options(c.input, 0), log);
     const auto box = picture_box(result);
+    const auto bathy = raster::Bathymetry::open(window_options(c.input, box[2], box[3]), log);
     const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
     std::size_t points = 0;
     for (const auto& l : lines) {

@@ -27,11 +27,22 @@ struct GlobalSetup {
   PoleRotation rotation;
   std::int64_t memory_limit_bytes = 0;  ///< input.max_memory_gb, or 80% of RAM
   std::int64_t lattice_bytes = 0;       ///< estimated bitmaps of the mask and quadtree stages
+  std::int64_t triangles_guess = 0;     ///< triangle count guessed before the run (memory model)
+  std::int64_t mesh_bytes = 0;          ///< estimated mesh, statistics and writers
+  raster::RasterPlan raster;            ///< whole or streamed, from the raster's header
+  raster::OpenOptions raster_options;   ///< how the pipeline opens it
+  std::int64_t estimate_bytes = 0;      ///< the whole run (global_run.cpp states the model)
 };
 
-/// Builds the lattice and rotation of `c` and refuses (ConfigError naming quadtree.levels,
-/// quadtree.step_deg and input.max_memory_gb) a lattice whose bitmaps would not fit.
+/// Builds the lattice and rotation of `c`, reads the raster's header (whole or streamed) and
+/// refuses, before any data is read, a lattice whose bitmaps would not fit (ConfigError naming
+/// quadtree.levels, quadtree.step_deg and input.max_memory_gb) or a run whose memory estimate is
+/// above input.max_memory_gb (ConfigError naming the key, the estimate and the limit).
 GlobalSetup prepare_global_run(const config::GlobalConfig& c);
+/// The report's "memory" section: the estimate, its parts and the peak RSS so far.
+Json memory_json(const GlobalSetup& s);
+/// "memory: estimate ... of ... allowed" before the run.
+void log_memory_estimate(const GlobalSetup& s, const Logger& log);
 
 /// Everything the pipeline built; the raster stays open for depths and pictures.
 struct GlobalRun {

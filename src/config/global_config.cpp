@@ -2,6 +2,7 @@
 // without documenting it in configs/example.toml fails tests/unit/config/example_toml_test.
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "config/load.hpp"
@@ -128,6 +129,9 @@ const S& schema() {
           std::string x;
           if (auto err = detail::convert(v, x)) return p.add(o, "input.path", *err);
           if (x.empty()) return p.add(o, "input.path", "must not be empty");
+          // "~/..." is the user's home (configs/global_15s.toml names the cached 15" raster so).
+          const char* home = std::getenv("HOME");
+          if (x.rfind("~/", 0) == 0 && home != nullptr && *home != '\0') x = std::string(home) + x.substr(1);
           std::filesystem::path path(x);
           if (path.is_relative()) path = o.base_dir / path;
           c.input.path = path.lexically_normal().string();

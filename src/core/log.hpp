@@ -41,10 +41,16 @@ class Logger {
     log(LogLevel::kDebug, fmt::format(f, std::forward<Args>(args)...));
   }
 
-  /// A progress callback for a stage; draws a bar on a terminal, nothing otherwise.
+  /// A progress callback for a stage (stage, percent, rate in %/s, ETA). On a terminal one line
+  /// is redrawn (\r); otherwise (the default stderr logger writing to a file or a pipe) a plain
+  /// line "stage: 42% label, 1.9 %/s, ETA 0:30" every kPlainEvery seconds once the stage has run
+  /// that long, so short runs print nothing extra. Call it from one thread at a time.
   [[nodiscard]] ProgressFn progress(std::string stage) const;
-  /// Whether progress bars are drawn (stderr is a terminal and level <= info).
+  /// Progress bars on a terminal: on or off (default: stderr is a terminal).
   void set_progress_enabled(bool on) { progress_enabled_ = on; }
+  /// Plain progress lines (default: on for the stderr logger when stderr is not a terminal).
+  void set_progress_lines(bool on) { progress_lines_ = on; }
+  static constexpr double kPlainEvery = 10.0;
 
   /// A logger that discards everything (for tests and library defaults).
   static const Logger& null();
@@ -53,6 +59,7 @@ class Logger {
   Sink sink_;
   LogLevel min_level_ = LogLevel::kInfo;
   bool progress_enabled_ = false;
+  bool progress_lines_ = false;
 };
 
 }  // namespace aq

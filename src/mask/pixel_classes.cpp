@@ -13,48 +13,13 @@
 #endif
 
 #include "core/error.hpp"
+#include "core/row_progress.hpp"
 #include "mask/bit_rows.hpp"
 #include "mask/lattice_coords.hpp"
 
 namespace aq::mask {
 
 namespace {
-
-// Progress of a parallel loop over rows with schedule(static) and no barriers: thread 0 (the
-// calling thread) reports the fraction of its own contiguous chunk done, which tracks the whole
-// loop; the owner calls finish() after the loop. One parallel region per pass keeps the cost of
-// barriers out of the loop (they are expensive when the cores are shared).
-class RowProgress {
- public:
-  RowProgress(const ProgressFn& fn, std::int64_t rows, const char* label) : fn_(fn), rows_(rows), label_(label) {}
-  // Call once per row from inside the loop.
-  void row_done() {
-    if (!fn_) return;
-#ifdef _OPENMP
-    if (omp_get_thread_num() != 0) return;
-    const std::int64_t t = omp_get_num_threads();
-#else
-    const std::int64_t t = 1;
-#endif
-    const std::int64_t chunk = rows_ / t + (rows_ % t != 0 ? 1 : 0);  // thread 0's static chunk
-    ++done_;
-    const std::int64_t pct = 100 * done_ / std::max<std::int64_t>(chunk, 1);
-    if (pct != last_pct_ && pct < 100) {
-      last_pct_ = pct;
-      fn_(static_cast<double>(pct) / 100.0, label_);
-    }
-  }
-  void finish() const {
-    if (fn_) fn_(1.0, label_);
-  }
-
- private:
-  const ProgressFn& fn_;
-  std::int64_t rows_;
-  const char* label_;
-  std::int64_t done_ = 0;
-  std::int64_t last_pct_ = -1;
-};
 
 // out bit k = (values[k] <= threshold) for k < n; NaN compares false (dry).
 template <typename T>
@@ -235,19 +200,14 @@ Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& latti
   std::vector<double> lons(static_cast<std::size_t>(nx));
   for (std::int64_t I = 0; I < nx; ++I) lons[static_cast<std::size_t>(I)] = vertex_lattice_deg(lattice, I, 0).lon_deg;
   const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), nx);
-  RowProgress rp(progress, nv, "vertices");
-#pragma omp parallel default(none) \
-    shared(bathy, lattice, cols, wv, rp, nv, nx, threshold) if (nx * nv >= kParallelMinSamples)
-  {
-    std::vector<float> buf(static_cast<std::size_t>(nx));
-#pragma omp for schedule(static)
-    for (std::int64_t J = 0; J < nv; ++J) {
-      bathy.sample_row(cols, vertex_lattice_deg(lattice, 0, J).lat_deg, buf.data());
-      threshold_row(buf.data(), nx, threshold, wv.row(J));
-      rp.row_done();
-    }
-  }
-  rp.finish();
+  std::vector<double> lats(static_cast<std::size_t>(nv));
+  for (std::int64_t J = 0; J < nv; ++J) lats[static_cast<std::size_t>(J)] = vertex_lattice_deg(lattice, 0, J).lat_deg;
+  // Row by row (a streamed raster: band by band of raster rows, each read once); each vertex row
+  // is thresholded straight into its bitmap row.
+  bathy.sample_rows(
+      cols, lats.data(), nv,
+      [&wv, nx, threshold](std::int64_t J, const float* values) { threshold_row(values, nx, threshold, wv.row(J)); },
+      progress);
   return wv;
 }
 
@@ -285,6 +245,11 @@ PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lat
   check_depth(options.min_depth_m);
   PixelClasses pc;
   const bool area = options.sampling == Sampling::kArea;
+  if (bathy.info().streamed && (area || !rot.identity())) {
+    throw ConfigError(fmt::format(
+        "{}: a streamed raster (not held whole) supports the unrotated vertex rule only; {} needs the raster whole",
+        bathy.info().path, area ? "mask.sampling = \"area\"" : "rotation.enabled = true"));
+  }
   ProgressFn vertex_progress;
   if (options.progress) {
     const ProgressFn& p = options.progress;

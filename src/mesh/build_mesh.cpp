@@ -132,7 +132,7 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   }
   const double coords_s = t_coords.wall_s();
   Timer t_depth;
-  bathy.sample_points(mesh.lon_deg.data(), mesh.lat_deg.data(), n, mesh.depth_m.data());
+  bathy.sample_points(mesh.lon_deg.data(), mesh.lat_deg.data(), n, mesh.depth_m.data(), log.progress("depths"));
   const double depth_s = t_depth.wall_s();
 
   // Squares and triangles.

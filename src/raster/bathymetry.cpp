@@ -12,10 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <limits>
 #include <mutex>
 
 #include "core/error.hpp"
+#include "core/row_progress.hpp"
 #include "core/timer.hpp"
 #include "raster/spline1d.hpp"
 
@@ -106,17 +108,169 @@ DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
   return ds;
 }
 
+// Bilinear value on the cell (a = (c0, r0), b = (c1, r0), c = (c0, r1), d = (c1, r1)) at weights
+// t (of c1) and u (of r1): the one formula of every path (whole, row, banded, streamed).
+inline double bilinear4(double a, double b, double c, double d, double t, double u) {
+  // Exact grid values where the weights vanish (no 0·NaN, no rounding).
+  if (t == 0.0 && u == 0.0) return a;
+  const double lo = (t == 0.0) ? a : (1.0 - t) * a + t * b;
+  if (u == 0.0) return lo;
+  const double hi = (t == 0.0) ? c : (1.0 - t) * c + t * d;
+  return (1.0 - u) * lo + u * hi;
+}
+
+// Statistics of one normalised row; combined in row order, so the whole and streamed paths
+// give the same min/max/mean bit for bit.
+struct RowStats {
+  double mn = std::numeric_limits<double>::infinity(), mx = -std::numeric_limits<double>::infinity(), sum = 0.0;
+  std::int64_t count = 0;
+};
+
+RowStats row_stats(const float* row, std::int64_t n) {
+  RowStats s;
+  for (std::int64_t c = 0; c < n; ++c) {
+    const float x = row[c];
+    if (std::isnan(x)) continue;
+    s.mn = std::min(s.mn, static_cast<double>(x));
+    s.mx = std::max(s.mx, static_cast<double>(x));
+    s.sum += x;
+    ++s.count;
+  }
+  return s;
+}
+
+// A streamed pass reads the file in bands of stored rows [s·B, (s+1)·B), in storage order, each
+// with the stored row just before it (the row the previous band ended with: copied when that band
+// was read, read again otherwise). In normalised (south-up) rows the buffer of band s holds
+// [lo, hi); a sample between rows r0 <= r1 = r0 + 1 belongs to the band whose own stored rows
+// hold its key row (r0 for a north-up file, r1 for a south-up one), so both rows are in its buffer.
+struct BandGeometry {
+  std::int64_t h = 0, rows = 1;  // stored rows, rows per band
+  bool north_up = true;
+  [[nodiscard]] std::int64_t count() const { return (h + rows - 1) / rows; }
+  [[nodiscard]] std::int64_t first(std::int64_t s) const { return std::max<std::int64_t>(0, s * rows - 1); }
+  [[nodiscard]] std::int64_t end(std::int64_t s) const { return std::min(h, (s + 1) * rows); }
+  [[nodiscard]] std::int64_t lo(std::int64_t s) const { return north_up ? h - end(s) : first(s); }
+  [[nodiscard]] std::int64_t hi(std::int64_t s) const { return north_up ? h - first(s) : end(s); }
+  [[nodiscard]] std::int64_t band_of(std::int64_t r0, std::int64_t r1) const {
+    const std::int64_t y = north_up ? h - 1 - r0 : r1;
+    return y / rows;
+  }
+};
+
+// out[k] = the bilinear value between rows p0 (r0) and p1 (r1) at weight u, columns of `cols`.
+void fill_row(const float* p0, const float* p1, const Bathymetry::Columns& cols, double u, float* out) {
+  const auto n = static_cast<std::int64_t>(cols.c0.size());
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto s = static_cast<std::size_t>(k);
+    const std::int64_t c0 = cols.c0[s], c1 = cols.c1[s];
+    out[k] = c0 < 0 ? std::numeric_limits<float>::quiet_NaN()
+                    : static_cast<float>(bilinear4(p0[c0], p0[c1], p1[c0], p1[c1], cols.t[s], u));
+  }
+}
+
 }  // namespace
 
 struct Bathymetry::Impl {
-  RasterInfo info;
-  std::vector<float> v;            // ncols × nrows, south-up
+  mutable RasterInfo info;         // a streamed raster's statistics and pass count are filled while sampling
+  std::vector<float> v;            // ncols × (row_hi - row_lo), south-up (empty when streamed)
   std::vector<float> fx, fy, fxy;  // bicubic: slopes per degree, only when bicubic
   Interpolation interp = Interpolation::kBilinear;
   bool global_lat = false;
+  std::int64_t row_lo = 0, row_hi = 0;  // normalised rows held in v (a latitude window)
+
+  // Reading (whole: during open; streamed: on every pass). GDAL datasets are not thread-safe:
+  // one read at a time.
+  DatasetPtr ds;
+  GDALRasterBand* band = nullptr;
+  double sgn = 1.0;
+  int band_number = 1;
+  mutable std::mutex io;
+  mutable std::vector<RowStats> stats_rows;  // streamed: per normalised row, filled by the first pass
+  mutable bool stats_done = false;
 
   [[nodiscard]] std::size_t idx(std::int64_t c, std::int64_t r) const {
-    return static_cast<std::size_t>(r * info.ncols + c);
+    return static_cast<std::size_t>((r - row_lo) * info.ncols + c);
+  }
+  [[nodiscard]] const float* row_ptr(std::int64_t r) const { return v.data() + (r - row_lo) * info.ncols; }
+
+  // Reads stored rows [y0, y1) and writes them normalised (orientation, duplicated column,
+  // no-data, scale/offset, sign) to dst, normalised row r at dst + (r - lo)·ncols. `raw` is scratch
+  // (resized). Records per-row statistics in `stats` (indexed by normalised row) when given.
+  void read_stored(std::int64_t y0, std::int64_t y1, float* dst, std::int64_t lo, std::vector<float>& raw,
+                   RowStats* stats) const {
+    const std::int64_t w = info.width, h = info.height, ny = y1 - y0;
+    raw.resize(static_cast<std::size_t>(ny * w));
+    {
+      const std::lock_guard<std::mutex> lock(io);
+      if (band->RasterIO(GF_Read, 0, static_cast<int>(y0), static_cast<int>(w), static_cast<int>(ny), raw.data(),
+                         static_cast<int>(w), static_cast<int>(ny), GDT_Float32, 0, 0, nullptr) != CE_None) {
+        throw InputError(fmt::format("{}: read error at rows {}..{}{}", info.path, y0, y1 - 1, gdal_message()));
+      }
+    }
+    for (std::int64_t yy = 0; yy < ny; ++yy) {
+      const std::int64_t y = y0 + yy;
+      const std::int64_t r = info.north_up ? h - 1 - y : y;
+      const float* src = raw.data() + yy * w;
+      float* out = dst + (r - lo) * info.ncols;
+      for (std::int64_t c = 0; c < info.ncols; ++c) out[c] = normalise(src[c]);
+      if (stats != nullptr) stats[r] = row_stats(out, info.ncols);
+    }
+  }
+
+  // Normalised rows [r_lo, r_lo + nr) into dst (streamed reads, any order of the file).
+  void read_rows(std::int64_t r_lo, std::int64_t nr, float* dst) const {
+    std::vector<float> raw;
+    const std::int64_t h = info.height;
+    const std::int64_t y0 = info.north_up ? h - (r_lo + nr) : r_lo;
+    read_stored(y0, y0 + nr, dst, r_lo, raw, nullptr);
+  }
+
+  [[nodiscard]] BandGeometry bands() const { return BandGeometry{info.height, info.band_rows, info.north_up}; }
+
+  // One streamed pass: for every band s with wanted(s) (all bands when `all`), read its buffer
+  // (normalised rows [lo(s), hi(s))) and call work(s, buffer). The next wanted band is read by a
+  // second thread while work runs. Records row statistics when `stats` is given.
+  template <typename Wanted, typename Work>
+  void stream(const Wanted& wanted, const Work& work, RowStats* stats, const ProgressFn& progress,
+              std::string_view label) const {
+    const BandGeometry g = bands();
+    const std::int64_t nb = g.count(), nc = info.ncols;
+    std::vector<std::int64_t> todo;
+    for (std::int64_t s = 0; s < nb; ++s)
+      if (stats != nullptr || wanted(s)) todo.push_back(s);
+    std::vector<float> buf[2];
+    std::vector<float> raw[2];
+    for (auto& b : buf) b.resize(static_cast<std::size_t>((g.rows + 1) * nc));
+    // Reads band todo[k] into buf[k % 2]; copies the carried row from band todo[k-1] when that
+    // band is the previous one in storage order (its buffer is only read meanwhile).
+    const auto read = [&](std::size_t k) {
+      const std::int64_t s = todo[k];
+      float* dst = buf[k % 2].data();
+      const std::int64_t lo = g.lo(s);
+      std::int64_t y0 = g.first(s);
+      if (s > 0 && k > 0 && todo[k - 1] == s - 1) {
+        const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
+        const float* prev = buf[(k - 1) % 2].data() + (r - g.lo(s - 1)) * nc;
+        std::copy(prev, prev + nc, dst + (r - lo) * nc);
+        ++y0;
+      }
+      read_stored(y0, g.end(s), dst, lo, raw[k % 2], stats);
+    };
+    ++info.passes;
+    if (todo.empty()) return;
+    std::future<void> next = std::async(std::launch::async, read, std::size_t{0});
+    for (std::size_t k = 0; k < todo.size(); ++k) {
+      next.get();
+      if (k + 1 < todo.size()) next = std::async(std::launch::async, read, k + 1);
+      try {
+        if (wanted(todo[k])) work(todo[k], static_cast<const float*>(buf[k % 2].data()));
+      } catch (...) {
+        if (next.valid()) next.wait();
+        throw;
+      }
+      if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
+    }
   }
 
   // Column position: c0, t (c1 = next column, wrapped). Returns false outside coverage.
@@ -154,18 +308,14 @@ struct Bathymetry::Impl {
     r0 = std::min<std::int64_t>(static_cast<std::int64_t>(std::floor(y)), n - 1);
     u = y - static_cast<double>(r0);
     r1 = std::min<std::int64_t>(r0 + 1, n - 1);
-    return true;
+    return info.streamed || (r0 >= row_lo && r1 < row_hi);  // a latitude window: NaN outside
   }
 
   [[nodiscard]] double bilinear(std::int64_t c0, std::int64_t c1, double t, std::int64_t r0, std::int64_t r1,
                                 double u) const {
-    const double a = v[idx(c0, r0)], b = v[idx(c1, r0)], c = v[idx(c0, r1)], d = v[idx(c1, r1)];
-    // Exact grid values where the weights vanish (no 0·NaN, no rounding).
-    if (t == 0.0 && u == 0.0) return a;
-    const double lo = (t == 0.0) ? a : (1.0 - t) * a + t * b;
-    if (u == 0.0) return lo;
-    const double hi = (t == 0.0) ? c : (1.0 - t) * c + t * d;
-    return (1.0 - u) * lo + u * hi;
+    const float* p0 = row_ptr(r0);
+    const float* p1 = row_ptr(r1);
+    return bilinear4(p0[c0], p0[c1], p1[c0], p1[c1], t, u);
   }
 
   [[nodiscard]] double bicubic(std::int64_t c0, std::int64_t c1, double t, std::int64_t r0, std::int64_t r1,
@@ -194,25 +344,52 @@ struct Bathymetry::Impl {
     std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
     double t = 0.0, u = 0.0;
     if (!col(lon, c0, c1, t) || !row(lat, r0, r1, u)) return kNaN;
+    if (info.streamed)
+      return bilinear4(read_value(c0, r0), read_value(c1, r0), read_value(c0, r1), read_value(c1, r1), t, u);
     if (interp == Interpolation::kBicubic && !fx.empty()) return bicubic(c0, c1, t, r0, r1, u);
     return bilinear(c0, c1, t, r0, r1, u);
   }
 
-  void compute_stats() {
-    double mn = std::numeric_limits<double>::infinity(), mx = -mn, sum = 0.0;
-    std::int64_t count = 0;
-    for (const float x : v) {
-      if (std::isnan(x)) continue;
-      mn = std::min(mn, static_cast<double>(x));
-      mx = std::max(mx, static_cast<double>(x));
-      sum += x;
-      ++count;
+  // One value of a streamed raster (normalised column c, row r, both in range).
+  [[nodiscard]] float read_value(std::int64_t c, std::int64_t r) const {
+    float x = 0.0f;
+    const std::int64_t y = info.north_up ? info.height - 1 - r : r;
+    const std::lock_guard<std::mutex> lock(io);
+    if (band->RasterIO(GF_Read, static_cast<int>(c), static_cast<int>(y), 1, 1, &x, 1, 1, GDT_Float32, 0, 0, nullptr) !=
+        CE_None) {
+      throw InputError(fmt::format("{}: read error at row {}{}", info.path, y, gdal_message()));
     }
-    info.valid_count = count;
-    info.min_m = count > 0 ? mn : kNaN;
-    info.max_m = count > 0 ? mx : kNaN;
-    info.mean_m = count > 0 ? sum / static_cast<double>(count) : kNaN;
+    return normalise(x);
+  }
+
+  // A stored value -> metres, elevation up; NaN for no-data.
+  [[nodiscard]] float normalise(float x) const {
+    const bool missing =
+        std::isnan(x) || (info.has_nodata && x == static_cast<float>(info.nodata)) || std::abs(x) > 1e30f;
+    return missing ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(sgn * (x * info.scale + info.offset));
+  }
+
+  void compute_stats() {
+    const std::int64_t nr = row_hi - row_lo;
+    std::vector<RowStats> rows(static_cast<std::size_t>(nr));
+    for (std::int64_t r = 0; r < nr; ++r)
+      rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), info.ncols);
+    set_stats(rows);
     info.memory_bytes = static_cast<std::int64_t>((v.size() + fx.size() + fy.size() + fxy.size()) * sizeof(float));
+  }
+
+  void set_stats(const std::vector<RowStats>& rows) const {
+    RowStats t;
+    for (const RowStats& r : rows) {
+      t.mn = std::min(t.mn, r.mn);
+      t.mx = std::max(t.mx, r.mx);
+      t.sum += r.sum;
+      t.count += r.count;
+    }
+    info.valid_count = t.count;
+    info.min_m = t.count > 0 ? t.mn : kNaN;
+    info.max_m = t.count > 0 ? t.mx : kNaN;
+    info.mean_m = t.count > 0 ? t.sum / static_cast<double>(t.count) : kNaN;
   }
 
   // Bicubic spline slopes (splines.md §4, 3-step algorithm): fx by rows, fy by columns, fxy by
@@ -263,14 +440,86 @@ double Bathymetry::sample(double lon_deg, double lat_deg) const { return impl_->
 float Bathymetry::value(std::int64_t c, std::int64_t r) const {
   const auto& i = impl_->info;
   if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
-  if (c < 0 || c >= i.ncols || r < 0 || r >= i.nrows) return std::numeric_limits<float>::quiet_NaN();
-  return impl_->v[impl_->idx(c, r)];
+  if (c < 0 || c >= i.ncols || r < impl_->row_lo || r >= (i.streamed ? i.nrows : impl_->row_hi))
+    return std::numeric_limits<float>::quiet_NaN();
+  return i.streamed ? impl_->read_value(c, r) : impl_->v[impl_->idx(c, r)];
 }
 
-void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out) const {
+void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const {
+  const Impl& im = *impl_;
+  const auto& i = im.info;
+  std::fill(out, out + nc * nr, std::numeric_limits<float>::quiet_NaN());
+  const std::int64_t a = std::max(r_lo, im.row_lo), b = std::min(r_lo + nr, i.streamed ? i.nrows : im.row_hi);
+  if (a >= b) return;
+  std::vector<float> rows;
+  if (i.streamed) {
+    rows.resize(static_cast<std::size_t>((b - a) * i.ncols));
+    im.read_rows(a, b - a, rows.data());
+  }
+  for (std::int64_t r = a; r < b; ++r) {
+    const float* src = i.streamed ? rows.data() + (r - a) * i.ncols : im.row_ptr(r);
+    float* dst = out + (r - r_lo) * nc;
+    for (std::int64_t k = 0; k < nc; ++k) {
+      std::int64_t c = c_lo + k;
+      if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
+      if (c >= 0 && c < i.ncols) dst[k] = src[c];
+    }
+  }
+}
+
+void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                               const ProgressFn& progress) const {
   const Impl* im = impl_.get();
+  if (!im->info.streamed) {
 #pragma omp parallel for default(none) shared(im, lon_deg, lat_deg, n, out) schedule(static) if (n > 20000)
-  for (std::int64_t k = 0; k < n; ++k) out[k] = im->sample(lon_deg[k], lat_deg[k]);
+    for (std::int64_t k = 0; k < n; ++k) out[k] = im->sample(lon_deg[k], lat_deg[k]);
+    return;
+  }
+  // Streamed: points grouped by band (counting sort), one pass over the bands that hold points.
+  const BandGeometry g = im->bands();
+  const std::int64_t nb = g.count(), nc = im->info.ncols;
+  std::vector<std::int32_t> band(static_cast<std::size_t>(n));
+#pragma omp parallel for default(none) shared(im, g, lon_deg, lat_deg, n, out, band) schedule(static) if (n > 20000)
+  for (std::int64_t k = 0; k < n; ++k) {
+    std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+    double t = 0.0, u = 0.0;
+    const bool in = im->col(lon_deg[k], c0, c1, t) && im->row(lat_deg[k], r0, r1, u);
+    band[static_cast<std::size_t>(k)] = in ? static_cast<std::int32_t>(g.band_of(r0, r1)) : -1;
+    if (!in) out[k] = kNaN;
+  }
+  std::vector<std::int64_t> start(static_cast<std::size_t>(nb + 1), 0);
+  for (const std::int32_t b : band)
+    if (b >= 0) ++start[static_cast<std::size_t>(b) + 1];
+  for (std::int64_t b = 0; b < nb; ++b) start[static_cast<std::size_t>(b + 1)] += start[static_cast<std::size_t>(b)];
+  std::vector<std::int64_t> order(static_cast<std::size_t>(start.back()));
+  {
+    std::vector<std::int64_t> at(start.begin(), start.end() - 1);
+    for (std::int64_t k = 0; k < n; ++k) {
+      const std::int32_t b = band[static_cast<std::size_t>(k)];
+      if (b >= 0) order[static_cast<std::size_t>(at[static_cast<std::size_t>(b)]++)] = k;
+    }
+  }
+  band = {};
+  const auto wanted = [&start](std::int64_t s) {
+    return start[static_cast<std::size_t>(s + 1)] > start[static_cast<std::size_t>(s)];
+  };
+  const auto work = [&](std::int64_t s, const float* buf) {
+    const std::int64_t lo = g.lo(s), k0 = start[static_cast<std::size_t>(s)],
+                       k1 = start[static_cast<std::size_t>(s + 1)];
+#pragma omp parallel for default(none) shared(im, buf, order, lon_deg, lat_deg, out, lo, k0, k1, nc) \
+    schedule(static) if (k1 - k0 > 20000)
+    for (std::int64_t q = k0; q < k1; ++q) {
+      const std::int64_t k = order[static_cast<std::size_t>(q)];
+      std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+      double t = 0.0, u = 0.0;
+      (void)im->col(lon_deg[k], c0, c1, t);
+      (void)im->row(lat_deg[k], r0, r1, u);
+      const float* p0 = buf + (r0 - lo) * nc;
+      const float* p1 = buf + (r1 - lo) * nc;
+      out[k] = bilinear4(p0[c0], p0[c1], p1[c0], p1[c1], t, u);
+    }
+  };
+  im->stream(wanted, work, nullptr, progress, "bands of raster rows");
 }
 
 Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n) const {
@@ -299,16 +548,88 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
     std::fill(out, out + n, std::numeric_limits<float>::quiet_NaN());
     return;
   }
-  const bool cubic = im.interp == Interpolation::kBicubic && !im.fx.empty();
+  if (im.info.streamed) {
+    std::vector<float> rows(static_cast<std::size_t>((r1 - r0 + 1) * im.info.ncols));
+    im.read_rows(r0, r1 - r0 + 1, rows.data());
+    fill_row(rows.data(), rows.data() + (r1 - r0) * im.info.ncols, cols, u, out);
+    return;
+  }
+  if (im.interp != Interpolation::kBicubic || im.fx.empty()) {
+    fill_row(im.row_ptr(r0), im.row_ptr(r1), cols, u, out);
+    return;
+  }
   for (std::int64_t k = 0; k < n; ++k) {
     const auto s = static_cast<std::size_t>(k);
-    if (cols.c0[s] < 0) {
-      out[k] = std::numeric_limits<float>::quiet_NaN();
-      continue;
+    out[k] = cols.c0[s] < 0 ? std::numeric_limits<float>::quiet_NaN()
+                            : static_cast<float>(im.bicubic(cols.c0[s], cols.c1[s], cols.t[s], r0, r1, u));
+  }
+}
+
+void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
+                             const ProgressFn& progress) const {
+  const Impl& im = *impl_;
+  const auto nc = static_cast<std::int64_t>(cols.c0.size());
+  const bool parallel = n * nc >= (std::int64_t{1} << 16);
+  if (!im.info.streamed) {
+    RowProgress rp(progress, n, "rows");
+#pragma omp parallel default(none) shared(cols, lats, n, nc, sink, rp) if (parallel)
+    {
+      std::vector<float> buf(static_cast<std::size_t>(nc));
+#pragma omp for schedule(static)
+      for (std::int64_t k = 0; k < n; ++k) {
+        sample_row(cols, lats[k], buf.data());
+        sink(k, buf.data());
+        rp.row_done();
+      }
     }
-    const double val = cubic ? im.bicubic(cols.c0[s], cols.c1[s], cols.t[s], r0, r1, u)
-                             : im.bilinear(cols.c0[s], cols.c1[s], cols.t[s], r0, r1, u);
-    out[k] = static_cast<float>(val);
+    rp.finish();
+    return;
+  }
+  // Streamed: rows grouped by band; rows outside the raster are NaN.
+  const BandGeometry g = im.bands();
+  std::vector<std::vector<std::int64_t>> rows(static_cast<std::size_t>(g.count()));
+  std::vector<std::int64_t> r0s(static_cast<std::size_t>(n)), r1s(r0s.size());
+  std::vector<double> us(r0s.size());
+  {
+    const std::vector<float> nan_row(static_cast<std::size_t>(nc), std::numeric_limits<float>::quiet_NaN());
+    for (std::int64_t k = 0; k < n; ++k) {
+      const auto q = static_cast<std::size_t>(k);
+      if (im.row(lats[k], r0s[q], r1s[q], us[q]))
+        rows[static_cast<std::size_t>(g.band_of(r0s[q], r1s[q]))].push_back(k);
+      else
+        sink(k, nan_row.data());
+    }
+  }
+  RowStats* stats = nullptr;
+  if (!im.stats_done) {
+    im.stats_rows.assign(static_cast<std::size_t>(im.info.nrows), RowStats{});
+    stats = im.stats_rows.data();
+  }
+  const std::int64_t ncols = im.info.ncols;
+  const auto wanted = [&rows](std::int64_t s) { return !rows[static_cast<std::size_t>(s)].empty(); };
+  const auto work = [&](std::int64_t s, const float* buf) {
+    const std::vector<std::int64_t>& ks = rows[static_cast<std::size_t>(s)];
+    const std::int64_t lo = g.lo(s), m = static_cast<std::int64_t>(ks.size());
+#pragma omp parallel default(none) \
+    shared(ks, buf, cols, sink, r0s, r1s, us, lo, m, nc, ncols) if (m * nc >= (std::int64_t{1} << 16))
+    {
+      std::vector<float> out(static_cast<std::size_t>(nc));
+#pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < m; ++q) {
+        const auto k = static_cast<std::size_t>(ks[static_cast<std::size_t>(q)]);
+        fill_row(buf + (r0s[k] - lo) * ncols, buf + (r1s[k] - lo) * ncols, cols, us[k], out.data());
+        sink(static_cast<std::int64_t>(k), out.data());
+      }
+    }
+  };
+  im.stream(wanted, work, stats, progress, "bands of raster rows");
+  if (stats != nullptr) {
+    im.set_stats(im.stats_rows);
+    im.stats_rows = {};
+    im.stats_done = true;
+    if (im.info.valid_count == 0)
+      throw InputError(fmt::format("{}: band {} ({}) holds no data: every value is no-data", im.info.path,
+                                   im.band_number, im.info.variable));
   }
 }
 
@@ -325,6 +646,8 @@ Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, 
   auto im = std::make_unique<Impl>();
   im->v = std::move(values);
   im->interp = interpolation;
+  im->row_lo = 0;
+  im->row_hi = nrows;
   auto& i = im->info;
   i.path = "<memory>";
   i.driver = "memory";
@@ -347,7 +670,18 @@ Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, 
   return Bathymetry(std::move(im));
 }
 
-Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
+namespace {
+
+// 80% of the machine's memory when `bytes` is 0.
+std::int64_t memory_limit(std::int64_t bytes) {
+  return bytes > 0 ? bytes : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
+}
+
+}  // namespace
+
+// Opens the dataset, reads its header into the normalised description and decides whole or
+// streamed (nothing is read yet).
+std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) {
   gdal_init();
   std::string used;
   DatasetPtr ds = open_dataset(o, used);
@@ -437,19 +771,6 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
                                  info.lat_first, info.lat_first + static_cast<double>(h - 1) * info.dlat));
   }
 
-  // Memory estimate before reading.
-  const std::int64_t need =
-      estimate_raster_bytes(info.ncols, info.nrows) * (o.interpolation == Interpolation::kBicubic ? 4 : 1);
-  const std::int64_t limit = o.max_memory_bytes > 0
-                                 ? o.max_memory_bytes
-                                 : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
-  if (limit > 0 && need > limit) {
-    throw InputError(
-        fmt::format("{}: holding the raster needs {:.1f} GB, more than the limit {:.1f} GB "
-                    "(input.max_memory_gb); use a coarser raster or a region",
-                    o.path, static_cast<double>(need) / 1e9, static_cast<double>(limit) / 1e9));
-  }
-
   int has_nd = 0;
   const double nd = band->GetNoDataValue(&has_nd);
   info.has_nodata = has_nd != 0;
@@ -459,34 +780,98 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   info.offset = band->GetOffset(&has_offset);
   if (has_scale == 0) info.scale = 1.0;
   if (has_offset == 0) info.offset = 0.0;
+  im->sgn = o.positive_down ? -1.0 : 1.0;
+  int bx = 0, by = 0;
+  band->GetBlockSize(&bx, &by);
+  info.block_rows = std::max(1, by);
+  im->row_lo = 0;
+  im->row_hi = info.nrows;
 
-  // Read in bands of rows through GDAL windows straight into the normalised array.
-  im->v.resize(static_cast<std::size_t>(info.ncols * info.nrows));
-  const float ndf = static_cast<float>(nd);
-  const std::int64_t chunk = std::max<std::int64_t>(1, (64LL << 20) / std::max<std::int64_t>(1, w * 4));
-  std::vector<float> buf(static_cast<std::size_t>(std::min(chunk, h) * w));
-  auto progress = log.progress("read");
-  const double sgn = o.positive_down ? -1.0 : 1.0;
-  for (std::int64_t y0 = 0; y0 < h; y0 += chunk) {
-    const std::int64_t ny = std::min(chunk, h - y0);
-    if (band->RasterIO(GF_Read, 0, static_cast<int>(y0), static_cast<int>(w), static_cast<int>(ny), buf.data(),
-                       static_cast<int>(w), static_cast<int>(ny), GDT_Float32, 0, 0, nullptr) != CE_None) {
-      throw InputError(fmt::format("{}: read error at rows {}..{}{}", o.path, y0, y0 + ny - 1, gdal_message()));
-    }
-    for (std::int64_t yy = 0; yy < ny; ++yy) {
-      const std::int64_t y = y0 + yy;
-      const std::int64_t r = info.north_up ? h - 1 - y : y;
-      const float* src = buf.data() + yy * w;
-      float* dst = im->v.data() + r * info.ncols;
-      for (std::int64_t c = 0; c < info.ncols; ++c) {
-        const float raw = src[c];
-        const bool missing = std::isnan(raw) || (info.has_nodata && raw == ndf) || std::abs(raw) > 1e30f;
-        dst[c] = missing ? std::numeric_limits<float>::quiet_NaN()
-                         : static_cast<float>(sgn * (raw * info.scale + info.offset));
-      }
-    }
-    if (progress) progress(static_cast<double>(y0 + ny) / static_cast<double>(h), "rows");
+  // Whole or streamed (README "Big rasters"): streamed when the caller can use it (unrotated
+  // vertex rule, bilinear, no latitude window) and the float32 copy would be above 1 GiB or above
+  // the memory limit. A band is whole blocks of the file, about 64 MB of float32 (or band_rows).
+  const std::int64_t whole = estimate_raster_bytes(info.ncols, info.nrows);
+  const bool can_stream = o.allow_streaming && o.interpolation == Interpolation::kBilinear && std::isnan(o.lat_min) &&
+                          std::isnan(o.lat_max);
+  using S = OpenOptions::Streaming;
+  info.streamed = can_stream && o.streaming != S::kNever &&
+                  (o.streaming == S::kAlways || whole > kStreamAboveBytes || whole > memory_limit(o.max_memory_bytes));
+  if (info.streamed) {
+    const std::int64_t target = std::max<std::int64_t>(1, (64LL << 20) / std::max<std::int64_t>(1, w * 4));
+    info.band_rows =
+        o.band_rows > 0 ? o.band_rows : std::max(info.block_rows, target / info.block_rows * info.block_rows);
+    info.band_rows = std::min(info.band_rows, h);
+    // Two band buffers (with the carried row) and two raw read buffers.
+    info.memory_bytes = 2 * (info.band_rows + 1) * info.ncols * 4 + 2 * info.band_rows * w * 4;
+    info.min_m = info.max_m = info.mean_m = kNaN;
+    info.valid_count = -1;  // known after the first pass
   }
+  im->band = band;
+  im->band_number = o.band;
+  im->ds = std::move(ds);
+  return im;
+}
+
+RasterPlan plan_raster(const OpenOptions& options) {
+  const auto im = Bathymetry::open_header(options);
+  const RasterInfo& i = im->info;
+  RasterPlan p;
+  p.width = i.width;
+  p.height = i.height;
+  p.streamed = i.streamed;
+  p.block_rows = i.block_rows;
+  p.band_rows = i.band_rows;
+  const std::int64_t factor = options.interpolation == Interpolation::kBicubic ? 4 : 1;
+  p.bytes = i.streamed ? i.memory_bytes : estimate_raster_bytes(i.ncols, i.nrows) * factor + (64LL << 20);
+  return p;
+}
+
+Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
+  auto im = open_header(o);
+  RasterInfo& info = im->info;
+  const std::int64_t h = info.height;
+  if (info.streamed) {
+    if (!info.global_lon) {
+      log.warn("{}: the raster covers longitudes {:.4f}..{:.4f} only; the rest of the lattice is dry", o.path,
+               info.lon_first, info.lon_first + static_cast<double>(info.ncols - 1) * info.dlon);
+    }
+    return Bathymetry(std::move(im));
+  }
+  // A latitude window (regional runs): the rows covering it and 2 more each side.
+  if ((!std::isnan(o.lat_min) || !std::isnan(o.lat_max)) && o.interpolation == Interpolation::kBilinear) {
+    const double a = std::isnan(o.lat_min) ? -90.0 : o.lat_min, b = std::isnan(o.lat_max) ? 90.0 : o.lat_max;
+    im->row_lo = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2,
+                                          0, info.nrows - 1);
+    im->row_hi = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil((b - info.lat_first) / info.dlat)) + 3,
+                                          im->row_lo + 1, info.nrows);
+  }
+  const std::int64_t rows_held = im->row_hi - im->row_lo;
+  // Memory estimate before reading.
+  const std::int64_t need =
+      estimate_raster_bytes(info.ncols, rows_held) * (o.interpolation == Interpolation::kBicubic ? 4 : 1);
+  const std::int64_t limit = memory_limit(o.max_memory_bytes);
+  if (limit > 0 && need > limit) {
+    throw InputError(
+        fmt::format("{}: holding the raster needs {:.1f} GB, more than the limit {:.1f} GB "
+                    "(input.max_memory_gb); use a coarser raster or a region",
+                    o.path, static_cast<double>(need) / 1e9, static_cast<double>(limit) / 1e9));
+  }
+
+  // Read in bands of stored rows through GDAL windows straight into the normalised array.
+  im->v.resize(static_cast<std::size_t>(info.ncols * rows_held));
+  const std::int64_t w = info.width;
+  const std::int64_t chunk = std::max<std::int64_t>(1, (64LL << 20) / std::max<std::int64_t>(1, w * 4));
+  const std::int64_t y_lo = info.north_up ? h - im->row_hi : im->row_lo;
+  const std::int64_t y_hi = info.north_up ? h - im->row_lo : im->row_hi;
+  std::vector<float> raw;
+  auto progress = log.progress("read");
+  for (std::int64_t y0 = y_lo; y0 < y_hi; y0 += chunk) {
+    const std::int64_t y1 = std::min(y_hi, y0 + chunk);
+    im->read_stored(y0, y1, im->v.data(), im->row_lo, raw, nullptr);
+    if (progress) progress(static_cast<double>(y1 - y_lo) / static_cast<double>(y_hi - y_lo), "rows");
+  }
+  im->ds.reset();  // everything is held
+  im->band = nullptr;
   im->compute_stats();
   if (im->info.valid_count == 0) {
     throw InputError(

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,7 +29,25 @@ struct OpenOptions {
   bool positive_down = false;  ///< file stores depth positive down: values are negated
   Interpolation interpolation = Interpolation::kBilinear;
   std::int64_t max_memory_bytes = 0;  ///< refuse if the raster would not fit; 0 = 80% of RAM
+  /// The caller can use a streamed raster (unrotated vertex-rule lattice, bilinear): see
+  /// `Streaming` and ARCHITECTURE §4.1 / README "Big rasters". False: the raster is held whole.
+  bool allow_streaming = false;
+  /// Latitude window [lat_min, lat_max] (degrees, NaN = whole raster): only the raster rows
+  /// covering it (+2 rows) are read and held; outside them sampling gives NaN. Regional runs.
+  double lat_min = std::numeric_limits<double>::quiet_NaN();
+  double lat_max = std::numeric_limits<double>::quiet_NaN();
+
+  // Hidden knobs for tests and benchmarks (not configuration keys).
+  enum class Streaming { kAuto, kAlways, kNever };
+  /// kAuto: stream when allow_streaming and the raster as float32 is above kStreamAboveBytes or
+  /// above the memory limit; kAlways/kNever force a path (kAlways still needs allow_streaming).
+  Streaming streaming = Streaming::kAuto;
+  std::int64_t band_rows = 0;  ///< stored rows per band read; 0 = whole blocks, about 64 MB
 };
+
+/// A raster larger than this (as float32) is streamed when the caller allows it (1 GiB: ETOPO5
+/// 37 MB and a 1' raster 0.9 GB are held whole, 30" 3.7 GB and 15" 15 GB are streamed).
+constexpr std::int64_t kStreamAboveBytes = std::int64_t{1} << 30;
 
 /// What `aquatoria info` prints about a raster, as found and as normalised.
 struct RasterInfo {
@@ -47,8 +67,23 @@ struct RasterInfo {
   double nodata = 0.0;
   double min_m = 0.0, max_m = 0.0, mean_m = 0.0;  ///< over valid values (after normalisation)
   std::int64_t valid_count = 0;
-  std::int64_t memory_bytes = 0;  ///< bytes held for the values
+  std::int64_t memory_bytes = 0;  ///< bytes held for the values (streamed: the band buffers)
+  bool streamed = false;          ///< values are read in bands of rows on each pass, never held whole
+  std::int64_t block_rows = 0;    ///< the file's block height (rows)
+  std::int64_t band_rows = 0;     ///< streamed: stored rows per band read
+  std::int64_t passes = 0;        ///< streamed: full or partial passes over the file so far
 };
+
+/// What `open` would do with a raster, found from its header only (nothing is read).
+struct RasterPlan {
+  std::int64_t width = 0, height = 0;  ///< as stored
+  bool streamed = false;
+  std::int64_t block_rows = 0, band_rows = 0;
+  std::int64_t bytes = 0;  ///< held values (whole) or band buffers (streamed)
+};
+/// Opens the header of `options.path` and decides whole or streamed with the rule of `open`;
+/// throws what `open` throws for a missing or unusable file (not the memory refusal).
+RasterPlan plan_raster(const OpenOptions& options);
 
 class Bathymetry {
  public:
@@ -71,8 +106,10 @@ class Bathymetry {
   /// Elevation (m, negative below sea level) at (lon, lat) in degrees; NaN if no data or outside.
   /// Thread-safe.
   [[nodiscard]] double sample(double lon_deg, double lat_deg) const;
-  /// Samples n points; thread-safe, parallel inside (OpenMP) when n is large.
-  void sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out) const;
+  /// Samples n points; thread-safe, parallel inside (OpenMP) when n is large. Streamed: one
+  /// banded pass over the rows the points need (points grouped by row), same values bit for bit.
+  void sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                     const ProgressFn& progress = {}) const;
 
   /// Fast separable sampling of a lattice row: out[k] = sample(lons[k], lat) for k < n, using
   /// precomputed column weights (`prepare_columns`). Thread-safe.
@@ -84,12 +121,27 @@ class Bathymetry {
   [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n) const;
   void sample_row(const Columns& cols, double lat_deg, float* out) const;
 
+  /// Many rows at once: for k < n, sink(k, values) where values[0..cols) = sample_row(cols,
+  /// lats[k]). The sink is called once per row, from several threads at once (distinct k), in no
+  /// particular order; values are the same as sample_row's bit for bit. A streamed raster is read
+  /// once in bands of rows (the next band is read while this one is sampled); the first such pass
+  /// also fills the statistics of info() and throws InputError when every value is no-data.
+  using RowSink = std::function<void(std::int64_t k, const float* values)>;
+  void sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
+                   const ProgressFn& progress = {}) const;
+
   /// Raster value (c, r) in normalised layout (c wraps for global rasters); NaN if no data.
+  /// Streamed: one small read per call (use `values` for blocks).
   [[nodiscard]] float value(std::int64_t c, std::int64_t r) const;
+  /// Values of columns c_lo..c_lo+nc-1 (wrapping on a global raster) and rows r_lo..r_lo+nr-1
+  /// into out (row-major, row r_lo first); NaN outside. Streamed: one read of those rows.
+  void values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const;
 
  private:
   struct Impl;
   explicit Bathymetry(std::unique_ptr<Impl> impl);
+  static std::unique_ptr<Impl> open_header(const OpenOptions& o);
+  friend RasterPlan plan_raster(const OpenOptions& options);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -30,11 +30,12 @@ std::vector<Polyline> contour_lines(const Bathymetry& bathy, double level_m, dou
   }
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
   GDALDataset* ds = mem->Create("", static_cast<int>(nc), static_cast<int>(nr), 1, GDT_Float32, nullptr);
-  std::vector<float> buf(static_cast<std::size_t>(nc * nr));
+  std::vector<float> south_up(static_cast<std::size_t>(nc * nr)), buf(south_up.size());
+  bathy.values(c_lo, nc, r_lo, nr, south_up.data());  // one block read when the raster is streamed
   for (std::int64_t r = 0; r < nr; ++r)
     for (std::int64_t c = 0; c < nc; ++c) {
-      const float v = bathy.value(c_lo + c, r_hi - r);                       // north-up for GDAL
-      buf[static_cast<std::size_t>(r * nc + c)] = std::isnan(v) ? 1e4f : v;  // no data: high land
+      const float v = south_up[static_cast<std::size_t>((nr - 1 - r) * nc + c)];  // north-up for GDAL
+      buf[static_cast<std::size_t>(r * nc + c)] = std::isnan(v) ? 1e4f : v;       // no data: high land
     }
   if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, static_cast<int>(nc), static_cast<int>(nr), buf.data(),
                                      static_cast<int>(nc), static_cast<int>(nr), GDT_Float32, 0, 0,

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -135,10 +136,17 @@ TEST(Config, RulesParseAndCrossCheckLevels) {
 }
 
 TEST(Config, ShippedConfigsLoad) {
-  for (const char* name : {"seed_4deg_L3.toml", "global_1deg_L5.toml", "rotated_greenland.toml"}) {
+  for (const char* name : {"seed_4deg_L3.toml", "global_1deg_L5.toml", "rotated_greenland.toml", "global_15s.toml"}) {
     const fs::path p = fs::path(AQ_SOURCE_DIR) / "configs" / name;
     EXPECT_NO_THROW((void)load_global(p.string(), {})) << name;
   }
+}
+
+TEST(Config, InputPathTildeIsHome) {
+  const char* home = std::getenv("HOME");
+  if (home == nullptr || *home == '\0') GTEST_SKIP() << "no HOME";
+  const auto c = load_global(std::nullopt, {"input.path=\"~/x/y.tif\""});
+  EXPECT_EQ(c.options.input.path, (fs::path(home) / "x" / "y.tif").lexically_normal().string());
 }
 
 // Names say what was run (issue 11): config::default_run_name.

@@ -1,0 +1,76 @@
+// Memory estimate and refusal of `aquatoria mesh` (issue 9): the estimate is printed before the
+// run and written to the report with the measured peak; a run whose estimate is above
+// input.max_memory_gb exits 2 before any raster data is read, naming the key and both numbers.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/cli_outputs.hpp"
+#include "support/run_command.hpp"
+
+using aq::test::fresh_dir;
+using aq::test::run_aquatoria;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A VRT with a valid header whose data file does not exist: opening it works, reading fails.
+fs::path unreadable_vrt() {
+  const fs::path dir = fs::temp_directory_path() / ("aq_stream_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path p = dir / "header_only.vrt";
+  std::ofstream(p) << R"(<VRTDataset rasterXSize="4320" rasterYSize="2160">
+  <SRS>EPSG:4326</SRS>
+  <GeoTransform>-180, 0.0833333333333333, 0, 90, 0, -0.0833333333333333</GeoTransform>
+  <VRTRasterBand dataType="Int16" band="1">
+    <SimpleSource>
+      <SourceFilename relativeToVRT="1">missing_tile.tif</SourceFilename>
+      <SourceBand>1</SourceBand>
+      <SrcRect xOff="0" yOff="0" xSize="4320" ySize="2160"/>
+      <DstRect xOff="0" yOff="0" xSize="4320" ySize="2160"/>
+    </SimpleSource>
+  </VRTRasterBand>
+</VRTDataset>
+)";
+  return p;
+}
+
+}  // namespace
+
+TEST(StreamCli, MemoryRefusalExits2BeforeReading) {
+  const fs::path vrt = unreadable_vrt();
+  const fs::path dir = fresh_dir("stream", "refuse");
+  // Without a limit the run gets as far as reading, which fails (exit 1)...
+  auto r = run_aquatoria("mesh -q -o " + dir.string() + " --set input.path=\"" + vrt.string() + "\"");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("missing_tile.tif"));
+  // ...with a limit below the estimate it is refused before that (exit 2), naming the key.
+  r = run_aquatoria("mesh -q -o " + dir.string() + " --set input.path=\"" + vrt.string() +
+                    "\" --set input.max_memory_gb=0.05");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("input.max_memory_gb = 0.05 GB"));
+  EXPECT_THAT(r.err, MatchesRegex("(.|\n)*estimated to need 0\\.[0-9]+ GB(.|\n)*"));
+  EXPECT_THAT(r.err, HasSubstr("nothing was read"));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("missing_tile.tif: read error")));
+  EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir));
+}
+
+TEST(StreamCli, EstimateIsPrintedAndReportedWithThePeak) {
+  const fs::path dir = fresh_dir("stream", "estimate");
+  const auto r = run_aquatoria("mesh -o " + dir.string() + " --set 'output.formats=[\"text\"]'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("memory: estimate "));
+  EXPECT_THAT(r.err, HasSubstr("held whole"));
+  const auto rep = aq::test::read_report(dir, "seed_4deg_L3");
+  const auto& m = rep.at("memory");
+  EXPECT_GT(m.at("estimate_bytes").get<double>(), m.at("estimate_raster_bytes").get<double>());
+  EXPECT_GT(m.at("peak_rss_bytes").get<double>(), 1e6);
+  // The model is within a factor 2 of the measured peak on this small run.
+  EXPECT_LT(m.at("peak_rss_bytes").get<double>(), 2.0 * m.at("estimate_bytes").get<double>());
+  EXPECT_FALSE(m.at("raster_streamed").get<bool>());
+}

@@ -1,0 +1,253 @@
+// The streamed raster path (issue 9): banded reads must give the whole path's values bit for bit
+// for any band height (1, 7, the file's block height, the default) and thread count, on tiled
+// and striped GeoTIFFs (north-up and south-up, int16 with scale/offset/no-data), and on netCDF4
+// (deflate) files in the GEBCO (pixel-registered `elevation` int16) and SRTM15+
+// (grid-registered `z` with a 360° column) layouts, written here.
+#include <gdal_priv.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <netcdf.h>
+#include <ogr_spatialref.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "raster/bathymetry.hpp"
+#include "support/synthetic_raster.hpp"
+
+namespace fs = std::filesystem;
+using aq::raster::Bathymetry;
+using aq::raster::OpenOptions;
+
+namespace {
+
+using aq::test::field;
+using aq::test::write_tiff;
+
+fs::path tmpdir() { return aq::test::synthetic_dir(); }
+
+Bathymetry open(const fs::path& p, bool streamed, std::int64_t band_rows = 0, const std::string& var = "") {
+  OpenOptions o;
+  o.path = p.string();
+  o.variable = var;
+  o.allow_streaming = streamed;
+  o.streaming = streamed ? OpenOptions::Streaming::kAlways : OpenOptions::Streaming::kNever;
+  o.band_rows = band_rows;
+  return Bathymetry::open(o);
+}
+
+// Every row of a lattice (not aligned with the raster) sampled through sample_rows.
+std::vector<float> lattice_rows(const Bathymetry& b, double step) {
+  const auto nx = static_cast<std::int64_t>(std::lround(360.0 / step));
+  const auto nv = static_cast<std::int64_t>(std::lround(180.0 / step)) + 1;
+  std::vector<double> lons(static_cast<std::size_t>(nx)), lats(static_cast<std::size_t>(nv));
+  for (std::int64_t i = 0; i < nx; ++i) lons[static_cast<std::size_t>(i)] = -180.0 + static_cast<double>(i) * step;
+  for (std::int64_t j = 0; j < nv; ++j) lats[static_cast<std::size_t>(j)] = -90.0 + static_cast<double>(j) * step;
+  const auto cols = b.prepare_columns(lons.data(), nx);
+  std::vector<float> out(static_cast<std::size_t>(nx * nv), -1.0f);
+  std::vector<int> seen(static_cast<std::size_t>(nv), 0);
+  b.sample_rows(cols, lats.data(), nv, [&](std::int64_t k, const float* v) {
+    std::memcpy(out.data() + k * nx, v, static_cast<std::size_t>(nx) * sizeof(float));
+    ++seen[static_cast<std::size_t>(k)];
+  });
+  for (std::int64_t j = 0; j < nv; ++j) EXPECT_EQ(seen[static_cast<std::size_t>(j)], 1) << "row " << j;
+  return out;
+}
+
+// Random points (and the poles, the seam, grid lines) through sample_points.
+std::vector<double> points(const Bathymetry& b) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> lon(-200.0, 200.0), lat(-90.0, 90.0);
+  std::vector<double> x{-180.0, 180.0, 0.0, 179.999, -90.0}, y{-90.0, 90.0, 0.0, 45.0, 89.99};
+  for (int k = 0; k < 10000; ++k) {
+    x.push_back(lon(rng));
+    y.push_back(lat(rng));
+  }
+  std::vector<double> out(x.size());
+  b.sample_points(x.data(), y.data(), static_cast<std::int64_t>(x.size()), out.data());
+  return out;
+}
+
+template <typename T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void expect_same_stats(const Bathymetry& a, const Bathymetry& b) {
+  EXPECT_EQ(a.info().valid_count, b.info().valid_count);
+  EXPECT_EQ(a.info().min_m, b.info().min_m);
+  EXPECT_EQ(a.info().max_m, b.info().max_m);
+  EXPECT_EQ(a.info().mean_m, b.info().mean_m);
+}
+
+struct FileCase {
+  const char* name;
+  bool north_up, tiled;
+};
+
+class StreamedTiff : public ::testing::TestWithParam<FileCase> {};
+
+TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
+  const FileCase fc = GetParam();
+  const fs::path p = write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled);
+  const Bathymetry whole = open(p, false);
+  ASSERT_FALSE(whole.info().streamed);
+  const auto rows_w = lattice_rows(whole, 0.4);
+  const auto pts_w = points(whole);
+  // Band heights 1, 7, the block height (16 rows tiled, 1 striped) and the default.
+  for (const std::int64_t band : {std::int64_t{1}, std::int64_t{7}, std::int64_t{16}, std::int64_t{0}}) {
+    for (const int threads : {1, 2}) {
+      aq::test::set_threads(threads);
+      const Bathymetry s = open(p, true, band);
+      ASSERT_TRUE(s.info().streamed);
+      EXPECT_EQ(s.info().block_rows, fc.tiled ? 16 : 1);
+      EXPECT_TRUE(same_bits(lattice_rows(s, 0.4), rows_w)) << "band " << band << ", threads " << threads;
+      expect_same_stats(s, whole);
+      EXPECT_TRUE(same_bits(points(s), pts_w)) << "band " << band << ", threads " << threads;
+      EXPECT_EQ(s.info().passes, 2);
+      // Single values and blocks agree too (pictures, contours).
+      EXPECT_EQ(s.sample(12.34, -56.78), whole.sample(12.34, -56.78));
+      std::vector<float> va(40 * 9), vb(va.size());
+      s.values(700, 40, 300, 9, va.data());  // across the seam
+      whole.values(700, 40, 300, 9, vb.data());
+      EXPECT_TRUE(same_bits(va, vb));
+    }
+  }
+  aq::test::set_threads(2);
+}
+
+INSTANTIATE_TEST_SUITE_P(Layouts, StreamedTiff,
+                         ::testing::Values(FileCase{"tiled_northup", true, true},
+                                           FileCase{"striped_northup", true, false},
+                                           FileCase{"tiled_southup", false, true}),
+                         [](const auto& i) { return std::string(i.param.name); });
+
+TEST(StreamedRaster, AutoRuleAndNoData) {
+  const fs::path p = write_tiff(tmpdir() / "auto.tif", 1.0, true, true);
+  OpenOptions o;
+  o.path = p.string();
+  o.allow_streaming = true;  // small raster: held whole under kAuto
+  EXPECT_FALSE(Bathymetry::open(o).info().streamed);
+  o.max_memory_bytes = 1000;  // ...unless it would not fit
+  EXPECT_TRUE(Bathymetry::open(o).info().streamed);
+  EXPECT_TRUE(aq::raster::plan_raster(o).streamed);
+  o.allow_streaming = false;
+  EXPECT_FALSE(aq::raster::plan_raster(o).streamed);
+  const Bathymetry s = open(p, true, 5);
+  EXPECT_TRUE(std::isnan(s.sample(11.5, -3.5)));  // the no-data patch
+  EXPECT_EQ(s.sample(0.5, 0.5), field(0.5, 0.5));
+}
+
+// netCDF4 with deflate, written with the netCDF library: dims (lat, lon), lat ascending.
+void check(int status) { ASSERT_EQ(status, NC_NOERR) << nc_strerror(status); }
+
+fs::path write_nc(const std::string& name, const char* var, const std::vector<double>& lon,
+                  const std::vector<double>& lat, const std::vector<std::int16_t>& z) {
+  const fs::path p = tmpdir() / name;
+  int nc = 0, dlat = 0, dlon = 0, vlat = 0, vlon = 0, vz = 0;
+  check(nc_create(p.c_str(), NC_NETCDF4 | NC_CLOBBER, &nc));
+  check(nc_def_dim(nc, "lat", lat.size(), &dlat));
+  check(nc_def_dim(nc, "lon", lon.size(), &dlon));
+  check(nc_def_var(nc, "lat", NC_DOUBLE, 1, &dlat, &vlat));
+  check(nc_def_var(nc, "lon", NC_DOUBLE, 1, &dlon, &vlon));
+  check(nc_put_att_text(nc, vlat, "units", 13, "degrees_north"));
+  check(nc_put_att_text(nc, vlon, "units", 12, "degrees_east"));
+  const int dims[2] = {dlat, dlon};
+  check(nc_def_var(nc, var, NC_SHORT, 2, dims, &vz));
+  const std::size_t chunks[2] = {8, lon.size()};
+  check(nc_def_var_chunking(nc, vz, NC_CHUNKED, chunks));
+  check(nc_def_var_deflate(nc, vz, 1, 1, 4));
+  check(nc_put_att_text(nc, vz, "units", 1, "m"));
+  check(nc_enddef(nc));
+  check(nc_put_var_double(nc, vlat, lat.data()));
+  check(nc_put_var_double(nc, vlon, lon.data()));
+  check(nc_put_var_short(nc, vz, z.data()));
+  check(nc_close(nc));
+  return p;
+}
+
+std::int16_t ivalue(double lon, double lat) { return static_cast<std::int16_t>(field(lon, lat) / 10.0); }
+
+TEST(StreamedRaster, GebcoLayoutNetcdf4) {
+  // GEBCO_2024: pixel-registered, lat ascending from -90 + step/2, lon from -180 + step/2.
+  const double step = 0.5;
+  std::vector<double> lon(720), lat(360);
+  for (std::size_t i = 0; i < lon.size(); ++i) lon[i] = -180.0 + (static_cast<double>(i) + 0.5) * step;
+  for (std::size_t j = 0; j < lat.size(); ++j) lat[j] = -90.0 + (static_cast<double>(j) + 0.5) * step;
+  std::vector<std::int16_t> z(lon.size() * lat.size());
+  for (std::size_t j = 0; j < lat.size(); ++j)
+    for (std::size_t i = 0; i < lon.size(); ++i) z[j * lon.size() + i] = ivalue(lon[i], lat[j]);
+  const fs::path p = write_nc("gebco_layout.nc", "elevation", lon, lat, z);
+  const Bathymetry whole = open(p, false, 0, "elevation");
+  const Bathymetry s = open(p, true, 7, "elevation");
+  for (const Bathymetry* b : {&whole, &s}) {
+    const auto& i = b->info();
+    EXPECT_TRUE(i.global_lon);
+    EXPECT_FALSE(i.duplicate_column);
+    EXPECT_EQ(i.ncols, 720);
+    EXPECT_EQ(i.nrows, 360);
+    EXPECT_EQ(i.registration, "pixel");
+    EXPECT_DOUBLE_EQ(i.lon_first, -179.75);
+    EXPECT_DOUBLE_EQ(i.lat_first, -89.75);
+    EXPECT_EQ(i.data_type, "Int16");
+    // Sample points take the stored values exactly.
+    for (const auto& [c, r] : {std::pair{0, 0}, std::pair{719, 359}, std::pair{300, 123}, std::pair{360, 180}})
+      EXPECT_EQ(b->sample(lon[c], lat[r]), static_cast<double>(z[static_cast<std::size_t>(r) * 720 + c]))
+          << c << " " << r;
+  }
+  EXPECT_TRUE(same_bits(lattice_rows(s, 0.3), lattice_rows(whole, 0.3)));
+  EXPECT_TRUE(same_bits(points(s), points(whole)));
+  expect_same_stats(s, whole);
+}
+
+TEST(StreamedRaster, Srtm15LayoutNetcdf4) {
+  // SRTM15+: grid-registered, lon -180..180 inclusive (a repeated 360° column), lat -90..90, `z`.
+  const double step = 1.0;
+  std::vector<double> lon(361), lat(181);
+  for (std::size_t i = 0; i < lon.size(); ++i) lon[i] = -180.0 + static_cast<double>(i) * step;
+  for (std::size_t j = 0; j < lat.size(); ++j) lat[j] = -90.0 + static_cast<double>(j) * step;
+  std::vector<std::int16_t> z(lon.size() * lat.size());
+  for (std::size_t j = 0; j < lat.size(); ++j)
+    for (std::size_t i = 0; i < lon.size(); ++i)
+      z[j * lon.size() + i] = ivalue(i == 360 ? lon[0] : lon[i], lat[j]);  // the 360° column repeats the first
+  const fs::path p = write_nc("srtm15_layout.nc", "z", lon, lat, z);
+  const Bathymetry whole = open(p, false, 0, "z");
+  const Bathymetry s = open(p, true, 1, "z");
+  for (const Bathymetry* b : {&whole, &s}) {
+    const auto& i = b->info();
+    EXPECT_TRUE(i.global_lon);
+    EXPECT_TRUE(i.duplicate_column);
+    EXPECT_EQ(i.ncols, 360);
+    EXPECT_EQ(i.nrows, 181);
+    EXPECT_EQ(i.registration, "grid");
+    EXPECT_DOUBLE_EQ(i.dlon, 1.0);
+    EXPECT_EQ(b->sample(10.0, 20.0), static_cast<double>(z[110 * 361 + 190]));
+    EXPECT_EQ(b->sample(180.0, -90.0), static_cast<double>(z[0]));  // 180° is -180°
+    EXPECT_EQ(b->sample(-180.0, 90.0), static_cast<double>(z[180 * 361]));
+    EXPECT_EQ(b->sample(179.5, 0.0), 0.5 * (z[90 * 361 + 359] + z[90 * 361 + 0]));  // across the seam
+  }
+  EXPECT_TRUE(same_bits(lattice_rows(s, 0.7), lattice_rows(whole, 0.7)));
+  EXPECT_TRUE(same_bits(points(s), points(whole)));
+  expect_same_stats(s, whole);
+}
+
+TEST(StreamedRaster, LatitudeWindowHoldsOnlyItsRows) {
+  const fs::path p = write_tiff(tmpdir() / "window.tif", 0.25, true, true);
+  const Bathymetry whole = open(p, false);
+  OpenOptions o;
+  o.path = p.string();
+  o.lat_min = 40.0;
+  o.lat_max = 45.0;
+  const Bathymetry w = Bathymetry::open(o);
+  EXPECT_LT(w.info().memory_bytes, whole.info().memory_bytes / 25);
+  for (const double lat : {40.0, 41.3, 44.99, 45.0})
+    for (const double lon : {-179.9, 0.1, 33.3})
+      EXPECT_EQ(w.sample(lon, lat), whole.sample(lon, lat)) << lon << " " << lat;
+  EXPECT_TRUE(std::isnan(w.sample(0.0, 30.0)));  // outside the window
+}
+
+}  // namespace
