@@ -59,12 +59,15 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   StageScope stage("global run", report, log);
   Logger quiet = log;
   quiet.set_level(LogLevel::kError);
-  r.run = run_global_pipeline(g, setup, quiet, nullptr, false);
+  r.run = run_global_pipeline(g, setup, quiet, nullptr, false, true);
+  if (!r.run.area_file_differs.empty()) log.warn("global run: {}; ran the global fill again", r.run.area_file_differs);
   stage.done(
-      fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels, {} triangles "
+      fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels{}, {} triangles "
                   "(the ocean, depth and mesh this grid shares)",
                   r.loaded.source, g.quadtree.step_deg, g.quadtree.levels, setup.lattice.pixel_deg() * 60.0,
-                  g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels, r.run.mesh.triangle_count()));
+                  g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels,
+                  r.run.area_file.empty() ? std::string() : " (mask reused from " + r.run.area_file + ")",
+                  r.run.mesh.triangle_count()));
   return r;
 }
 
