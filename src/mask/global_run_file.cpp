@@ -153,7 +153,8 @@ GlobalRunFile read_global_run_file(const fs::path& path, const config::GlobalCon
   a.filled = Bitmap(nx, ny);
   a.wet = Bitmap(nx, ny);
   a.coastal = Bitmap(nx, ny);
-  const std::int64_t chunk = 512;
+  // Rows per read: several 512-row tile rows (decoded in parallel) within about 64 MB.
+  const std::int64_t chunk = std::clamp<std::int64_t>((std::int64_t{1} << 26) / nx / 512 * 512, 512, 2048);
   std::vector<std::uint8_t> buf;
   for (std::int64_t r0 = 0; r0 < ny; r0 += chunk) {
     const std::int64_t rows = std::min(chunk, ny - r0);

@@ -68,9 +68,8 @@ void write_byte_geotiff(const std::filesystem::path& path, const ByteGeoTiffLayo
   const std::string tile = std::to_string(kTile), nthreads = std::to_string(threads);
   const std::string big =
       static_cast<double>(layout.width) * static_cast<double>(layout.height) * nb > 3.5e9 ? "YES" : "IF_SAFER";
-  const std::vector<std::string> opts{"TILED=YES",        "BLOCKXSIZE=" + tile, "BLOCKYSIZE=" + tile,
-                                      "COMPRESS=DEFLATE", "INTERLEAVE=BAND",    "NUM_THREADS=" + nthreads,
-                                      "BIGTIFF=" + big};
+  const std::vector<std::string> opts{"TILED=YES", "BLOCKXSIZE=" + tile, "BLOCKYSIZE=" + tile,      "COMPRESS=DEFLATE",
+                                      "ZLEVEL=1",  "INTERLEAVE=BAND",    "NUM_THREADS=" + nthreads, "BIGTIFF=" + big};
   std::vector<char*> copt;
   for (const auto& o : opts) copt.push_back(const_cast<char*>(o.c_str()));
   copt.push_back(nullptr);
@@ -115,7 +114,14 @@ struct ByteGeoTiff::Impl {
 ByteGeoTiff::ByteGeoTiff(const std::filesystem::path& path) : path_(path), impl_(std::make_unique<Impl>()) {
   gdal_register();
   const NoSidecar no_sidecar;
-  impl_->ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  // Tiles of one RasterIO request are decoded by GDAL's worker threads (GTiff, GDAL >= 3.6).
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  const std::string nthreads = "NUM_THREADS=" + std::to_string(threads);
+  const char* open_options[] = {nthreads.c_str(), nullptr};
+  impl_->ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, open_options));
   if (!impl_->ds) throw InputError(fmt::format("{}: cannot open as a raster{}", path.string(), last_gdal_error()));
   GDALDataset& ds = *impl_->ds;
   layout_.width = ds.GetRasterXSize();
