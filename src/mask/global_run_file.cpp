@@ -19,6 +19,7 @@ namespace fs = std::filesystem;
 constexpr char kFormat[] = "aquatoria global run 1";
 constexpr std::uint8_t kFilled = 1, kWet = 2, kCoastal = 4;
 constexpr std::uint8_t kNoLevel = 255;
+constexpr char kNotAFile[] = "n/a (not a plain file)";
 
 std::string number(double v) { return fmt::format("{:.17g}", v); }
 
@@ -31,18 +32,25 @@ std::string lattice_text(const Lattice& l) {
 
 std::vector<std::pair<std::string, std::string>> mask_inputs(const config::GlobalConfig& c) {
   const fs::path raster = fs::absolute(c.input.path).lexically_normal();
+  // A GDAL source that is not a plain file (a subdataset string, /vsicurl/...) has no size or
+  // time to compare: recorded as kNotAFile, and such a file is never reused.
   std::error_code ec;
-  const auto size = fs::file_size(raster, ec);
-  if (ec) throw InputError(fmt::format("input.path = \"{}\": cannot read its size: {}", c.input.path, ec.message()));
-  const auto mtime = fs::last_write_time(raster, ec);
-  if (ec) throw InputError(fmt::format("input.path = \"{}\": cannot read its time: {}", c.input.path, ec.message()));
+  std::string size = kNotAFile, mtime = kNotAFile;
+  if (fs::is_regular_file(raster, ec)) {
+    const auto bytes = fs::file_size(raster, ec);
+    const auto time = fs::last_write_time(raster, ec);
+    if (!ec) {
+      size = std::to_string(bytes);
+      mtime = std::to_string(time.time_since_epoch().count());
+    }
+  }
   std::string seeds;
   for (const auto& s : c.mask.seeds)
     seeds += fmt::format("{}[{}, {}]", seeds.empty() ? "" : ", ", number(s[0]), number(s[1]));
   return {
       {"input.path", raster.string()},
-      {"input.file_bytes", std::to_string(size)},
-      {"input.file_mtime", std::to_string(mtime.time_since_epoch().count())},
+      {"input.file_bytes", size},
+      {"input.file_mtime", mtime},
       {"input.variable", c.input.variable},
       {"input.band", std::to_string(c.input.band)},
       {"input.positive_down", c.input.positive_down ? "true" : "false"},
@@ -132,6 +140,11 @@ GlobalRunFile read_global_run_file(const fs::path& path, const config::GlobalCon
                                  path.string(), tif.metadata("AQ_FORMAT"), kFormat));
   GlobalRunFile out;
   const auto inputs = mask_inputs(c);
+  if (inputs[1].second == kNotAFile) {
+    out.differs =
+        fmt::format("input.path = \"{}\" is not a plain file, so its changes cannot be detected", c.input.path);
+    return out;
+  }
   if (tif.metadata("AQ_INPUTS_FNV1A64") != mask_inputs_checksum(inputs)) {
     for (const auto& [k, v] : inputs) {
       const std::string stored = tif.metadata("AQ_INPUT_" + k);

@@ -15,7 +15,8 @@
 // The inputs of the mask stage (mask_inputs): the raster (absolute path, size in bytes and
 // modification time of the file; input.variable, band, positive_down, interpolation), the lattice
 // (quadtree.step_deg, levels, lon0_deg), rotation.* and every mask.* key except passages (a
-// report only). A VRT's tiles are not followed: touch the .vrt after changing a tile.
+// report only). A VRT's tiles are not followed: touch the .vrt after changing a tile. A source
+// that is not a plain file (a GDAL subdataset string, /vsicurl/...) is never reused.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +34,6 @@
 namespace aq::mask {
 
 /// The mask stage's inputs as (key, value) items in a fixed order (see the file comment).
-/// Throws InputError naming input.path when the raster file cannot be examined.
 std::vector<std::pair<std::string, std::string>> mask_inputs(const config::GlobalConfig& c);
 
 /// 16 hex digits: FNV-1a 64 of the items as "key=value\n" lines.
