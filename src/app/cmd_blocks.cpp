@@ -116,7 +116,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
   OutputSet out(dir);
 
-  const GlobalRun run = run_global_pipeline(c, setup, log, &report);
+  const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, true);
 
   StageScope rank_stage("rank", &report, log);
   const auto ranked = handoff::rank_blocks(run.area.filled, lat, rot, c.blocks);

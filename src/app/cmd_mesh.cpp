@@ -20,7 +20,9 @@
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
+#include "mask/global_run_file.hpp"
 #include "mesh/statistics.hpp"
+#include "quadtree/leaf_levels.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -103,6 +105,16 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   io::MeshOutputInfo oinfo;
   oinfo.elements = io::parse_element_kinds(c.mesh.elements);
   oinfo.source = fmt::format("aquatoria {} from {}", AQ_VERSION, ri.path);
+  oinfo.global_run_file = [&](const std::filesystem::path& p) {
+    const quadtree::LeafLevels levels(run.leaves, lat);
+    mask::write_global_run_file(p, area, lat, c,
+                                [&](std::int64_t j0, std::int64_t rows, std::uint8_t* o) { levels.fill(j0, rows, o); });
+    io::WriteStats s;
+    s.bytes = static_cast<std::int64_t>(std::filesystem::file_size(p));
+    s.nodes = lat.nx * lat.ny;
+    s.elements = area.filled_pixels;
+    return s;
+  };
   const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo, &report);
   Json outputs = Json::array();
   for (const auto& f : files) {

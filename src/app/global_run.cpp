@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "core/error.hpp"
+#include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
 #include "mesh/build_mesh.hpp"
 #include "quadtree/build_leaves.hpp"
@@ -132,8 +133,12 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
   return ro;
 }
 
+std::filesystem::path global_run_file_path(const config::GlobalConfig& c) {
+  return std::filesystem::path(c.output.dir) / (c.output.name + ".tif");
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics) {
+                              Report* report, bool statistics, bool reuse) {
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -160,7 +165,25 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                                 {"lon0_deg", lat.lon0_deg}};
   }
 
-  run.area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, report);
+  const std::filesystem::path file = global_run_file_path(c);
+  if (reuse && std::filesystem::exists(file)) {
+    StageScope stage("mask", report, log);
+    mask::GlobalRunFile g = mask::read_global_run_file(file, c, lat);
+    if (g.reused) {
+      run.area = std::move(g.area);
+      run.area_file = file.string();
+      if (report != nullptr)
+        (*report)["mask"] = Json{{"reused_file", run.area_file},
+                                 {"inputs_fnv1a64", mask::mask_inputs_checksum(mask::mask_inputs(c))},
+                                 {"filled_pixels", run.area.filled_pixels}};
+      stage.done(fmt::format("reused {} (its mask inputs match this run): {} filled pixels, no global fill",
+                             run.area_file, run.area.filled_pixels));
+    } else {
+      run.area_file_differs = fmt::format("{} was made from other inputs ({})", file.string(), g.differs);
+      log.warn("mask: {}; running the global fill again", run.area_file_differs);
+    }
+  }
+  if (run.area_file.empty()) run.area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, report);
   if (report != nullptr) {  // after the classification: a streamed raster's statistics come from that pass
     (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
                               {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
@@ -172,8 +195,8 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     log.info("critical passages (open = the filled ocean connects both sides):");
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
-  const auto leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
-  run.mesh = mesh::build_mesh(leaves, lat, rot, bathy, c.mesh, log, report);
+  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
+  run.mesh = mesh::build_mesh(run.leaves, lat, rot, bathy, c.mesh, log, report);
   if (!statistics) return run;
 
   StageScope stat_stage("statistics", report, log);

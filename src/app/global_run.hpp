@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -17,6 +18,7 @@
 #include "mask/wet_area.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/statistics.hpp"
+#include "quadtree/leaves.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -49,12 +51,19 @@ struct GlobalRun {
   GlobalSetup setup;
   std::optional<raster::Bathymetry> bathy;
   mask::WetArea area;
+  std::string area_file;          ///< the global run file `area` was read from; "" = computed by the mask stage
+  std::string area_file_differs;  ///< when a global run file was present but not reused: why
+  std::vector<quadtree::Leaf> leaves;
   mesh::Mesh mesh;
   mesh::MeshStatistics statistics;
 };
 
 /// Raster open options from an [input] section (one place for the config -> raster mapping).
 raster::OpenOptions raster_options(const config::InputOptions& input, std::int64_t max_memory_bytes);
+
+/// The global run file (mask/global_run_file.hpp) `aquatoria mesh` writes for `c` when
+/// output.formats has "tif": <output.dir>/<output.name>.tif.
+std::filesystem::path global_run_file_path(const config::GlobalConfig& c);
 
 /// Runs read -> mask -> quadtree -> mesh -> statistics for `c` (after prepare_global_run);
 /// `statistics = false` skips the last stage (WGS84 areas and the mesh checks, the slowest part on
@@ -63,7 +72,10 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
 /// row); fills the report's "input", "lattice", "mask", "quadtree", "mesh" and "statistics"
 /// sections when `report` is given. Throws what the stages throw, and InternalError when a mesh
 /// check fails (nothing has been written then).
+/// With `reuse` set and global_run_file_path(c) present, the mask stage is replaced by reading
+/// that file when its inputs match c (log line "mask: reused <file> ..."); when they differ the
+/// mask stage runs and a warning names the file and the first differing input.
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics = true);
+                              Report* report, bool statistics = true, bool reuse = false);
 
 }  // namespace aq::app

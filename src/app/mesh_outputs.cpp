@@ -46,7 +46,7 @@ std::string facts_text(const std::vector<std::pair<std::string, std::int64_t>>& 
 }  // namespace
 
 const std::vector<std::string>& known_output_formats() {
-  static const std::vector<std::string> formats{"msh", "ugrid", "vtu", "fort14", "text", "png"};
+  static const std::vector<std::string> formats{"msh", "ugrid", "vtu", "fort14", "text", "png", "tif"};
   return formats;
 }
 
@@ -74,6 +74,9 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
                                             const MeshOutputInfo& info, Report* report) {
   check_mesh_output_options(options, info.elements);
   check_elements(mesh, info.elements);
+  const auto formats = requested_formats(options);
+  if (std::find(formats.begin(), formats.end(), "tif") != formats.end() && !info.global_run_file)
+    throw ConfigError("output.formats: \"tif\" (the global run file) is written by `aquatoria mesh` only");
   std::vector<WrittenFile> written;
 
   // Writers in geographic coordinates get the mesh without the degenerate pole row (made once,
@@ -116,7 +119,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
   using Facts = std::vector<std::pair<std::string, std::int64_t>>;
   const std::string& name = options.name;
 
-  for (const auto& format : requested_formats(options)) {
+  for (const auto& format : formats) {
     if (format == "msh") {
       MshOptions o;
       o.binary = options.msh_binary;
@@ -131,6 +134,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.elements = info.elements;
       o.source = info.source;
       o.history = fmt::format("written by aquatoria ({})", info.source);
+      o.deflate = options.ugrid_deflate;
       write(
           format, name + ".nc", [&](const auto& p) { return write_ugrid(geographic(info.elements), p, o); },
           [](const WriteStats& s) {
@@ -176,6 +180,10 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             "png_zoom", name + "_zoom.png", [&](const auto& p) { return write_preview_zoom_png(mesh, bathy, p, o); },
             [](const WriteStats&) { return Facts{}; });
       }
+    } else if (format == "tif") {
+      write(format, name + ".tif", info.global_run_file, [](const WriteStats& s) {
+        return Facts{{"pixels", s.nodes}, {"filled pixels", s.elements}};
+      });
     }
   }
   return written;

@@ -11,11 +11,15 @@
 //   text     <name>.txt           plain text
 //   png      <name>.png           preview map (output.png_width), and <name>_zoom.png when
 //                                 output.png_zoom is set
+//   tif      <name>.tif           the global run file (mask/global_run_file.hpp: Ω_L, pixel
+//                                 classes, quadtree levels; GeoTIFF), written by the run's
+//                                 MeshOutputInfo::global_run_file
 // Every option is checked before the first file is written, so a bad option writes nothing.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,7 +37,7 @@ namespace aq::io {
 
 struct WrittenFile {
   std::string name;            ///< file name in the output folder, e.g. "mesh.msh"
-  std::string format;          ///< "msh", "ugrid", "vtu", "fort14", "text", "png" or "png_zoom"
+  std::string format;          ///< "msh", "ugrid", "vtu", "fort14", "text", "png", "png_zoom" or "tif"
   std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
   std::int64_t bytes = 0;
   double seconds = 0.0;  ///< wall time of the writer
@@ -45,6 +49,9 @@ struct WrittenFile {
 struct MeshOutputInfo {
   ElementKinds elements = ElementKinds::kTriangles;  ///< from mesh.elements (parse_element_kinds)
   std::string source = "aquatoria";                  ///< program and input, for file metadata
+  /// Writer of the "tif" format (the mesh alone does not hold the pixel masks); empty = "tif"
+  /// is refused (ConfigError naming output.formats).
+  std::function<WriteStats(const std::filesystem::path&)> global_run_file;
 };
 
 /// The formats write_mesh_outputs knows, in its order.

@@ -17,6 +17,7 @@
 #include "curvilinear/roms_depth.hpp"
 #include "grid_files/roms_grid.hpp"
 #include "io/depth.hpp"
+#include "mask/cell_elevation.hpp"
 #include "mask/regional_mask.hpp"
 #include "mask/wet_area.hpp"
 #include "pictures/roms_grid_png.hpp"
@@ -58,12 +59,15 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   StageScope stage("global run", report, log);
   Logger quiet = log;
   quiet.set_level(LogLevel::kError);
-  r.run = run_global_pipeline(g, setup, quiet, nullptr, false);
+  r.run = run_global_pipeline(g, setup, quiet, nullptr, false, true);
+  if (!r.run.area_file_differs.empty()) log.warn("global run: {}; ran the global fill again", r.run.area_file_differs);
   stage.done(
-      fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels, {} triangles "
+      fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels{}, {} triangles "
                   "(the ocean, depth and mesh this grid shares)",
                   r.loaded.source, g.quadtree.step_deg, g.quadtree.levels, setup.lattice.pixel_deg() * 60.0,
-                  g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels, r.run.mesh.triangle_count()));
+                  g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels,
+                  r.run.area_file.empty() ? std::string() : " (mask reused from " + r.run.area_file + ")",
+                  r.run.mesh.triangle_count()));
   return r;
 }
 
@@ -91,9 +95,22 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   const int ni = cg.L + 1, nj = cg.M + 1;
   const std::size_t nr = cg.rho.size();
 
-  // Depth at ρ with the global run's sampling; the global ocean; the masks.
-  const std::vector<double> elevation =
+  // Elevation of each ρ cell (roms.depth_statistic: the global run's sampling at ρ, or a statistic
+  // of the raster points in the cell); the global ocean; the masks (land where that elevation is
+  // above −h, so the mask follows the same rule as the depth).
+  const std::vector<double> point_elevation =
       mask::sample_elevations(bathy, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), nr);
+  std::vector<double> corner_lon, corner_lat;
+  curvilinear::rho_cell_corners(cg, corner_lon, corner_lat);
+  const mask::CellElevations cells =
+      mask::cell_elevations(bathy, corner_lon.data(), corner_lat.data(), ni, nj, point_elevation.data(),
+                            mask::parse_cell_statistic(c.roms.depth_statistic, "roms.depth_statistic"));
+  const std::vector<double>& elevation = cells.elevation_m;
+  log.info("roms: depth statistic {} ({} of roms.depth_statistic = \"{}\"; median {} raster points per ρ cell{})",
+           mask::cell_statistic_name(cells.used),
+           cells.used == mask::CellStatistic::kPoint ? "interpolated at ρ," : "over the raster points in each ρ cell,",
+           c.roms.depth_statistic, cells.median_points_per_cell,
+           cells.point_cells > 0 ? fmt::format(", {} cells without one keep the point sample", cells.point_cells) : "");
   const mask::WetArea& area = global.run.area;
   mask::RomsMasks masks =
       mask::build_roms_masks(area.filled, lattice, rot, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), elevation.data(),
@@ -177,6 +194,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       {"global_config", global.loaded.source},
       {"bathymetry", g.input.path},
       {"bathymetry_sampling", g.input.interpolation},
+      {"depth_statistic", std::string(mask::cell_statistic_name(cells.used))},
+      {"depth_statistic_rule",
+       std::string("hraw and the mask's elevation at rho: point = the bathymetry sampled at rho; mean/median/min = "
+                   "over the raster sample points inside the rho cell (the psi quadrilateral, extrapolated on the "
+                   "contour), cells without one keep the point sample")},
       {"mask_rule",
        std::string("wet iff the rho point's lattice pixel is in the global K-fill set and its elevation <= -h; "
                    "boundary rows/columns copy the nearest interior point; mask_u, mask_v, mask_psi are products "
@@ -287,7 +309,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                          {"angle_max_rad", st.angle_max},
                                          {"xl_m", cg.xl_m},
                                          {"el_m", cg.el_m}}},
-                        {"depth", Json{{"hmin_m", c.roms.hmin_m},
+                        {"depth", Json{{"statistic", mask::cell_statistic_name(cells.used)},
+                                       {"statistic_requested", c.roms.depth_statistic},
+                                       {"median_raster_points_per_cell", cells.median_points_per_cell},
+                                       {"cells_with_point_sample", cells.point_cells},
+                                       {"hmin_m", c.roms.hmin_m},
                                        {"rmax", c.roms.rmax},
                                        {"clipped", depth.clipped},
                                        {"clipped_wet", depth.clipped_wet},

@@ -244,7 +244,7 @@ const S& schema() {
         "output", "formats", [](GlobalConfig& c) -> std::vector<std::string>& { return c.output.formats; },
         [](const std::vector<std::string>& v) {
           for (const auto& f : v) {
-            const std::string e = one_of(f, {"msh", "ugrid", "vtu", "fort14", "text", "png"});
+            const std::string e = one_of(f, {"msh", "ugrid", "vtu", "fort14", "text", "png", "tif"});
             if (!e.empty()) return e;
           }
           return std::string();
@@ -252,6 +252,9 @@ const S& schema() {
         "");
     t.add<bool>(
         "output", "msh_binary", [](GlobalConfig& c) -> bool& { return c.output.msh_binary; }, {}, "");
+    t.add<int>(
+        "output", "ugrid_deflate", [](GlobalConfig& c) -> int& { return c.output.ugrid_deflate; },
+        [](const int& v) { return in_range(v, 0, 9); }, "");
     t.add<std::string>(
         "output", "vtu_coordinates", [](GlobalConfig& c) -> std::string& { return c.output.vtu_coordinates; },
         [](const std::string& v) {

@@ -65,6 +65,7 @@ struct OutputOptions {
   std::string name = "mesh";  ///< base name of the output files
   std::vector<std::string> formats{"msh", "ugrid", "vtu", "fort14", "text", "png"};
   bool msh_binary = false;                 ///< Gmsh MSH 4.1 binary instead of ASCII
+  int ugrid_deflate = 1;                   ///< UGRID: 1..9 netCDF-4 deflate level, 0 = classic uncompressed
   std::string vtu_coordinates = "sphere";  ///< "sphere" (unit sphere) or "wgs84" (metres, ECEF)
   int png_width = 2400;                    ///< preview width in pixels
   std::vector<double> png_zoom;            ///< optional [lon_min, lon_max, lat_min, lat_max] zoom box

@@ -181,6 +181,14 @@ const S& schema() {
                                                  : fmt::format("\"{}\" is not one of \"sphere\", \"wgs84\"", v);
         },
         "");
+    t.add<std::string>(
+        "roms", "depth_statistic", [](RegionalConfig& c) -> std::string& { return c.roms.depth_statistic; },
+        [](const std::string& v) {
+          for (const char* name : {"auto", "point", "mean", "median", "min"})
+            if (v == name) return std::string();
+          return fmt::format("\"{}\" is not one of \"auto\", \"point\", \"mean\", \"median\", \"min\"", v);
+        },
+        "");
     t.add<double>(
         "roms", "earth_radius_m", [](RegionalConfig& c) -> double& { return c.roms.earth_radius_m; },
         [](const double& v) {

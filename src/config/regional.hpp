@@ -27,6 +27,9 @@ struct RomsOptions {
   double rmax = 0.0;                  ///< r-factor bound of the depth smoothing, [0, 1); 0 = none
   std::string distances = "sphere";   ///< pm, pn from "sphere" great circles or "wgs84" geodesics
   double earth_radius_m = 6371000.0;  ///< sphere radius of the ROMS metrics and x/y (m, > 0)
+  /// Elevation of a ρ cell from the raster (mask/cell_elevation.hpp): "auto" (mean when the raster
+  /// is finer than the cells, else point), "point", "mean", "median" or "min".
+  std::string depth_statistic = "auto";
 };
 
 /// [nesting] A parent regional ROMS grid this grid is a refinement of (ROMS refinement nesting,

@@ -219,6 +219,29 @@ CGrid build_cgrid(const Grid2D& g, const Projection& projection, const CGridOpti
   return c;
 }
 
+void rho_cell_corners(const CGrid& g, std::vector<double>& lon_deg, std::vector<double>& lat_deg) {
+  const int na = g.L + 2, nb = g.M + 2;  // corners; ψ is L × M
+  const auto at = [na](int a, int b) {
+    return static_cast<std::size_t>(b) * static_cast<std::size_t>(na) + static_cast<std::size_t>(a);
+  };
+  lon_deg.assign(static_cast<std::size_t>(na) * static_cast<std::size_t>(nb), 0.0);
+  lat_deg.assign(lon_deg.size(), 0.0);
+  for (auto* pair : {&lon_deg, &lat_deg}) {
+    std::vector<double>& c = *pair;
+    const std::vector<double>& psi = pair == &lon_deg ? g.psi.lon_deg : g.psi.lat_deg;
+    for (int b = 1; b < nb - 1; ++b) {
+      for (int a = 1; a < na - 1; ++a) c[at(a, b)] = psi[g.psi.at(a - 1, b - 1)];
+      c[at(0, b)] = 2.0 * c[at(1, b)] - c[at(2, b)];
+      c[at(na - 1, b)] = 2.0 * c[at(na - 2, b)] - c[at(na - 3, b)];
+    }
+    for (int a = 0; a < na; ++a) {
+      c[at(a, 0)] = 2.0 * c[at(a, 1)] - c[at(a, 2)];
+      c[at(a, nb - 1)] = 2.0 * c[at(a, nb - 2)] - c[at(a, nb - 3)];
+    }
+  }
+  for (double& v : lat_deg) v = std::clamp(v, -90.0, 90.0);
+}
+
 CGridStats cgrid_stats(const CGrid& g) {
   CGridStats s;
   s.pm_min = s.pn_min = s.angle_min = std::numeric_limits<double>::infinity();

@@ -120,6 +120,13 @@ struct CGridStats {
 /// Parallel over rows with OpenMP; results do not depend on the thread count.
 CGrid build_cgrid(const Grid2D& supergrid, const Projection& projection, const CGridOptions& options = {});
 
+/// The corners of the ρ cells of `g`: (L+2) × (M+2) points (value (a, b) at b·(L+2) + a, the
+/// layout of mask/cell_elevation.hpp), corner (a, b) = ψ(a−1, b−1) for the ψ points that exist
+/// and, for the boundary ρ cells (i = 0, L or j = 0, M, centred on the contour), extrapolated
+/// linearly in longitude/latitude from the two nearest ψ columns, then rows (latitudes clamped to
+/// ±90°). Cell (i, j) of that layout is the ρ cell (i, j).
+void rho_cell_corners(const CGrid& g, std::vector<double>& lon_deg, std::vector<double>& lat_deg);
+
 /// pm/pn ranges, isotropy and angle range of `g`.
 CGridStats cgrid_stats(const CGrid& g);
 

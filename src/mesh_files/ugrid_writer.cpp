@@ -32,8 +32,11 @@ constexpr char kWgs84Wkt[] =
 // file. The destructor aborts (and so deletes) a file that was not closed.
 class NcFile {
  public:
-  NcFile(std::filesystem::path path, bool netcdf4) : path_(std::move(path)) {
-    const int mode = NC_CLOBBER | (netcdf4 ? NC_NETCDF4 : NC_64BIT_OFFSET);
+  // deflate 1..9: netCDF-4 with every array chunked and compressed at that level; 0: no compression.
+  NcFile(std::filesystem::path path, bool netcdf4, int deflate) : path_(std::move(path)), deflate_(deflate) {
+    if (deflate_ < 0 || deflate_ > 9)
+      throw ConfigError(fmt::format("output.ugrid_deflate = {}: must be 0 (classic, uncompressed) .. 9", deflate_));
+    const int mode = NC_CLOBBER | (netcdf4 || deflate_ > 0 ? NC_NETCDF4 : NC_64BIT_OFFSET);
     check(nc_create(path_.c_str(), mode, &id_), "cannot create");
     int old = 0;
     check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
@@ -54,12 +57,22 @@ class NcFile {
   int dim(const std::string& name, std::int64_t len) {
     int d = -1;
     check(nc_def_dim(id_, name.c_str(), static_cast<std::size_t>(len), &d), "define dimension " + name);
+    if (static_cast<std::size_t>(d) >= dim_len_.size()) dim_len_.resize(static_cast<std::size_t>(d) + 1, 0);
+    dim_len_[static_cast<std::size_t>(d)] = static_cast<std::size_t>(len);
     return d;
   }
   int var(const std::string& name, nc_type type, std::initializer_list<int> dims) {
     int v = -1;
     const std::vector<int> d(dims);
     check(nc_def_var(id_, name.c_str(), type, static_cast<int>(d.size()), d.data(), &v), "define variable " + name);
+    if (d.empty()) scalars_.push_back(v);
+    if (deflate_ > 0 && !d.empty()) {
+      std::vector<std::size_t> chunk;
+      for (const int k : d) chunk.push_back(dim_len_[static_cast<std::size_t>(k)]);
+      chunk[0] = std::max<std::size_t>(1, std::min(chunk[0], kChunkRows));
+      check(nc_def_var_chunking(id_, v, NC_CHUNKED, chunk.data()), "chunking of " + name);
+      check(nc_def_var_deflate(id_, v, 1, 1, deflate_), "compression of " + name);
+    }
     return v;
   }
   void text(int var, const char* name, std::string_view value) {
@@ -80,7 +93,13 @@ class NcFile {
       check(nc_put_att_longlong(id_, var, "_FillValue", NC_INT64, 1, &fill), "attribute _FillValue");
     }
   }
-  void enddef() { check(nc_enddef(id_), "end of definitions"); }
+  // Ends the definitions and writes 0 into the scalar (container) variables: with NC_NOFILL an
+  // unwritten netCDF-4 scalar would hold whatever the memory held, and the bytes would vary.
+  void enddef() {
+    check(nc_enddef(id_), "end of definitions");
+    const int zero = 0;
+    for (const int v : scalars_) check(nc_put_var_int(id_, v, &zero), "write a scalar variable");
+  }
 
   void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const double* data) {
     const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
@@ -109,7 +128,11 @@ class NcFile {
   }
 
  private:
+  static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
   std::filesystem::path path_;
+  int deflate_ = 0;
+  std::vector<std::size_t> dim_len_;  ///< length of each defined dimension, by id
+  std::vector<int> scalars_;          ///< variables without dimensions (topology, grid mappings)
   int id_ = -1;
 };
 
@@ -364,7 +387,7 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   const auto nb = static_cast<std::int64_t>(mesh.boundary_edges.size());
   const bool rotated = mesh.rotation.enabled;
 
-  NcFile nc(path, big);
+  NcFile nc(path, big, options.deflate);
   const int g = NC_GLOBAL;
   nc.text(g, "Conventions", "CF-1.8 UGRID-1.0");
   nc.text(g, "title", options.title);

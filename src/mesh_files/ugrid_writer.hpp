@@ -1,6 +1,10 @@
-// UGRID-1.0 netCDF writer (CF-1.8, "Conventions = CF-1.8 UGRID-1.0"), netCDF-C API, classic
-// 64-bit-offset format (netCDF-4 with 64-bit indices only when the mesh has more than 2^31-1
-// nodes or faces). The file is byte-for-byte reproducible (no dates in `history`).
+// UGRID-1.0 netCDF writer (CF-1.8, "Conventions = CF-1.8 UGRID-1.0"), netCDF-C API. By default
+// netCDF-4 (HDF5) with every array chunked (65536 rows of the first dimension, whole rows) and
+// compressed (shuffle + deflate at UgridOptions::deflate, output.ugrid_deflate): a global mesh of
+// tens of millions of faces is then a fraction of its raw size and still read by ncdump, CDO and
+// xarray/uxarray. deflate = 0 writes the classic 64-bit-offset format (uncompressed; netCDF-4 with
+// 64-bit indices only when the mesh has more than 2^31-1 nodes or faces) for old readers. The
+// file is byte-for-byte reproducible (no dates in `history`; netCDF-4 tracks no object times).
 //
 // What is written (names for the primary topology "mesh"):
 //   mesh                  dummy int, cf_role = "mesh_topology", topology_dimension = 2,
@@ -52,6 +56,7 @@ struct UgridOptions {
   std::string title = "aquatoria global ocean mesh";
   std::string history = "written by aquatoria";  ///< no timestamp: outputs are reproducible
   std::string source = "aquatoria";              ///< e.g. program version and input raster
+  int deflate = 1;  ///< 0 = classic 64-bit offset, uncompressed; 1..9 = netCDF-4, shuffle + deflate level
 };
 
 /// Writes `mesh` to `path` (a temporary path of an OutputSet). Throws OutputError naming the path

@@ -103,6 +103,30 @@ TEST(NcdumpClient, ShowsUgridTopologyAndConventions) {
   EXPECT_NE(d.out.find("mesh_face_nodes ="), std::string::npos);
 }
 
+// Issue 9: UGRID is netCDF-4, chunked and deflated by default (output.ugrid_deflate = 1); 0 gives
+// the classic 64-bit-offset file; both hold the same data as ncdump prints it.
+TEST(NcdumpClient, UgridIsChunkedDeflatedNetcdf4OrClassicWithTheSameData) {
+  if (!have("ncdump")) GTEST_SKIP() << "ncdump not installed";
+  testing::TempDir a, b;
+  const auto m = testing::band_mesh(Lattice::make(4.0, 1, -180.0), 10, 80);
+  write_ugrid(m, a / "m.nc");
+  UgridOptions classic;
+  classic.deflate = 0;
+  write_ugrid(m, b / "m.nc", classic);
+  EXPECT_EQ(test::run_command("ncdump -k " + (a / "m.nc").string()).out, "netCDF-4\n");
+  EXPECT_EQ(test::run_command("ncdump -k " + (b / "m.nc").string()).out, "64-bit offset\n");
+  const auto hs = test::run_command("ncdump -hs " + (a / "m.nc").string());
+  ASSERT_EQ(hs.exit_code, 0) << hs.err;
+  EXPECT_NE(hs.out.find("mesh_face_nodes:_DeflateLevel = 1"), std::string::npos) << hs.out;
+  EXPECT_NE(hs.out.find("mesh_face_nodes:_Shuffle = \"true\""), std::string::npos) << hs.out;
+  EXPECT_NE(hs.out.find("mesh_face_nodes:_Storage = \"chunked\""), std::string::npos) << hs.out;
+  EXPECT_LT(std::filesystem::file_size(a / "m.nc"), std::filesystem::file_size(b / "m.nc"));
+  const auto da = test::run_command("ncdump " + (a / "m.nc").string());
+  const auto db = test::run_command("ncdump " + (b / "m.nc").string());
+  ASSERT_EQ(da.exit_code, 0) << da.err;
+  EXPECT_EQ(da.out, db.out);
+}
+
 TEST(CdoClient, SeesAnUnstructuredGridWithBoundsAndReadsTheData) {
   if (!have("cdo")) GTEST_SKIP() << "cdo not installed";
   testing::TempDir dir;
