@@ -33,8 +33,8 @@
 #include "handoff/block_contour.hpp"
 #include "handoff/block_files.hpp"
 #include "handoff/coastal_blocks.hpp"
-#include "io/element_kinds.hpp"
-#include "io/preview_png.hpp"
+#include "mesh_files/element_kinds.hpp"
+#include "pictures/preview_png.hpp"
 
 namespace aq::app {
 

@@ -19,8 +19,8 @@
 #include "core/output_files.hpp"
 #include "core/timer.hpp"
 #include "curvilinear/grid_checks.hpp"
-#include "io/grid_quality_png.hpp"
-#include "io/xygrid_netcdf.hpp"
+#include "grid_files/xygrid_netcdf.hpp"
+#include "pictures/grid_quality_png.hpp"
 
 namespace aq::app {
 

@@ -23,8 +23,8 @@
 #include "curvilinear/cgrid.hpp"
 #include "curvilinear/grid_checks.hpp"
 #include "curvilinear/regional.hpp"
-#include "io/regional_pictures.hpp"
-#include "io/xygrid_netcdf.hpp"
+#include "grid_files/xygrid_netcdf.hpp"
+#include "pictures/regional_pictures.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -107,8 +107,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     // A bathymetry-weighted control function (regional.weight_depth) samples the [input] raster.
     std::optional<raster::Bathymetry> bathy;
     curvilinear::DepthSampler depth;
-    if (c.params.weight_depth > 0.0 && curvilinear::uses_weight(c.params.method) &&
-        !c.input.path.empty()) {
+    if (c.params.weight_depth > 0.0 && curvilinear::uses_weight(c.params.method) && !c.input.path.empty()) {
       bathy.emplace(raster::Bathymetry::open(raster_options(c.input, 0), log));
       depth = [&bathy](double lon, double lat) { return -bathy->sample(lon, lat); };
     }

@@ -9,8 +9,8 @@
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "curvilinear/cgrid.hpp"
+#include "grid_files/nesting_netcdf.hpp"
 #include "handoff/nesting.hpp"
-#include "io/nesting_netcdf.hpp"
 
 namespace aq::app {
 

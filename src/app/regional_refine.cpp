@@ -10,10 +10,10 @@
 #include "app/regional_roms.hpp"
 #include "core/error.hpp"
 #include "curvilinear/cgrid.hpp"
+#include "grid_files/roms_grid.hpp"
 #include "handoff/contact_points.hpp"
 #include "handoff/nested_bathymetry.hpp"
-#include "io/roms_grid.hpp"
-#include "io/roms_grid_png.hpp"
+#include "pictures/roms_grid_png.hpp"
 
 #ifndef AQ_VERSION
 #define AQ_VERSION "dev"

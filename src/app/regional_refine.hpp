@@ -19,8 +19,8 @@
 #include "curvilinear/refine.hpp"
 #include "curvilinear/regional.hpp"
 #include "curvilinear/roms_depth.hpp"
+#include "grid_files/contact_netcdf.hpp"
 #include "handoff/contact_points.hpp"
-#include "io/contact_netcdf.hpp"
 #include "mask/regional_mask.hpp"
 
 namespace aq::app {

@@ -15,11 +15,11 @@
 #include "core/rotation.hpp"
 #include "curvilinear/cgrid.hpp"
 #include "curvilinear/roms_depth.hpp"
+#include "grid_files/roms_grid.hpp"
 #include "io/depth.hpp"
-#include "io/roms_grid.hpp"
-#include "io/roms_grid_png.hpp"
 #include "mask/regional_mask.hpp"
 #include "mask/wet_area.hpp"
+#include "pictures/roms_grid_png.hpp"
 #include "raster/bathymetry.hpp"
 
 #ifndef AQ_VERSION

@@ -122,12 +122,12 @@ void bvp_stage(RegionalResult& r, const Logger& log, Report* report, Json* secti
     }
     (*section)["stage_seconds"] = r.stage_seconds;
   }
-  scope.done(fmt::format(
-      "{} x {} supergrid on the {} (nx = {}, W/H = {:.6f}): f_max {:.3g} -> {:.3g}, f_avg {:.3g} "
-      "-> {:.3g} in {} outer iterations (best {})",
-      r.grid.nx_pts, r.grid.ny_pts, p.surface == RegionalSurface::kSphere ? "sphere" : "plane", r.nx, r.aspect_ratio,
-      h.f_max.front(), h.f_max[static_cast<std::size_t>(h.best_iteration)], h.f_avg.front(),
-      h.f_avg[static_cast<std::size_t>(h.best_iteration)], h.iterations, h.best_iteration));
+  scope.done(
+      fmt::format("{} x {} supergrid on the {} (nx = {}, W/H = {:.6f}): f_max {:.3g} -> {:.3g}, f_avg {:.3g} "
+                  "-> {:.3g} in {} outer iterations (best {})",
+                  r.grid.nx_pts, r.grid.ny_pts, p.surface == RegionalSurface::kSphere ? "sphere" : "plane", r.nx,
+                  r.aspect_ratio, h.f_max.front(), h.f_max[static_cast<std::size_t>(h.best_iteration)], h.f_avg.front(),
+                  h.f_avg[static_cast<std::size_t>(h.best_iteration)], h.iterations, h.best_iteration));
 }
 
 // Stages 2–4 of the conformal (izogrid) method; with method = bvp, stages 3–4 are bvp_stage().

@@ -43,8 +43,8 @@ const char* grid_method_name(GridMethod m) {
 }
 
 bool parse_grid_method(std::string_view text, GridMethod& out) {
-  for (const GridMethod m : {GridMethod::kConformal, GridMethod::kBvp, GridMethod::kTfi, GridMethod::kStar, GridMethod::kEd2,
-                             GridMethod::kRl, GridMethod::kBest}) {
+  for (const GridMethod m : {GridMethod::kConformal, GridMethod::kBvp, GridMethod::kTfi, GridMethod::kStar,
+                             GridMethod::kEd2, GridMethod::kRl, GridMethod::kBest}) {
     if (text == grid_method_name(m)) {
       out = m;
       return true;

@@ -40,7 +40,7 @@
 
 #include "curvilinear/cgrid.hpp"
 #include "curvilinear/refine.hpp"
-#include "io/contact_netcdf.hpp"
+#include "grid_files/contact_netcdf.hpp"
 
 namespace aq::handoff {
 

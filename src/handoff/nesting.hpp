@@ -24,8 +24,8 @@
 
 #include "curvilinear/cgrid.hpp"
 #include "curvilinear/grid2d.hpp"
+#include "grid_files/nesting_netcdf.hpp"
 #include "handoff/mesh_locator.hpp"
-#include "io/nesting_netcdf.hpp"
 #include "mesh/mesh.hpp"
 
 namespace aq::handoff {

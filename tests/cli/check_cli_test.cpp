@@ -12,7 +12,7 @@
 
 #include "core/types.hpp"
 #include "curvilinear/laplace_fill.hpp"
-#include "io/xygrid_netcdf.hpp"
+#include "grid_files/xygrid_netcdf.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "curvilinear/cgrid.hpp"
-#include "io/contact_netcdf.hpp"
+#include "grid_files/contact_netcdf.hpp"
 #include "support/nest_invariant.hpp"
 #include "support/run_command.hpp"
 

@@ -12,9 +12,9 @@
 #include <set>
 #include <string>
 
-#include "io/msh_writer.hpp"
-#include "io/ugrid_writer.hpp"
-#include "io/vtu_writer.hpp"
+#include "mesh_files/msh_writer.hpp"
+#include "mesh_files/ugrid_writer.hpp"
+#include "mesh_files/vtu_writer.hpp"
 #include "support/io_test_mesh.hpp"
 #include "support/msh_parse.hpp"
 #include "support/run_command.hpp"

@@ -16,9 +16,9 @@
 #include "config/regional.hpp"
 #include "core/error.hpp"
 #include "curvilinear/izogrid_file.hpp"
-#include "io/contact_netcdf.hpp"
-#include "io/nesting_netcdf.hpp"
-#include "io/xygrid_netcdf.hpp"
+#include "grid_files/contact_netcdf.hpp"
+#include "grid_files/nesting_netcdf.hpp"
+#include "grid_files/xygrid_netcdf.hpp"
 
 #ifndef AQ_SOURCE_DIR
 #define AQ_SOURCE_DIR "."

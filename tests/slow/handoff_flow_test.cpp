@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <variant>
 
-#include "io/nesting_netcdf.hpp"
+#include "grid_files/nesting_netcdf.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 

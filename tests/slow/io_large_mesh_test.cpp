@@ -6,12 +6,12 @@
 #include <iostream>
 
 #include "core/timer.hpp"
-#include "io/fort14_writer.hpp"
-#include "io/msh_writer.hpp"
-#include "io/preview_png.hpp"
-#include "io/text_writer.hpp"
-#include "io/ugrid_writer.hpp"
-#include "io/vtu_writer.hpp"
+#include "mesh_files/fort14_writer.hpp"
+#include "mesh_files/msh_writer.hpp"
+#include "mesh_files/text_writer.hpp"
+#include "mesh_files/ugrid_writer.hpp"
+#include "mesh_files/vtu_writer.hpp"
+#include "pictures/preview_png.hpp"
 #include "support/io_test_mesh.hpp"
 #include "support/temp_dir.hpp"
 

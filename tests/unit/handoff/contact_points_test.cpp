@@ -13,9 +13,9 @@
 #include "core/error.hpp"
 #include "curvilinear/cgrid.hpp"
 #include "curvilinear/refine.hpp"
+#include "grid_files/contact_netcdf.hpp"
+#include "grid_files/roms_grid.hpp"
 #include "handoff/contact_points.hpp"
-#include "io/contact_netcdf.hpp"
-#include "io/roms_grid.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {

@@ -9,8 +9,8 @@
 
 #include "core/types.hpp"
 #include "curvilinear/cgrid.hpp"
+#include "grid_files/nesting_netcdf.hpp"
 #include "handoff/nesting.hpp"
-#include "io/nesting_netcdf.hpp"
 #include "support/temp_dir.hpp"
 #include "unit/handoff/global_mesh_fixture.hpp"
 

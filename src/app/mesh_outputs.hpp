@@ -1,0 +1,72 @@
+// All outputs of a global mesh run (ARCHITECTURE §4.8): calls the writer of every format listed
+// in output.formats, each into a temporary file of the run's OutputSet (renamed into place only
+// when the whole run succeeds), logs one line per file and returns what was written.
+//
+//   format   file                 writer
+//   msh      <name>.msh           Gmsh MSH 4.1, λ–φ plane, ASCII or binary (output.msh_binary)
+//   ugrid    <name>.nc            UGRID-1.0 netCDF
+//   vtu      <name>.vtu           VTK XML unstructured grid (output.vtu_coordinates)
+//   fort14   <name>.14            ADCIRC grid (the `.14` suffix keeps several meshes apart in one
+//                                 folder; ADCIRC users link or copy it to fort.14)
+//   text     <name>.txt           plain text
+//   png      <name>.png           preview map (output.png_width), and <name>_zoom.png when
+//                                 output.png_zoom is set
+// Every option is checked before the first file is written, so a bad option writes nothing.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/options.hpp"
+#include "core/log.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "io/write_stats.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh_files/element_kinds.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::io {
+
+struct WrittenFile {
+  std::string name;            ///< file name in the output folder, e.g. "mesh.msh"
+  std::string format;          ///< "msh", "ugrid", "vtu", "fort14", "text", "png" or "png_zoom"
+  std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
+  std::int64_t bytes = 0;
+  double seconds = 0.0;  ///< wall time of the writer
+  WriteStats stats;
+  std::vector<std::pair<std::string, std::int64_t>> facts;  ///< counts worth reporting, by name
+};
+
+/// What the run knows that OutputOptions does not.
+struct MeshOutputInfo {
+  ElementKinds elements = ElementKinds::kTriangles;  ///< from mesh.elements (parse_element_kinds)
+  std::string source = "aquatoria";                  ///< program and input, for file metadata
+};
+
+/// The formats write_mesh_outputs knows, in its order.
+const std::vector<std::string>& known_output_formats();
+
+/// Checks output.formats (unknown value -> ConfigError naming output.formats and the value;
+/// fort14 without triangles -> ConfigError naming output.formats and mesh.elements), output.name,
+/// output.vtu_coordinates, output.png_width and output.png_zoom.
+void check_mesh_output_options(const config::OutputOptions& options, ElementKinds elements);
+
+/// Writes every requested format (see the table above). The writers in geographic coordinates
+/// (ugrid, vtu, fort14, text) write the geographic mesh of io/geographic_mesh.hpp (pole cap or
+/// merged pole row; one log line per changed pole, and the "geographic_mesh" report section when
+/// `report` is given); msh (the λ–φ plane) and png draw the lattice mesh. Throws ConfigError on
+/// bad options (before writing anything), OutputError naming the file on write failures.
+std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
+                                            const config::OutputOptions& options, OutputSet& outputs, const Logger& log,
+                                            const MeshOutputInfo& info, Report* report = nullptr);
+
+/// As above with the elements the mesh has (triangles if any, else squares).
+std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
+                                            const config::OutputOptions& options, OutputSet& outputs,
+                                            const Logger& log);
+
+}  // namespace aq::io

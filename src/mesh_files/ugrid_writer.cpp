@@ -1,0 +1,505 @@
+// UGRID-1.0 netCDF writer (see ugrid_writer.hpp for the file layout).
+#include "mesh_files/ugrid_writer.hpp"
+
+#include <fmt/format.h>
+#include <netcdf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <unordered_set>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/rotation.hpp"
+#include "core/types.hpp"
+#include "io/depth.hpp"
+#include "mesh_files/geographic_mesh.hpp"
+
+namespace aq::io {
+
+namespace {
+
+constexpr std::int64_t kChunk = std::int64_t{1} << 20;  // rows per nc_put_vara call
+constexpr char kWgs84Wkt[] =
+    "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],PRIMEM[\"Greenwich\",0],"
+    "UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
+
+// A netCDF file being created; every call is checked and a failure throws OutputError naming the
+// file. The destructor aborts (and so deletes) a file that was not closed.
+class NcFile {
+ public:
+  NcFile(std::filesystem::path path, bool netcdf4) : path_(std::move(path)) {
+    const int mode = NC_CLOBBER | (netcdf4 ? NC_NETCDF4 : NC_64BIT_OFFSET);
+    check(nc_create(path_.c_str(), mode, &id_), "cannot create");
+    int old = 0;
+    check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
+  }
+  ~NcFile() {
+    if (id_ >= 0) nc_abort(id_);
+  }
+  NcFile(const NcFile&) = delete;
+  NcFile& operator=(const NcFile&) = delete;
+
+  void check(int status, std::string_view what) const {
+    if (status != NC_NOERR) {
+      throw OutputError(fmt::format("{}: netCDF {}: {}", path_.string(), what, nc_strerror(status)));
+    }
+  }
+  [[nodiscard]] int id() const { return id_; }
+
+  int dim(const std::string& name, std::int64_t len) {
+    int d = -1;
+    check(nc_def_dim(id_, name.c_str(), static_cast<std::size_t>(len), &d), "define dimension " + name);
+    return d;
+  }
+  int var(const std::string& name, nc_type type, std::initializer_list<int> dims) {
+    int v = -1;
+    const std::vector<int> d(dims);
+    check(nc_def_var(id_, name.c_str(), type, static_cast<int>(d.size()), d.data(), &v), "define variable " + name);
+    return v;
+  }
+  void text(int var, const char* name, std::string_view value) {
+    check(nc_put_att_text(id_, var, name, value.size(), value.data()), std::string("attribute ") + name);
+  }
+  void number(int var, const char* name, double value) {
+    check(nc_put_att_double(id_, var, name, NC_DOUBLE, 1, &value), std::string("attribute ") + name);
+  }
+  void integer(int var, const char* name, int value) {
+    check(nc_put_att_int(id_, var, name, NC_INT, 1, &value), std::string("attribute ") + name);
+  }
+  void index_fill(int var, nc_type type) {
+    if (type == NC_INT) {
+      const int fill = -1;
+      check(nc_put_att_int(id_, var, "_FillValue", NC_INT, 1, &fill), "attribute _FillValue");
+    } else {
+      const long long fill = -1;
+      check(nc_put_att_longlong(id_, var, "_FillValue", NC_INT64, 1, &fill), "attribute _FillValue");
+    }
+  }
+  void enddef() { check(nc_enddef(id_), "end of definitions"); }
+
+  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const double* data) {
+    const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
+    const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
+    check(nc_put_vara_double(id_, var, start, count, data), "write data");
+  }
+  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const long long* data) {
+    const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
+    const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
+    check(nc_put_vara_longlong(id_, var, start, count, data), "write data");
+  }
+  void put(int var, std::int64_t row, std::int64_t rows, const short* data) {
+    const std::size_t start[1] = {static_cast<std::size_t>(row)};
+    const std::size_t count[1] = {static_cast<std::size_t>(rows)};
+    check(nc_put_vara_short(id_, var, start, count, data), "write data");
+  }
+  void put(int var, std::int64_t row, std::int64_t rows, const signed char* data) {
+    const std::size_t start[1] = {static_cast<std::size_t>(row)};
+    const std::size_t count[1] = {static_cast<std::size_t>(rows)};
+    check(nc_put_vara_schar(id_, var, start, count, data), "write data");
+  }
+  void close() {
+    const int id = id_;
+    id_ = -1;
+    check(nc_close(id), "close");
+  }
+
+ private:
+  std::filesystem::path path_;
+  int id_ = -1;
+};
+
+// The faces of one topology: triangles, or square polygons with their hanging nodes.
+class FaceSet {
+ public:
+  FaceSet(const mesh::Mesh& mesh, bool squares) : m_(mesh), squares_(squares) {
+    max_nodes_ = 3;
+    if (squares_) {
+      max_nodes_ = 4;
+      std::array<NodeId, kMaxSquarePolygon> p{};
+      for (ElementId s = 0; s < m_.square_count(); ++s) max_nodes_ = std::max(max_nodes_, square_polygon(m_, s, p));
+    }
+  }
+  [[nodiscard]] std::int64_t count() const { return squares_ ? m_.square_count() : m_.triangle_count(); }
+  [[nodiscard]] int max_nodes() const { return max_nodes_; }
+  int nodes(std::int64_t f, std::array<NodeId, kMaxSquarePolygon>& out) const {
+    if (squares_) return square_polygon(m_, f, out);
+    const auto& t = m_.triangles[static_cast<std::size_t>(f)];
+    out[0] = t[0];
+    out[1] = t[1];
+    out[2] = t[2];
+    return 3;
+  }
+  [[nodiscard]] int level(std::int64_t f) const {
+    return squares_ ? m_.square_level[static_cast<std::size_t>(f)] : m_.triangle_level[static_cast<std::size_t>(f)];
+  }
+
+ private:
+  const mesh::Mesh& m_;
+  bool squares_;
+  int max_nodes_ = 3;
+};
+
+std::uint64_t edge_key(NodeId a, NodeId b) {
+  return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b);
+}
+
+// Every unique edge once, in face order: a half-edge a -> b of a face is taken when a < b (each
+// interior edge has exactly one such half-edge) or when it is a boundary edge. Checked against
+// the half-edge count: 2 E - B must equal the number of half-edges of the faces.
+std::vector<std::array<NodeId, 2>> unique_edges(const mesh::Mesh& mesh, const FaceSet& faces) {
+  std::unordered_set<std::uint64_t> boundary;
+  boundary.reserve(mesh.boundary_edges.size() * 2);
+  for (const auto& e : mesh.boundary_edges) boundary.insert(edge_key(e[0], e[1]));
+  std::vector<std::array<NodeId, 2>> edges;
+  edges.reserve(static_cast<std::size_t>(faces.count()) * 3 / 2 + mesh.boundary_edges.size());
+  std::int64_t half_edges = 0;
+  std::array<NodeId, kMaxSquarePolygon> p{};
+  for (std::int64_t f = 0; f < faces.count(); ++f) {
+    const int k = faces.nodes(f, p);
+    half_edges += k;
+    for (int a = 0; a < k; ++a) {
+      const NodeId u = p[a], v = p[(a + 1) % k];
+      if (u < v || boundary.count(edge_key(u, v)) > 0) edges.push_back({u, v});
+    }
+  }
+  const auto e = static_cast<std::int64_t>(edges.size());
+  const auto b = static_cast<std::int64_t>(mesh.boundary_edges.size());
+  if (2 * e - b != half_edges) {
+    throw InternalError(
+        fmt::format("UGRID writer: the mesh's {} boundary edges do not match its faces ({} half-edges, {} edges)", b,
+                    half_edges, e));
+  }
+  return edges;
+}
+
+struct TopologyNames {
+  std::string mesh, face_dim, edge_dim, max_dim, faces, edges, face_x, face_y, level;
+};
+
+TopologyNames topology_names(const std::string& mesh) {
+  const std::string cap = mesh == "mesh" ? "Mesh" : "Mesh_squares";
+  return {mesh,
+          "n" + cap + "_face",
+          "n" + cap + "_edge",
+          "nMax" + cap + "_face_nodes",
+          mesh + "_face_nodes",
+          mesh + "_edge_nodes",
+          mesh + "_face_x",
+          mesh + "_face_y",
+          mesh == "mesh" ? "level" : "level_squares"};
+}
+
+struct TopologyVars {
+  int faces = -1, edges = -1, face_x = -1, face_y = -1, face_x_bnds = -1, face_y_bnds = -1, level = -1;
+};
+
+// Defines one topology's variables (the nodes and boundary are shared, defined by the caller).
+TopologyVars define_topology(NcFile& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count, int two,
+                             nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
+  TopologyVars v;
+  const int face_dim = nc.dim(n.face_dim, faces.count());
+  const int edge_dim = nc.dim(n.edge_dim, edge_count);
+  const int max_dim = nc.dim(n.max_dim, faces.max_nodes());
+
+  const int topo = nc.var(n.mesh, NC_INT, {});
+  nc.text(topo, "cf_role", "mesh_topology");
+  nc.text(topo, "long_name",
+          n.mesh == "mesh" ? "Topology of the ocean mesh"
+                           : "Topology of the quadtree squares (polygons with hanging nodes)");
+  nc.integer(topo, "topology_dimension", 2);
+  nc.text(topo, "node_coordinates", node_coordinates);
+  nc.text(topo, "face_node_connectivity", n.faces);
+  nc.text(topo, "face_dimension", n.face_dim);
+  nc.text(topo, "edge_node_connectivity", n.edges);
+  nc.text(topo, "edge_dimension", n.edge_dim);
+  if (with_boundary) nc.text(topo, "boundary_node_connectivity", "mesh_boundary_nodes");
+  nc.text(topo, "face_coordinates", n.face_x + " " + n.face_y);
+
+  v.faces = nc.var(n.faces, index_type, {face_dim, max_dim});
+  nc.text(v.faces, "cf_role", "face_node_connectivity");
+  nc.text(v.faces, "long_name", "Nodes of each face, anticlockwise");
+  nc.integer(v.faces, "start_index", 0);
+  if (faces.max_nodes() > 3) nc.index_fill(v.faces, index_type);
+
+  v.edges = nc.var(n.edges, index_type, {edge_dim, two});
+  nc.text(v.edges, "cf_role", "edge_node_connectivity");
+  nc.text(v.edges, "long_name", "Nodes of each edge (every edge once)");
+  nc.integer(v.edges, "start_index", 0);
+
+  v.face_x = nc.var(n.face_x, NC_DOUBLE, {face_dim});
+  nc.text(v.face_x, "standard_name", "longitude");
+  nc.text(v.face_x, "long_name", "Longitude of the face centre");
+  nc.text(v.face_x, "units", "degrees_east");
+  nc.text(v.face_x, "bounds", n.face_x + "_bnds");
+  v.face_y = nc.var(n.face_y, NC_DOUBLE, {face_dim});
+  nc.text(v.face_y, "standard_name", "latitude");
+  nc.text(v.face_y, "long_name", "Latitude of the face centre");
+  nc.text(v.face_y, "units", "degrees_north");
+  nc.text(v.face_y, "bounds", n.face_y + "_bnds");
+  v.face_x_bnds = nc.var(n.face_x + "_bnds", NC_DOUBLE, {face_dim, max_dim});
+  nc.text(v.face_x_bnds, "long_name", "Longitudes of the face corners, continuous around the face centre");
+  nc.text(v.face_x_bnds, "units", "degrees_east");
+  v.face_y_bnds = nc.var(n.face_y + "_bnds", NC_DOUBLE, {face_dim, max_dim});
+  nc.text(v.face_y_bnds, "long_name", "Latitudes of the face corners");
+  nc.text(v.face_y_bnds, "units", "degrees_north");
+
+  v.level = nc.var(n.level, NC_SHORT, {face_dim});
+  nc.text(v.level, "long_name", "Quadtree level of the face (0 = coarsest)");
+  nc.text(v.level, "units", "1");
+  nc.text(v.level, "mesh", n.mesh);
+  nc.text(v.level, "location", "face");
+  nc.text(v.level, "coordinates", n.face_x + " " + n.face_y);
+  nc.text(v.level, "grid_mapping", "crs");
+  return v;
+}
+
+void write_topology(NcFile& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
+                    const std::vector<std::array<NodeId, 2>>& edges) {
+  const int w = faces.max_nodes();
+  const std::int64_t nx = mesh.lattice.nx;
+  const PoleRotation rotation =
+      mesh.rotation.enabled ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation();
+  std::vector<long long> idx;
+  std::vector<double> cx, cy, bx, by;
+  std::vector<short> lev;
+  std::array<NodeId, kMaxSquarePolygon> p{};
+  for (std::int64_t f0 = 0; f0 < faces.count(); f0 += kChunk) {
+    const std::int64_t rows = std::min(kChunk, faces.count() - f0);
+    idx.assign(static_cast<std::size_t>(rows * w), -1);
+    cx.resize(static_cast<std::size_t>(rows));
+    cy.resize(static_cast<std::size_t>(rows));
+    bx.resize(static_cast<std::size_t>(rows * w));
+    by.resize(static_cast<std::size_t>(rows * w));
+    lev.resize(static_cast<std::size_t>(rows));
+    for (std::int64_t r = 0; r < rows; ++r) {
+      const int k = faces.nodes(f0 + r, p);
+      std::int64_t max_i = 0, min_i = 0;
+      for (int a = 0; a < k; ++a) {
+        max_i = std::max(max_i, mesh.node_i[p[a]]);
+        min_i = std::min(min_i, mesh.node_i[p[a]]);
+      }
+      double lon = 0.0, lat = 0.0;
+      if (min_i < 0) {
+        // A face of a pole cap (io/geographic_mesh.hpp): the centre of its nodes on the sphere.
+        std::array<double, 3> c{0.0, 0.0, 0.0};
+        for (int a = 0; a < k; ++a) {
+          const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
+          for (int d = 0; d < 3; ++d) c[d] += u[d];
+        }
+        lon = wrap_lon_deg(std::atan2(c[1], c[0]) * kRadToDeg, mesh.lattice.lon0_deg);
+        lat = std::atan2(c[2], std::hypot(c[0], c[1])) * kRadToDeg;
+      } else {
+        double si = 0.0, sj = 0.0;
+        for (int a = 0; a < k; ++a) {
+          const std::int64_t i = mesh.node_i[p[a]];
+          si += static_cast<double>(i == 0 && max_i > nx / 2 ? nx : i);
+          sj += static_cast<double>(mesh.node_j[p[a]]);
+        }
+        const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
+        const double rlat = mesh.lattice.lat_of_row(sj / k);
+        lon = rlon;
+        lat = rlat;
+        if (mesh.rotation.enabled) {
+          rotation.to_geographic(rlon, rlat, lon, lat);
+          lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
+        }
+      }
+      const auto u = static_cast<std::size_t>(r);
+      cx[u] = lon;
+      cy[u] = lat;
+      lev[u] = static_cast<short>(faces.level(f0 + r));
+      for (int a = 0; a < w; ++a) {
+        const NodeId n = p[std::min(a, k - 1)];
+        const std::size_t c = u * static_cast<std::size_t>(w) + static_cast<std::size_t>(a);
+        if (a < k) idx[c] = n;
+        bx[c] = lon + std::remainder(mesh.lon_deg[n] - lon, 360.0);
+        by[c] = mesh.lat_deg[n];
+      }
+    }
+    nc.put(v.faces, f0, rows, w, idx.data());
+    nc.put(v.face_x, f0, rows, 1, cx.data());
+    nc.put(v.face_y, f0, rows, 1, cy.data());
+    nc.put(v.face_x_bnds, f0, rows, w, bx.data());
+    nc.put(v.face_y_bnds, f0, rows, w, by.data());
+    nc.put(v.level, f0, rows, lev.data());
+  }
+  const auto ne = static_cast<std::int64_t>(edges.size());
+  for (std::int64_t e0 = 0; e0 < ne; e0 += kChunk) {
+    const std::int64_t rows = std::min(kChunk, ne - e0);
+    idx.resize(static_cast<std::size_t>(rows * 2));
+    for (std::int64_t r = 0; r < rows; ++r) {
+      idx[static_cast<std::size_t>(2 * r)] = edges[static_cast<std::size_t>(e0 + r)][0];
+      idx[static_cast<std::size_t>(2 * r + 1)] = edges[static_cast<std::size_t>(e0 + r)][1];
+    }
+    nc.put(v.edges, e0, rows, 2, idx.data());
+  }
+}
+
+}  // namespace
+
+WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path, const UgridOptions& options) {
+  check_elements(mesh, options.elements);
+  const std::int64_t n = mesh.node_count();
+  const bool tri = has_triangles(options.elements), sq = has_squares(options.elements);
+  std::vector<FaceSet> sets;
+  if (tri) sets.emplace_back(mesh, false);
+  if (sq) sets.emplace_back(mesh, true);
+  for (const auto& s : sets) {
+    if (n == 0 || s.count() == 0)
+      throw InternalError(fmt::format("UGRID writer: the mesh is empty ({})", path.string()));
+  }
+  std::vector<std::vector<std::array<NodeId, 2>>> edges;
+  std::int64_t largest = n;
+  for (const auto& s : sets) {
+    edges.push_back(unique_edges(mesh, s));
+    largest = std::max({largest, s.count(), static_cast<std::int64_t>(edges.back().size())});
+  }
+  const bool big = largest > std::numeric_limits<std::int32_t>::max();
+  const nc_type index_type = big ? NC_INT64 : NC_INT;
+  const auto nb = static_cast<std::int64_t>(mesh.boundary_edges.size());
+  const bool rotated = mesh.rotation.enabled;
+
+  NcFile nc(path, big);
+  const int g = NC_GLOBAL;
+  nc.text(g, "Conventions", "CF-1.8 UGRID-1.0");
+  nc.text(g, "title", options.title);
+  nc.text(g, "institution", "aquatoria");
+  nc.text(g, "source", options.source);
+  nc.text(g, "history", options.history);
+  nc.text(g, "comment",
+          "Faces use geographic node coordinates; faces across the antimeridian list nodes on both sides of "
+          "+-180 deg: draw them with the *_face_x_bnds corners (continuous around each face centre) or in 3-D. "
+          "Depth is positive down. Pole-row nodes are distinct nodes at the same point.");
+  nc.text(g, "aquatoria_elements", element_kinds_name(options.elements));
+  nc.number(g, "aquatoria_lattice_lon0_deg", mesh.lattice.lon0_deg);
+  nc.number(g, "aquatoria_lattice_step0_deg", mesh.lattice.step0_deg);
+  nc.integer(g, "aquatoria_lattice_levels", mesh.lattice.levels);
+  if (mesh.lattice.mercator()) {  // the lon-lat lattice's files stay as they were
+    nc.text(g, "aquatoria_lattice_kind", "mercator");
+    nc.number(g, "aquatoria_lattice_y0_deg", mesh.lattice.y0_deg);
+  }
+
+  const int node_dim = nc.dim("nMesh_node", n);
+  const int two = nc.dim("Two", 2);
+  const int bnd_dim = nb > 0 ? nc.dim("nMesh_boundary", nb) : -1;
+
+  const std::string grid_mapping = rotated ? "rotated_pole" : "crs";
+  const std::string node_coords = "mesh_node_x mesh_node_y";
+  const std::string all_node_coords = rotated ? node_coords + " mesh_node_rlon mesh_node_rlat" : node_coords;
+
+  std::vector<TopologyVars> tv;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const bool squares = sq && (!tri || k == 1);
+    tv.push_back(define_topology(nc, topology_names(squares && tri ? "mesh_squares" : "mesh"), sets[k],
+                                 static_cast<std::int64_t>(edges[k].size()), two, index_type, nb > 0, node_coords));
+  }
+
+  const int crs = nc.var("crs", NC_INT, {});
+  nc.text(crs, "grid_mapping_name", "latitude_longitude");
+  nc.number(crs, "semi_major_axis", 6378137.0);
+  nc.number(crs, "inverse_flattening", 298.257223563);
+  nc.number(crs, "longitude_of_prime_meridian", 0.0);
+  nc.text(crs, "crs_wkt", kWgs84Wkt);
+  nc.text(crs, "epsg_code", "EPSG:4326");
+  if (rotated) {
+    const int rp = nc.var("rotated_pole", NC_INT, {});
+    nc.text(rp, "grid_mapping_name", "rotated_latitude_longitude");
+    nc.number(rp, "grid_north_pole_latitude", mesh.rotation.pole_lat_deg);
+    nc.number(rp, "grid_north_pole_longitude", mesh.rotation.pole_lon_deg);
+    nc.number(rp, "north_pole_grid_longitude", 180.0);
+  }
+
+  auto coord = [&](const char* name, const char* standard, const char* long_name, const char* units) {
+    const int v = nc.var(name, NC_DOUBLE, {node_dim});
+    nc.text(v, "standard_name", standard);
+    nc.text(v, "long_name", long_name);
+    nc.text(v, "units", units);
+    return v;
+  };
+  const int node_x = coord("mesh_node_x", "longitude", "Longitude of the mesh nodes", "degrees_east");
+  const int node_y = coord("mesh_node_y", "latitude", "Latitude of the mesh nodes", "degrees_north");
+  int node_rlon = -1, node_rlat = -1;
+  if (rotated) {
+    node_rlon = coord("mesh_node_rlon", "grid_longitude", "Rotated longitude of the mesh nodes", "degrees");
+    node_rlat = coord("mesh_node_rlat", "grid_latitude", "Rotated latitude of the mesh nodes", "degrees");
+  }
+
+  const int depth = nc.var("depth", NC_DOUBLE, {node_dim});
+  nc.text(depth, "standard_name", "sea_floor_depth_below_geoid");
+  // Positive down by its standard name. No `positive` attribute: CF gives it to vertical
+  // coordinates only, and CDO then takes `depth` for one and skips it as data.
+  nc.text(depth, "long_name", "Sea floor depth at the nodes (positive down)");
+  nc.text(depth, "units", "m");
+  nc.text(depth, "mesh", "mesh");
+  nc.text(depth, "location", "node");
+  nc.text(depth, "coordinates", all_node_coords);
+  nc.text(depth, "grid_mapping", grid_mapping);
+
+  const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
+  nc.text(flags, "long_name", "Node flags");
+  const signed char masks[6] = {1, 2, 4, 8, 16, 32};
+  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, 6, masks), "attribute flag_masks");
+  nc.text(flags, "flag_meanings", "boundary midside_hanging_node centre_node pole seam pole_cap_node");
+  nc.text(flags, "mesh", "mesh");
+  nc.text(flags, "location", "node");
+  nc.text(flags, "coordinates", all_node_coords);
+
+  int bnd = -1, bnd_loop = -1;
+  if (nb > 0) {
+    bnd = nc.var("mesh_boundary_nodes", index_type, {bnd_dim, two});
+    nc.text(bnd, "cf_role", "boundary_node_connectivity");
+    nc.text(bnd, "long_name", "Boundary (coast) edges a -> b with the wet area on the left");
+    nc.integer(bnd, "start_index", 0);
+    bnd_loop = nc.var("mesh_boundary_loop", NC_INT, {bnd_dim});
+    nc.text(bnd_loop, "long_name", "Boundary loop of each boundary edge (0-based)");
+    int outer = -1;
+    for (std::size_t l = 0; l < mesh.loops.size(); ++l)
+      if (mesh.loops[l].outer) outer = static_cast<int>(l);
+    nc.integer(bnd_loop, "outer_loop", outer);
+  }
+  nc.enddef();
+
+  nc.check(nc_put_var_double(nc.id(), node_x, mesh.lon_deg.data()), "write mesh_node_x");
+  nc.check(nc_put_var_double(nc.id(), node_y, mesh.lat_deg.data()), "write mesh_node_y");
+  if (rotated) {
+    nc.check(nc_put_var_double(nc.id(), node_rlon, mesh.rlon_deg.data()), "write mesh_node_rlon");
+    nc.check(nc_put_var_double(nc.id(), node_rlat, mesh.rlat_deg.data()), "write mesh_node_rlat");
+  }
+  {
+    std::vector<double> d(static_cast<std::size_t>(n));
+    for (std::size_t a = 0; a < d.size(); ++a) d[a] = depth_below_datum_m(mesh.depth_m[a]);
+    nc.check(nc_put_var_double(nc.id(), depth, d.data()), "write depth");
+    std::vector<signed char> fl(static_cast<std::size_t>(n));
+    for (std::size_t a = 0; a < fl.size(); ++a) fl[a] = static_cast<signed char>(mesh.node_flags[a]);
+    nc.check(nc_put_var_schar(nc.id(), flags, fl.data()), "write node_flags");
+  }
+  if (nb > 0) {
+    std::vector<long long> be(static_cast<std::size_t>(2 * nb));
+    std::vector<int> loop(static_cast<std::size_t>(nb), -1);
+    for (std::size_t e = 0; e < static_cast<std::size_t>(nb); ++e) {
+      be[2 * e] = mesh.boundary_edges[e][0];
+      be[2 * e + 1] = mesh.boundary_edges[e][1];
+      if (!mesh.boundary_edge_loop.empty()) loop[e] = mesh.boundary_edge_loop[e];
+    }
+    nc.put(bnd, 0, nb, 2, be.data());
+    nc.check(nc_put_var_int(nc.id(), bnd_loop, loop.data()), "write mesh_boundary_loop");
+  }
+  WriteStats stats;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    write_topology(nc, mesh, sets[k], tv[k], edges[k]);
+    stats.elements += sets[k].count();
+  }
+  nc.close();
+
+  stats.bytes = static_cast<std::int64_t>(std::filesystem::file_size(path));
+  stats.nodes = n;
+  stats.boundary_edges = nb;
+  return stats;
+}
+
+}  // namespace aq::io

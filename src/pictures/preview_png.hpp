@@ -1,0 +1,67 @@
+// Preview pictures of a global mesh (PNG through Cairo): an equirectangular map of the lattice
+// plane λ ∈ [λ0, λ0+360], φ ∈ [-90, 90] (the rotated system's λ', φ' when the pole is rotated).
+//
+//   +------------------------------------------------------------+
+//   | title: counts                                              |  title band
+//   +------------------------------------------------------------+
+//   | background: the Bathymetry sampled at every pixel centre   |
+//   |   (sea shaded light -> dark blue with depth, land          |  map, width x width/2
+//   |   grey-green, no data light grey)                          |  (zoom: the box's aspect)
+//   | squares filled by level (translucent, one colour a level)  |
+//   | mesh edges thin dark grey; coast (boundary edges) black;   |
+//   | the zoom box (if any) outlined in red                      |
+//   | outlines (blocks) in magenta with their labels             |
+//   +------------------------------------------------------------+
+//   | legend: level colours with element counts, sea/land        |  legend band
+//   +------------------------------------------------------------+
+//
+// Elements across the seam are drawn with their nodes unwrapped (I = 0 drawn at I = nx), so the
+// map shows them at its east edge. The zoom picture shows a box [lon_min, lon_max] × [lat_min,
+// lat_max] of the same plane at the same width; the box may extend past λ0 + 360 (elements are
+// drawn shifted by ±360° where they fall into it).
+// The bytes are deterministic (no time stamps; fixed drawing order; rows of the background in
+// parallel but each pixel computed independently).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/write_stats.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh_files/element_kinds.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::io {
+
+/// A closed polygon drawn on the map (e.g. a regional block), with a label at its first point.
+/// Points are (λ, φ) in map degrees (the lattice plane); they are also drawn shifted by ±360°.
+struct PreviewOutline {
+  std::vector<std::array<double, 2>> points;
+  std::string label;
+};
+
+struct PreviewOptions {
+  int width_px = 2400;  ///< picture width, 200..20000
+  ElementKinds elements = ElementKinds::kTriangles;
+  std::vector<double> zoom;  ///< empty, or [lon_min, lon_max, lat_min, lat_max] in map degrees
+  std::string title = "aquatoria mesh";
+  std::vector<PreviewOutline> outlines;  ///< drawn in magenta over the mesh, labels in black on white
+};
+
+/// Throws ConfigError naming output.png_width / output.png_zoom when they are unusable: width
+/// outside 200..20000, zoom not 4 numbers, lon_min >= lon_max, lat_min >= lat_max, latitudes
+/// outside [-90, 90], or a longitude span over 360°.
+void check_preview_options(const PreviewOptions& options);
+
+/// Draws the whole map (with the zoom box outlined) to `path`. Throws OutputError naming the
+/// path on any Cairo or write failure. WriteStats::elements counts the elements drawn.
+WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const std::filesystem::path& path,
+                             const PreviewOptions& options);
+
+/// Draws the zoom box (options.zoom must be set) to `path`.
+WriteStats write_preview_zoom_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
+                                  const std::filesystem::path& path, const PreviewOptions& options);
+
+}  // namespace aq::io

@@ -1,0 +1,158 @@
+// Preview PNG: read the pictures back with Cairo and look at pixels (background, level fill,
+// seam-crossing squares at both ends, coast, zoom box), sizes, determinism and errors.
+#include "pictures/preview_png.hpp"
+
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "support/io_test_mesh.hpp"
+#include "support/msh_parse.hpp"
+#include "support/png_pixels.hpp"
+#include "support/temp_dir.hpp"
+
+namespace aq::io {
+namespace {
+
+// 5° global raster: ocean 4000 m deep, one land block at λ ∈ [20, 60], φ ∈ [0, 40].
+raster::Bathymetry test_bathy() {
+  std::vector<float> v(72 * 37, -4000.0f);
+  for (int r = 0; r < 37; ++r)
+    for (int c = 0; c < 72; ++c) {
+      const double lon = -180.0 + 5.0 * c, lat = -90.0 + 5.0 * r;
+      if (lon >= 20 && lon <= 60 && lat >= 0 && lat <= 40) v[static_cast<std::size_t>(r * 72 + c)] = 500.0f;
+    }
+  return raster::Bathymetry::from_grid(std::move(v), 72, 37, -180.0, -90.0, 5.0, 5.0);
+}
+
+using Picture = aq::testing::PngPixels;
+
+Picture load(const std::filesystem::path& p) { return aq::testing::load_png_pixels(p); }
+
+// Pixel of map position (lon, lat) in a full-map picture of width w (band = w / 60).
+std::pair<int, int> at(double lon, double lat, int w) {
+  const int band = std::clamp(w / 60, 18, 64);
+  return {static_cast<int>((lon + 180.0) / 360.0 * w), band + static_cast<int>((90.0 - lat) / 180.0 * (w / 2))};
+}
+
+TEST(PreviewPng, SizeBackgroundFillsAndCoast) {
+  testing::TempDir dir;
+  PreviewOptions o;
+  o.width_px = 1440;
+  const WriteStats st = write_preview_png(testing::tiny_mesh(), test_bathy(), dir / "m.png", o);
+  EXPECT_EQ(st.elements, 17);
+  const Picture p = load(dir / "m.png");
+  EXPECT_EQ(p.width, 1440);
+  EXPECT_EQ(p.height, 720 + 2 * 24);
+  // Open sea far from the mesh: blue (b > r); land block: grey-green (g > b).
+  auto [sx, sy] = at(-100.0, -70.0, 1440);
+  auto sea = p.rgb(sx, sy);
+  EXPECT_GT(sea[2], sea[0] + 40);
+  auto [lx, ly] = at(40.0, 20.0, 1440);
+  auto land = p.rgb(lx, ly);
+  EXPECT_GT(land[1], land[2]);
+  // Inside square D (λ -180..-157.5, φ -45..-22.5) and inside the seam-crossing square C drawn at
+  // the east edge (λ 157.5..180): tinted by the level fill, so no longer the plain sea colour.
+  for (const double lon : {-165.0, 170.0}) {
+    auto [x, y] = at(lon, -40.0, 1440);
+    const auto c = p.rgb(x, y);
+    EXPECT_NE(c, sea) << "lon " << lon;
+    EXPECT_LT(c[2], sea[2]) << "lon " << lon;
+  }
+  // The coast: the south edge of square A (φ = -45 at λ = -120) is black.
+  auto [cx, cy] = at(-120.0, -45.0, 1440);
+  int darkest = 765;
+  for (int dy = -1; dy <= 1; ++dy) {
+    const auto c = p.rgb(cx, cy + dy);
+    darkest = std::min(darkest, c[0] + c[1] + c[2]);
+  }
+  EXPECT_LT(darkest, 120);
+  // Title band is white around its right end.
+  EXPECT_EQ(p.rgb(1439, 2), (std::array<int, 3>{255, 255, 255}));
+}
+
+TEST(PreviewPng, ZoomAcrossTheSeamAndBoxOnTheMap) {
+  testing::TempDir dir;
+  PreviewOptions o;
+  o.width_px = 600;
+  o.zoom = {150.0, 210.0, -60.0, -10.0};  // crosses λ = 180: C on the left, D (shifted +360) on the right
+  const auto m = testing::tiny_mesh();
+  const auto bathy = test_bathy();
+  write_preview_png(m, bathy, dir / "m.png", o);
+  write_preview_zoom_png(m, bathy, dir / "z.png", o);
+  const Picture z = load(dir / "z.png");
+  EXPECT_EQ(z.width, 600);
+  EXPECT_EQ(z.height, 500 + 2 * 18);
+  auto zx = [&](double lon) { return static_cast<int>((lon - 150.0) / 60.0 * 600); };
+  auto zy = [&](double lat) { return 18 + static_cast<int>((-10.0 - lat) / 50.0 * 500); };
+  const auto sea = z.rgb(zx(152.0), zy(-55.0));
+  EXPECT_GT(sea[2], sea[0] + 40);
+  EXPECT_NE(z.rgb(zx(165.0), zy(-40.0)), sea);  // C
+  EXPECT_NE(z.rgb(zx(195.0), zy(-40.0)), sea);  // D, drawn at λ + 360
+  // The zoom box is outlined in red on the map.
+  const Picture p = load(dir / "m.png");
+  auto [bx, by] = at(150.0, -35.0, 600);
+  bool red = false;
+  for (int dx = -2; dx <= 2; ++dx) {
+    const auto c = p.rgb(bx + dx, by);
+    red = red || (c[0] > 180 && c[1] < 80 && c[2] < 80);
+  }
+  EXPECT_TRUE(red);
+}
+
+TEST(PreviewPng, SquaresRotatedAndDeterministic) {
+  testing::TempDir dir;
+  PreviewOptions o;
+  o.width_px = 400;
+  o.elements = ElementKinds::kSquares;
+  const auto bathy = test_bathy();
+  const WriteStats st = write_preview_png(testing::tiny_mesh(false), bathy, dir / "q.png", o);
+  EXPECT_EQ(st.elements, 7);
+  o.elements = ElementKinds::kTriangles;
+  const auto r = testing::tiny_mesh(true, {true, -44.858333, 78.141667});
+  write_preview_png(r, bathy, dir / "1.png", o);
+  write_preview_png(r, bathy, dir / "2.png", o);
+  EXPECT_EQ(testing::read_file_bytes((dir / "1.png").string()), testing::read_file_bytes((dir / "2.png").string()));
+}
+
+TEST(PreviewPng, BadOptionsAreConfigErrorsNamingTheKey) {
+  PreviewOptions o;
+  o.width_px = 10;
+  try {
+    check_preview_options(o);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("output.png_width"), std::string::npos);
+  }
+  o.width_px = 800;
+  for (const auto& z : std::vector<std::vector<double>>{{1, 2, 3}, {10, 5, 0, 1}, {0, 10, 20, 10}, {0, 10, -95, 0}}) {
+    o.zoom = z;
+    try {
+      check_preview_options(o);
+      FAIL() << "zoom accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("output.png_zoom"), std::string::npos);
+    }
+  }
+}
+
+TEST(PreviewPng, UnwritablePathThrowsOutputErrorNamingIt) {
+  testing::TempDir dir;
+  std::ofstream(dir / "plain_file") << "x";
+  const auto bad = dir / "plain_file" / "m.png";
+  PreviewOptions o;
+  o.width_px = 300;
+  try {
+    write_preview_png(testing::tiny_mesh(), test_bathy(), bad, o);
+    FAIL() << "expected OutputError";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace aq::io
