@@ -16,9 +16,7 @@ double mercator_y_deg(double lat_deg) {
   return std::asinh(std::tan(p)) * kRadToDeg;
 }
 
-double mercator_lat_deg(double y_deg) {
-  return std::atan(std::sinh(y_deg * kDegToRad)) * kRadToDeg;
-}
+double mercator_lat_deg(double y_deg) { return std::atan(std::sinh(y_deg * kDegToRad)) * kRadToDeg; }
 
 double Lattice::size_scale(double y) const {
   const double c = std::cos(lat_of_row(y) * kDegToRad);

@@ -144,10 +144,10 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
   const LonLat rc = geographic_to_lattice(rot, centre);
   const double radius = box_radius_deg(b, centre) + dpx;
   const std::int64_t nx = lattice.nx, ny = lattice.ny;
-  const std::int64_t j0 =
-      std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(rc.lat_deg - radius, -90.0)))) - 1);
-  const std::int64_t j1 =
-      std::min<std::int64_t>(ny - 1, static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(rc.lat_deg + radius, 90.0)))) + 1);
+  const std::int64_t j0 = std::max<std::int64_t>(
+      0, static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(rc.lat_deg - radius, -90.0)))) - 1);
+  const std::int64_t j1 = std::min<std::int64_t>(
+      ny - 1, static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(rc.lat_deg + radius, 90.0)))) + 1);
   std::int64_t i0 = 0, cols = nx;
   bool wrap = true;
   const double clat = std::cos(rc.lat_deg * kDegToRad), srad = std::sin(std::min(radius, 90.0) * kDegToRad);

@@ -315,12 +315,13 @@ void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice
     if (wet == 0) continue;
     throw ConfigError(fmt::format(
         "quadtree.lattice = \"mercator\": the lattice rows end at |φ′| = {:.4f}° (quadtree.mercator_lat_max_deg "
-        "rounded up to whole level-0 squares), but {} points of the {} cap beyond are wet (elevation <= -mask.min_depth_m = {:g} m), the first at "
+        "rounded up to whole level-0 squares), but {} points of the {} cap beyond are wet (elevation <= "
+        "-mask.min_depth_m = {:g} m), the first at "
         "geographic ({:.4f}, {:.4f}) = lattice frame ({:.4f}, {:.4f}); put that pole on land with a rotation "
         "(rotation.enabled = true: the default pole in Greenland puts the other one in East Antarctica), move it "
         "(rotation.pole_lon_deg, rotation.pole_lat_deg) or raise quadtree.mercator_lat_max_deg",
-        phi_max, wet, side > 0 ? "north" : "south", min_depth_m,
-        first_geo.lon_deg, first_geo.lat_deg, first_rot.lon_deg, first_rot.lat_deg));
+        phi_max, wet, side > 0 ? "north" : "south", min_depth_m, first_geo.lon_deg, first_geo.lat_deg,
+        first_rot.lon_deg, first_rot.lat_deg));
   }
 }
 

@@ -44,8 +44,8 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     area.coastal = std::move(pc.coastal);
     area.classes = {pc.wet_vertex_count, pc.wet_count, pc.coastal_count, pc.dry_count};
     stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule)", lattice.nx,
-                           lattice.ny, lattice.mercator() ? "Mercator " : "", lattice.pixel_deg(), pc.wet_count, pc.coastal_count, pc.dry_count,
-                           options.min_depth_m, options.sampling));
+                           lattice.ny, lattice.mercator() ? "Mercator " : "", lattice.pixel_deg(), pc.wet_count,
+                           pc.coastal_count, pc.dry_count, options.min_depth_m, options.sampling));
   }
   {
     StageScope stage("fill", report, log);

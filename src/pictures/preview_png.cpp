@@ -576,12 +576,14 @@ WriteStats write_preview_zoom_png(const mesh::Mesh& mesh, const raster::Bathymet
   check_preview_options(options);
   if (options.zoom.size() != 4) throw ConfigError("output.png_zoom: no zoom box given");
   const auto& z = options.zoom;
-  const double lat_lo = std::max(z[2], -mesh.lattice.lat_max_deg()), lat_hi = std::min(z[3], mesh.lattice.lat_max_deg());
+  const double lat_lo = std::max(z[2], -mesh.lattice.lat_max_deg()),
+               lat_hi = std::min(z[3], mesh.lattice.lat_max_deg());
   if (!(lat_lo < lat_hi))
-    throw ConfigError(fmt::format("output.png_zoom: latitudes [{}, {}] are outside the Mercator lattice's rows (|φ′| <= {:.4f})",
-                                  z[2], z[3], mesh.lattice.lat_max_deg()));
-  const View v = make_view(z[0], z[1], mesh.lattice.plane_y_of_lat(lat_lo), mesh.lattice.plane_y_of_lat(lat_hi),
-                           options.width_px);
+    throw ConfigError(
+        fmt::format("output.png_zoom: latitudes [{}, {}] are outside the Mercator lattice's rows (|φ′| <= {:.4f})",
+                    z[2], z[3], mesh.lattice.lat_max_deg()));
+  const View v =
+      make_view(z[0], z[1], mesh.lattice.plane_y_of_lat(lat_lo), mesh.lattice.plane_y_of_lat(lat_hi), options.width_px);
   const std::string title =
       fmt::format("{} - zoom lon [{}, {}] lat [{}, {}]", counts_title(mesh, options), z[0], z[1], z[2], z[3]);
   return render(mesh, bathy, path, options, v, title, nullptr);

@@ -51,8 +51,8 @@ Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, double
            {"min_km", round3(v.front())},
            {"median_km", round3(v[(v.size() - 1) / 2])},
            {"max_km", round3(v.back())}};
-    line += fmt::format(" {}-{}°: {:.0f}/{:.0f}/{:.0f}", 10 * k, 10 * (k + 1), v.front(), v[(v.size() - 1) / 2],
-                        v.back());
+    line +=
+        fmt::format(" {}-{}°: {:.0f}/{:.0f}/{:.0f}", 10 * k, 10 * (k + 1), v.front(), v[(v.size() - 1) / 2], v.back());
     if (target_km > 0.0) {
       const auto within = std::count_if(v.begin(), v.end(), [&](double x) {
         return x >= target_km / std::sqrt(2.0) * (1.0 - 1e-12) && x <= target_km * std::sqrt(2.0) * (1.0 + 1e-12);

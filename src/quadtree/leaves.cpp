@@ -227,9 +227,9 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     const double lon0 = lat.lon0_deg;
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64))                      \
-    shared(om, rows, words, step, side, lat, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
-        schedule(dynamic, 16)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) shared(                  \
+    om, rows, words, step, side, lat, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
+    schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
       const double rlat = lat.lat_of_row((static_cast<double>(b) + 0.5) * side);
       std::uint64_t* row = om.row(b);

@@ -219,8 +219,8 @@ TEST(MercatorClients, GmshNcdumpCdoAndVtkReadAMercatorMesh) {
     EXPECT_NE(r.out.find("error 0\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("points 1980 cells 3600\n"), std::string::npos) << r.out;
     // z on the unit sphere = sin φ of the Mercator rows 80 and 90 (φ = atan sinh y).
-    const std::string z = fmt::format("z {:.9f} {:.9f}\n", std::sin(lat.lat_of(80) * kDegToRad),
-                                      std::sin(lat.lat_of(90) * kDegToRad));
+    const std::string z =
+        fmt::format("z {:.9f} {:.9f}\n", std::sin(lat.lat_of(80) * kDegToRad), std::sin(lat.lat_of(90) * kDegToRad));
     EXPECT_NE(r.out.find(z), std::string::npos) << r.out << " expected " << z;
   }
 }

@@ -86,7 +86,9 @@ TEST(MercatorLattice, APixelIsASquareOnTheSphereToSecondOrder) {
       EXPECT_LT(err, 0.5 * delta * delta * (1.0 + std::pow(std::tan(lat * aq::kDegToRad), 2)) + 1e-12)
           << lat << " " << levels;
       EXPECT_NEAR(s.diagonal_ratio, 1.0, 1e-12);  // a pixel is symmetric about its mid-meridian
-      if (levels > 2 && previous > 1e-12) EXPECT_LT(err, 0.3 * previous) << lat << " " << levels;  // ~4× per halving
+      if (levels > 2 && previous > 1e-12) {
+        EXPECT_LT(err, 0.3 * previous) << lat << " " << levels;  // ~4× per halving
+      }
       previous = err;
       // The same pixel of the lon-lat lattice is cos φ : 1.
       const Lattice g = Lattice::make(1.0, levels, -180.0);
