@@ -16,6 +16,7 @@
 
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
+#include "support/ugrid_read.hpp"
 
 namespace {
 
@@ -48,43 +49,34 @@ double vertex_angle(const Vec& p, const Vec& q, const Vec& r) {
 
 // Spherical min angle of every triangle of a UGRID file.
 std::vector<double> min_angles_from_ugrid(const fs::path& path) {
-  int nc = -1, v = -1, d = -1;
-  EXPECT_EQ(nc_open(path.c_str(), NC_NOWRITE, &nc), NC_NOERR) << path;
-  std::size_t np = 0, nf = 0, corners = 0;
-  EXPECT_EQ(nc_inq_dimid(nc, "nMesh_node", &d), NC_NOERR);
-  nc_inq_dimlen(nc, d, &np);
-  EXPECT_EQ(nc_inq_dimid(nc, "nMesh_face", &d), NC_NOERR);
-  nc_inq_dimlen(nc, d, &nf);
-  std::vector<double> lon(np), lat(np);
-  EXPECT_EQ(nc_inq_varid(nc, "mesh_node_x", &v), NC_NOERR);
-  nc_get_var_double(nc, v, lon.data());
-  EXPECT_EQ(nc_inq_varid(nc, "mesh_node_y", &v), NC_NOERR);
-  nc_get_var_double(nc, v, lat.data());
-  EXPECT_EQ(nc_inq_varid(nc, "mesh_face_nodes", &v), NC_NOERR);
-  int dims[2] = {-1, -1};
-  nc_inq_vardimid(nc, v, dims);
-  nc_inq_dimlen(nc, dims[1], &corners);
-  EXPECT_EQ(corners, 3u);
-  int start = -1;
-  EXPECT_EQ(nc_get_att_int(nc, v, "start_index", &start), NC_NOERR);
-  std::vector<long long> faces(corners * nf);
-  nc_get_var_longlong(nc, v, faces.data());
-  char kind[64] = {};
-  EXPECT_EQ(nc_get_att_text(nc, NC_GLOBAL, "aquatoria_lattice_kind", kind), NC_NOERR);
-  EXPECT_EQ(std::string(kind, 8), "mercator");
-  nc_close(nc);
+  const aq::test::UgridTriangles u = aq::test::read_ugrid_triangles(path);
+  EXPECT_TRUE(u.error.empty()) << u.error;
   std::vector<double> out;
-  out.reserve(nf);
-  for (std::size_t f = 0; f < nf; ++f) {
+  out.reserve(u.triangles.size());
+  for (const auto& t : u.triangles) {
     std::array<Vec, 3> p{};
     for (std::size_t a = 0; a < 3; ++a) {
-      const auto n = static_cast<std::size_t>(faces[3 * f + a] - start);
-      p[a] = unit(lon.at(n), lat.at(n));
+      const auto n = static_cast<std::size_t>(t[a]);
+      p[a] = unit(u.lon.at(n), u.lat.at(n));
     }
     out.push_back(
         std::min({vertex_angle(p[0], p[1], p[2]), vertex_angle(p[1], p[2], p[0]), vertex_angle(p[2], p[0], p[1])}));
   }
   return out;
+}
+
+// The lattice kind the UGRID file declares (global attribute aquatoria_lattice_kind).
+std::string lattice_kind(const fs::path& path) {
+  int nc = -1;
+  std::size_t len = 0;
+  std::string kind;
+  if (nc_open(path.c_str(), NC_NOWRITE, &nc) != NC_NOERR) return kind;
+  if (nc_inq_attlen(nc, NC_GLOBAL, "aquatoria_lattice_kind", &len) == NC_NOERR) {
+    kind.resize(len);
+    nc_get_att_text(nc, NC_GLOBAL, "aquatoria_lattice_kind", kind.data());
+  }
+  nc_close(nc);
+  return kind;
 }
 
 TEST(MercatorCli, RotatedEtopo5TrianglesAreWellShapedOnTheSphereAndSizesFollowTheTargets) {
@@ -108,6 +100,7 @@ TEST(MercatorCli, RotatedEtopo5TrianglesAreWellShapedOnTheSphereAndSizesFollowTh
   EXPECT_GE(static_cast<double>(at_least_40), 0.99 * static_cast<double>(angles.size()));
   EXPECT_GE(*std::min_element(angles.begin(), angles.end()), 30.0);
   EXPECT_EQ(rep.at("lattice").at("kind"), "mercator");
+  EXPECT_EQ(lattice_kind(d1 / "global_mercator.nc"), "mercator");
 
   // No leaf is coarser than √2 × the open-ocean target at any |φ′| (without the size rule the
   // level-0 squares are 445 km at the equator), and below 60° the median is not finer than the
