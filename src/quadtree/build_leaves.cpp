@@ -28,12 +28,13 @@ std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
 }
 
 // Leaf sizes (km, square_size_km) in bands of 10° of |φ′| (the lattice frame): per band the
-// count, min, median and max, and with a size target the share of leaves within √2 of it.
+// count, min, median and max, and with size targets the share of leaves within √2 of one of them.
 struct SizeBand {
   std::vector<double> sizes;
 };
 
-Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, double target_km, std::string& line) {
+Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, const std::vector<double>& targets_km,
+                     std::string& line) {
   std::vector<SizeBand> bands(9);
   for (const Leaf& f : leaves) {
     const double centre = static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
@@ -53,11 +54,13 @@ Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, double
            {"max_km", round3(v.back())}};
     line +=
         fmt::format(" {}-{}°: {:.0f}/{:.0f}/{:.0f}", 10 * k, 10 * (k + 1), v.front(), v[(v.size() - 1) / 2], v.back());
-    if (target_km > 0.0) {
+    if (!targets_km.empty()) {
       const auto within = std::count_if(v.begin(), v.end(), [&](double x) {
-        return x >= target_km / std::sqrt(2.0) * (1.0 - 1e-12) && x <= target_km * std::sqrt(2.0) * (1.0 + 1e-12);
+        return std::any_of(targets_km.begin(), targets_km.end(), [x](double t) {
+          return x >= t / std::sqrt(2.0) * (1.0 - 1e-12) && x <= t * std::sqrt(2.0) * (1.0 + 1e-12);
+        });
       });
-      b["share_within_sqrt2_of_target"] = round3(static_cast<double>(within) / static_cast<double>(v.size()));
+      b["share_within_sqrt2_of_a_target"] = round3(static_cast<double>(within) / static_cast<double>(v.size()));
     }
     out.push_back(b);
   }
@@ -111,7 +114,10 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   const double check_s = t_check.wall_s();
 
   std::string size_line;
-  const Json size_bands = size_bands_json(leaves, lat, options.size_km, size_line);
+  std::vector<double> targets;
+  for (const double t : {options.size_km, options.coast_size_km})
+    if (t > 0.0) targets.push_back(t);
+  const Json size_bands = size_bands_json(leaves, lat, targets, size_line);
   if (lat.mercator() || options.size_km > 0.0 || options.coast_size_km > 0.0)
     log.info("quadtree: leaf size km (min/median/max) by |φ′| band:{}", size_line);
   if (report != nullptr) {
