@@ -158,7 +158,7 @@ struct RegionalParams {
   /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled).
   double elliptic_tolerance = 1e-4;
   /// [elliptic_iterations] ED2/RL Picard iterations at most, ≥ 1.
-  int elliptic_iterations = 200;
+  int elliptic_iterations = 400;
   /// [best_final] the elliptic method `best` runs from the chosen initial grid: ed2 or rl.
   GridMethod best_final = GridMethod::kEd2;
   /// Internal sections of TFI (TOML `sections` only): each {q1, x1, y1, x2, y2, ...}: the section
