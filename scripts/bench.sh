@@ -137,6 +137,12 @@ echo
 echo "== global lattices: wall/CPU s, peak RSS and estimate GB, triangles, one gdal_translate -of ENVI of the raster (s) and the ratio (target <= 1.5); load: $(uptime | sed 's/.*load average: //')"
 printf '%-8s%9s%9s%10s%10s  %-9s%12s%10s%8s\n' case wall cpu peak_GB est_GB raster triangles envi_s ratio
 for row in "${big_rows[@]}"; do echo "$row"; done
+# The same on the Mercator lattice of the rotated frame (issue 12): 21600 × 24000 pixels to ±86.6°.
+$bin mesh -q -o "$work/one_minute_mercator" --set input.path="$(bash data_tools/make_resampled.sh 60)" --set quadtree.step_deg=0.26666666666666666 \
+  --set quadtree.levels=4 --set quadtree.lattice=mercator --set rotation.enabled=true \
+  --set output.name=one_minute_mercator --set 'output.formats=["msh"]' --set output.msh_binary=true >/dev/null
+table "1' Mercator lattice 21600×24000 + rotation (Δ0=16', L=4) from a 1' raster, binary MSH (target < 10 s)" 10 \
+  "$work/one_minute_mercator/one_minute_mercator_report.json"
 [ "$mode" = global ] && exit 0
 
 if [ -f configs/black_sea_fig16.toml ]; then

@@ -106,6 +106,11 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   report["config"]["blocks"]["top"] = c.blocks.top;
 
   const GlobalSetup setup = prepare_global_run(c);
+  if (setup.lattice.mercator())
+    throw ConfigError(
+        "quadtree.lattice = \"mercator\": aquatoria blocks works on the lon-lat lattice only (its blocks are "
+        "level-0 squares in λ′–φ′ and the regional handoff locates points by φ′ rows); use quadtree.lattice = "
+        "\"lonlat\" for this config");
   log_memory_estimate(setup, log);
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;

@@ -63,7 +63,10 @@ void apply_test_knobs(raster::OpenOptions& ro) {
 
 GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   GlobalSetup s;
-  s.lattice = Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
+  s.lattice = c.quadtree.lattice == "mercator"
+                  ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
+                                           c.quadtree.mercator_lat_max_deg)
+                  : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   s.rotation = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
   s.memory_limit_bytes = c.input.max_memory_gb > 0
                              ? static_cast<std::int64_t>(c.input.max_memory_gb * 1e9)
@@ -157,7 +160,9 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                               : fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
                                             ri.memory_bytes >> 20));
   if (report != nullptr) {
-    (*report)["lattice"] = Json{{"nx", lat.nx},
+    (*report)["lattice"] = Json{{"kind", lat.kind_name()},
+                                {"lat_max_deg", lat.lat_max_deg()},
+                                {"nx", lat.nx},
                                 {"ny", lat.ny},
                                 {"pixel_deg", lat.pixel_deg()},
                                 {"step0_deg", lat.step0_deg},

@@ -52,6 +52,10 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   GlobalSetup setup;
   try {
     setup = prepare_global_run(g);
+    if (setup.lattice.mercator())
+      throw ConfigError(
+          "quadtree.lattice = \"mercator\": nesting in the global mesh works on the lon-lat lattice only (the mesh "
+          "locator finds points by φ′ rows); use quadtree.lattice = \"lonlat\" in that config");
   } catch (const ConfigError& e) {
     throw named(e);
   }

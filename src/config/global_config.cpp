@@ -206,6 +206,21 @@ const S& schema() {
     t.add<double>(
         "quadtree", "lon0_deg", [](GlobalConfig& c) -> double& { return c.quadtree.lon0_deg; },
         [](const double& v) { return in_range(v, -360.0, 360.0); }, "");
+    t.add<std::string>(
+        "quadtree", "lattice", [](GlobalConfig& c) -> std::string& { return c.quadtree.lattice; },
+        [](const std::string& v) {
+          return one_of(v, {"lonlat", "mercator"});
+        },
+        "");
+    t.add<double>(
+        "quadtree", "mercator_lat_max_deg", [](GlobalConfig& c) -> double& { return c.quadtree.mercator_lat_max_deg; },
+        [](const double& v) { return in_range(v, 1.0, 89.5); }, "");
+    t.add<double>(
+        "quadtree", "size_km", [](GlobalConfig& c) -> double& { return c.quadtree.size_km; },
+        [](const double& v) { return in_range(v, 0.0, 1e5); }, "");
+    t.add<double>(
+        "quadtree", "coast_size_km", [](GlobalConfig& c) -> double& { return c.quadtree.coast_size_km; },
+        [](const double& v) { return in_range(v, 0.0, 1e5); }, "");
     add_rules(t);
     // [rotation]
     t.add<bool>(
@@ -374,6 +389,8 @@ RunName default_run_name(const GlobalConfig& c) {
   }
   if (c.quadtree.balance != d.quadtree.balance) out.name += "_" + c.quadtree.balance;
   if (c.quadtree.coast_band != d.quadtree.coast_band) out.name += fmt::format("_cb{}", c.quadtree.coast_band);
+  if (c.quadtree.lattice != d.quadtree.lattice) out.name += "_" + c.quadtree.lattice;
+  if (c.quadtree.size_km != d.quadtree.size_km) out.name += fmt::format("_s{:g}km", c.quadtree.size_km);
   if (c.mesh.elements != d.mesh.elements) out.name += "_" + c.mesh.elements;
   return out;
 }

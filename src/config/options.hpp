@@ -40,11 +40,15 @@ struct BoxRule {
 };
 
 struct QuadtreeOptions {
-  double step_deg = 4.0;         ///< Δ0, must divide 180 (in whole arc-seconds)
-  int levels = 3;                ///< L
-  int coast_band = 2;            ///< Chebyshev distance (pixels) from the coast kept at level L
-  std::string balance = "face";  ///< "face" or "corner"
-  double lon0_deg = -180.0;      ///< western edge of the lattice (the seam)
+  double step_deg = 4.0;               ///< Δ0, must divide 180 (in whole arc-seconds)
+  int levels = 3;                      ///< L
+  int coast_band = 2;                  ///< Chebyshev distance (pixels) from the coast kept at level L
+  std::string balance = "face";        ///< "face" or "corner"
+  double lon0_deg = -180.0;            ///< western edge of the lattice (the seam)
+  std::string lattice = "lonlat";      ///< "lonlat" (the seed's) or "mercator" (conformal squares)
+  double mercator_lat_max_deg = 86.5;  ///< Mercator rows reach at least ±this latitude (lattice frame)
+  double size_km = 0.0;                ///< open-ocean square size target (km); 0 = off
+  double coast_size_km = 0.0;          ///< coastal-band square size target (km); 0 = band to level L
   std::vector<DepthRule> depth_rules;
   std::vector<BoxRule> box_rules;
 };

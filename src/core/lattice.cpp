@@ -7,8 +7,36 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/types.hpp"
 
 namespace aq {
+
+double mercator_y_deg(double lat_deg) {
+  const double p = lat_deg * kDegToRad;
+  return std::asinh(std::tan(p)) * kRadToDeg;
+}
+
+double mercator_lat_deg(double y_deg) { return std::atan(std::sinh(y_deg * kDegToRad)) * kRadToDeg; }
+
+double Lattice::size_scale(double y) const {
+  const double c = std::cos(lat_of_row(y) * kDegToRad);
+  return mercator() ? c : std::sqrt(c);
+}
+
+Lattice Lattice::make_mercator(double step0_deg, int levels, double lon0_deg, double lat_max_deg) {
+  if (!(lat_max_deg >= 1.0 && lat_max_deg <= 89.5))
+    throw ConfigError(fmt::format(
+        "quadtree.mercator_lat_max_deg = {}: must be between 1 and 89.5 (the Mercator lattice cannot reach the pole)",
+        lat_max_deg));
+  Lattice l = make(step0_deg, levels, lon0_deg);
+  // Whole level-0 squares per hemisphere; 1e-9 keeps a φ_max whose ordinate is a whole number of
+  // squares (85.0511° for Δ0 = 4°) from taking one more.
+  const auto m0 = static_cast<std::int64_t>(std::ceil(mercator_y_deg(lat_max_deg) / l.step0_deg - 1e-9));
+  l.kind = LatticeKind::kMercator;
+  l.y0_deg = -static_cast<double>(m0) * l.step0_deg;
+  l.ny = (2 * m0) << levels;
+  return l;
+}
 
 std::string Lattice::step_problem(double step0_deg) {
   const double arcsec = step0_deg * 3600.0;

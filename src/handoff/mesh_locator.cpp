@@ -88,7 +88,7 @@ MeshLocation MeshLocator::locate_lattice(double rlon_deg, double rlat_deg) const
   const auto nx = static_cast<double>(lat.nx);
   double x = (wrap_lon_deg(rlon_deg, lat.lon0_deg) - lat.lon0_deg) / d;
   if (x >= nx) x -= nx;
-  const double y = (rlat_deg + 90.0) / d;
+  const double y = lat.row_of_lat(rlat_deg);  // the lattice plane: linear in the Mercator ordinate there
   MeshLocation best;
   if (!std::isfinite(x) || !std::isfinite(y)) return best;
   double best_min = -1e300;
@@ -136,7 +136,7 @@ MeshLocation MeshLocator::locate_lattice(double rlon_deg, double rlat_deg) const
           best.square = k;
           best.level = mesh_.square_level[ks];
           best.lattice_lon_deg = lat.lon0_deg + (static_cast<double>(I0) + px) * d;
-          best.lattice_lat_deg = -90.0 + (static_cast<double>(J0) + py) * d;
+          best.lattice_lat_deg = lat.lat_of_row(static_cast<double>(J0) + py);
         }
       }
     }

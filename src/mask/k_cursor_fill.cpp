@@ -251,8 +251,10 @@ std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& l
     if (!best.found()) {
       // 2. The nearest all-wet window centre within the radius (great-circle degrees).
       const double half = 0.5 * static_cast<double>(k);
-      const auto jlo = static_cast<std::int64_t>(std::floor((r.lat_deg - radius_deg + 90.0) / dpx - half)) - 1;
-      const auto jhi = static_cast<std::int64_t>(std::ceil((r.lat_deg + radius_deg + 90.0) / dpx - half)) + 1;
+      const auto jlo =
+          static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(r.lat_deg - radius_deg, -90.0)) - half)) - 1;
+      const auto jhi =
+          static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(r.lat_deg + radius_deg, 90.0)) - half)) + 1;
       std::int64_t ilo = 0, ihi = nx - 1;
       const double clat = std::cos(r.lat_deg * kDegToRad);
       const double srad = std::sin(std::min(radius_deg, 90.0) * kDegToRad);

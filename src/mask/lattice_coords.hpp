@@ -9,6 +9,8 @@
 //
 // A K-window "at (i, j)" is the K×K block of pixels [i, i+K) × [j, j+K) (i wraps over the seam).
 // With a PoleRotation the λ, φ above are rotated coordinates; `to_geographic` maps them back.
+// On the Mercator lattice the row coordinate maps to φ through Lattice::lat_of_row (the Mercator
+// ordinate is linear in j, φ is not); every function here goes through it.
 #pragma once
 
 #include <array>
@@ -44,18 +46,19 @@ struct LonLat {
 }
 
 /// Lattice (rotated) coordinates of a point given in fractional pixel units (x along λ from the
-/// seam, y along φ from the South pole).
+/// seam, y along the rows from row 0).
 [[nodiscard]] inline LonLat lattice_xy_to_deg(const Lattice& lat, double x, double y) {
-  return {lat.lon0_deg + x * lat.pixel_deg(), -90.0 + y * lat.pixel_deg()};
+  return {lat.lon0_deg + x * lat.pixel_deg(), lat.lat_of_row(y)};
 }
 
-/// Fractional pixel coordinates of a lattice-degree point: x in [0, nx), y in [0, ny].
+/// Fractional pixel coordinates of a lattice-degree point: x in [0, nx), y in [0, ny] (beyond
+/// that range on the Mercator lattice for |φ| above its rows).
 inline void deg_to_lattice_xy(const Lattice& lat, LonLat p, double& x, double& y) {
   const double nx = static_cast<double>(lat.nx);
   x = (wrap_lon_deg(p.lon_deg, lat.lon0_deg) - lat.lon0_deg) / lat.pixel_deg();
   if (x >= nx) x -= nx;
   if (x < 0.0) x = 0.0;
-  y = (p.lat_deg + 90.0) / lat.pixel_deg();
+  y = lat.row_of_lat(p.lat_deg);
 }
 
 /// Lattice (rotated) coordinates of the centre of pixel (i, j).

@@ -134,20 +134,23 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
   const double mid_lat = 0.5 * (b.lat_min_deg + b.lat_max_deg);
   const double width = (b.lon_max_deg - b.lon_min_deg) * std::cos(mid_lat * kDegToRad);
   const double height = b.lat_max_deg - b.lat_min_deg;
-  if (width < dpx || height < dpx) {
+  const LonLat centre{b.lon_min_deg + 0.5 * (b.lon_max_deg - b.lon_min_deg), mid_lat};
+  const LonLat rc = geographic_to_lattice(rot, centre);
+  // A Mercator pixel is Δ·cos φ′ of great circle on each side; a lon-lat one Δ along φ.
+  const double pixel = lattice.mercator() ? dpx * std::cos(rc.lat_deg * kDegToRad) : dpx;
+  if (width < pixel || height < pixel) {
     res.status = PassageStatus::kNotResolvable;
-    res.note = fmt::format("box {:.2f}° × {:.2f}° (great-circle) is smaller than a pixel of {:g}°", width, height, dpx);
+    res.note =
+        fmt::format("box {:.2f}° × {:.2f}° (great-circle) is smaller than a pixel of {:g}°", width, height, pixel);
     return res;
   }
   // Local grid of lattice pixels around the box: rows by latitude, columns by the cap's λ extent.
-  const LonLat centre{b.lon_min_deg + 0.5 * (b.lon_max_deg - b.lon_min_deg), mid_lat};
-  const LonLat rc = geographic_to_lattice(rot, centre);
   const double radius = box_radius_deg(b, centre) + dpx;
   const std::int64_t nx = lattice.nx, ny = lattice.ny;
-  const std::int64_t j0 =
-      std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((rc.lat_deg - radius + 90.0) / dpx)) - 1);
-  const std::int64_t j1 =
-      std::min<std::int64_t>(ny - 1, static_cast<std::int64_t>(std::ceil((rc.lat_deg + radius + 90.0) / dpx)) + 1);
+  const std::int64_t j0 = std::max<std::int64_t>(
+      0, static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(rc.lat_deg - radius, -90.0)))) - 1);
+  const std::int64_t j1 = std::min<std::int64_t>(
+      ny - 1, static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(rc.lat_deg + radius, 90.0)))) + 1);
   std::int64_t i0 = 0, cols = nx;
   bool wrap = true;
   const double clat = std::cos(rc.lat_deg * kDegToRad), srad = std::sin(std::min(radius, 90.0) * kDegToRad);

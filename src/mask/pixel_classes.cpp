@@ -125,9 +125,10 @@ void classify_area_aligned(const raster::Bathymetry& bathy, const Lattice& latti
     for (std::int64_t j = 0; j < ny; ++j) {
       flags.reset();
       const double y = (lattice.lat_of(j) - in.lat_first) / in.dlat;
+      // The row's height in φ: Δ on the lon-lat lattice, φ(j+1) − φ(j) on the Mercator one.
+      const double dy = lattice.mercator() ? (lattice.lat_of(j + 1) - lattice.lat_of(j)) / in.dlat : d / in.dlat;
       const auto r_lo = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(y - eps)));
-      const auto r_hi =
-          std::min<std::int64_t>(in.nrows - 1, static_cast<std::int64_t>(std::floor(y + d / in.dlat + eps)));
+      const auto r_hi = std::min<std::int64_t>(in.nrows - 1, static_cast<std::int64_t>(std::floor(y + dy + eps)));
       for (std::int64_t r = r_lo; r <= r_hi; ++r) {
         for (std::int64_t i = 0; i < nx; ++i) {
           const auto s = static_cast<std::size_t>(i);
@@ -237,6 +238,50 @@ void classify_from_vertices(const Bitmap& wet_vertices, Bitmap& wet, Bitmap& coa
         c[k] = any & ~all;
       }
     }
+  }
+}
+
+void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                         double min_depth_m) {
+  if (!lattice.mercator()) return;
+  check_depth(min_depth_m);
+  const auto& in = bathy.info();
+  const double phi_max = lattice.lat_max_deg();
+  const double step = std::min({in.dlon, in.dlat, lattice.pixel_deg()});  // along φ′
+  const auto rows = static_cast<std::int64_t>(std::ceil((90.0 - phi_max) / step));
+  const double cos_max = std::cos(phi_max * kDegToRad);
+  const auto cols = std::max<std::int64_t>(8, static_cast<std::int64_t>(std::ceil(360.0 * cos_max / step)));
+  for (const double side : {1.0, -1.0}) {
+    std::int64_t wet = 0;
+    LonLat first_geo, first_rot;
+    for (std::int64_t r = 0; r < rows; ++r) {  // the last row (the pole itself) is left out: one point
+      const double rlat = side * (phi_max + static_cast<double>(r) * step);
+      for (std::int64_t c = 0; c < cols; ++c) {
+        const LonLat rp{lattice.lon0_deg + 360.0 * static_cast<double>(c) / static_cast<double>(cols), rlat};
+        const LonLat g = lattice_to_geographic(rot, rp);
+        if (bathy.sample(g.lon_deg, g.lat_deg) <= -min_depth_m) {
+          if (wet++ == 0) {
+            first_geo = g;
+            first_rot = rp;
+          }
+        }
+      }
+    }
+    const LonLat pole = lattice_to_geographic(rot, {0.0, side * 90.0});
+    if (bathy.sample(pole.lon_deg, pole.lat_deg) <= -min_depth_m && wet++ == 0) {
+      first_geo = pole;
+      first_rot = {0.0, side * 90.0};
+    }
+    if (wet == 0) continue;
+    throw ConfigError(fmt::format(
+        "quadtree.lattice = \"mercator\": the lattice rows end at |φ′| = {:.4f}° (quadtree.mercator_lat_max_deg "
+        "rounded up to whole level-0 squares), but {} points of the {} cap beyond are wet (elevation <= "
+        "-mask.min_depth_m = {:g} m), the first at "
+        "geographic ({:.4f}, {:.4f}) = lattice frame ({:.4f}, {:.4f}); put that pole on land with a rotation "
+        "(rotation.enabled = true: the default pole in Greenland puts the other one in East Antarctica), move it "
+        "(rotation.pole_lon_deg, rotation.pole_lat_deg) or raise quadtree.mercator_lat_max_deg",
+        phi_max, wet, side > 0 ? "north" : "south", min_depth_m, first_geo.lon_deg, first_geo.lat_deg,
+        first_rot.lon_deg, first_rot.lat_deg));
   }
 }
 

@@ -56,6 +56,14 @@ struct PixelClasses {
   std::int64_t dry_count = 0;
 };
 
+/// The Mercator lattice's rows end at |φ′| = lattice.lat_max_deg(): the caps beyond (boundary
+/// circle included) must be dry. Samples each cap on a λ′–φ′ grid no coarser than the raster or
+/// the pixels and throws ConfigError naming quadtree.mercator_lat_max_deg, the number of wet
+/// points and the first one (geographic and rotated), suggesting a rotation. No-op on the lon-lat
+/// lattice.
+void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
+                         double min_depth_m);
+
 /// Samples the bathymetry at every lattice vertex (rotated lattices through `rot`) and returns
 /// the wet vertices and the pixel classes. OpenMP over rows; bit-identical for any thread count.
 /// Throws ConfigError when min_depth_m is negative or not finite.

@@ -37,14 +37,15 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     co.min_depth_m = options.min_depth_m;
     co.sampling = parse_sampling(options.sampling);
     co.progress = log.progress("classify");
+    check_mercator_caps(bathy, lattice, rot, options.min_depth_m);
     PixelClasses pc = classify_pixels(bathy, lattice, rot, co);
     area.wet_vertices = std::move(pc.wet_vertices);
     area.wet = std::move(pc.wet);
     area.coastal = std::move(pc.coastal);
     area.classes = {pc.wet_vertex_count, pc.wet_count, pc.coastal_count, pc.dry_count};
-    stage.done(fmt::format("{}×{} pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule)", lattice.nx,
-                           lattice.ny, lattice.pixel_deg(), pc.wet_count, pc.coastal_count, pc.dry_count,
-                           options.min_depth_m, options.sampling));
+    stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule)", lattice.nx,
+                           lattice.ny, lattice.mercator() ? "Mercator " : "", lattice.pixel_deg(), pc.wet_count,
+                           pc.coastal_count, pc.dry_count, options.min_depth_m, options.sampling));
   }
   {
     StageScope stage("fill", report, log);

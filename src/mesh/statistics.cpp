@@ -48,7 +48,7 @@ double polygon_area_m2(const Lattice& lat, const PoleRotation& rot, const std::a
   for (int v = 0; v < n; ++v) {
     double lon = 0.0, la = 0.0;
     rot.to_geographic(lat.lon0_deg + ui[static_cast<std::size_t>(v)] * lat.pixel_deg(),
-                      -90.0 + uj[static_cast<std::size_t>(v)] * lat.pixel_deg(), lon, la);
+                      lat.lat_of_row(uj[static_cast<std::size_t>(v)]), lon, la);
     poly.AddPoint(la, lon);
   }
   double perimeter = 0.0, area = 0.0;

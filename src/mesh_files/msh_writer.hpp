@@ -15,7 +15,8 @@
 //   curve 3    the seam copy λ = λ0 + 360: the duplicates (plane only)
 //
 // Coordinates:
-//   kPlane  x = λ, y = φ (degrees; lattice coordinates, i.e. rotated ones with a rotated pole),
+//   kPlane  x = λ, y = φ (degrees; lattice coordinates, i.e. rotated ones with a rotated pole; on
+//           the Mercator lattice y is the Mercator ordinate ln tan(π/4 + φ/2) in degrees),
 //           z = 0. Elements east of the last column use duplicates of the I = 0 nodes at
 //           λ0 + 360 (io/seam_nodes.hpp); $Periodic links curve 3 to curve 2 with the affine
 //           translation x + 360 and lists every (duplicate, original) node pair. Pole-row nodes

@@ -18,7 +18,9 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   auto& buf = f.buffer();
   const Lattice& l = mesh.lattice;
   f.print("# aquatoria mesh, plain text format 1\n");
-  f.print("# lattice lon0_deg={} step0_deg={} levels={} nx={} ny={}\n", l.lon0_deg, l.step0_deg, l.levels, l.nx, l.ny);
+  f.print("# lattice lon0_deg={} step0_deg={} levels={} nx={} ny={}", l.lon0_deg, l.step0_deg, l.levels, l.nx, l.ny);
+  if (l.mercator()) f.print(" kind=mercator y0_deg={}", l.y0_deg);
+  f.print("\n");
   if (mesh.rotation.enabled) {
     f.print("# rotation pole_lon_deg={} pole_lat_deg={}\n", mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg);
   } else {

@@ -3,7 +3,8 @@
 // separated, '#' starts a comment line. Format version 1:
 //
 //   # aquatoria mesh, plain text format 1
-//   # lattice lon0_deg=<λ0> step0_deg=<Δ0> levels=<L> nx=<nx> ny=<ny>
+//   # lattice lon0_deg=<λ0> step0_deg=<Δ0> levels=<L> nx=<nx> ny=<ny> [kind=mercator y0_deg=<y0>]
+//     (Mercator lattice: row J at the Mercator ordinate y0 + J·Δ0/2^L degrees, φ = atan(sinh y))
 //   # rotation none | rotation pole_lon_deg=<λp> pole_lat_deg=<φp>
 //   # ids are 0-based; depth_m is positive down; lon/lat are geographic degrees; i j are the
 //   # integer lattice coordinates (rotated system with a rotated pole);

@@ -324,7 +324,7 @@ void write_topology(NcFile& nc, const mesh::Mesh& mesh, const FaceSet& faces, co
           sj += static_cast<double>(mesh.node_j[p[a]]);
         }
         const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
-        const double rlat = -90.0 + sj / k * mesh.lattice.pixel_deg();
+        const double rlat = mesh.lattice.lat_of_row(sj / k);
         lon = rlon;
         lat = rlat;
         if (mesh.rotation.enabled) {
@@ -402,6 +402,10 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   nc.number(g, "aquatoria_lattice_lon0_deg", mesh.lattice.lon0_deg);
   nc.number(g, "aquatoria_lattice_step0_deg", mesh.lattice.step0_deg);
   nc.integer(g, "aquatoria_lattice_levels", mesh.lattice.levels);
+  if (mesh.lattice.mercator()) {  // the lon-lat lattice's files stay as they were
+    nc.text(g, "aquatoria_lattice_kind", "mercator");
+    nc.number(g, "aquatoria_lattice_y0_deg", mesh.lattice.y0_deg);
+  }
 
   const int node_dim = nc.dim("nMesh_node", n);
   const int two = nc.dim("Two", 2);

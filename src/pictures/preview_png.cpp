@@ -142,12 +142,14 @@ void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& 
   const raster::Bathymetry::Columns* c = &cols;
   const auto* ax = &axes;
   const View* vp = &v;
+  const Lattice* lattice = &mesh.lattice;
   const std::uint32_t* table = shade_table().data();
 #pragma omp parallel for schedule(static) default(none) \
-    shared(data, stride, w, h, top, rotated, cl, sl, b, c, ax, vp, table)
+    shared(data, stride, w, h, top, rotated, cl, sl, b, c, ax, vp, table, lattice)
   for (int y = 0; y < h; ++y) {
     std::vector<float> row(static_cast<std::size_t>(w));
-    const double lat = vp->lat_max - (y + 0.5) / vp->sy();
+    const double plane_y = vp->lat_max - (y + 0.5) / vp->sy();
+    const double lat = lattice->mercator() ? mercator_lat_deg(plane_y) : plane_y;
     if (rotated) {
       const auto& a = *ax;
       const double cp = std::cos(lat * kDegToRad), sp = std::sin(lat * kDegToRad);
@@ -184,7 +186,8 @@ class MeshPainter {
   MeshPainter(cairo_t* cr, const View& v, const mesh::Mesh& m) : cr_(cr), v_(v), m_(m) {}
 
   [[nodiscard]] double x(std::int64_t i) const { return plane_lon_deg(m_.lattice, i); }
-  [[nodiscard]] double y(std::int64_t j) const { return m_.lattice.lat_of(j); }
+  // The lattice plane: φ′ on the lon-lat lattice, the Mercator ordinate on the Mercator one.
+  [[nodiscard]] double y(std::int64_t j) const { return m_.lattice.plane_y_of(j); }
 
   // Shifts (degrees) at which the x-range [a, b] is inside the view.
   template <typename Fn>
@@ -502,7 +505,8 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
     const auto& b = *box;
     cairo_set_line_width(cr, 2.0);
     cairo_set_source_rgb(cr, 0.9, 0.05, 0.05);
-    cairo_rectangle(cr, v.px(b[0]), v.py(b[3]), v.px(b[1]) - v.px(b[0]), v.py(b[2]) - v.py(b[3]));
+    const double y2 = mesh.lattice.plane_y_of_lat(b[2]), y3 = mesh.lattice.plane_y_of_lat(b[3]);
+    cairo_rectangle(cr, v.px(b[0]), v.py(y3), v.px(b[1]) - v.px(b[0]), v.py(y2) - v.py(y3));
     cairo_stroke(cr);
   }
   draw_outlines(cr, v, o.outlines);
@@ -562,7 +566,8 @@ WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& b
                              const PreviewOptions& options) {
   check_preview_options(options);
   const double lon0 = mesh.lattice.lon0_deg;
-  const View v = make_view(lon0, lon0 + 360.0, -90.0, 90.0, options.width_px);
+  const View v = make_view(lon0, lon0 + 360.0, mesh.lattice.plane_y_of(0), mesh.lattice.plane_y_of(mesh.lattice.ny),
+                           options.width_px);
   return render(mesh, bathy, path, options, v, counts_title(mesh, options), &options.zoom);
 }
 
@@ -571,7 +576,14 @@ WriteStats write_preview_zoom_png(const mesh::Mesh& mesh, const raster::Bathymet
   check_preview_options(options);
   if (options.zoom.size() != 4) throw ConfigError("output.png_zoom: no zoom box given");
   const auto& z = options.zoom;
-  const View v = make_view(z[0], z[1], z[2], z[3], options.width_px);
+  const double lat_lo = std::max(z[2], -mesh.lattice.lat_max_deg()),
+               lat_hi = std::min(z[3], mesh.lattice.lat_max_deg());
+  if (!(lat_lo < lat_hi))
+    throw ConfigError(
+        fmt::format("output.png_zoom: latitudes [{}, {}] are outside the Mercator lattice's rows (|φ′| <= {:.4f})",
+                    z[2], z[3], mesh.lattice.lat_max_deg()));
+  const View v =
+      make_view(z[0], z[1], mesh.lattice.plane_y_of_lat(lat_lo), mesh.lattice.plane_y_of_lat(lat_hi), options.width_px);
   const std::string title =
       fmt::format("{} - zoom lon [{}, {}] lat [{}, {}]", counts_title(mesh, options), z[0], z[1], z[2], z[3]);
   return render(mesh, bathy, path, options, v, title, nullptr);

@@ -4,6 +4,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "quadtree/balance.hpp"
@@ -23,6 +27,46 @@ std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
   return n;
 }
 
+// Leaf sizes (km, square_size_km) in bands of 10° of |φ′| (the lattice frame): per band the
+// count, min, median and max, and with size targets the share of leaves within √2 of one of them.
+struct SizeBand {
+  std::vector<double> sizes;
+};
+
+Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, const std::vector<double>& targets_km,
+                     std::string& line) {
+  std::vector<SizeBand> bands(9);
+  for (const Leaf& f : leaves) {
+    const double centre = static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
+    const auto band = std::min<std::size_t>(8, static_cast<std::size_t>(std::fabs(lat.lat_of_row(centre)) / 10.0));
+    bands[band].sizes.push_back(square_size_km(lat, f.level, centre));
+  }
+  Json out = Json::array();
+  for (std::size_t k = 0; k < bands.size(); ++k) {
+    std::vector<double>& v = bands[k].sizes;
+    if (v.empty()) continue;
+    std::sort(v.begin(), v.end());
+    Json b{{"abs_lat_min_deg", 10 * k},
+           {"abs_lat_max_deg", 10 * (k + 1)},
+           {"leaves", v.size()},
+           {"min_km", round3(v.front())},
+           {"median_km", round3(v[(v.size() - 1) / 2])},
+           {"max_km", round3(v.back())}};
+    line +=
+        fmt::format(" {}-{}°: {:.0f}/{:.0f}/{:.0f}", 10 * k, 10 * (k + 1), v.front(), v[(v.size() - 1) / 2], v.back());
+    if (!targets_km.empty()) {
+      const auto within = std::count_if(v.begin(), v.end(), [&](double x) {
+        return std::any_of(targets_km.begin(), targets_km.end(), [x](double t) {
+          return x >= t / std::sqrt(2.0) * (1.0 - 1e-12) && x <= t * std::sqrt(2.0) * (1.0 + 1e-12);
+        });
+      });
+      b["share_within_sqrt2_of_a_target"] = round3(static_cast<double>(within) / static_cast<double>(v.size()));
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const config::QuadtreeOptions& options,
@@ -35,12 +79,13 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   Timer t_masks;
   LevelMasks masks = make_level_masks(filled, lat, 0);
   const std::vector<std::int64_t> bare = count_leaves_per_level(masks);
-  if (options.coast_band != 0) apply_coast_band(masks, options.coast_band);
+  if (options.coast_band != 0 && options.coast_size_km == 0.0) apply_coast_band(masks, options.coast_band);
   const std::vector<std::int64_t> banded = count_leaves_per_level(masks);
   const double masks_s = t_masks.wall_s();
 
   Timer t_rules;
   apply_refinement_rules(masks, lat, options, rotation, bathy);
+  apply_size_rules(masks, lat, options.size_km, options.coast_size_km, options.coast_band);
   const std::vector<std::int64_t> refined = count_leaves_per_level(masks);
   const double rules_s = t_rules.wall_s();
 
@@ -68,8 +113,19 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   }
   const double check_s = t_check.wall_s();
 
+  std::string size_line;
+  std::vector<double> targets;
+  for (const double t : {options.size_km, options.coast_size_km})
+    if (t > 0.0) targets.push_back(t);
+  const Json size_bands = size_bands_json(leaves, lat, targets, size_line);
+  if (lat.mercator() || options.size_km > 0.0 || options.coast_size_km > 0.0)
+    log.info("quadtree: leaf size km (min/median/max) by |φ′| band:{}", size_line);
   if (report != nullptr) {
     Json& q = (*report)["quadtree"];
+    q["lattice"] = lat.kind_name();
+    q["size_km"] = options.size_km;
+    q["coast_size_km"] = options.coast_size_km;
+    q["size_by_latitude"] = size_bands;
     q["levels"] = lat.levels;
     q["step_deg"] = lat.step0_deg;
     q["coast_band"] = options.coast_band;

@@ -223,14 +223,15 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     for (const config::DepthRule& r : depth_rules) need_depth = need_depth || r.level == want;
     if (!need_box && !need_depth) continue;
     const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
+    const auto side = static_cast<double>(lat.pixels_per_square(l));  // pixels per level-l square
     const double lon0 = lat.lon0_deg;
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64))                      \
-    shared(om, rows, words, step, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
-        schedule(dynamic, 16)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) shared(                  \
+    om, rows, words, step, side, lat, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
+    schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
-      const double rlat = -90.0 + (static_cast<double>(b) + 0.5) * step;
+      const double rlat = lat.lat_of_row((static_cast<double>(b) + 0.5) * side);
       std::uint64_t* row = om.row(b);
       for (std::int64_t w = 0; w < words; ++w) {
         std::uint64_t bitsleft = row[w];
@@ -252,6 +253,48 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
           }
           if (split) row[w] &= ~(1ULL << t);
         }
+      }
+    }
+  }
+}
+
+double square_size_km(const Lattice& lat, int level, double row_centre) {
+  const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << level) * kDegToRad;
+  return side_rad * kEarthRadiusKm * lat.size_scale(row_centre);
+}
+
+void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, double coast_size_km, int coast_band) {
+  for (const auto& [key, v] : {std::pair{"size_km", size_km}, std::pair{"coast_size_km", coast_size_km}})
+    if (!std::isfinite(v) || v < 0.0)
+      throw ConfigError(fmt::format("quadtree.{} = {}: must be a finite number >= 0 (0 = off)", key, v));
+  const int levels = masks.levels();
+  if (levels == 0 || (size_km == 0.0 && coast_size_km == 0.0)) return;
+  // The coastal band's pyramid (any band pixel in the square), only when its rule is on.
+  std::vector<Bitmap> band;
+  if (coast_size_km > 0.0) {
+    band.resize(static_cast<std::size_t>(levels));
+    band[static_cast<std::size_t>(levels - 1)] =
+        bits::reduce(coastal_band(masks.filled(), std::max(coast_band, 1)), true);
+    for (int l = levels - 2; l >= 0; --l)
+      band[static_cast<std::size_t>(l)] = bits::reduce(band[static_cast<std::size_t>(l) + 1], true);
+  }
+  const double open_limit = std::sqrt(2.0) * size_km, coast_limit = std::sqrt(2.0) * coast_size_km;
+  for (int l = levels - 1; l >= 0; --l) {
+    Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
+    if (l + 1 < levels) {  // keep omega monotone after the finer level's splits
+      const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
+      for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
+    }
+    const auto side = static_cast<double>(lat.pixels_per_square(l));
+    const std::int64_t words = om.words_per_row();
+    for (std::int64_t b = 0; b < om.ny(); ++b) {
+      const double size = square_size_km(lat, l, (static_cast<double>(b) + 0.5) * side);
+      std::uint64_t* row = om.row(b);
+      if (size_km > 0.0 && size > open_limit) {
+        std::fill(row, row + words, std::uint64_t{0});
+      } else if (coast_size_km > 0.0 && size > coast_limit) {
+        const std::uint64_t* in_band = band[static_cast<std::size_t>(l)].row(b);
+        for (std::int64_t w = 0; w < words; ++w) row[w] &= ~in_band[w];
       }
     }
   }

@@ -113,6 +113,24 @@ void apply_coast_band(LevelMasks& masks, int coast_band);
 void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
                             const PoleRotation& rotation, const raster::Bathymetry* bathy);
 
+/// Mean Earth radius (km) used for the physical size of lattice squares.
+inline constexpr double kEarthRadiusKm = 6371.0088;
+
+/// Physical size (km) of a level-l square whose rows are centred on the fractional pixel row
+/// `row_centre`: its side Δ0/2^l in λ times the lattice's size scale there (Mercator: cos φ′ for
+/// both sides; lon-lat: √cos φ′, the square root of its area), on a sphere of radius kEarthRadiusKm.
+[[nodiscard]] double square_size_km(const Lattice& lat, int level, double row_centre);
+
+/// The size rules of issue 12 (quadtree.size_km, quadtree.coast_size_km), applied in place after
+/// the coastal band and the depth/box rules and before smoothing. A level-l square (l < L) whose
+/// square_size_km exceeds √2·target is split, with every coarser square containing it, so each
+/// square ends at the level whose size is nearest the target (within √2) unless the filled set or
+/// the 2:1 balance asks for a finer one, or level 0 is already finer. `size_km` applies to every
+/// square; `coast_size_km` to squares holding a pixel of the coastal band of radius `coast_band`
+/// (radius at least 1; it replaces the band's split to level L). 0 turns a rule off; both 0 is a no-op. Throws
+/// ConfigError naming the key for a negative or non-finite target.
+void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, double coast_size_km, int coast_band);
+
 /// Leaves of the pyramid in the deterministic order. Parallel over level-0 squares.
 std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat);
 

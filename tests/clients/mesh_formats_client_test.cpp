@@ -4,6 +4,10 @@
 // its program is not installed.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <string>
@@ -182,6 +186,67 @@ TEST(VtkClient, XmlReaderReadsPointsCellsAndArrays) {
   EXPECT_EQ(count_of(r.out, " 7"), 1u) << r.out;  // one polygon (square A with its hanging node)
   EXPECT_NE(r.out.find("zmax 1.000000"), std::string::npos) << r.out;
   EXPECT_TRUE(r.err.empty() || r.err.find("rror") == std::string::npos) << r.err;
+}
+
+// A Mercator-lattice mesh (issue 12) through every client: a band of 10 rows × 180 columns at
+// the Mercator ordinates y = 20°..40° (rows 80..90 of the 4°, L = 1 lattice to ±80°).
+TEST(MercatorClients, GmshNcdumpCdoAndVtkReadAMercatorMesh) {
+  const Lattice lat = Lattice::make_mercator(4.0, 1, -180.0, 80.0);
+  ASSERT_EQ(lat.plane_y_of(90), 40.0);
+  const auto m = testing::band_mesh(lat, 80, 90);
+  testing::TempDir dir;
+  if (have("gmsh")) {
+    MshOptions o;
+    write_msh(m, dir / "p.msh", o);
+    expect_gmsh_reads(dir / "p.msh", dir / "p_out.msh", 181 * 11, 3600, 360, 11);
+    // The plane is the Mercator plane: y runs over the ordinates 20..40, in 2° steps.
+    const testing::MshFile f = testing::parse_msh((dir / "p_out.msh").string());
+    double ymin = 1e9, ymax = -1e9;
+    for (const auto& [id, xyz] : f.nodes) {
+      ymin = std::min(ymin, xyz[1]);
+      ymax = std::max(ymax, xyz[1]);
+      EXPECT_NEAR(std::remainder(xyz[1], 2.0), 0.0, 1e-12) << xyz[1];
+    }
+    EXPECT_EQ(ymin, 20.0);
+    EXPECT_EQ(ymax, 40.0);
+    o.coordinates = MshCoordinates::kSphere;
+    write_msh(m, dir / "s.msh", o);
+    expect_gmsh_reads(dir / "s.msh", dir / "s_out.msh", 180 * 11, 3600, 360, 0);
+  }
+  write_ugrid(m, dir / "m.nc");
+  if (have("ncdump")) {
+    const auto r = test::run_command("ncdump -h " + (dir / "m.nc").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(":aquatoria_lattice_kind = \"mercator\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("nMesh_face = 3600"), std::string::npos) << r.out;
+  }
+  if (have("cdo")) {
+    const auto g = test::run_command("cdo -s griddes " + (dir / "m.nc").string());
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+    EXPECT_NE(g.out.find("gridtype  = unstructured\ngridsize  = 3600\n"), std::string::npos) << g.out;
+    EXPECT_NE(g.out.find("gridtype  = unstructured\ngridsize  = 1980\n"), std::string::npos) << g.out;  // nodes
+  }
+  const std::string py = python_with_vtk();
+  if (!py.empty()) {
+    const auto file = (dir / "m.vtu").string();
+    write_vtu(m, file, VtuOptions{});
+    std::ofstream(dir / "read.py") << "import vtk\n"
+                                      "r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName('"
+                                   << file
+                                   << "'); r.Update()\n"
+                                      "g = r.GetOutput(); b = g.GetBounds()\n"
+                                      "print('error', r.GetErrorCode())\n"
+                                      "print('points', g.GetNumberOfPoints(), 'cells', g.GetNumberOfCells())\n"
+                                      "print('z %.9f %.9f' % (b[4], b[5]))\n";
+    const auto r = test::run_command(py + " " + (dir / "read.py").string());
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("error 0\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("points 1980 cells 3600\n"), std::string::npos) << r.out;
+    // z on the unit sphere = sin φ of the Mercator rows 80 and 90 (φ = atan sinh y).
+    const std::string z =
+        fmt::format("z {:.9f} {:.9f}\n", std::sin(lat.lat_of(80) * kDegToRad), std::sin(lat.lat_of(90) * kDegToRad));
+    EXPECT_NE(r.out.find(z), std::string::npos) << r.out << " expected " << z;
+  }
 }
 
 }  // namespace

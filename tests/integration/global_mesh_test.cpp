@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/ugrid_read.hpp"
 
 namespace fs = std::filesystem;
 using aq::test::run_command;
@@ -331,24 +332,11 @@ TEST(GlobalMeshEtopo5, WrittenMeshesHaveNoDegenerateElements) {
 
   // UGRID: the same mesh through netCDF.
   {
-    int nc = -1, v = -1, d = -1;
-    ASSERT_EQ(nc_open((run.dir / "seed_4deg_L3.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
-    std::size_t np = 0, nf = 0;
-    ASSERT_EQ(nc_inq_dimid(nc, "nMesh_node", &d), NC_NOERR);
-    nc_inq_dimlen(nc, d, &np);
-    ASSERT_EQ(nc_inq_dimid(nc, "nMesh_face", &d), NC_NOERR);
-    nc_inq_dimlen(nc, d, &nf);
-    std::vector<double> lon(np), lat(np);
-    ASSERT_EQ(nc_inq_varid(nc, "mesh_node_x", &v), NC_NOERR);
-    nc_get_var_double(nc, v, lon.data());
-    ASSERT_EQ(nc_inq_varid(nc, "mesh_node_y", &v), NC_NOERR);
-    nc_get_var_double(nc, v, lat.data());
-    std::vector<long long> faces(3 * nf);
-    ASSERT_EQ(nc_inq_varid(nc, "mesh_face_nodes", &v), NC_NOERR);
-    nc_get_var_longlong(nc, v, faces.data());
-    nc_close(nc);
-    std::vector<std::array<std::int64_t, 3>> tris(nf);
-    for (std::size_t k = 0; k < nf; ++k) tris[k] = {faces[3 * k], faces[3 * k + 1], faces[3 * k + 2]};
+    const aq::test::UgridTriangles u = aq::test::read_ugrid_triangles(run.dir / "seed_4deg_L3.nc");
+    ASSERT_TRUE(u.error.empty()) << u.error;
+    const std::vector<double>&lon = u.lon, &lat = u.lat;
+    const auto& tris = u.triangles;
+    const std::size_t np = lon.size();
     const WrittenFacts w = written_facts(lon, lat, tris);
     EXPECT_EQ(static_cast<std::int64_t>(np), geo.at("nodes").get<std::int64_t>());
     EXPECT_EQ(w.duplicate_points, 0);
