@@ -161,7 +161,8 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   if (report.root().contains("geographic_mesh") && !report["geographic_mesh"]["poles"].empty()) {
     const Json& g = report["geographic_mesh"];
     log.info(
-        "written in geographic coordinates (ugrid, vtu, fort14, text): {} nodes, {} triangles (the pole rows "
+        "geographic mesh (ugrid, vtu, fort14, text, fesom, schism and the quality figures): {} nodes, {} triangles "
+        "(the pole rows "
         "re-templated; the counts above are the lattice mesh's)",
         g["nodes"].get<std::int64_t>(), g["triangles"].get<std::int64_t>());
   }

@@ -192,6 +192,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     g.triangles.push_back(o);
     g.triangle_level.push_back(lm.triangle_level[t]);
     g.triangle_square.push_back(-1);
+    source_triangle_.push_back(static_cast<ElementId>(t));
   }
 
   // The caps.
@@ -252,6 +253,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
       g.triangles.push_back(o);
       g.triangle_level.push_back(0);
       g.triangle_square.push_back(-1);
+      source_triangle_.push_back(-1);
     }
     double replaced = 0.0;
     for (std::size_t t = 0; t < lm.triangles.size(); ++t) {
