@@ -90,7 +90,8 @@ FillClasses size_classes(const std::vector<float>& values) {
   std::vector<double> steps;
   for (double decade = std::pow(10.0, std::floor(std::log10(lo))); steps.empty() || steps.back() < hi; decade *= 10.0)
     for (const double m : {1.0, 2.0, 5.0})
-      if (m * decade * 5.0 > lo && (steps.empty() || steps.back() < hi)) steps.push_back(m * decade);
+      if (steps.empty() || steps.back() < hi) steps.push_back(m * decade);
+  while (steps.size() > 2 && steps[1] <= lo) steps.erase(steps.begin());
   while (steps.size() > 9) {
     std::vector<double> fewer;
     for (std::size_t k = 0; k < steps.size(); k += 2) fewer.push_back(steps[k]);
