@@ -156,6 +156,13 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
   mesh::Mesh g;
   g.lattice = lm.lattice;
   g.rotation = lm.rotation;
+  for (auto* v : {&g.node_i, &g.node_j}) v->reserve(nn);
+  for (auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) v->reserve(nn);
+  g.node_flags.reserve(nn);
+  g.triangles.reserve(lm.triangles.size());
+  g.triangle_level.reserve(lm.triangles.size());
+  g.triangle_square.reserve(lm.triangles.size());
+  source_triangle_.reserve(lm.triangles.size());
   auto push_node = [&](std::int64_t i, std::int64_t j, double lon, double lat_deg, double rlon, double rlat,
                        double depth, std::uint8_t flags) {
     g.node_i.push_back(i);

@@ -5,7 +5,7 @@
 //
 // Per triangle (unit sphere, great-circle edges):
 //   min angle        smallest of the three angles between the great circles at the vertices
-//                    (spherical_angles_deg), degrees; 60° for an equilateral triangle
+//                    (those of spherical_angles_deg), degrees; 60° for an equilateral triangle
 //   edge ratio       longest / shortest great-circle edge (≥ 1; √2 for a right-isosceles one)
 //   neighbour ratio  max over the edge neighbours of larger / smaller spherical area (1 without
 //                    neighbours; +inf next to a zero-area triangle)
@@ -58,5 +58,7 @@ SphereQuality summarize_quality(const TriangleShapes& shapes);
 /// Value of rank ⌊q·(n−1)⌋ of `values` (non-negative, NaN-free) in ascending order, q in [0, 1];
 /// exact, without sorting. Throws InternalError on an empty vector.
 float order_statistic(const std::vector<float>& values, double q);
+/// The same for several q at once (two passes over the values in all).
+std::vector<float> order_statistics(const std::vector<float>& values, const std::vector<double>& qs);
 
 }  // namespace aq::io
