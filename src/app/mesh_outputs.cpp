@@ -51,9 +51,7 @@ std::string facts_text(const std::vector<std::pair<std::string, std::int64_t>>& 
 
 }  // namespace
 
-const std::vector<std::string>& known_output_formats() {
-  return config::output_format_names();
-}
+const std::vector<std::string>& known_output_formats() { return config::output_format_names(); }
 
 void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elements) {
   const auto& known = known_output_formats();
