@@ -182,4 +182,12 @@ TEST(SphereQualityEtopo5, RotatedRunGivesFesomTheEulerAnglesOfItsPole) {
   EXPECT_NEAR(f.at("betaEuler").get<double>(), 90.0 - 78.141667, 1e-9);
   EXPECT_EQ(f.at("gammaEuler").get<double>(), -90.0);
   EXPECT_EQ(f.at("levels_m").size(), 48u);
+  // The issue-12 table's rotated row (configs/rotated_greenland.toml's mesh): no pole rows, so the
+  // geographic mesh is the lattice mesh: 66632 triangles, 5.5° / 7.4° / 34.7°, 26.8 % under 20°.
+  const json& q = run.report.at("quality");
+  EXPECT_EQ(q.at("triangles").get<long>(), 66632);
+  EXPECT_NEAR(q.at("min_angle_deg").at("p1").get<double>(), 5.5, 0.05);
+  EXPECT_NEAR(q.at("min_angle_deg").at("p5").get<double>(), 7.4, 0.05);
+  EXPECT_NEAR(q.at("min_angle_deg").at("p50").get<double>(), 34.7, 0.05);
+  EXPECT_NEAR(q.at("min_angle_below_20_deg_percent").get<double>(), 26.8, 0.05);
 }
