@@ -160,11 +160,16 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   }
   if (report.root().contains("geographic_mesh") && !report["geographic_mesh"]["poles"].empty()) {
     const Json& g = report["geographic_mesh"];
+    std::string elements = fmt::format("{} triangles", g["triangles"].get<std::int64_t>());
+    if (g.contains("squares")) {
+      elements = g["triangles"].get<std::int64_t>() > 0
+                     ? fmt::format("{} and {} squares", elements, g["squares"].get<std::int64_t>())
+                     : fmt::format("{} squares", g["squares"].get<std::int64_t>());
+    }
     log.info(
-        "geographic mesh (ugrid, vtu, fort14, text, fesom, schism and the quality figures): {} nodes, {} triangles "
-        "(the pole rows "
-        "re-templated; the counts above are the lattice mesh's)",
-        g["nodes"].get<std::int64_t>(), g["triangles"].get<std::int64_t>());
+        "written in geographic coordinates: {} nodes, {} (the pole rows {}; the counts above are the lattice "
+        "mesh's)",
+        g["nodes"].get<std::int64_t>(), elements, g.contains("squares") ? "merged" : "re-templated");
   }
   log.info("outputs in {}/: {} files + {} ({:.2f} s, peak {:.0f} MB)", c.output.dir, files.size(), report_name,
            total.wall_s(), static_cast<double>(peak_rss_bytes()) / 1048576.0);

@@ -97,7 +97,10 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     if (!g) {
       g.emplace(mesh, kinds, elevation);
       for (const auto& line : g->describe()) log.info("geographic mesh: {}", line);
-      if (report != nullptr && kinds == ElementKinds::kTriangles) (*report)["geographic_mesh"] = g->json();
+      // "geographic_mesh": the mesh of UGRID/text/VTU; with mesh.elements = "both" fort.14 writes
+      // the triangles with the pole cap, reported as "geographic_mesh_fort14".
+      if (report != nullptr)
+        (*report)[kinds == info.elements ? "geographic_mesh" : "geographic_mesh_fort14"] = g->json();
     }
     return g->mesh();
   };

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "config/schema.hpp"
-#include "curvilinear/izogrid_file.hpp"
+#include "grid_params/izogrid_file.hpp"
 
 namespace aq::config {
 
@@ -117,14 +117,19 @@ const S& schema() {
     }
     t.add<int>(
         "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
-    t.add_custom(
-        "regional", "sections",
-        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-          std::vector<std::vector<double>> secs;
-          if (auto err = detail::convert(v, secs)) return p.add(o, "regional.sections", *err);
-          c.params.sections = secs;  // checked by regional_params_problems()
-        },
-        [](const RegionalConfig& c) { return Json(c.params.sections); }, "");
+    using Sections = std::vector<std::vector<double>>;
+    for (const auto& [name, member] : {std::pair{"sections", &curvilinear::RegionalParams::sections},
+                                       std::pair{"sections_eta", &curvilinear::RegionalParams::sections_eta}}) {
+      const std::string key = std::string("regional.") + name;
+      t.add_custom(
+          "regional", name,
+          [member, key](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+            Sections secs;
+            if (auto err = detail::convert(v, secs)) return p.add(o, key, *err);
+            c.params.*member = secs;  // checked by regional_params_problems()
+          },
+          [member](const RegionalConfig& c) { return Json(c.params.*member); }, "");
+    }
     t.add_custom(
         "input", "path",
         [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
@@ -261,7 +266,7 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "elliptic_tolerance") return p.elliptic_tolerance;
   if (key == "elliptic_iterations") return p.elliptic_iterations;
   if (key == "lwidth") return p.lwidth;
-  if (key == "solver") return p.solver == curvilinear::LaplaceOptions::Solver::kDst ? "dst" : "sor";
+  if (key == "solver") return p.solver == curvilinear::LaplaceSolver::kDst ? "dst" : "sor";
   if (key == "surface") return p.surface == curvilinear::RegionalSurface::kSphere ? "sphere" : "plane";
   if (key == "bvp_iterations") return p.bvp_iterations;
   if (key == "bvp_interpolation")

@@ -12,7 +12,7 @@
 
 #include "config/load.hpp"
 #include "config/options.hpp"
-#include "curvilinear/regional_params.hpp"
+#include "grid_params/regional_params.hpp"
 
 namespace aq::config {
 

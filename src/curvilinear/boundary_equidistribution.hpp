@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "curvilinear/boundary_nodes.hpp"
-#include "curvilinear/control_function.hpp"
 #include "curvilinear/plane_point.hpp"
 #include "curvilinear/spline_contour.hpp"
+#include "grid_params/control_function.hpp"
 
 namespace aq::curvilinear {
 

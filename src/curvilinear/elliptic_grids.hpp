@@ -24,8 +24,8 @@
 #include <array>
 #include <vector>
 
-#include "curvilinear/control_function.hpp"
 #include "curvilinear/grid2d.hpp"
+#include "grid_params/control_function.hpp"
 
 namespace aq::curvilinear {
 

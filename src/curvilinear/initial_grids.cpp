@@ -106,6 +106,28 @@ void set_section_column(Grid2D& grid, const Section& section, const ControlFunct
   for (int j = 1; j < M - 1; ++j) set_node(grid, section.column, j, pts[static_cast<std::size_t>(j)]);
 }
 
+Grid2D transposed(const Grid2D& grid) {
+  Grid2D t(grid.ny_pts, grid.nx_pts);
+  for (int j = 0; j < grid.ny_pts; ++j)
+    for (int i = 0; i < grid.nx_pts; ++i) {
+      t.x[t.at(j, i)] = grid.x[grid.at(i, j)];
+      t.y[t.at(j, i)] = grid.y[grid.at(i, j)];
+    }
+  return t;
+}
+
+void tfi_with_sections(Grid2D& grid, const std::vector<Section>& sections, SectionLines lines,
+                       const ControlFunction& w) {
+  Grid2D work = lines == SectionLines::kRows ? transposed(grid) : std::move(grid);
+  std::vector<int> cols;
+  for (const Section& s : sections) {
+    set_section_column(work, s, w);
+    cols.push_back(s.column);
+  }
+  tfi_fill(work, cols);
+  grid = lines == SectionLines::kRows ? transposed(work) : std::move(work);
+}
+
 void tfi_fill(Grid2D& grid, const std::vector<int>& section_columns) {
   const int L = grid.nx_pts, M = grid.ny_pts;
   std::vector<int> cols{0};

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "curvilinear/boundary_equidistribution.hpp"
-#include "curvilinear/control_function.hpp"
 #include "curvilinear/grid2d.hpp"
 #include "curvilinear/plane_point.hpp"
+#include "grid_params/control_function.hpp"
 
 namespace aq::curvilinear {
 
@@ -33,11 +33,15 @@ void raw_blending_weights(const std::vector<double>& q_sections, double q, std::
 
 /// An internal section q1 = column/(L−1): the grid column `column` (0 < column < L−1) is a curve from
 /// the south node (column, 0) through `points` (plane units; may be empty = straight) to the north
-/// node (column, M−1).
+/// node (column, M−1). As a row section (SectionLines::kRows) `column` is the row j, q2 = j/(M−1),
+/// and the curve runs from the west node (0, j) to the east node (L−1, j).
 struct Section {
   int column = 0;
   std::vector<PlanePoint> points;
 };
+/// Which coordinate lines the sections are: q1 = const (columns, the paper's A¹) or q2 = const
+/// (rows, A²). TFI interpolates between the sections of one direction.
+enum class SectionLines { kColumns, kRows };
 
 /// Fills the nodes of a section column: a Catmull–Rom curve from the south node through the interior
 /// points to the north node, sampled densely, with M nodes placed by 1-D equidistribution of w.
@@ -46,6 +50,16 @@ void set_section_column(Grid2D& grid, const Section& section, const ControlFunct
 /// TFI of the interior from the boundary and the section columns already set in `grid` (columns
 /// strictly increasing, inside 1..L−2; none = classic TFI). InternalError for bad columns.
 void tfi_fill(Grid2D& grid, const std::vector<int>& section_columns);
+
+/// The grid with ξ and η exchanged: node (i, j) becomes (j, i). Exchanging them twice, or together
+/// with x and y, keeps the orientation.
+Grid2D transposed(const Grid2D& grid);
+
+/// TFI of `grid` (boundary set) with internal sections along columns or rows: sets each section's
+/// nodes (set_section_column, on the transposed grid for rows) and fills the interior (tfi_fill).
+/// Sections must increase inside 1..L−2 (columns) or 1..M−2 (rows).
+void tfi_with_sections(Grid2D& grid, const std::vector<Section>& sections, SectionLines lines,
+                       const ControlFunction& w);
 
 /// Kernel of a counter-clockwise simple polygon (the points from which the whole polygon is
 /// visible), by clipping its bounding box with the inner half-plane of every edge. Empty when the

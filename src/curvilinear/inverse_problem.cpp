@@ -14,16 +14,6 @@
 
 namespace aq::curvilinear {
 
-InnerSchedule parse_inner_schedule(std::string_view text) {
-  if (text == "exponential") return InnerSchedule::kExponential;
-  if (text == "sqrt") return InnerSchedule::kSqrt;
-  throw ConfigError(fmt::format("inner pass schedule '{}' is unknown (use 'exponential' or 'sqrt')", text));
-}
-
-const char* inner_schedule_name(InnerSchedule schedule) {
-  return schedule == InnerSchedule::kExponential ? "exponential" : "sqrt";
-}
-
 int inner_pass_count(InnerSchedule schedule, int m) {
   const double md = static_cast<double>(std::max(m, 1));
   const double v =

@@ -35,18 +35,9 @@
 #include "core/log.hpp"
 #include "curvilinear/boundary_nodes.hpp"
 #include "curvilinear/spline_contour.hpp"
+#include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
-
-enum class InnerSchedule {
-  kExponential,  ///< M(m) = ceil(2^((m+5)/2))
-  kSqrt,         ///< M(m) = ceil(sqrt(2m+5))
-};
-
-/// Parses "exponential" or "sqrt"; ConfigError otherwise.
-InnerSchedule parse_inner_schedule(std::string_view text);
-/// "exponential" or "sqrt".
-const char* inner_schedule_name(InnerSchedule schedule);
 
 /// Number of full IZ89 passes allowed at outer iteration m ≥ 1 (before the cap).
 int inner_pass_count(InnerSchedule schedule, int m);

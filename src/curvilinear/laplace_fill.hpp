@@ -21,11 +21,12 @@
 #include <vector>
 
 #include "curvilinear/grid2d.hpp"
+#include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
 
 struct LaplaceOptions {
-  enum class Solver { kDst, kSor };
+  using Solver = LaplaceSolver;
   Solver solver = Solver::kDst;
   /// SOR only: stop when the largest update of one iteration, max |Δq|, is below
   /// tolerance × extent (extent = larger side of the boundary's bounding box). Dimensionless;

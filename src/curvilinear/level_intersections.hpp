@@ -19,10 +19,9 @@
 #include <vector>
 
 #include "curvilinear/surface_grid.hpp"
+#include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
-
-enum class LevelInterpolation { kLinear, kCubic };
 
 /// The (P+1) × (Q+1) grid of level-line intersections, P+1 = theta_levels.size(),
 /// Q+1 = eta_levels.size(). Levels must increase strictly from exactly 0 to exactly 1. theta and

@@ -16,12 +16,6 @@ namespace aq::curvilinear {
 
 namespace {
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 void require_finite(double v, const char* key) {
   if (!std::isfinite(v)) throw ConfigError(fmt::format("projection: {} = {} is not a finite number", key, v));
 }
@@ -30,29 +24,6 @@ void require_finite(double v, const char* key) {
 double t_iso(double phi) { return std::tan(0.25 * kPi + 0.5 * phi); }
 
 }  // namespace
-
-ProjectionKind parse_projection_kind(std::string_view text) {
-  const std::string t = lower(text);
-  if (t == "me" || t == "mercator") return ProjectionKind::kMercator;
-  if (t == "lc" || t == "lambert") return ProjectionKind::kLambertConic;
-  if (t == "st" || t == "stereographic") return ProjectionKind::kStereographic;
-  throw ConfigError(
-      fmt::format("proj = '{}' is not a supported conformal projection (use ME = rotated Mercator, LC = Lambert "
-                  "conformal conic or ST = stereographic)",
-                  text));
-}
-
-std::string projection_code(ProjectionKind kind) {
-  switch (kind) {
-    case ProjectionKind::kMercator:
-      return "ME";
-    case ProjectionKind::kLambertConic:
-      return "LC";
-    case ProjectionKind::kStereographic:
-      return "ST";
-  }
-  return "??";
-}
 
 Projection::Projection(const ProjectionParams& params) : p_(params) {
   require_finite(p_.rlat_deg, "rlat");

@@ -34,20 +34,9 @@
 #include <string_view>
 
 #include "curvilinear/plane_point.hpp"
+#include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
-
-enum class ProjectionKind {
-  kMercator,       ///< "ME": rotated (oblique) Mercator
-  kLambertConic,   ///< "LC": Lambert conformal conic
-  kStereographic,  ///< "ST": oblique / polar stereographic
-};
-
-/// Parses "ME", "LC", "ST" (case-insensitive) or "mercator", "lambert", "stereographic".
-/// Throws ConfigError naming the value otherwise.
-ProjectionKind parse_projection_kind(std::string_view text);
-/// The two-letter code ("ME", "LC", "ST").
-std::string projection_code(ProjectionKind kind);
 
 struct ProjectionParams {
   ProjectionKind kind = ProjectionKind::kMercator;

@@ -12,6 +12,19 @@
 
 namespace aq::curvilinear {
 
+ProjectionParams projection_params(const RegionalParams& p) {
+  ProjectionParams q;
+  q.kind = p.proj;
+  q.rlat_deg = p.rlat;
+  q.rlon_deg = p.rlon;
+  q.rota_deg = p.rota;
+  q.lat1_deg = p.lat1;
+  q.lat2_deg = p.lat2;
+  q.uscale = p.uscale;
+  q.radius_m = p.radius;
+  return q;
+}
+
 Stage stage_from_mode(int mode) {
   if (mode < 0 || mode > 5) throw ConfigError(fmt::format("mode = {} must be 0..5", mode));
   return mode >= 4 ? Stage::kGrid : static_cast<Stage>(mode);
@@ -284,14 +297,14 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
         j["elliptic_rejected"] = m.elliptic_rejected;
       }
       const auto table = [](const std::vector<Candidate>& cands) {
-        Json t = Json::array();
+        Json rows = Json::array();
         for (const Candidate& c : cands)
-          t.push_back(Json{{"name", c.name},
-                           {"f_worst", c.criteria.worst},
-                           {"f_average", c.criteria.average},
-                           {"self_intersecting_cells", c.self_intersecting_cells},
-                           {"boundary_crossings", c.boundary_crossings}});
-        return t;
+          rows.push_back(Json{{"name", c.name},
+                              {"f_worst", c.criteria.worst},
+                              {"f_average", c.criteria.average},
+                              {"self_intersecting_cells", c.self_intersecting_cells},
+                              {"boundary_crossings", c.boundary_crossings}});
+        return rows;
       };
       if (!m.candidates.empty()) {
         j["candidates"] = table(m.candidates);

@@ -21,8 +21,8 @@
 #include "curvilinear/projection.hpp"
 #include "curvilinear/regional_bvp.hpp"
 #include "curvilinear/regional_methods.hpp"
-#include "curvilinear/regional_params.hpp"
 #include "curvilinear/spline_contour.hpp"
+#include "grid_params/regional_params.hpp"
 
 namespace aq::curvilinear {
 
@@ -35,6 +35,9 @@ Stage stage_from_mode(int mode);
 const char* stage_name(Stage stage);
 /// Inverse of stage_name(); also accepts the mode digits "0".."5". ConfigError otherwise.
 Stage parse_stage(std::string_view text);
+
+/// The map of a run: its projection fields of RegionalParams.
+ProjectionParams projection_params(const RegionalParams& p);
 
 struct RegionalResult {
   Stage completed = Stage::kMap;  ///< the last stage run

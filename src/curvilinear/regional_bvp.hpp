@@ -21,8 +21,8 @@
 #include "curvilinear/grid2d.hpp"
 #include "curvilinear/orthogonal_bvp.hpp"
 #include "curvilinear/projection.hpp"
-#include "curvilinear/regional_params.hpp"
 #include "curvilinear/spline_contour.hpp"
+#include "grid_params/regional_params.hpp"
 
 namespace aq::curvilinear {
 

@@ -22,21 +22,18 @@ EllipticOptions elliptic_options(const RegionalParams& p, GridMethod m) {
 }
 
 // Grid with the boundary of `nodes` and TFI inside (with the given sections).
-Grid2D tfi_grid(const SplineContour& contour, const BoundaryNodes& nodes, const std::vector<Section>& sections,
+Grid2D tfi_grid(const SplineContour& contour, const BoundaryNodes& nodes, const RegionalSections& sections,
                 const ControlFunction& w) {
   Grid2D g(nodes.nx_pts, nodes.ny_pts);
   set_grid_boundary(contour, nodes, g);
-  std::vector<int> cols;
-  for (const Section& s : sections) {
-    set_section_column(g, s, w);
-    cols.push_back(s.column);
-  }
-  tfi_fill(g, cols);
+  tfi_with_sections(g, sections.sections, sections.lines, w);
   return g;
 }
 
-std::string tfi_name(std::size_t sections) {
-  return sections == 0 ? std::string("tfi") : fmt::format("tfi+{} section{}", sections, sections == 1 ? "" : "s");
+std::string tfi_name(const RegionalSections& s) {
+  const std::size_t n = s.sections.size();
+  if (n == 0) return "tfi";
+  return fmt::format("tfi+{} {}section{}", n, s.lines == SectionLines::kRows ? "eta " : "", n == 1 ? "" : "s");
 }
 
 void log_criteria_table(const std::vector<Candidate>& c, int chosen, const Logger& log) {
@@ -87,17 +84,23 @@ ControlFunction depth_weighted(const ControlFunction& w, double a, std::array<do
   return ControlFunction::sampled(x0, y0, dx, dy, n, n, std::move(out));
 }
 
-std::vector<Section> regional_sections(const RegionalParams& p, int nx_pts, const Projection& projection) {
-  std::vector<Section> out;
-  for (std::size_t k = 0; k < p.sections.size(); ++k) {
-    const auto& s = p.sections[k];
+RegionalSections regional_sections(const RegionalParams& p, int nx_pts, int ny_pts, const Projection& projection) {
+  RegionalSections result;
+  const bool rows = !p.sections_eta.empty();
+  result.lines = rows ? SectionLines::kRows : SectionLines::kColumns;
+  const auto& given = rows ? p.sections_eta : p.sections;
+  const int n_pts = rows ? ny_pts : nx_pts;
+  std::vector<Section>& out = result.sections;
+  for (std::size_t k = 0; k < given.size(); ++k) {
+    const auto& s = given[k];
     Section sec;
-    sec.column = static_cast<int>(std::lround(s[0] * (nx_pts - 1)));
-    if (sec.column < 1 || sec.column > nx_pts - 2 || (!out.empty() && sec.column <= out.back().column))
-      throw ConfigError(fmt::format(
-          "{}: regional.sections[{}]: q1 = {} gives grid column {}, which is not inside 1..{} after the previous "
-          "section (list sections by increasing q1, at least one column apart)",
-          p.source, k + 1, s[0], sec.column, nx_pts - 2));
+    sec.column = static_cast<int>(std::lround(s[0] * (n_pts - 1)));
+    if (sec.column < 1 || sec.column > n_pts - 2 || (!out.empty() && sec.column <= out.back().column))
+      throw ConfigError(
+          fmt::format("{}: regional.{}[{}]: {} = {} gives grid {} {}, which is not inside 1..{} after the previous "
+                      "section (list sections by increasing {}, at least one {} apart)",
+                      p.source, rows ? "sections_eta" : "sections", k + 1, rows ? "q2" : "q1", s[0],
+                      rows ? "row" : "column", sec.column, n_pts - 2, rows ? "q2" : "q1", rows ? "row" : "column"));
     for (std::size_t m = 1; m + 1 < s.size(); m += 2) {
       if (p.points_lonlat) {
         sec.points.push_back(projection.forward(s[m], s[m + 1]));
@@ -107,7 +110,7 @@ std::vector<Section> regional_sections(const RegionalParams& p, int nx_pts, cons
     }
     out.push_back(std::move(sec));
   }
-  return out;
+  return result;
 }
 
 Candidate make_candidate(std::string name, const Grid2D& grid, const ControlFunction& w) {
@@ -124,11 +127,12 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
                             const BoundaryNodes* conformal_nodes, const Logger& log) {
   MethodRun run;
   run.nodes = nodes;
-  const std::vector<Section> sections = regional_sections(p, nodes.nx_pts, projection);
+  const RegionalSections sections = regional_sections(p, nodes.nx_pts, nodes.ny_pts, projection);
   GridMethod elliptic = p.method;
   switch (p.method) {
     case GridMethod::kConformal:
-      throw InternalError("build_method_grid: the conformal method is the izogrid pipeline");
+    case GridMethod::kBvp:
+      throw InternalError("build_method_grid: the conformal and bvp methods are the izogrid pipeline's stages");
     case GridMethod::kStar: {
       run.grid = Grid2D(nodes.nx_pts, nodes.ny_pts);
       set_grid_boundary(contour, nodes, run.grid);
@@ -140,7 +144,7 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
     case GridMethod::kEd2:
     case GridMethod::kRl:
       run.grid = tfi_grid(contour, nodes, sections, w);
-      run.initial = tfi_name(sections.size());
+      run.initial = tfi_name(sections);
       break;
     case GridMethod::kBest: {
       std::vector<Grid2D> grids;
@@ -159,11 +163,12 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
       grids.push_back(tfi_grid(contour, nodes, {}, w));
       cand.push_back(make_candidate("tfi", grids.back(), w));
       grid_nodes.push_back(nodes);
-      std::vector<Section> variant = sections;
-      if (variant.empty() && nodes.nx_pts >= 5) variant.push_back(Section{(nodes.nx_pts - 1) / 2, {}});
-      if (!variant.empty()) {
+      RegionalSections variant = sections;
+      if (variant.sections.empty() && nodes.nx_pts >= 5)
+        variant.sections.push_back(Section{(nodes.nx_pts - 1) / 2, {}});
+      if (!variant.sections.empty()) {
         grids.push_back(tfi_grid(contour, nodes, variant, w));
-        cand.push_back(make_candidate(tfi_name(variant.size()), grids.back(), w));
+        cand.push_back(make_candidate(tfi_name(variant), grids.back(), w));
         grid_nodes.push_back(nodes);
       }
       if (conformal_grid != nullptr && conformal_nodes != nullptr) {

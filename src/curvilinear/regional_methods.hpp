@@ -22,14 +22,14 @@
 
 #include "core/log.hpp"
 #include "curvilinear/boundary_nodes.hpp"
-#include "curvilinear/control_function.hpp"
 #include "curvilinear/elliptic_grids.hpp"
 #include "curvilinear/grid2d.hpp"
 #include "curvilinear/grid_selection.hpp"
 #include "curvilinear/initial_grids.hpp"
 #include "curvilinear/projection.hpp"
-#include "curvilinear/regional_params.hpp"
 #include "curvilinear/spline_contour.hpp"
+#include "grid_params/control_function.hpp"
+#include "grid_params/regional_params.hpp"
 
 namespace aq::curvilinear {
 
@@ -60,9 +60,14 @@ using DepthSampler = std::function<double(double lon_deg, double lat_deg)>;
 ControlFunction depth_weighted(const ControlFunction& w, double a, std::array<double, 4> box,
                                const Projection& projection, const DepthSampler& depth);
 
-/// Internal sections of `params.sections` for an L-point ξ direction: columns nearest q1·(L−1),
-/// strictly increasing inside 1..L−2 (ConfigError otherwise); points projected when lon/lat.
-std::vector<Section> regional_sections(const RegionalParams& params, int nx_pts, const Projection& projection);
+/// The internal sections of a run: `params.sections` (columns nearest q1·(L−1), inside 1..L−2) or
+/// `params.sections_eta` (rows nearest q2·(M−1), inside 1..M−2), strictly increasing (ConfigError
+/// otherwise); points projected when lon/lat.
+struct RegionalSections {
+  std::vector<Section> sections;
+  SectionLines lines = SectionLines::kColumns;
+};
+RegionalSections regional_sections(const RegionalParams& params, int nx_pts, int ny_pts, const Projection& projection);
 
 /// The candidate criteria of `grid` (f1..f4 for w, folded cells, boundary crossings).
 Candidate make_candidate(std::string name, const Grid2D& grid, const ControlFunction& w);

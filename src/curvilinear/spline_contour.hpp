@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "curvilinear/plane_point.hpp"
+#include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
 
@@ -38,11 +39,6 @@ namespace aq::curvilinear {
 enum class Side { kSouth = 0, kEast = 1, kNorth = 2, kWest = 3 };
 /// "south", "east", "north", "west".
 const char* side_name(Side side);
-
-enum class Parametrisation {
-  kIndex,      ///< σ_k = k: no iteration, well conditioned (default)
-  kArcLength,  ///< knot spacing = arc length of each segment, iterated with the cubic spline
-};
 
 struct ContourOptions {
   /// 3 = cubic (C²), 5 = quintic (C⁴).

@@ -39,18 +39,23 @@ void check_elements(const mesh::Mesh& mesh, ElementKinds kinds);
 inline constexpr int kMaxSquarePolygon = 8;
 
 /// Writes the polygon of square `s` (corners and midside nodes, anticlockwise from SW) into
-/// `out`; returns its node count (4..8).
+/// `out`; returns its node count (4..8; 3..7 for a square of a geographic mesh with a merged pole
+/// row, whose repeated pole node is written once).
 inline int square_polygon(const mesh::Mesh& mesh, ElementId s, std::array<NodeId, kMaxSquarePolygon>& out) {
   const auto& c = mesh.squares[s];
   const bool has_mid = !mesh.square_midside.empty();
   int k = 0;
+  auto add = [&](NodeId n) {
+    if (k == 0 || out[k - 1] != n) out[k++] = n;
+  };
   for (int side = 0; side < 4; ++side) {
-    out[k++] = c[side];
+    add(c[side]);
     if (has_mid) {
       const NodeId m = mesh.square_midside[s][side];
-      if (m >= 0) out[k++] = m;
+      if (m >= 0) add(m);
     }
   }
+  while (k > 1 && out[k - 1] == out[0]) --k;
   return k;
 }
 

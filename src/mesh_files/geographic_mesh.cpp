@@ -95,7 +95,7 @@ std::array<double, 3> spherical_angles_deg(const Vec3& a, const Vec3& b, const V
 
 GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const ElevationSampler& elevation)
     : lattice_(lm) {
-  if (kinds != ElementKinds::kTriangles) return;
+  const bool squares_out = kinds != ElementKinds::kTriangles;
   const Lattice& lat = lm.lattice;
   const auto nn = static_cast<std::size_t>(lm.node_count());
 
@@ -109,7 +109,11 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     if (!has_row) continue;
     PoleChange c;
     c.north = north;
-    c.reason = cap_obstacle(lm, r);
+    c.reason = squares_out ? fmt::format(
+                                 "mesh.elements = \"{}\" writes the squares, which a cap of triangles "
+                                 "cannot replace",
+                                 element_kinds_name(kinds))
+                           : cap_obstacle(lm, r);
     c.method = c.reason.empty() ? "cap" : "merge";
     if (c.reason.empty()) {
       caps.push_back(r);
@@ -198,8 +202,28 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     }
     g.triangles.push_back(o);
     g.triangle_level.push_back(lm.triangle_level[t]);
-    g.triangle_square.push_back(-1);
+    g.triangle_square.push_back(squares_out ? lm.triangle_square[t] : -1);
     source_triangle_.push_back(static_cast<ElementId>(t));
+  }
+  // Squares (written only with mesh.elements = squares or both, where the poles are merged): a
+  // square on a pole row keeps its four corner slots with the merged pole node twice (it is a
+  // triangle on the Earth); a midside node merged into a corner is no longer a hanging node.
+  if (squares_out) {
+    g.squares.reserve(lm.squares.size());
+    for (std::size_t s = 0; s < lm.squares.size(); ++s) {
+      std::array<NodeId, 4> c{};
+      for (std::size_t k = 0; k < 4; ++k) c[k] = new_id[static_cast<std::size_t>(lm.squares[s][k])];
+      g.squares.push_back(c);
+      g.square_level.push_back(lm.square_level[s]);
+      if (lm.square_midside.empty()) continue;
+      std::array<NodeId, 4> mid{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        const NodeId m = lm.square_midside[s][k];
+        mid[k] = m < 0 ? -1 : new_id[static_cast<std::size_t>(m)];
+        if (mid[k] == c[k] || mid[k] == c[(k + 1) % 4]) mid[k] = -1;
+      }
+      g.square_midside.push_back(mid);
+    }
   }
 
   // The caps.
@@ -400,10 +424,11 @@ Json GeographicMesh::json() const {
     }
     poles.push_back(p);
   }
-  return Json{{"nodes", m.node_count()},
-              {"triangles", m.triangle_count()},
-              {"boundary_loops", m.loops.size()},
-              {"poles", poles}};
+  Json j{{"nodes", m.node_count()}, {"triangles", m.triangle_count()}};
+  if (!m.squares.empty()) j["squares"] = m.square_count();
+  j["boundary_loops"] = m.loops.size();
+  j["poles"] = poles;
+  return j;
 }
 
 }  // namespace aq::io

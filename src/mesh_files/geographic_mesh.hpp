@@ -24,9 +24,12 @@
 //  * merge (fallback): when the polar row is not all ocean (a coast crosses it) the cap cannot be
 //    attached to a full ring; the pole-row nodes are merged into their lowest-numbered one
 //    (io/pole_merge.hpp) and the triangles that become degenerate are dropped.
-//  * squares or both (mesh.elements): returned unchanged here; the 3-D writers (VTU, MSH on the
-//    sphere) merge the pole row of the squares themselves, as before. UGRID and text keep the
-//    lattice squares (documented in README "Output formats").
+//  * squares or both (mesh.elements): a cap of triangles cannot replace the squares, so every
+//    pole row is merged as in the fallback; a square on the pole row keeps its corner slots with
+//    the pole node twice (a triangle on the Earth; its polygon, square_polygon, lists it once),
+//    and a degenerate triangle of "both" is dropped. The squares keep their ids, so
+//    triangle_square stays valid. The 3-D writers' own merge (VTU, MSH on the sphere) then finds
+//    nothing left to merge.
 //
 // Node ids: the kept lattice nodes in their order, then the new cap nodes (South cap, North cap;
 // rings from the outside in). New nodes have node_i = node_j = -1 and the flag kNodeCap. The

@@ -82,6 +82,15 @@ TEST(RegionalMethodsCli, SwanFoldsWithoutTheSectionAndNotWithIt) {
   EXPECT_GT(report(b, "swan").at("regional").at("self_intersecting_cells").get<int>(), 0);
   EXPECT_TRUE(fs::exists(a / "swan_xygrid.nc"));
   EXPECT_TRUE(fs::exists(a / "swan_grid.png"));
+  // A section along eta instead: the run says so, and it does not remove a fold that runs across
+  // the rows (the column section does).
+  const fs::path c = fresh_dir("swan_eta");
+  const auto r3 =
+      run_aquatoria("regional -q -c " + kConfigs +
+                    "swan.toml --set regional.sections=[] --set regional.sections_eta=[[0.5]] -o " + c.string());
+  ASSERT_EQ(r3.exit_code, 0) << r3.err;
+  EXPECT_EQ(report(c, "swan").at("regional").at("initial_grid"), "tfi+1 eta section");
+  EXPECT_GT(report(c, "swan").at("regional").at("self_intersecting_cells").get<int>(), 0);
 }
 
 TEST(RegionalMethodsCli, SameBytesOnOneAndTwoThreadsForEveryMethod) {
@@ -110,6 +119,10 @@ TEST(RegionalMethodsCli, BadMethodKeysAreClearErrors) {
   r = run_aquatoria("regional -q -c " + kConfigs + "swan.toml --set regional.sections=[[1.5]] -o " + out.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("sections"));
+  r = run_aquatoria("regional -q -c " + kConfigs + "swan.toml --set regional.sections_eta=[[0.5]] -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("regional.sections_eta"));
+  EXPECT_THAT(r.err, HasSubstr("cannot be combined with sections"));
   // The swan is not star-shaped (the top's tangents at both ends meet below the bottom).
   r = run_aquatoria("regional -q -c " + kConfigs + "swan.toml --set regional.method=star -o " + out.string());
   EXPECT_EQ(r.exit_code, 1);

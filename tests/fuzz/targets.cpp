@@ -15,10 +15,10 @@
 #include "config/load.hpp"
 #include "config/regional.hpp"
 #include "core/error.hpp"
-#include "curvilinear/izogrid_file.hpp"
 #include "grid_files/contact_netcdf.hpp"
 #include "grid_files/nesting_netcdf.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
+#include "grid_params/izogrid_file.hpp"
 
 #ifndef AQ_SOURCE_DIR
 #define AQ_SOURCE_DIR "."

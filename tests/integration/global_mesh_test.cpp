@@ -358,3 +358,68 @@ TEST(GlobalMeshEtopo5, WrittenMeshesHaveNoDegenerateElements) {
     EXPECT_NEAR((w.geodesic_area_km2 + island_km2) / lattice_km2, 1.0, 1e-6);
   }
 }
+
+// Issue 11: with mesh.elements = "squares" the UGRID file used to keep the lattice squares with
+// the pole row: 109 nodes at one point. The pole row is now merged; the squares touching it are
+// 3-node polygons. Every face (fan-triangulated) is anticlockwise with positive area, no two
+// nodes share a point, and the faces cover the lattice mesh's area.
+TEST(GlobalMeshEtopo5, SquaresUgridHasNoDuplicatePoleNodes) {
+  const auto& run = mesh_run("--set mesh.elements=squares --set 'output.formats=[\"ugrid\"]'");
+  const auto& geo = run.report.at("geographic_mesh");
+  ASSERT_EQ(geo.at("poles").size(), 1u);
+  EXPECT_EQ(geo.at("poles")[0].at("method"), "merge");
+  EXPECT_EQ(geo.at("poles")[0].at("removed_nodes").get<std::int64_t>(), 108);  // 109 pole-row nodes -> 1
+  fs::path nc_path;
+  for (const auto& e : fs::directory_iterator(run.dir))
+    if (e.path().extension() == ".nc") nc_path = e.path();
+  int nc = -1, v = -1, d = -1;
+  ASSERT_EQ(nc_open(nc_path.c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  std::size_t np = 0, nf = 0, nmax = 0;
+  ASSERT_EQ(nc_inq_dimid(nc, "nMesh_node", &d), NC_NOERR);
+  nc_inq_dimlen(nc, d, &np);
+  ASSERT_EQ(nc_inq_dimid(nc, "nMesh_face", &d), NC_NOERR);
+  nc_inq_dimlen(nc, d, &nf);
+  ASSERT_EQ(nc_inq_dimid(nc, "nMaxMesh_face_nodes", &d), NC_NOERR);
+  nc_inq_dimlen(nc, d, &nmax);
+  std::vector<double> lon(np), lat(np);
+  ASSERT_EQ(nc_inq_varid(nc, "mesh_node_x", &v), NC_NOERR);
+  nc_get_var_double(nc, v, lon.data());
+  ASSERT_EQ(nc_inq_varid(nc, "mesh_node_y", &v), NC_NOERR);
+  nc_get_var_double(nc, v, lat.data());
+  std::vector<long long> faces(nmax * nf);
+  ASSERT_EQ(nc_inq_varid(nc, "mesh_face_nodes", &v), NC_NOERR);
+  nc_get_var_longlong(nc, v, faces.data());
+  long long fill = 0;
+  ASSERT_EQ(nc_get_att_longlong(nc, v, "_FillValue", &fill), NC_NOERR);
+  long long start = 0;
+  if (nc_get_att_longlong(nc, v, "start_index", &start) != NC_NOERR) start = 0;
+  nc_close(nc);
+  std::vector<std::array<std::int64_t, 3>> fan;  // faces as triangle fans
+  std::int64_t three_node = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    std::vector<std::int64_t> p;
+    for (std::size_t k = 0; k < nmax; ++k)
+      if (faces[f * nmax + k] != fill) p.push_back(faces[f * nmax + k] - start);
+    ASSERT_GE(p.size(), 3u) << "face " << f;
+    three_node += p.size() == 3 ? 1 : 0;
+    // Fan from the face's centre (hanging nodes make a fan from a corner degenerate).
+    Vec3 c{0.0, 0.0, 0.0};
+    for (const auto n : p) {
+      const Vec3 u = unit_xyz(lon[static_cast<std::size_t>(n)], lat[static_cast<std::size_t>(n)]);
+      for (int a = 0; a < 3; ++a) c[a] += u[a];
+    }
+    const auto centre = static_cast<std::int64_t>(lon.size());
+    lon.push_back(std::atan2(c[1], c[0]) * 180.0 / M_PI);
+    lat.push_back(std::atan2(c[2], std::hypot(c[0], c[1])) * 180.0 / M_PI);
+    for (std::size_t k = 0; k < p.size(); ++k) fan.push_back({centre, p[k], p[(k + 1) % p.size()]});
+  }
+  EXPECT_GT(three_node, 0);  // the squares on the polar row
+  const WrittenFacts w = written_facts(lon, lat, fan);
+  EXPECT_EQ(static_cast<std::int64_t>(np), geo.at("nodes").get<std::int64_t>());
+  EXPECT_EQ(w.duplicate_points, 0);
+  EXPECT_EQ(w.zero_area, 0);
+  EXPECT_EQ(w.clockwise, 0);
+  EXPECT_EQ(w.bad_edges, 0);
+  EXPECT_NEAR(w.geodesic_area_km2 / run.report.at("statistics").at("area").at("triangles_km2").get<double>(), 1.0,
+              1e-9);
+}

@@ -70,6 +70,35 @@ TEST(Tfi, SwanFoldsWithClassicTfiAndOneSectionRemovesTheFold) {
   std::printf("swan %dx%d: classic TFI %d self-intersecting cells; with one section 0\n", L, M, folded);
 }
 
+// Sections along η (rows): the swan turned on its side (x and y exchanged, and ξ and η, which
+// keeps the orientation) folds under classic TFI, and one row section q2 = 1/2 removes the fold;
+// the grid is exactly the turned grid of the column section.
+TEST(Tfi, RowSectionsOnTheTurnedSwan) {
+  constexpr int L = 21, M = 21;
+  const auto turn = [](const Grid2D& g) {
+    Grid2D t = transposed(g);
+    t.x.swap(t.y);
+    return t;
+  };
+  const Grid2D turned_boundary = turn(test::swan_boundary(L, M));
+  Grid2D classic = turned_boundary;
+  tfi_with_sections(classic, {}, SectionLines::kRows, {});
+  EXPECT_GT(self_intersecting_cells(classic), 0);
+  Grid2D rows = turned_boundary;
+  tfi_with_sections(rows, {Section{(M - 1) / 2, {}}}, SectionLines::kRows, {});
+  EXPECT_EQ(self_intersecting_cells(rows), 0);
+  EXPECT_EQ(boundary_crossings(rows), 0);
+  Grid2D cols = test::swan_boundary(L, M);
+  tfi_with_sections(cols, {Section{(L - 1) / 2, {}}}, SectionLines::kColumns, {});
+  const Grid2D expected = turn(cols);
+  EXPECT_EQ(rows.x, expected.x);
+  EXPECT_EQ(rows.y, expected.y);
+  // Columns of the turned swan do not help: the fold is across them.
+  Grid2D wrong = turned_boundary;
+  tfi_with_sections(wrong, {Section{(L - 1) / 2, {}}}, SectionLines::kColumns, {});
+  EXPECT_GT(self_intersecting_cells(wrong), 0);
+}
+
 TEST(Star, KernelOfAStarShapedAndOfANonStarShapedPolygon) {
   // An L-shaped hexagon: star-shaped, kernel = the unit square at the corner.
   const std::vector<PlanePoint> ell{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};

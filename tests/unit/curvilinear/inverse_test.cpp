@@ -17,9 +17,9 @@
 #include "curvilinear/grid_checks.hpp"
 #include "curvilinear/inverse_problem.hpp"
 #include "curvilinear/iz89.hpp"
-#include "curvilinear/izogrid_file.hpp"
 #include "curvilinear/laplace_fill.hpp"
 #include "curvilinear/regional.hpp"
+#include "grid_params/izogrid_file.hpp"
 
 namespace aq::curvilinear {
 namespace {

@@ -10,6 +10,7 @@
 #include "config/regional.hpp"
 #include "core/error.hpp"
 #include "core/types.hpp"
+#include "curvilinear/regional.hpp"
 #include "curvilinear/spline_contour.hpp"
 #include "handoff/block_contour.hpp"
 #include "handoff/block_files.hpp"

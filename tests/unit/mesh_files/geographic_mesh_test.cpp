@@ -166,9 +166,59 @@ TEST(GeographicMesh, PolarRowWithLandFallsBackToTheMerge) {
   EXPECT_NEAR(f.area, facts(lm).area, 1e-12 * f.area);
 }
 
-TEST(GeographicMesh, SquaresAndMeshesWithoutPoleRowsAreUnchanged) {
-  EXPECT_FALSE(GeographicMesh(arctic_mesh(), ElementKinds::kSquares, kSampler).changed());
-  EXPECT_FALSE(GeographicMesh(arctic_mesh(), ElementKinds::kBoth, kSampler).changed());
+// Squares (mesh.elements = squares or both): the pole row is merged; no two nodes at one point,
+// every square polygon keeps >= 3 distinct nodes and positive area on the sphere, the area is
+// the lattice mesh's, and "both" keeps its triangles consistent with their squares.
+TEST(GeographicMesh, SquaresMergeThePoleRow) {
+  const mesh::Mesh lm = arctic_mesh();
+  ASSERT_FALSE(lm.squares.empty());
+  for (const ElementKinds kinds : {ElementKinds::kSquares, ElementKinds::kBoth}) {
+    const GeographicMesh g(lm, kinds, kSampler);
+    ASSERT_TRUE(g.changed());
+    ASSERT_EQ(g.poles().size(), 1U);
+    EXPECT_EQ(g.poles()[0].method, "merge");
+    EXPECT_NE(g.poles()[0].reason.find("squares"), std::string::npos) << g.poles()[0].reason;
+    EXPECT_EQ(g.poles()[0].removed_nodes, 35);
+    const mesh::Mesh& m = g.mesh();
+    ASSERT_EQ(m.squares.size(), lm.squares.size());
+    ASSERT_EQ(m.square_midside.size(), lm.square_midside.size());
+    const Facts f = facts(m);
+    EXPECT_EQ(f.duplicate_points, 0);
+    EXPECT_EQ(f.tiny_triangles, 0);
+    EXPECT_EQ(f.clockwise, 0);
+    std::vector<std::array<double, 3>> v;
+    for (NodeId n = 0; n < m.node_count(); ++n) v.push_back(unit_vector_deg(m.lon_deg[n], m.lat_deg[n]));
+    double squares_area = 0.0;
+    int three_node_squares = 0;
+    for (ElementId s = 0; s < m.square_count(); ++s) {
+      std::array<NodeId, kMaxSquarePolygon> p{};
+      const int k = square_polygon(m, s, p);
+      ASSERT_GE(k, 3) << "square " << s;
+      three_node_squares += k == 3 ? 1 : 0;
+      double a = 0.0;  // fan from the first node
+      for (int e = 1; e + 1 < k; ++e) a += spherical_triangle_area(v[p[0]], v[p[e]], v[p[e + 1]]);
+      EXPECT_GT(a, 1e-6) << "square " << s;
+      squares_area += a;
+      for (int e = 0; e < k; ++e) EXPECT_NE(p[e], p[(e + 1) % k]) << "square " << s;
+    }
+    // The 36 level-0 squares on the 80–90°N row, but for the one above the split square, whose
+    // south side has a hanging node (4 nodes).
+    EXPECT_EQ(three_node_squares, 35);
+    EXPECT_NEAR(squares_area, facts(lm).area, 1e-12 * squares_area);
+    if (kinds == ElementKinds::kBoth) {
+      EXPECT_EQ(m.triangles.size() + 36, lm.triangles.size());  // one degenerate triangle per polar square
+      for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        const auto& sq = m.squares[static_cast<std::size_t>(m.triangle_square[t])];
+        for (const NodeId n : m.triangles[t]) {
+          const double lat_sq = m.lat_deg[sq[0]];
+          EXPECT_GE(m.lat_deg[n], lat_sq - 1e-9) << "triangle " << t << " outside its square";
+        }
+      }
+    }
+  }
+}
+
+TEST(GeographicMesh, MeshesWithoutPoleRowsAreUnchanged) {
   const Lattice lat = Lattice::make(10.0, 1, -180.0);
   const mesh::Mesh no_pole = testing::make_leaf_mesh(lat, {{0, 0, 20}, {0, 2, 20}});
   const GeographicMesh g(no_pole, ElementKinds::kTriangles, kSampler);

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "curvilinear/izogrid_file.hpp"
 #include "curvilinear/regional.hpp"
+#include "grid_params/izogrid_file.hpp"
 #include "pictures/regional_pictures.hpp"
 
 namespace aq::io {

@@ -1,57 +1,14 @@
 // Validation of RegionalParams (seed 000 Appendix 1 ranges; digest izogrid.md §2.2).
-#include "curvilinear/regional_params.hpp"
+#include "grid_params/regional_params.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "core/error.hpp"
 
 namespace aq::curvilinear {
-
-ProjectionParams projection_params(const RegionalParams& p) {
-  ProjectionParams q;
-  q.kind = p.proj;
-  q.rlat_deg = p.rlat;
-  q.rlon_deg = p.rlon;
-  q.rota_deg = p.rota;
-  q.lat1_deg = p.lat1;
-  q.lat2_deg = p.lat2;
-  q.uscale = p.uscale;
-  q.radius_m = p.radius;
-  return q;
-}
-
-const char* grid_method_name(GridMethod m) {
-  switch (m) {
-    case GridMethod::kConformal:
-      return "conformal";
-    case GridMethod::kBvp:
-      return "bvp";
-    case GridMethod::kTfi:
-      return "tfi";
-    case GridMethod::kStar:
-      return "star";
-    case GridMethod::kEd2:
-      return "ed2";
-    case GridMethod::kRl:
-      return "rl";
-    case GridMethod::kBest:
-      return "best";
-  }
-  return "?";
-}
-
-bool parse_grid_method(std::string_view text, GridMethod& out) {
-  for (const GridMethod m : {GridMethod::kConformal, GridMethod::kBvp, GridMethod::kTfi, GridMethod::kStar,
-                             GridMethod::kEd2, GridMethod::kRl, GridMethod::kBest}) {
-    if (text == grid_method_name(m)) {
-      out = m;
-      return true;
-    }
-  }
-  return false;
-}
 
 std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p) {
   std::vector<std::pair<std::string, std::string>> bad;
@@ -103,13 +60,20 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
   check(p.elliptic_iterations >= 1, "elliptic_iterations", std::to_string(p.elliptic_iterations), "must be >= 1");
   check(p.best_final == GridMethod::kEd2 || p.best_final == GridMethod::kRl, "best_final",
         grid_method_name(p.best_final), "must be ed2 or rl");
-  for (std::size_t k = 0; k < p.sections.size(); ++k) {
-    const auto& sec = p.sections[k];
-    if (sec.empty() || !(sec[0] > 0.0 && sec[0] < 1.0) || sec.size() % 2 != 1)
-      bad.emplace_back("sections", fmt::format("sections[{}]: expected [q1, x1, y1, x2, y2, ...] with 0 < q1 < 1 "
-                                               "and pairs of coordinates",
-                                               k + 1));
+  for (const auto& [key, q, list] :
+       {std::tuple{"sections", "q1", &p.sections}, std::tuple{"sections_eta", "q2", &p.sections_eta}}) {
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      const auto& sec = (*list)[k];
+      if (sec.empty() || !(sec[0] > 0.0 && sec[0] < 1.0) || sec.size() % 2 != 1)
+        bad.emplace_back(key, fmt::format("{}[{}]: expected [{}, x1, y1, x2, y2, ...] with 0 < {} < 1 and pairs of "
+                                          "coordinates",
+                                          key, k + 1, q, q));
+    }
   }
+  if (!p.sections.empty() && !p.sections_eta.empty())
+    bad.emplace_back("sections_eta",
+                     "cannot be combined with sections: TFI blends between the sections of one "
+                     "direction (give q1 sections or q2 sections)");
   for (const auto& [key, v] : {std::pair{"west_edge", p.west_edge}, std::pair{"east_edge", p.east_edge},
                                std::pair{"south_edge", p.south_edge}, std::pair{"north_edge", p.north_edge}})
     check(std::isnan(v) || std::isfinite(v), key, num(v), "must be a finite number");

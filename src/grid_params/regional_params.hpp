@@ -10,27 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "curvilinear/inverse_problem.hpp"
-#include "curvilinear/laplace_fill.hpp"
-#include "curvilinear/level_intersections.hpp"
-#include "curvilinear/projection.hpp"
-#include "curvilinear/spline_contour.hpp"
+#include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
-
-/// How the grid is built from the contour (key `method`): the conformal izogrid pipeline (seed 000),
-/// the orthogonal-family boundary-value problem (seed 003, regional_bvp.hpp) or one of seed 004's
-/// generators (regional_methods.hpp).
-enum class GridMethod { kConformal, kBvp, kTfi, kStar, kEd2, kRl, kBest };
-/// "conformal", "bvp", "tfi", "star", "ed2", "rl", "best".
-const char* grid_method_name(GridMethod m);
-/// Inverse of grid_method_name(); false for an unknown name.
-bool parse_grid_method(std::string_view text, GridMethod& out);
-/// True for seed 004's methods (tfi, star, ed2, rl, best): boundary nodes by equidistribution of the
-/// control function `weight` (regional_methods.hpp); false for conformal and bvp.
-constexpr bool uses_weight(GridMethod m) { return m != GridMethod::kConformal && m != GridMethod::kBvp; }
-/// Where the bvp method solves: in the projection plane or directly on the sphere (seed 003 Sec. 3.2).
-enum class RegionalSurface { kPlane, kSphere };
 
 struct RegionalParams {
   static constexpr double kAuto = std::numeric_limits<double>::quiet_NaN();
@@ -139,7 +121,7 @@ struct RegionalParams {
 
   // --- fill (mode 4) -------------------------------------------------------------------------
   /// [solver] Laplace solver: "dst" (direct, default) or "sor" (the paper's 4-colour SOR).
-  LaplaceOptions::Solver solver = LaplaceOptions::Solver::kDst;
+  LaplaceSolver solver = LaplaceSolver::kDst;
   /// [xygrid] output netCDF file name of the planar grid.
   std::string xygrid = "xygrid.nc";
 
@@ -158,13 +140,17 @@ struct RegionalParams {
   /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled).
   double elliptic_tolerance = 1e-4;
   /// [elliptic_iterations] ED2/RL Picard iterations at most, ≥ 1.
-  int elliptic_iterations = 200;
+  int elliptic_iterations = 400;
   /// [best_final] the elliptic method `best` runs from the chosen initial grid: ed2 or rl.
   GridMethod best_final = GridMethod::kEd2;
   /// Internal sections of TFI (TOML `sections` only): each {q1, x1, y1, x2, y2, ...}: the section
   /// at the grid column nearest q1·(L−1), 0 < q1 < 1, through the optional interior points (plane
   /// units, or lon/lat when points = lonlat).
   std::vector<std::vector<double>> sections;
+  /// Internal sections along η (TOML `sections_eta` only): each {q2, x1, y1, ...}: the section at
+  /// the grid row nearest q2·(M−1), 0 < q2 < 1, from the west side to the east side. Not together
+  /// with `sections`: TFI blends between the sections of one direction.
+  std::vector<std::vector<double>> sections_eta;
 
   // --- execution and provenance --------------------------------------------------------------
   /// [threads] OpenMP threads for IZ89 and the fill; 0 = the OpenMP default. Results do not
@@ -185,8 +171,5 @@ void validate_regional_params(const RegionalParams& p);
 /// The problems validate_regional_params() reports, as (key, message) pairs (key as in the
 /// izogrid file, "points" for the control points), for callers that add file:line.
 std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p);
-
-/// The projection parameters of `p`.
-ProjectionParams projection_params(const RegionalParams& p);
 
 }  // namespace aq::curvilinear

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "curvilinear/izogrid_file.hpp"
+#include "grid_params/izogrid_file.hpp"
 
 namespace aq::curvilinear {
 namespace {
@@ -153,7 +153,7 @@ TEST(IzogridFileTest, AquatoriaKeysMapToTheParams) {
   EXPECT_EQ(p.interp_points, 6);
   EXPECT_EQ(p.inner_rtol, 0.0);
   EXPECT_EQ(p.anderson, 2);
-  EXPECT_EQ(p.solver, LaplaceOptions::Solver::kSor);
+  EXPECT_EQ(p.solver, LaplaceSolver::kSor);
   EXPECT_EQ(p.threads, 2);
   EXPECT_EQ(p.xygrid, "out.nc");
   EXPECT_EQ(p.lwidth, 2.0);

@@ -1,5 +1,5 @@
 // Tests of the control-function formulas (seed 004's w(x, y)).
-#include "curvilinear/control_function.hpp"
+#include "grid_params/control_function.hpp"
 
 #include <gtest/gtest.h>
 

@@ -25,7 +25,7 @@
 #include <string_view>
 #include <vector>
 
-#include "curvilinear/regional_params.hpp"
+#include "grid_params/regional_params.hpp"
 
 namespace aq::curvilinear {
 

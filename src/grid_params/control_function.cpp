@@ -1,6 +1,6 @@
 // Control function w(x, y): a tiny formula compiler (recursive descent to postfix) and a sampled
 // lattice field; see control_function.hpp.
-#include "curvilinear/control_function.hpp"
+#include "grid_params/control_function.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // izogrid input file reader; see izogrid_file.hpp (seed 000 Appendix 1, Fig. 3).
-#include "curvilinear/izogrid_file.hpp"
+#include "grid_params/izogrid_file.hpp"
 
 #include <fmt/format.h>
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "curvilinear/control_function.hpp"
+#include "grid_params/control_function.hpp"
 
 namespace aq::curvilinear {
 
@@ -227,9 +227,9 @@ const std::map<std::string, Setter>& setters() {
        [](RegionalParams& p, std::string_view v) -> std::string {
          const std::string s = lower(v);
          if (s == "dst") {
-           p.solver = LaplaceOptions::Solver::kDst;
+           p.solver = LaplaceSolver::kDst;
          } else if (s == "sor") {
-           p.solver = LaplaceOptions::Solver::kSor;
+           p.solver = LaplaceSolver::kSor;
          } else {
            return "is neither 'dst' nor 'sor'";
          }
