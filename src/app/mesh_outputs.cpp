@@ -4,14 +4,19 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 
 #include "core/error.hpp"
 #include "core/timer.hpp"
+#include "mesh_files/fesom_writer.hpp"
 #include "mesh_files/fort14_writer.hpp"
 #include "mesh_files/geographic_mesh.hpp"
 #include "mesh_files/msh_writer.hpp"
+#include "mesh_files/schism_writer.hpp"
+#include "mesh_files/sphere_quality.hpp"
 #include "mesh_files/text_writer.hpp"
 #include "mesh_files/ugrid_writer.hpp"
 #include "mesh_files/vtu_writer.hpp"
@@ -27,6 +32,7 @@ PreviewOptions preview_options(const config::OutputOptions& o, ElementKinds elem
   p.elements = elements;
   p.zoom = o.png_zoom;
   p.title = fmt::format("aquatoria mesh '{}'", o.name);
+  p.colour = parse_preview_colour(o.png_color);
   return p;
 }
 
@@ -45,10 +51,7 @@ std::string facts_text(const std::vector<std::pair<std::string, std::int64_t>>& 
 
 }  // namespace
 
-const std::vector<std::string>& known_output_formats() {
-  static const std::vector<std::string> formats{"msh", "ugrid", "vtu", "fort14", "text", "png", "tif"};
-  return formats;
-}
+const std::vector<std::string>& known_output_formats() { return config::output_format_names(); }
 
 void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elements) {
   const auto& known = known_output_formats();
@@ -56,11 +59,16 @@ void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elem
     if (std::find(known.begin(), known.end(), f) == known.end()) {
       throw ConfigError(fmt::format("output.formats: unknown format \"{}\" (known: {})", f, fmt::join(known, ", ")));
     }
-    if (f == "fort14" && !has_triangles(elements)) {
+    if ((f == "fort14" || f == "fesom" || f == "schism") && !has_triangles(elements)) {
       throw ConfigError(
-          "output.formats: \"fort14\" needs triangles but mesh.elements = \"squares\" (ADCIRC meshes are "
-          "triangular; use mesh.elements = \"both\" or drop fort14)");
+          fmt::format("output.formats: \"{}\" needs triangles but mesh.elements = \"squares\" (the model's meshes are "
+                      "triangular; use mesh.elements = \"both\" or drop {})",
+                      f, f));
     }
+  }
+  if (o.png_color != "level" && !has_triangles(elements)) {
+    throw ConfigError(fmt::format(
+        "output.png_color = \"{}\" colours triangles but mesh.elements = \"squares\" (use \"level\")", o.png_color));
   }
   if (o.name.empty() || o.name.find('/') != std::string::npos || o.name == "." || o.name == "..") {
     throw ConfigError(fmt::format("output.name = \"{}\": must be a plain file name (no '/')", o.name));
@@ -98,6 +106,37 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
         (*report)[kinds == info.elements ? "geographic_mesh" : "geographic_mesh_fort14"] = g->json();
     }
     return g->mesh();
+  };
+
+  // Shape quality on the sphere of the triangles as the geographic files hold them; its
+  // per-triangle values also colour the preview (output.png_color).
+  std::optional<TriangleShapes> shapes;
+  if (has_triangles(info.elements) && !mesh.triangles.empty()) {
+    const Timer geo_timer;
+    const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
+    const double geo_s = geo_timer.wall_s();
+    const Timer timer;
+    shapes = triangle_shapes(g);
+    const SphereQuality q = summarize_quality(*shapes);
+    log.info("quality: {} ({:.3f} s, {:.3f} s CPU)", q.describe(), timer.wall_s(), timer.cpu_s());
+    if (report != nullptr) {
+      Json j = q.json();
+      j["mesh"] = "geographic (as written to ugrid, vtu, fort14, text, fesom, schism)";
+      j["seconds"] = std::round(timer.wall_s() * 1000.0) / 1000.0;
+      j["cpu_seconds"] = std::round(timer.cpu_s() * 1000.0) / 1000.0;
+      j["geographic_mesh_seconds"] = std::round(geo_s * 1000.0) / 1000.0;
+      (*report)["quality"] = j;
+    }
+  }
+  // Per lattice-mesh triangle (what the preview draws): the value of the geographic triangle it
+  // became, NaN where the pole cap replaced it.
+  auto lattice_values = [&](const std::vector<float>& geo_values) {
+    const auto& src = (info.elements == ElementKinds::kTriangles ? geo : geo_triangles)->source_triangle();
+    if (src.empty()) return geo_values;
+    std::vector<float> v(mesh.triangles.size(), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t k = 0; k < src.size(); ++k)
+      if (src[k] >= 0) v[static_cast<std::size_t>(src[k])] = geo_values[k];
+    return v;
   };
 
   auto write = [&](const std::string& format, const std::string& file,
@@ -168,8 +207,62 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}};
           });
+    } else if (format == "fesom") {
+      const std::vector<double>& levels =
+          options.fesom_levels.empty() ? default_fesom_levels_m() : options.fesom_levels;
+      const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
+      write(
+          format, name + "_nod2d.out", [&](const auto& p) { return write_fesom_nod2d(g, p); },
+          [](const WriteStats& s) {
+            return Facts{{"nodes", s.nodes}, {"boundary nodes", s.boundary_edges}};
+          });
+      write(
+          format, name + "_elem2d.out", [&](const auto& p) { return write_fesom_elem2d(g, p); },
+          [](const WriteStats& s) {
+            return Facts{{"triangles", s.elements}};
+          });
+      write(
+          format, name + "_aux3d.out", [&](const auto& p) { return write_fesom_aux3d(g, p, levels); },
+          [&](const WriteStats& s) {
+            return Facts{{"nodes", s.nodes}, {"levels", static_cast<std::int64_t>(levels.size())}};
+          });
+      const FesomRotation r = fesom_rotation(mesh.rotation);
+      if (r.force_rotation) {
+        log.info(
+            "FESOM namelist.config: force_rotation = .true., alphaEuler = {:.10g}, betaEuler = {:.10g}, "
+            "gammaEuler = {:.10g} (FESOM's rotated frame = the mesh's)",
+            r.alpha_deg, r.beta_deg, r.gamma_deg);
+      } else {
+        log.info("FESOM namelist.config: force_rotation = .false. (the mesh is not rotated)");
+      }
+      if (report != nullptr) {
+        (*report)["fesom"] = Json{{"force_rotation", r.force_rotation},
+                                  {"alphaEuler", r.alpha_deg},
+                                  {"betaEuler", r.beta_deg},
+                                  {"gammaEuler", r.gamma_deg},
+                                  {"levels_m", levels}};
+      }
+    } else if (format == "schism") {
+      SchismOptions o;
+      o.title = fmt::format("aquatoria mesh {} ({}), lon/lat: SCHISM ics = 2", name, info.source);
+      const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
+      if (!g.pinch_nodes.empty()) {
+        log.warn(
+            "SCHISM: {} pinch vertices (the ocean touching itself at one node); SCHISM stops on them with "
+            "\"Illegal bnd node\": set mask.remove_pinches = true",
+            g.pinch_nodes.size());
+      }
+      for (const char* ext : {".gr3", ".ll"}) {
+        write(
+            format, name + ext, [&](const auto& p) { return write_schism_hgrid(g, p, o); },
+            [](const WriteStats& s) {
+              return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
+            });
+      }
     } else if (format == "png") {
-      const PreviewOptions o = preview_options(options, info.elements);
+      PreviewOptions o = preview_options(options, info.elements);
+      if (o.colour == PreviewColour::kAngle && shapes) o.triangle_values = lattice_values(shapes->min_angle_deg);
+      if (o.colour == PreviewColour::kSize && shapes) o.triangle_values = lattice_values(shapes->size_km);
       write(
           format, name + ".png", [&](const auto& p) { return write_preview_png(mesh, bathy, p, o); },
           [](const WriteStats& s) {

@@ -9,11 +9,16 @@
 //   fort14   <name>.14            ADCIRC grid (the `.14` suffix keeps several meshes apart in one
 //                                 folder; ADCIRC users link or copy it to fort.14)
 //   text     <name>.txt           plain text
-//   png      <name>.png           preview map (output.png_width), and <name>_zoom.png when
-//                                 output.png_zoom is set
+//   png      <name>.png           preview map (output.png_width, output.png_color), and
+//                                 <name>_zoom.png when output.png_zoom is set
+//   fesom    <name>_nod2d.out, <name>_elem2d.out, <name>_aux3d.out   FESOM2 (output.fesom_levels);
+//                                 the namelist's Euler angles go to the log and the "fesom" section
+//   schism   <name>.gr3, <name>.ll  SCHISM hgrid.gr3 / hgrid.ll (lon/lat, ics = 2)
 //   tif      <name>.tif           the global run file (mask/global_run_file.hpp: Ω_L, pixel
 //                                 classes, quadtree levels; GeoTIFF), written by the run's
 //                                 MeshOutputInfo::global_run_file
+// With triangles, the shape quality on the sphere of the geographic mesh (sphere_quality.hpp) is
+// logged and becomes the "quality" report section, whatever the formats.
 // Every option is checked before the first file is written, so a bad option writes nothing.
 #pragma once
 
@@ -37,7 +42,7 @@ namespace aq::io {
 
 struct WrittenFile {
   std::string name;            ///< file name in the output folder, e.g. "mesh.msh"
-  std::string format;          ///< "msh", "ugrid", "vtu", "fort14", "text", "png", "png_zoom" or "tif"
+  std::string format;          ///< a value of output.formats, or "png_zoom"
   std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
   std::int64_t bytes = 0;
   double seconds = 0.0;  ///< wall time of the writer

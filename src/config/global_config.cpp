@@ -1,9 +1,12 @@
 // The key table of the global run (ARCHITECTURE §7) and its validation. Adding a key here
 // without documenting it in configs/example.toml fails tests/unit/config/example_toml_test.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+
+#include <fmt/ranges.h>
 
 #include "config/load.hpp"
 #include "config/schema.hpp"
@@ -259,8 +262,9 @@ const S& schema() {
         "output", "formats", [](GlobalConfig& c) -> std::vector<std::string>& { return c.output.formats; },
         [](const std::vector<std::string>& v) {
           for (const auto& f : v) {
-            const std::string e = one_of(f, {"msh", "ugrid", "vtu", "fort14", "text", "png", "tif"});
-            if (!e.empty()) return e;
+            const auto& known = output_format_names();
+            if (std::find(known.begin(), known.end(), f) == known.end())
+              return fmt::format("\"{}\" is not one of \"{}\"", f, fmt::join(known, "\", \""));
           }
           return std::string();
         },
@@ -285,6 +289,27 @@ const S& schema() {
           if (v.empty()) return std::string();
           if (v.size() != 4 || !(v[0] < v[1]) || !(v[2] < v[3]) || v[2] < -90 || v[3] > 90)
             return std::string("expected [lon_min, lon_max, lat_min, lat_max] with min < max");
+          return std::string();
+        },
+        "");
+    t.add<std::string>(
+        "output", "png_color", [](GlobalConfig& c) -> std::string& { return c.output.png_color; },
+        [](const std::string& v) {
+          return one_of(v, {"level", "angle", "size"});
+        },
+        "");
+    t.add<std::vector<double>>(
+        "output", "fesom_levels", [](GlobalConfig& c) -> std::vector<double>& { return c.output.fesom_levels; },
+        [](const std::vector<double>& v) {
+          if (v.empty()) return std::string();
+          if (v.size() < 5)
+            return std::string("expected at least 5 depth levels (FESOM raises shallower nodes to the 5th)");
+          if (v[0] != 0.0) return std::string("the first level must be 0 (the surface)");
+          for (std::size_t k = 1; k < v.size(); ++k)
+            if (!std::isfinite(v[k]) || !(v[k] > v[k - 1]))
+              return fmt::format(
+                  "levels must be depths in metres, positive down and strictly increasing (level {} = {})", k + 1,
+                  v[k]);
           return std::string();
         },
         "");

@@ -64,6 +64,12 @@ struct MeshOptions {
   std::string diagonal = "ne";         ///< "ne", "nw" or "alternate"
 };
 
+/// The values output.formats knows, in the order write_mesh_outputs (app/mesh_outputs.hpp) writes them.
+inline const std::vector<std::string>& output_format_names() {
+  static const std::vector<std::string> names{"msh", "ugrid", "vtu", "fort14", "text", "png", "fesom", "schism", "tif"};
+  return names;
+}
+
 struct OutputOptions {
   std::string dir = "out";
   std::string name = "mesh";  ///< base name of the output files
@@ -73,6 +79,8 @@ struct OutputOptions {
   std::string vtu_coordinates = "sphere";  ///< "sphere" (unit sphere) or "wgs84" (metres, ECEF)
   int png_width = 2400;                    ///< preview width in pixels
   std::vector<double> png_zoom;            ///< optional [lon_min, lon_max, lat_min, lat_max] zoom box
+  std::string png_color = "level";         ///< preview fill: "level", "angle" (min angle) or "size" (km)
+  std::vector<double> fesom_levels;        ///< FESOM aux3d.out depth levels (m, positive down); empty = default
 };
 
 /// `aquatoria blocks`: coastal blocks of the global run handed to regional grids (ARCHITECTURE §6).

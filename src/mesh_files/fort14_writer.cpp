@@ -46,7 +46,8 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
   }
   const auto nbou = std::count_if(mesh.loops.begin(), mesh.loops.end(), [](const auto& l) { return !l.nodes.empty(); });
   f.print("0 ! NOPE = number of open boundaries\n0 ! NETA = total number of open boundary nodes\n");
-  f.print("{} ! NBOU = number of land boundaries\n{} ! NVEL = total number of land boundary nodes\n", nbou, nvel);
+  f.print("{} ! {} = number of land boundaries\n{} ! NVEL = total number of land boundary nodes\n", nbou,
+          options.land_count_name, nvel);
   std::int64_t k = 0;
   for (const auto& loop : mesh.loops) {
     if (loop.nodes.empty()) continue;

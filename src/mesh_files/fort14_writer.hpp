@@ -35,6 +35,9 @@ namespace aq::io {
 
 struct Fort14Options {
   std::string title = "aquatoria global ocean mesh";  ///< AGRID (cut to 80 characters, one line)
+  /// Names in the comments of the boundary header lines (SCHISM's hgrid.gr3 has the same layout
+  /// and calls the land boundary count NLAND: mesh_files/schism_writer.hpp).
+  std::string land_count_name = "NBOU";
 };
 
 /// Writes the triangles of `mesh` to `path` (a temporary path of an OutputSet). Throws

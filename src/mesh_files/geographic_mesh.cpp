@@ -160,6 +160,13 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
   mesh::Mesh g;
   g.lattice = lm.lattice;
   g.rotation = lm.rotation;
+  for (auto* v : {&g.node_i, &g.node_j}) v->reserve(nn);
+  for (auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) v->reserve(nn);
+  g.node_flags.reserve(nn);
+  g.triangles.reserve(lm.triangles.size());
+  g.triangle_level.reserve(lm.triangles.size());
+  g.triangle_square.reserve(lm.triangles.size());
+  source_triangle_.reserve(lm.triangles.size());
   auto push_node = [&](std::int64_t i, std::int64_t j, double lon, double lat_deg, double rlon, double rlat,
                        double depth, std::uint8_t flags) {
     g.node_i.push_back(i);
@@ -196,6 +203,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     g.triangles.push_back(o);
     g.triangle_level.push_back(lm.triangle_level[t]);
     g.triangle_square.push_back(squares_out ? lm.triangle_square[t] : -1);
+    source_triangle_.push_back(static_cast<ElementId>(t));
   }
   // Squares (written only with mesh.elements = squares or both, where the poles are merged): a
   // square on a pole row keeps its four corner slots with the merged pole node twice (it is a
@@ -276,6 +284,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
       g.triangles.push_back(o);
       g.triangle_level.push_back(0);
       g.triangle_square.push_back(-1);
+      source_triangle_.push_back(-1);
     }
     double replaced = 0.0;
     for (std::size_t t = 0; t < lm.triangles.size(); ++t) {

@@ -86,6 +86,9 @@ class GeographicMesh {
   [[nodiscard]] const mesh::Mesh& mesh() const { return owned_ ? *owned_ : lattice_; }
   [[nodiscard]] bool changed() const { return owned_.has_value(); }
   [[nodiscard]] const std::vector<PoleChange>& poles() const { return poles_; }
+  /// Lattice-mesh triangle each triangle of mesh() comes from, -1 for a cap triangle; empty when
+  /// the mesh is unchanged (then triangle k is lattice triangle k).
+  [[nodiscard]] const std::vector<ElementId>& source_triangle() const { return source_triangle_; }
 
   /// One line per changed pole, for the log.
   [[nodiscard]] std::vector<std::string> describe() const;
@@ -96,6 +99,7 @@ class GeographicMesh {
   const mesh::Mesh& lattice_;
   std::optional<mesh::Mesh> owned_;
   std::vector<PoleChange> poles_;
+  std::vector<ElementId> source_triangle_;
 };
 
 /// Angles (degrees) of the spherical triangle with vertices at unit vectors a, b, c.

@@ -8,6 +8,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "core/error.hpp"
@@ -52,6 +54,61 @@ constexpr std::array<std::array<double, 3>, 8> kLevelColours{{{0.267, 0.005, 0.3
 std::array<double, 3> level_colour(int level, int levels) {
   const int k = levels <= 0 ? 7 : static_cast<int>(std::lround(7.0 * level / levels));
   return kLevelColours[static_cast<std::size_t>(std::clamp(k, 0, 7))];
+}
+
+// Value classes of the "angle" and "size" fills: class k holds values below upper[k] (and at or
+// above upper[k-1]); the last class has upper = +inf.
+struct FillClasses {
+  std::vector<double> upper;
+  std::vector<std::array<int, 3>> rgb;
+  std::vector<std::string> labels;
+  [[nodiscard]] std::size_t class_of(float v) const {
+    std::size_t k = 0;
+    while (k + 1 < upper.size() && !(v < upper[k])) ++k;
+    return k;
+  }
+};
+
+FillClasses angle_classes() {
+  FillClasses c;
+  c.upper = {10, 20, 30, 40, 50, std::numeric_limits<double>::infinity()};
+  c.rgb = {{165, 0, 38}, {215, 48, 39}, {244, 109, 67}, {254, 224, 139}, {166, 217, 106}, {26, 152, 80}};
+  c.labels = {"min angle < 10°", "10-20°", "20-30°", "30-40°", "40-50°", ">= 50°"};
+  return c;
+}
+
+// 1-2-5 steps (km) from the largest at or below the smallest value to the smallest at or above
+// the largest, at most 8 classes (every other step dropped until they fit).
+FillClasses size_classes(const std::vector<float>& values) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const float v : values)
+    if (std::isfinite(v) && v > 0.0f) {
+      lo = std::min(lo, static_cast<double>(v));
+      hi = std::max(hi, static_cast<double>(v));
+    }
+  if (!std::isfinite(lo)) lo = hi = 1.0;
+  std::vector<double> steps;
+  for (double decade = std::pow(10.0, std::floor(std::log10(lo))); steps.empty() || steps.back() < hi; decade *= 10.0)
+    for (const double m : {1.0, 2.0, 5.0})
+      if (steps.empty() || steps.back() < hi) steps.push_back(m * decade);
+  while (steps.size() > 2 && steps[1] <= lo) steps.erase(steps.begin());
+  while (steps.size() > 9) {
+    std::vector<double> fewer;
+    for (std::size_t k = 0; k < steps.size(); k += 2) fewer.push_back(steps[k]);
+    if (fewer.back() < steps.back()) fewer.push_back(steps.back());
+    steps = fewer;
+  }
+  FillClasses c;
+  const std::size_t n = std::max<std::size_t>(1, steps.size() - 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    c.upper.push_back(k + 1 < n ? steps[k + 1] : std::numeric_limits<double>::infinity());
+    const auto& v = kLevelColours[static_cast<std::size_t>(7 - (n > 1 ? 7 * k / (n - 1) : 0))];
+    c.rgb.push_back({static_cast<int>(std::lround(255 * v[0])), static_cast<int>(std::lround(255 * v[1])),
+                     static_cast<int>(std::lround(255 * v[2]))});
+    c.labels.push_back(fmt::format("{}{:g}-{:g} km", k == 0 ? "size " : "", steps[k],
+                                   steps.size() > 1 ? steps[std::min(k + 1, steps.size() - 1)] : steps[k]));
+  }
+  return c;
 }
 
 // Opaque RGB24 pixel for an elevation (m): hypsometric tints in depth/height classes (sea light
@@ -240,6 +297,50 @@ class MeshPainter {
     }
   }
 
+  // Fills every triangle with a finite value opaquely in its class colour: the pixels whose
+  // centres it contains (on a shared edge the later triangle wins).
+  void fill_triangles(cairo_surface_t* surface, const std::vector<float>& values, const FillClasses& classes) const {
+    unsigned char* data = cairo_image_surface_get_data(surface);
+    const int stride = cairo_image_surface_get_stride(surface);
+    for (std::size_t k = 0; k < m_.triangles.size() && k < values.size(); ++k) {
+      if (!std::isfinite(values[k])) continue;
+      const auto& t = m_.triangles[k];
+      std::array<double, 3> tx{}, ty{};
+      for (std::size_t a = 0; a < 3; ++a) {
+        tx[a] = x(m_.unwrapped_i(t, t[a]));
+        ty[a] = y(m_.node_j[t[a]]);
+      }
+      if (!rows_visible(std::min({ty[0], ty[1], ty[2]}), std::max({ty[0], ty[1], ty[2]}))) continue;
+      const auto& rgb = classes.rgb[classes.class_of(values[k])];
+      const std::uint32_t colour = 0xff000000u | (static_cast<std::uint32_t>(rgb[0]) << 16) |
+                                   (static_cast<std::uint32_t>(rgb[1]) << 8) | static_cast<std::uint32_t>(rgb[2]);
+      const auto [lo, hi] = std::minmax({tx[0], tx[1], tx[2]});
+      at_shifts(lo, hi, [&](double sh) {
+        std::array<double, 3> px{}, py{};
+        for (std::size_t a = 0; a < 3; ++a) {
+          px[a] = v_.px(tx[a] + sh);
+          py[a] = v_.py(ty[a]);
+        }
+        const int xa = std::max(0, static_cast<int>(std::floor(std::min({px[0], px[1], px[2]}))));
+        const int xb = std::min(v_.width - 1, static_cast<int>(std::ceil(std::max({px[0], px[1], px[2]}))));
+        const int ya = std::max(v_.band, static_cast<int>(std::floor(std::min({py[0], py[1], py[2]}))));
+        const int yb = std::min(v_.band + v_.map_h - 1, static_cast<int>(std::ceil(std::max({py[0], py[1], py[2]}))));
+        auto side = [&](std::size_t a, double cx, double cy) {
+          const std::size_t b = (a + 1) % 3;
+          return (px[b] - px[a]) * (cy - py[a]) - (py[b] - py[a]) * (cx - px[a]);
+        };
+        for (int yy = ya; yy <= yb; ++yy) {
+          auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(yy) * stride);
+          for (int xx = xa; xx <= xb; ++xx) {
+            const double cx = xx + 0.5, cy = yy + 0.5;
+            const double s0 = side(0, cx, cy), s1 = side(1, cx, cy), s2 = side(2, cx, cy);
+            if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) row[xx] = colour;
+          }
+        }
+      });
+    }
+  }
+
   // seg(ax, ay, bx, by) in device pixels for each triangle edge once (a < b; the boundary edges
   // with a > b are drawn as coast).
   template <typename Seg>
@@ -380,6 +481,10 @@ void fit_font(cairo_t* cr, double size, double width, double room) {
   cairo_set_font_size(cr, width > room ? std::max(6.0, size * room / width) : size);
 }
 
+FillClasses fill_classes(const PreviewOptions& o) {
+  return o.colour == PreviewColour::kAngle ? angle_classes() : size_classes(o.triangle_values);
+}
+
 void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOptions& o, const std::string& title) {
   const double font = v.band * 0.62, margin = font * 0.5, room = v.width - 2 * margin;
   cairo_set_source_rgb(cr, 1, 1, 1);
@@ -403,9 +508,21 @@ void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOp
     std::string label;
   };
   std::vector<Item> items;
-  for (int l = 0; l <= levels; ++l) {
-    items.push_back({level_colour(l, levels), fmt::format("level {}: {}{}", l, count[static_cast<std::size_t>(l)],
-                                                          l == 0 ? (tri ? " triangles" : " squares") : "")});
+  if (o.colour == PreviewColour::kLevel) {
+    for (int l = 0; l <= levels; ++l) {
+      items.push_back({level_colour(l, levels), fmt::format("level {}: {}{}", l, count[static_cast<std::size_t>(l)],
+                                                            l == 0 ? (tri ? " triangles" : " squares") : "")});
+    }
+  } else {
+    const FillClasses classes = fill_classes(o);
+    std::vector<std::int64_t> in_class(classes.rgb.size(), 0);
+    for (const float value : o.triangle_values)
+      if (std::isfinite(value)) ++in_class[classes.class_of(value)];
+    for (std::size_t k = 0; k < classes.rgb.size(); ++k) {
+      const auto& c = classes.rgb[k];
+      items.push_back({{c[0] / 255.0, c[1] / 255.0, c[2] / 255.0},
+                       fmt::format("{}: {}{}", classes.labels[k], in_class[k], k == 0 ? " triangles" : "")});
+    }
   }
   for (const auto& [e, label] : std::vector<std::pair<float, const char*>>{{-100.0f, "0-200 m"},
                                                                            {-1500.0f, "1000-2000 m"},
@@ -488,7 +605,12 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
   std::int64_t squares = 0;
   // Fills and mesh edges straight into the pixels, then the coast with Cairo on top.
   cairo_surface_flush(surface);
-  paint.fill_squares(surface, mesh.lattice.levels, squares);
+  if (o.colour == PreviewColour::kLevel) {
+    paint.fill_squares(surface, mesh.lattice.levels, squares);
+  } else {
+    squares = mesh.square_count();
+    paint.fill_triangles(surface, o.triangle_values, fill_classes(o));
+  }
   const bool tri = has_triangles(o.elements) && !mesh.triangles.empty();
   if (tri) paint.triangle_edges(PixelPen(surface, v, {30, 30, 40}, 140));
   if (!tri || has_squares(o.elements)) {
@@ -539,6 +661,13 @@ std::string counts_title(const mesh::Mesh& m, const PreviewOptions& o) {
 }
 
 }  // namespace
+
+PreviewColour parse_preview_colour(std::string_view value) {
+  if (value == "level") return PreviewColour::kLevel;
+  if (value == "angle") return PreviewColour::kAngle;
+  if (value == "size") return PreviewColour::kSize;
+  throw ConfigError(fmt::format("output.png_color = \"{}\": expected \"level\", \"angle\" or \"size\"", value));
+}
 
 void check_preview_options(const PreviewOptions& o) {
   if (o.width_px < 200 || o.width_px > 20000) {

@@ -204,6 +204,23 @@ inline mesh::Mesh tiny_mesh(bool with_triangles = true, const mesh::RotationInfo
                         with_triangles, rotation);
 }
 
+/// Δ0 = 10°, L = 1 (5° pixels): level-0 squares on the rows 70–80°N and 80–90°N all round, one of
+/// the lower ones split into four level-1 squares (so ring 0 of a pole cap has a midside node);
+/// without `full_band` the polar row has a gap at I = 40..41 (so the pole row is merged instead).
+inline mesh::Mesh arctic_mesh(bool full_band = true) {
+  const Lattice lat = Lattice::make(10.0, 1, -180.0);
+  std::vector<LeafSpec> leaves;
+  for (std::int64_t i = 0; i < lat.nx; i += 2) {
+    if (i == 20) {
+      for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}}) leaves.push_back({1, i + di, 32 + dj});
+    } else {
+      leaves.push_back({0, i, 32});
+    }
+    if (full_band || i != 40) leaves.push_back({0, i, 34});
+  }
+  return make_leaf_mesh(lat, leaves);
+}
+
 /// A larger mesh for timing and real-reader tests: every level-L pixel of the lattice rows
 /// j0 <= J < j1 (all columns, so elements cross the seam), at level L.
 inline mesh::Mesh band_mesh(const Lattice& lattice, std::int64_t j0, std::int64_t j1) {

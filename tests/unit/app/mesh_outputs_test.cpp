@@ -55,15 +55,17 @@ TEST(MeshOutputs, EveryFormatWithItsFileNameAndOneLogLine) {
                                              "tiny_zoom.png"}));
   EXPECT_EQ(formats, (std::vector<std::string>{"msh", "ugrid", "vtu", "fort14", "text", "png", "png_zoom"}));
   EXPECT_EQ(files_in(dir.path()), std::set<std::string>(names.begin(), names.end()));
-  // One line per file, and one for the geographic mesh before the first file that needs it: the
-  // tiny mesh's pole row is not all ocean, so it is merged (3 nodes into 1, 2 triangles dropped).
-  ASSERT_EQ(log.lines.size(), 8u);
-  EXPECT_NE(log.lines[1].find("geographic mesh: North pole: pole row merged into one node (2 nodes merged, 2 "
+  // One line per file, one for the geographic mesh and one for its shape quality on the sphere,
+  // both before the first file: the tiny mesh's pole row is not all ocean, so it is merged (3
+  // nodes into 1, 2 triangles dropped).
+  ASSERT_EQ(log.lines.size(), 9u);
+  EXPECT_NE(log.lines[0].find("geographic mesh: North pole: pole row merged into one node (2 nodes merged, 2 "
                               "degenerate triangles dropped)"),
             std::string::npos)
-      << log.lines[1];
-  EXPECT_NE(log.lines[3].find("tiny.vtu"), std::string::npos);
-  EXPECT_NE(log.lines[3].find("19 points, 15 cells"), std::string::npos) << log.lines[3];
+      << log.lines[0];
+  EXPECT_EQ(log.lines[1].rfind("quality: 15 triangles on the sphere: min angle", 0), 0u) << log.lines[1];
+  EXPECT_NE(log.lines[4].find("tiny.vtu"), std::string::npos);
+  EXPECT_NE(log.lines[4].find("19 points, 15 cells"), std::string::npos) << log.lines[4];
   // UGRID, VTU, fort.14 and text write the same geographic mesh; MSH (λ–φ plane) the lattice one.
   for (const std::size_t k : {1, 2, 3, 4}) EXPECT_EQ(w[k].stats.nodes, 19) << w[k].name;
   EXPECT_EQ(w[0].stats.nodes, 21 + 2);

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <toml.hpp>
 
@@ -49,6 +50,28 @@ TEST(ExampleToml, ListsExactlyTheKeysTheCodeKnows) {
   for (const auto& k : in_code) EXPECT_TRUE(in_file.count(k)) << k << " is in the code but not in example.toml";
   for (const auto& k : in_file) EXPECT_TRUE(in_code.count(k)) << k << " is in example.toml but not in the code";
   EXPECT_GE(in_code.size(), 30u);
+}
+
+// Every value output.formats accepts is named in example.toml's formats line and in README's
+// "Output formats" section (issue 12 added fesom and schism).
+TEST(ExampleToml, AndReadmeListEveryOutputFormat) {
+  auto read = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string example = read(fs::path(AQ_SOURCE_DIR) / "configs" / "example.toml");
+  const auto line_at = example.find("\nformats = ");
+  ASSERT_NE(line_at, std::string::npos);
+  const std::string formats_line = example.substr(line_at + 1, example.find('\n', line_at + 1) - line_at - 1);
+  const std::string readme = read(fs::path(AQ_SOURCE_DIR) / "README.md");
+  const auto from = readme.find("## Output formats");
+  ASSERT_NE(from, std::string::npos);
+  const std::string section = readme.substr(from, readme.find("\n## ", from + 1) - from);
+  for (const auto& f : aq::config::output_format_names()) {
+    EXPECT_NE(formats_line.find("\"" + f + "\""), std::string::npos) << f << " is not in example.toml's formats line";
+    EXPECT_NE(section.find("`" + f + "`"), std::string::npos) << f << " is not in README's Output formats section";
+  }
+  EXPECT_EQ(aq::config::output_format_names().size(), 8u);
 }
 
 TEST(ExampleToml, StatesTheDefaults) {

@@ -18,21 +18,7 @@
 namespace aq::io {
 namespace {
 
-// Δ0 = 10°, L = 1 (5° pixels): level-0 squares on the rows 70–80°N and 80–90°N all round, one of
-// the lower ones split into four level-1 squares (so ring 0 has a midside node).
-mesh::Mesh arctic_mesh(bool full_band = true) {
-  const Lattice lat = Lattice::make(10.0, 1, -180.0);
-  std::vector<testing::LeafSpec> leaves;
-  for (std::int64_t i = 0; i < lat.nx; i += 2) {
-    if (i == 20) {
-      for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}}) leaves.push_back({1, i + di, 32 + dj});
-    } else {
-      leaves.push_back({0, i, 32});
-    }
-    if (full_band || i != 40) leaves.push_back({0, i, 34});
-  }
-  return testing::make_leaf_mesh(lat, leaves);
-}
+using testing::arctic_mesh;
 
 const ElevationSampler kSampler = [](const std::vector<double>& lon, const std::vector<double>& lat,
                                      std::vector<double>& out) {

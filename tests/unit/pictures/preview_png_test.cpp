@@ -75,6 +75,71 @@ TEST(PreviewPng, SizeBackgroundFillsAndCoast) {
   EXPECT_EQ(p.rgb(1439, 2), (std::array<int, 3>{255, 255, 255}));
 }
 
+// output.png_color = "angle" / "size": each triangle filled opaquely in the colour of its value's
+// class, read back at its centroid; NaN leaves it unfilled; the legend shows the classes.
+TEST(PreviewPng, TrianglesColouredByAngleAndSizeClasses) {
+  testing::TempDir dir;
+  const mesh::Mesh m = testing::tiny_mesh();
+  const std::array<std::array<int, 3>, 6> angle_rgb{
+      {{165, 0, 38}, {215, 48, 39}, {244, 109, 67}, {254, 224, 139}, {166, 217, 106}, {26, 152, 80}}};
+  PreviewOptions o;
+  o.width_px = 1440;
+  o.colour = PreviewColour::kAngle;
+  for (std::size_t k = 0; k < m.triangles.size(); ++k)
+    o.triangle_values.push_back(5.0f + 10.0f * static_cast<float>(k % 6));
+  o.triangle_values[0] = std::nanf("");
+  write_preview_png(m, test_bathy(), dir / "angle.png", o);
+  const Picture p = load(dir / "angle.png");
+  // Centroid of triangle k on the map (seam-crossing and pole triangles skipped).
+  auto centroid = [&](std::size_t k, double& lon, double& lat) {
+    lon = lat = 0.0;
+    for (const NodeId n : m.triangles[k]) {
+      if (m.node_i[n] == 0 && m.crosses_seam(m.triangles[k])) return false;
+      if (m.lat_deg[n] == 90.0) return false;
+      lon += m.lon_deg[n] / 3.0;
+      lat += m.lat_deg[n] / 3.0;
+    }
+    return true;
+  };
+  int checked = 0;
+  for (std::size_t k = 1; k < m.triangles.size(); ++k) {
+    double lon = 0, lat = 0;
+    if (!centroid(k, lon, lat)) continue;
+    const auto [x, y] = at(lon, lat, 1440);
+    EXPECT_EQ(p.rgb(x, y), angle_rgb[k % 6]) << "triangle " << k;
+    ++checked;
+  }
+  EXPECT_GE(checked, 8);
+  double lon0 = 0, lat0 = 0;
+  ASSERT_TRUE(centroid(0, lon0, lat0));
+  const auto [x0, y0] = at(lon0, lat0, 1440);
+  for (const auto& c : angle_rgb) EXPECT_NE(p.rgb(x0, y0), c);  // NaN: not filled
+  // The legend band shows the first class's swatch.
+  bool swatch = false;
+  for (int y = p.height - 24; y < p.height && !swatch; ++y)
+    for (int x = 0; x < p.width && !swatch; ++x) swatch = p.rgb(x, y) == angle_rgb[0];
+  EXPECT_TRUE(swatch);
+
+  // Size: 3 km (fine, yellow) and 300 km (coarse, dark violet) fall into different classes.
+  o.colour = PreviewColour::kSize;
+  for (std::size_t k = 0; k < m.triangles.size(); ++k) o.triangle_values[k] = k % 2 == 0 ? 3.0f : 300.0f;
+  write_preview_png(m, test_bathy(), dir / "size.png", o);
+  const Picture q = load(dir / "size.png");
+  for (std::size_t k = 0; k < m.triangles.size(); ++k) {
+    double lon = 0, lat = 0;
+    if (!centroid(k, lon, lat)) continue;
+    const auto [x, y] = at(lon, lat, 1440);
+    const auto c = q.rgb(x, y);
+    if (k % 2 == 0) {
+      EXPECT_EQ(c, (std::array<int, 3>{253, 231, 37})) << k;
+    } else {
+      EXPECT_EQ(c, (std::array<int, 3>{68, 1, 84})) << k;
+    }
+  }
+  EXPECT_THROW(parse_preview_colour("depth"), ConfigError);
+  EXPECT_EQ(parse_preview_colour("angle"), PreviewColour::kAngle);
+}
+
 TEST(PreviewPng, ZoomAcrossTheSeamAndBoxOnTheMap) {
   testing::TempDir dir;
   PreviewOptions o;

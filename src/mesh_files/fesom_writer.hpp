@@ -1,0 +1,58 @@
+// FESOM2 mesh files (the reader is read_mesh in FESOM2's src/oce_mesh.F90; its partitioner reads
+// the same three files). All are whitespace-separated text read with Fortran list-directed input:
+//
+//   nod2d.out    n2d                        node count
+//                id lon lat flag            n2d lines: 1-based id, geographic degrees
+//                                           (λ in [-180, 180)), flag 1 on a boundary (coast or
+//                                           the polar island), 0 inside
+//   elem2d.out   e2d                        triangle count
+//                n1 n2 n3                   e2d lines: 1-based node ids, clockwise seen from
+//                                           outside the sphere: the sense FESOM's test_tri
+//                                           establishes (it swaps n2 and n3 of every triangle
+//                                           that is anticlockwise in its lon–lat plane)
+//   aux3d.out    nl                         number of depth levels (≥ 5: FESOM raises every
+//                                           depth shallower than level 5 to it)
+//                z_1 .. z_nl                one a line, metres, negative below the surface,
+//                                           z_1 = 0 (FESOM's zbar; it negates positive lists)
+//                depth                      n2d lines: the node's bottom, metres, negative
+//                                           (FESOM's sign; it negates positive values, so a node
+//                                           with elevation ≥ 0 is written as 0, not as a depth)
+//
+// Rotation: FESOM reads geographic coordinates and rotates them itself into its model frame when
+// namelist.config has force_rotation = .true., with Euler angles alphaEuler, betaEuler,
+// gammaEuler (degrees; z, then the new x, then the new z: FESOM's gen_modules_rotate_grid.F90).
+// fesom_rotation() gives the angles whose model frame is our rotated (lattice) frame, so FESOM
+// works on the same rotated sphere the mesh was built on. Without rotation, run FESOM with
+// force_rotation = .false. (its geographic frame; the North pole cap keeps nodes off the pole).
+// FESOM also checks that an unrotated mesh has no ocean within 2.5° of its rotated pole; our
+// default pole (Greenland) is on land.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "io/write_stats.hpp"
+#include "mesh/mesh.hpp"
+
+namespace aq::io {
+
+/// FESOM's default depth levels, metres, positive down (48 levels, 0 to 6250 m, 5 m near the top).
+const std::vector<double>& default_fesom_levels_m();
+
+/// The namelist.config rotation that matches the mesh's rotation.
+struct FesomRotation {
+  bool force_rotation = false;
+  double alpha_deg = 0.0, beta_deg = 0.0, gamma_deg = 0.0;  ///< alphaEuler, betaEuler, gammaEuler
+};
+FesomRotation fesom_rotation(const mesh::RotationInfo& rotation);
+
+/// nod2d.out of the triangles' nodes. WriteStats::boundary_edges counts the nodes flagged 1.
+WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path& path);
+/// elem2d.out.
+WriteStats write_fesom_elem2d(const mesh::Mesh& mesh, const std::filesystem::path& path);
+/// aux3d.out with `levels_m` (positive down: at least 5, from 0, strictly increasing, as the
+/// configuration checks output.fesom_levels; InternalError otherwise).
+WriteStats write_fesom_aux3d(const mesh::Mesh& mesh, const std::filesystem::path& path,
+                             const std::vector<double>& levels_m);
+
+}  // namespace aq::io

@@ -1,0 +1,44 @@
+// SCHISM horizontal grid files hgrid.gr3 and hgrid.ll (schism-dev.github.io, "Horizontal grid";
+// the reader is aquire_hgrid in SCHISM's src/Hydro/grid_subs.F90). A global mesh is in
+// longitude/latitude, which SCHISM runs with ics = 2 (coordinates on the sphere); with ics = 2
+// hgrid.gr3 itself holds degrees too, so both files are written with the same content:
+//
+//   title                              one line
+//   NE NP                              triangles, nodes
+//   id lon lat depth                   NP lines: 1-based, degrees (λ in [-180, 180)), depth below
+//                                      the datum in metres, positive down
+//   id 3 n1 n2 n3                      NE lines: 1-based, anticlockwise seen from outside the sphere
+//   0 = number of open boundaries      a global mesh is closed (NOPE = 0, NETA = 0)
+//   0 = total number of open boundary nodes
+//   NLAND, NVEL                        land boundaries, their total node count
+//   nvel ibtype, then nvel node ids    per boundary loop: ibtype 0 land (the outer loop), 1 island
+//
+// This is the layout of ADCIRC's fort.14, and the file is made by the fort.14 writer
+// (fort14_writer.hpp) with SCHISM's names in the comments: each land boundary is one boundary
+// loop of the mesh, in loop order (wet area on the left), closed by repeating its first node.
+// SCHISM needs every boundary node to start exactly one boundary stretch: a pinch vertex (the
+// wet area touching itself at one node) stops it with "Illegal bnd node" (mask.remove_pinches
+// = true removes them; mesh_outputs warns). With ics = 2 SCHISM projects the nodes
+// stereographically from the South pole for partitioning and rejects a node on that pole; the
+// geographic mesh keeps every node off the poles (geographic_mesh.hpp).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "io/write_stats.hpp"
+#include "mesh/mesh.hpp"
+
+namespace aq::io {
+
+struct SchismOptions {
+  std::string title = "aquatoria global ocean mesh";  ///< first line (cut to 80 characters)
+};
+
+/// Writes the triangles of `mesh` in SCHISM's hgrid layout to `path` (used for both hgrid.gr3
+/// and hgrid.ll). Throws like write_fort14. WriteStats::boundary_edges counts the land boundary
+/// edges.
+WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::path& path,
+                              const SchismOptions& options = {});
+
+}  // namespace aq::io

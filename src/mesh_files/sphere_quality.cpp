@@ -1,0 +1,281 @@
+// Shape quality of a triangle mesh on the sphere (see sphere_quality.hpp).
+#include "mesh_files/sphere_quality.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.hpp"
+#include "core/types.hpp"
+#include "mesh_files/geographic_mesh.hpp"
+
+namespace aq::io {
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+constexpr double kAuthalicRadiusKm = 6371.0072;
+// Loops over fewer items run on one thread: under load, waking the team costs more than the work.
+constexpr std::int64_t kParallelMin = 200000;
+
+// Great-circle distance (radians) between unit vectors: 2·asin(chord / 2).
+double arc(const Vec3& a, const Vec3& b) {
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz)));
+}
+
+// Smallest angle (degrees) between the great circles at the vertices of triangle a, b, c: the
+// angles of spherical_angles_deg (geographic_mesh.hpp), but only the smallest through a
+// trigonometric call. At vertex p with neighbours q, r the tangent directions are
+// q − (p·q)p and r − (p·r)p; the smallest angle has the largest cosine.
+double min_spherical_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto dot = [](const Vec3& u, const Vec3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  auto tangent = [&](const Vec3& p, const Vec3& q) {
+    const double d = dot(p, q);
+    return Vec3{q[0] - d * p[0], q[1] - d * p[1], q[2] - d * p[2]};
+  };
+  const std::array<std::array<Vec3, 2>, 3> t{
+      {{tangent(a, b), tangent(a, c)}, {tangent(b, c), tangent(b, a)}, {tangent(c, a), tangent(c, b)}}};
+  std::size_t best = 0;
+  double best_cos = -2.0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double den = std::sqrt(dot(t[k][0], t[k][0]) * dot(t[k][1], t[k][1]));
+    const double cs = den > 0.0 ? dot(t[k][0], t[k][1]) / den : 1.0;  // a zero side: a zero angle
+    if (cs > best_cos) {
+      best_cos = cs;
+      best = k;
+    }
+  }
+  const Vec3 &u = t[best][0], &v = t[best][1];
+  const Vec3 x{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  return std::atan2(std::sqrt(dot(x, x)), dot(u, v)) * kRadToDeg;
+}
+
+int thread_count() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+int thread_id() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// Per-thread integer histograms, summed afterwards: the same for any thread count. Pass 1
+// (prefixes empty) counts the high 16 bits of every value; pass 2 counts the low 16 bits of the
+// values whose high bits equal prefixes[p], one histogram per prefix.
+std::vector<std::vector<std::int64_t>> digit_histograms(const std::vector<float>& v,
+                                                        const std::vector<std::uint32_t>& prefixes) {
+  constexpr std::size_t kBins = 1u << 16;
+  const std::size_t nh = prefixes.empty() ? 1 : prefixes.size();
+  const int nt = thread_count();
+  std::vector<std::int64_t> per(static_cast<std::size_t>(nt) * nh * kBins, 0);
+  const auto n = static_cast<std::int64_t>(v.size());
+  const float* data = v.data();
+  std::int64_t* counts = per.data();
+  const std::uint32_t* pre = prefixes.data();
+  const auto np = static_cast<std::int64_t>(prefixes.size());
+#pragma omp parallel default(none) shared(n, data, counts, pre, np, nh) if (n >= kParallelMin)
+  {
+    std::int64_t* mine = counts + static_cast<std::size_t>(thread_id()) * nh * kBins;
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < n; ++k) {
+      const auto bits = std::bit_cast<std::uint32_t>(data[k]);
+      if (np == 0) {
+        ++mine[bits >> 16];
+        continue;
+      }
+      for (std::int64_t p = 0; p < np; ++p)
+        if ((bits >> 16) == pre[p]) ++mine[static_cast<std::size_t>(p) * kBins + (bits & 0xffffu)];
+    }
+  }
+  std::vector<std::vector<std::int64_t>> h(nh, std::vector<std::int64_t>(kBins, 0));
+  for (int t = 0; t < nt; ++t)
+    for (std::size_t p = 0; p < nh; ++p)
+      for (std::size_t b = 0; b < kBins; ++b) h[p][b] += per[(static_cast<std::size_t>(t) * nh + p) * kBins + b];
+  return h;
+}
+
+// The bin holding rank `rank` of a histogram, and the rank within it.
+std::uint32_t find_bin(const std::vector<std::int64_t>& h, std::int64_t& rank) {
+  for (std::size_t b = 0; b < h.size(); ++b) {
+    if (rank < h[b]) return static_cast<std::uint32_t>(b);
+    rank -= h[b];
+  }
+  throw InternalError("order_statistic: rank beyond the histogram");
+}
+
+// v rounded to `per_unit` steps per unit (100: to 0.01).
+double round_to(double v, double per_unit) { return std::isfinite(v) ? std::round(v * per_unit) / per_unit : v; }
+
+// JSON has no infinity: an infinite ratio (next to a zero-area triangle) is written as null.
+Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+}  // namespace
+
+std::vector<float> order_statistics(const std::vector<float>& values, const std::vector<double>& qs) {
+  if (values.empty()) throw InternalError("order_statistic: no values");
+  const auto n = static_cast<std::int64_t>(values.size());
+  // Non-negative IEEE floats order like their bit patterns as unsigned integers.
+  const auto high_histogram = digit_histograms(values, {})[0];
+  std::vector<std::int64_t> rank(qs.size());
+  std::vector<std::uint32_t> high(qs.size());
+  for (std::size_t k = 0; k < qs.size(); ++k) {
+    rank[k] = static_cast<std::int64_t>(std::floor(std::clamp(qs[k], 0.0, 1.0) * static_cast<double>(n - 1)));
+    high[k] = find_bin(high_histogram, rank[k]);
+  }
+  const auto low_histograms = digit_histograms(values, high);
+  std::vector<float> out(qs.size());
+  for (std::size_t k = 0; k < qs.size(); ++k)
+    out[k] = std::bit_cast<float>((high[k] << 16) | find_bin(low_histograms[k], rank[k]));
+  return out;
+}
+
+float order_statistic(const std::vector<float>& values, double q) { return order_statistics(values, {q})[0]; }
+
+TriangleShapes triangle_shapes(const mesh::Mesh& m) {
+  const auto nn = static_cast<std::int64_t>(m.lon_deg.size());
+  const auto nt = static_cast<std::int64_t>(m.triangles.size());
+  for (const auto& t : m.triangles)
+    for (const NodeId v : t)
+      if (v < 0 || v >= nn) throw InternalError(fmt::format("triangle_shapes: node {} out of range", v));
+
+  std::vector<Vec3> p(static_cast<std::size_t>(nn));
+  {
+    const double* lon = m.lon_deg.data();
+    const double* lat = m.lat_deg.data();
+    Vec3* pp = p.data();
+#pragma omp parallel for schedule(static) default(none) shared(nn, lon, lat, pp) if (nn >= kParallelMin)
+    for (std::int64_t k = 0; k < nn; ++k) pp[k] = unit_vector_deg(lon[k], lat[k]);
+  }
+
+  TriangleShapes s;
+  const auto un = static_cast<std::size_t>(nt);
+  s.min_angle_deg.resize(un);
+  s.edge_ratio.resize(un);
+  s.neighbour_area_ratio.resize(un);
+  s.size_km.resize(un);
+  std::vector<double> area(un);
+  const auto* tri = m.triangles.data();
+  const Vec3* pp = p.data();
+  double* ar = area.data();
+  float* min_angle = s.min_angle_deg.data();
+  float* edge_ratio = s.edge_ratio.data();
+  float* size = s.size_km.data();
+#pragma omp parallel for schedule(static) default(none) \
+    shared(nt, tri, pp, ar, min_angle, edge_ratio, size) if (nt >= kParallelMin)
+  for (std::int64_t t = 0; t < nt; ++t) {
+    const auto& v = tri[t];
+    const Vec3 &a = pp[v[0]], &b = pp[v[1]], &c = pp[v[2]];
+    min_angle[t] = static_cast<float>(min_spherical_angle_deg(a, b, c));
+    const double e0 = arc(a, b), e1 = arc(b, c), e2 = arc(c, a);
+    const double lo = std::min({e0, e1, e2}), hi = std::max({e0, e1, e2});
+    edge_ratio[t] = lo > 0.0 ? static_cast<float>(hi / lo) : std::numeric_limits<float>::infinity();
+    size[t] = static_cast<float>((e0 + e1 + e2) / 3.0 * kAuthalicRadiusKm);
+    ar[t] = std::abs(spherical_triangle_area(a, b, c));
+  }
+  // Triangles round each node (CSR): for the edge neighbours.
+  std::vector<std::int64_t> first(static_cast<std::size_t>(nn) + 1, 0);
+  for (const auto& t : m.triangles)
+    for (const NodeId v : t) ++first[static_cast<std::size_t>(v) + 1];
+  for (std::size_t k = 1; k < first.size(); ++k) first[k] += first[k - 1];
+  std::vector<std::int64_t> around(static_cast<std::size_t>(first.back()));
+  {
+    std::vector<std::int64_t> fill(first.begin(), first.end() - 1);
+    for (std::int64_t t = 0; t < nt; ++t)
+      for (const NodeId v : m.triangles[static_cast<std::size_t>(t)]) around[static_cast<std::size_t>(fill[v]++)] = t;
+  }
+  const std::int64_t* fp = first.data();
+  const std::int64_t* ap = around.data();
+  float* ratio = s.neighbour_area_ratio.data();
+#pragma omp parallel for schedule(static) default(none) shared(nt, tri, fp, ap, ar, ratio) if (nt >= kParallelMin)
+  for (std::int64_t t = 0; t < nt; ++t) {
+    const auto& v = tri[t];
+    double worst = 1.0;
+    for (int e = 0; e < 3; ++e) {
+      const NodeId a = v[e], b = v[(e + 1) % 3];
+      for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
+        const std::int64_t u = ap[k];
+        if (u == t) continue;
+        const auto& w = tri[u];
+        if (w[0] != b && w[1] != b && w[2] != b) continue;
+        const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
+        worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
+      }
+    }
+    ratio[t] = static_cast<float>(worst);
+  }
+  return s;
+}
+
+SphereQuality summarize_quality(const TriangleShapes& s) {
+  SphereQuality q;
+  q.triangles = static_cast<std::int64_t>(s.min_angle_deg.size());
+  if (q.triangles == 0) return q;
+  const auto a = order_statistics(s.min_angle_deg, {0.0, 0.01, 0.05, 0.5});
+  q.min_angle_p0_deg = a[0];
+  q.min_angle_p1_deg = a[1];
+  q.min_angle_p5_deg = a[2];
+  q.min_angle_p50_deg = a[3];
+  std::int64_t below20 = 0, below30 = 0;
+  const float* angle = s.min_angle_deg.data();
+  const std::int64_t n = q.triangles;
+#pragma omp parallel for schedule(static) default(none) shared(n, angle) reduction(+ : below20, below30) \
+    if (n >= kParallelMin)
+  for (std::int64_t k = 0; k < n; ++k) {
+    below20 += angle[k] < 20.0f ? 1 : 0;
+    below30 += angle[k] < 30.0f ? 1 : 0;
+  }
+  q.below_20_deg_percent = 100.0 * static_cast<double>(below20) / static_cast<double>(n);
+  q.below_30_deg_percent = 100.0 * static_cast<double>(below30) / static_cast<double>(n);
+  const auto e = order_statistics(s.edge_ratio, {0.5, 0.99, 1.0});
+  q.edge_ratio_p50 = e[0];
+  q.edge_ratio_p99 = e[1];
+  q.edge_ratio_max = e[2];
+  const auto r = order_statistics(s.neighbour_area_ratio, {0.99, 1.0});
+  q.neighbour_area_ratio_p99 = r[0];
+  q.neighbour_area_ratio_max = r[1];
+  q.size_p50_km = order_statistic(s.size_km, 0.5);
+  return q;
+}
+
+Json SphereQuality::json() const {
+  return Json{{"triangles", triangles},
+              {"min_angle_deg", Json{{"p0", round_to(min_angle_p0_deg, 100)},
+                                     {"p1", round_to(min_angle_p1_deg, 100)},
+                                     {"p5", round_to(min_angle_p5_deg, 100)},
+                                     {"p50", round_to(min_angle_p50_deg, 100)}}},
+              {"min_angle_below_20_deg_percent", round_to(below_20_deg_percent, 100)},
+              {"min_angle_below_30_deg_percent", round_to(below_30_deg_percent, 100)},
+              {"edge_ratio", Json{{"p50", round_to(edge_ratio_p50, 1e4)},
+                                  {"p99", round_to(edge_ratio_p99, 1e4)},
+                                  {"max", finite_or_null(round_to(edge_ratio_max, 1e4))}}},
+              {"neighbour_area_ratio", Json{{"p99", finite_or_null(round_to(neighbour_area_ratio_p99, 1e4))},
+                                            {"max", finite_or_null(round_to(neighbour_area_ratio_max, 1e4))}}},
+              {"size_p50_km", round_to(size_p50_km, 1000)}};
+}
+
+std::string SphereQuality::describe() const {
+  return fmt::format(
+      "{} triangles on the sphere: min angle p0/p1/p5/median {:.1f}°/{:.1f}°/{:.1f}°/{:.1f}°, {:.1f}% < 20°, "
+      "{:.1f}% < 30°; edge ratio p50/p99/max {:.2f}/{:.2f}/{:.3g}; neighbour area ratio p99/max {:.2f}/{:.3g}",
+      triangles, min_angle_p0_deg, min_angle_p1_deg, min_angle_p5_deg, min_angle_p50_deg, below_20_deg_percent,
+      below_30_deg_percent, edge_ratio_p50, edge_ratio_p99, edge_ratio_max, neighbour_area_ratio_p99,
+      neighbour_area_ratio_max);
+}
+
+}  // namespace aq::io

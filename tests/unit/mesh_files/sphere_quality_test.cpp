@@ -1,0 +1,140 @@
+// Shape quality on the sphere: order statistics against a sort, per-triangle values against
+// closed forms and the spherical law of cosines (computed here independently), and the same
+// values for 1 and 2 threads.
+#include "mesh_files/sphere_quality.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.hpp"
+#include "support/io_test_mesh.hpp"
+
+namespace aq::io {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// A mesh of the given lon/lat nodes and triangles.
+mesh::Mesh nodes_and_triangles(const std::vector<std::array<double, 2>>& ll,
+                               const std::vector<std::array<NodeId, 3>>& tris) {
+  mesh::Mesh m;
+  for (const auto& p : ll) {
+    m.lon_deg.push_back(p[0]);
+    m.lat_deg.push_back(p[1]);
+  }
+  m.triangles = tris;
+  return m;
+}
+
+// Angle at vertex a of the spherical triangle a, b, c from its side lengths (law of cosines).
+double law_of_cosines_deg(const std::array<double, 2>& a, const std::array<double, 2>& b,
+                          const std::array<double, 2>& c) {
+  auto dist = [](const std::array<double, 2>& p, const std::array<double, 2>& q) {
+    const double s = std::sin(p[1] * kDeg) * std::sin(q[1] * kDeg) +
+                     std::cos(p[1] * kDeg) * std::cos(q[1] * kDeg) * std::cos((p[0] - q[0]) * kDeg);
+    return std::acos(std::clamp(s, -1.0, 1.0));
+  };
+  const double ab = dist(a, b), ac = dist(a, c), bc = dist(b, c);
+  return std::acos((std::cos(bc) - std::cos(ab) * std::cos(ac)) / (std::sin(ab) * std::sin(ac))) / kDeg;
+}
+
+TEST(SphereQuality, OrderStatisticIsTheSortedValueOfRankFloorQTimesNMinus1) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(0.0f, 60.0f);
+  for (const std::size_t n : {1u, 2u, 7u, 1000u, 300001u}) {
+    std::vector<float> v(n);
+    for (auto& x : v) x = u(rng);
+    if (n > 10) {
+      v[3] = 0.0f;  // ties, zero and infinity sort like numbers
+      v[4] = v[5];
+      v[6] = std::numeric_limits<float>::infinity();
+    }
+    std::vector<float> sorted = v;
+    std::sort(sorted.begin(), sorted.end());
+    for (const double q : {0.0, 0.01, 0.05, 0.5, 0.99, 1.0}) {
+      const auto rank = static_cast<std::size_t>(std::floor(q * static_cast<double>(n - 1)));
+      EXPECT_EQ(order_statistic(v, q), sorted[rank]) << "n " << n << " q " << q;
+    }
+  }
+  EXPECT_THROW((void)order_statistic({}, 0.5), InternalError);
+}
+
+TEST(SphereQuality, ClosedFormsForSmallTrianglesAndNeighbourRatios) {
+  // Near the equator, legs of 0.01°: a right-isosceles triangle (45°, 45°, 90°; edge ratio √2)
+  // and, sharing its hypotenuse, one with twice the area.
+  const double h = 0.01;
+  const auto m = nodes_and_triangles({{0, 0}, {h, 0}, {0, h}, {2 * h, 2 * h}}, {{0, 1, 2}, {1, 3, 2}});
+  const TriangleShapes s = triangle_shapes(m);
+  ASSERT_EQ(s.min_angle_deg.size(), 2u);
+  EXPECT_NEAR(s.min_angle_deg[0], 45.0, 1e-3);
+  EXPECT_NEAR(s.edge_ratio[0], std::sqrt(2.0), 1e-4);
+  // Triangle 1 = (h,0), (2h,2h), (0,h): area 1.5 h² against 0.5 h².
+  EXPECT_NEAR(s.neighbour_area_ratio[0], 3.0, 1e-3);
+  EXPECT_NEAR(s.neighbour_area_ratio[1], 3.0, 1e-3);
+  EXPECT_NEAR(s.size_km[0], (2.0 + std::sqrt(2.0)) / 3.0 * h * kDeg * 6371.0072, 1e-4);
+  const SphereQuality q = summarize_quality(s);
+  EXPECT_EQ(q.triangles, 2);
+  EXPECT_NEAR(q.min_angle_p0_deg, std::min(s.min_angle_deg[0], s.min_angle_deg[1]), 1e-6);
+  EXPECT_EQ(q.below_20_deg_percent, 0.0);
+  // A triangle without neighbours has ratio 1; a zero-area one makes its neighbour's infinite.
+  const auto lone = nodes_and_triangles({{0, 0}, {1, 0}, {0, 1}, {2, 0}}, {{0, 1, 2}, {1, 0, 3}});
+  const TriangleShapes ls = triangle_shapes(lone);
+  EXPECT_TRUE(std::isinf(ls.neighbour_area_ratio[0]));
+  EXPECT_EQ(ls.min_angle_deg[1], 0.0f);
+  EXPECT_EQ(summarize_quality(TriangleShapes{}).triangles, 0);
+}
+
+TEST(SphereQuality, MinAnglesAgreeWithTheLawOfCosinesOnLargeTriangles) {
+  // The tiny test mesh: 22.5°–45° triangles up to 90° latitude, where the sphere matters.
+  const auto m = testing::tiny_mesh();
+  const TriangleShapes s = triangle_shapes(m);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    std::array<std::array<double, 2>, 3> p{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto n = static_cast<std::size_t>(m.triangles[t][k]);
+      p[k] = {m.lon_deg[n], m.lat_deg[n]};
+    }
+    const bool degenerate = (p[0][1] == 90.0 && p[1][1] == 90.0) || (p[1][1] == 90.0 && p[2][1] == 90.0) ||
+                            (p[2][1] == 90.0 && p[0][1] == 90.0);
+    if (degenerate) {
+      EXPECT_LT(s.min_angle_deg[t], 1e-3) << t;  // two nodes on the pole: a zero angle
+      continue;
+    }
+    const double want = std::min({law_of_cosines_deg(p[0], p[1], p[2]), law_of_cosines_deg(p[1], p[2], p[0]),
+                                  law_of_cosines_deg(p[2], p[0], p[1])});
+    EXPECT_NEAR(s.min_angle_deg[t], want, 1e-4) << t;
+  }
+}
+
+TEST(SphereQuality, SameValuesForOneAndTwoThreads) {
+  // Enough triangles (~4e5) for the loops and histograms to run in parallel.
+  const Lattice lat = Lattice::make(4.0, 4, -180.0);
+  const auto m = testing::regular_band_mesh(lat, 100, 220);
+#ifdef _OPENMP
+  omp_set_num_threads(1);
+#endif
+  const TriangleShapes a = triangle_shapes(m);
+  const auto qa = summarize_quality(a).json().dump();
+#ifdef _OPENMP
+  omp_set_num_threads(2);
+#endif
+  const TriangleShapes b = triangle_shapes(m);
+  const auto qb = summarize_quality(b).json().dump();
+  ASSERT_GT(a.min_angle_deg.size(), 300000u);
+  EXPECT_EQ(a.min_angle_deg, b.min_angle_deg);
+  EXPECT_EQ(a.neighbour_area_ratio, b.neighbour_area_ratio);
+  EXPECT_EQ(a.edge_ratio, b.edge_ratio);
+  EXPECT_EQ(qa, qb);
+}
+
+}  // namespace
+}  // namespace aq::io
