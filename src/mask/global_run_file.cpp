@@ -24,8 +24,8 @@ constexpr char kNotAFile[] = "n/a (not a plain file)";
 std::string number(double v) { return fmt::format("{:.17g}", v); }
 
 std::string lattice_text(const Lattice& l) {
-  return fmt::format("nx={} ny={} step0_deg={} levels={} lon0_deg={}", l.nx, l.ny, number(l.step0_deg), l.levels,
-                     number(l.lon0_deg));
+  return fmt::format("kind={} nx={} ny={} step0_deg={} levels={} lon0_deg={} y0_deg={}", l.kind_name(), l.nx, l.ny,
+                     number(l.step0_deg), l.levels, number(l.lon0_deg), number(l.y0_deg));
 }
 
 }  // namespace
@@ -58,6 +58,8 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       {"quadtree.step_deg", number(c.quadtree.step_deg)},
       {"quadtree.levels", std::to_string(c.quadtree.levels)},
       {"quadtree.lon0_deg", number(c.quadtree.lon0_deg)},
+      {"quadtree.lattice", c.quadtree.lattice},
+      {"quadtree.mercator_lat_max_deg", number(c.quadtree.mercator_lat_max_deg)},
       {"rotation", c.rotation.enabled
                        ? fmt::format("pole {} {}", number(c.rotation.pole_lon_deg), number(c.rotation.pole_lat_deg))
                        : std::string("none")},
@@ -87,8 +89,9 @@ void write_global_run_file(const fs::path& path, const WetArea& area, const Latt
   layout.width = nx;
   layout.height = ny;
   layout.west_deg = lattice.lon0_deg;
-  layout.north_deg = 90.0;
+  layout.north_deg = lattice.mercator() ? lattice.plane_y_of(lattice.ny) : 90.0;
   layout.pixel_deg = lattice.pixel_deg();
+  layout.mercator = lattice.mercator();
   layout.band_names = {"classes: 1 = in the K-fill (Omega_L), 2 = wet pixel, 4 = coastal pixel",
                        "level: quadtree level of the leaf holding the pixel (255 = outside Omega_L)"};
   layout.no_data = -1;  // band 1 has no no-data; band 2's 255 is documented in its name and AQ_LEVEL_NODATA

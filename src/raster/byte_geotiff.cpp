@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <numbers>
 #include <system_error>
 
 #include "core/error.hpp"
@@ -76,10 +77,20 @@ void write_byte_geotiff(const std::filesystem::path& path, const ByteGeoTiffLayo
   DatasetPtr ds(drv->Create(path.c_str(), static_cast<int>(layout.width), static_cast<int>(layout.height), nb, GDT_Byte,
                             copt.data()));
   if (!ds) throw fail("cannot create");
-  double gt[6] = {layout.west_deg, layout.pixel_deg, 0.0, layout.north_deg, 0.0, -layout.pixel_deg};
+  // Mercator: a sphere of the Earth's authalic radius R, plane units degrees -> metres (R·π/180).
+  constexpr double kRadius = 6371007.181;
+  const double unit = layout.mercator ? kRadius * std::numbers::pi / 180.0 : 1.0;
+  double gt[6] = {layout.west_deg * unit,  layout.pixel_deg * unit, 0.0, layout.north_deg * unit, 0.0,
+                  -layout.pixel_deg * unit};
   if (ds->SetGeoTransform(gt) != CE_None) throw fail("georeferencing");
   OGRSpatialReference srs;
-  srs.importFromEPSG(4326);
+  if (layout.mercator) {
+    // x = R·λ, y = R·ln tan(π/4 + φ/2): the lattice's plane degrees times R·π/180.
+    if (srs.importFromProj4("+proj=merc +R=6371007.181 +lon_0=0 +x_0=0 +y_0=0 +units=m +no_defs") != OGRERR_NONE)
+      throw fail("Mercator coordinate system");
+  } else {
+    srs.importFromEPSG(4326);
+  }
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (ds->SetSpatialRef(&srs) != CE_None) throw fail("coordinate system");
   for (const auto& [k, v] : layout.metadata)

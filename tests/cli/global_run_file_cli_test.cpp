@@ -125,3 +125,32 @@ TEST(GlobalRunFileCli, OtherInputsRunTheFillAgainAndSayWhy) {
   const auto j = nlohmann::json::parse(std::ifstream(dir / "blocks" / "blocks.json"));
   EXPECT_FALSE(j["mask"].contains("reused_file"));
 }
+
+// On the Mercator lattice (issue 12) the rows are equally spaced in y = ln tan(π/4 + φ/2), not in
+// φ: the file is a spherical Mercator, so GDAL puts the top edge at the lattice's last row
+// (86.5°+ of the rotated frame) and a row's centre at its latitude.
+TEST(GlobalRunFileCli, MercatorLatticeFileMapsRowsToTheirLatitudes) {
+  aq::testing::TempDir dir;
+  const auto r = run_aquatoria(std::string("mesh -c ") + AQ_SOURCE_DIR +
+                               "/configs/global_mercator.toml --set mask.passages=false --set output.name=g "
+                               "--set 'output.formats=[\"tif\"]' -o " +
+                               dir.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = aq::test::read_report(dir.path(), "g");
+  const double lat_max = report["lattice"]["lat_max_deg"].get<double>();
+  const auto ny = report["lattice"]["ny"].get<std::int64_t>();
+  const auto info = aq::test::run_command("gdalinfo -json " + (dir / "g.tif").string());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out);
+  EXPECT_THAT(j["coordinateSystem"]["wkt"].get<std::string>(), HasSubstr("Mercator"));
+  EXPECT_EQ(j["size"][1].get<std::int64_t>(), ny);
+  const auto& corner = j["wgs84Extent"]["coordinates"][0];
+  double top = -90.0, bottom = 90.0;
+  for (const auto& p : corner) {
+    top = std::max(top, p[1].get<double>());
+    bottom = std::min(bottom, p[1].get<double>());
+  }
+  EXPECT_NEAR(top, lat_max, 1e-6);
+  EXPECT_NEAR(bottom, -lat_max, 1e-6);
+  EXPECT_THAT(j["metadata"][""]["AQ_LATTICE"].get<std::string>(), HasSubstr("kind=mercator"));
+}

@@ -71,7 +71,7 @@ TEST(ExampleToml, AndReadmeListEveryOutputFormat) {
     EXPECT_NE(formats_line.find("\"" + f + "\""), std::string::npos) << f << " is not in example.toml's formats line";
     EXPECT_NE(section.find("`" + f + "`"), std::string::npos) << f << " is not in README's Output formats section";
   }
-  EXPECT_EQ(aq::config::output_format_names().size(), 8u);
+  EXPECT_EQ(aq::config::output_format_names().size(), 9u);
 }
 
 TEST(ExampleToml, StatesTheDefaults) {
