@@ -19,10 +19,10 @@
 namespace aq::raster {
 
 struct ByteGeoTiffLayout {
-  std::int64_t width = 0, height = 0;                         ///< pixels
-  double west_deg = -180.0;                                   ///< longitude of the western edge of column 0
-  double north_deg = 90.0;  ///< latitude (Mercator: plane ordinate) of the northern edge of row 0
-  double pixel_deg = 1.0;   ///< pixel side, degrees (Mercator: plane units of the same size)
+  std::int64_t width = 0, height = 0;  ///< pixels
+  double west_deg = -180.0;            ///< longitude of the western edge of column 0
+  double north_deg = 90.0;             ///< latitude (Mercator: plane ordinate) of the northern edge of row 0
+  double pixel_deg = 1.0;              ///< pixel side, degrees (Mercator: plane units of the same size)
   /// Rows equally spaced in the Mercator ordinate y = ln tan(π/4 + φ/2) in degrees (the Mercator
   /// lattice): the file is in a spherical Mercator (authalic radius R, metres = plane degrees ×
   /// R·π/180), so GDAL maps every row to its latitude (the frame's) exactly.
