@@ -380,23 +380,35 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       return;
     }
     // 3×3 Gauss–Legendre; |3×3 − 2×2| bounds the error (the 2×2 rule's error, far above the 3×3's).
+    // The density needs only sin φ = z of the geographic unit vector: a dot product of the rotation's
+    // last row with (cos φ' cos λ', cos φ' sin λ', sin φ'), where sin φ' is the quadrature
+    // coordinate itself and cos φ' = √(1 − sin² φ'); cos/sin λ' once per quadrature column.
     const double i0 = static_cast<double>(m.node_i[static_cast<std::size_t>(m.squares[qq][0])]);
-    const auto density = [&](double u, double v) {  // u, v in [-1, 1] across the square
+    constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
+    constexpr std::array<double, 3> kX3{-kG3, 0.0, kG3}, kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    constexpr std::array<double, 2> kX2{-kG2, kG2};
+    const auto column = [&](double u, double& c, double& sn) {  // u in [-1, 1] across the square
       const double rlon = lat.lon0_deg + (i0 + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
-      const double rlat = std::asin(std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0)) / kDegToRad;
-      double lon = 0.0, la = 0.0;
-      rot.to_geographic(rlon, rlat, lon, la);
-      const double sp = std::sin(la * kDegToRad);
+      c = std::cos(rlon * kDegToRad);
+      sn = std::sin(rlon * kDegToRad);
+    };
+    const auto density = [&](double cl, double sl, double v) {  // v in [-1, 1] across the square
+      const double sr = std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0);
+      const double sp = rot.geographic_sin_lat(cl, sl, std::sqrt((1.0 - sr) * (1.0 + sr)), sr);
       const double d = 1.0 - e2 * sp * sp;
       return density_scale / (d * d);
     };
-    constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
-    constexpr std::array<double, 3> kX3{-kG3, 0.0, kG3}, kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     double q2 = 0.0, q3 = 0.0;
-    for (const double u : {-kG2, kG2})
-      for (const double v : {-kG2, kG2}) q2 += density(u, v);
-    for (std::size_t a = 0; a < 3; ++a)
-      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(kX3[a], kX3[b]);
+    for (const double u : kX2) {
+      double cl = 0.0, sl = 0.0;
+      column(u, cl, sl);
+      for (const double v : kX2) q2 += density(cl, sl, v);
+    }
+    for (std::size_t a = 0; a < 3; ++a) {
+      double cl = 0.0, sl = 0.0;
+      column(kX3[a], cl, sl);
+      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(cl, sl, kX3[b]);
+    }
     const double cell = 0.25 * dlam * (s1 - s0);
     square_m2[qq] = q3 * cell;
     quadrature_error[qq] = std::fabs(q3 - q2) * cell;
