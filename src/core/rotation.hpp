@@ -21,6 +21,11 @@ class PoleRotation {
   /// Geographic -> rotated, degrees; λ' in (-180, 180].
   void to_rotated(double lon_deg, double lat_deg, double& rlon_deg, double& rlat_deg) const;
   [[nodiscard]] bool identity() const { return identity_; }
+  /// Sine of the geographic latitude of the rotated point (λ', φ') given by cos/sin of λ' and φ':
+  /// the geographic z of its unit vector, one dot product (no inverse trigonometry).
+  [[nodiscard]] double geographic_sin_lat(double cos_rlon, double sin_rlon, double cos_rlat, double sin_rlat) const {
+    return m_[6] * cos_rlat * cos_rlon + m_[7] * cos_rlat * sin_rlon + m_[8] * sin_rlat;
+  }
 
  private:
   std::array<double, 9> m_{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< rotated xyz -> geographic xyz, row-major

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/Math.hpp>
 #include <GeographicLib/PolygonArea.hpp>
 
 #include <algorithm>
@@ -53,6 +54,30 @@ double polygon_area_m2(const Lattice& lat, const PoleRotation& rot, const std::a
   }
   double perimeter = 0.0, area = 0.0;
   poly.Compute(false, true, perimeter, area);
+  return area;
+}
+
+/// +1/-1 when the edge lon1 -> lon2 crosses the prime meridian eastward/westward, as
+/// GeographicLib::PolygonArea counts it (its transit(), which is private).
+int polygon_transit(double lon1, double lon2) {
+  const double lon12 = GeographicLib::Math::AngDiff(lon1, lon2);
+  lon1 = GeographicLib::Math::AngNormalize(lon1);
+  lon2 = GeographicLib::Math::AngNormalize(lon2);
+  return lon12 > 0 && ((lon1 < 0 && lon2 >= 0) || (lon1 > 0 && lon2 == 0)) ? 1
+         : (lon12 < 0 && lon1 >= 0 && lon2 < 0)                            ? -1
+                                                                           : 0;
+}
+
+/// Signed (anticlockwise positive) polygon area from the sum of its edges' S12 and its prime
+/// meridian crossings, reduced as GeographicLib::PolygonArea::Compute(false, true) does.
+double polygon_area_reduce(double sum, double area0, int crossings) {
+  double area = std::remainder(sum, area0);
+  if ((crossings & 1) != 0) area += (area < 0 ? 1 : -1) * area0 / 2;
+  area = -area;
+  if (area > area0 / 2)
+    area -= area0;
+  else if (area <= -area0 / 2)
+    area += area0;
   return area;
 }
 
@@ -267,6 +292,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (std::int64_t t = 0; t < nfaces; ++t) parent[static_cast<std::size_t>(t)] = t;
   std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
   std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
+  // Rotated frame or squares: the edge index of each half-edge record, for the face areas below.
+  const bool per_edge_areas = m.rotation.enabled || square_faces;
+  std::vector<std::uint32_t> rec_edge(per_edge_areas ? rec.size() : 0);
   const auto tri_of = [](std::uint64_t r) { return static_cast<std::int64_t>((r & 0xffffffffULL) >> 1); };
   for (std::size_t v = 0; v < nn; ++v) {
     const auto end = static_cast<std::size_t>(start[v + 1]);
@@ -275,6 +303,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       while (e < end && (rec[e] >> 32) == (rec[k] >> 32)) ++e;
       const auto a = static_cast<NodeId>(v), b = static_cast<NodeId>(rec[k] >> 32);
       const std::int64_t t0 = tri_of(rec[k]);
+      if (per_edge_areas)
+        for (std::size_t h = k; h < e; ++h) rec_edge[h] = static_cast<std::uint32_t>(edge_a.size());
       edge_a.push_back(static_cast<std::uint32_t>(a));
       edge_b.push_back(static_cast<std::uint32_t>(b));
       edge_t.push_back(static_cast<std::uint32_t>(t0));
@@ -323,6 +353,28 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     s.euler = s.used_nodes - s.edges + nfaces;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
+  // face_edge[half-edge of a face] = its edge, signed by direction (~edge when it runs b -> a).
+  std::vector<std::int64_t> face_start;
+  std::vector<std::int64_t> face_edge;
+  if (per_edge_areas) {
+    face_start.assign(static_cast<std::size_t>(nfaces) + 1, 0);
+    for (std::int64_t f = 0; f < nfaces; ++f)
+      face_start[static_cast<std::size_t>(f) + 1] = face_start[static_cast<std::size_t>(f)] + face_size(f);
+    face_edge.resize(static_cast<std::size_t>(face_start.back()));
+    for (std::int64_t f = 0; f < nfaces; ++f) {
+      const int n = face_size(f);
+      for (int v = 0; v < n; ++v) {
+        const NodeId a = face_node(f, v), b = face_node(f, (v + 1) % n);
+        const auto lo = static_cast<std::size_t>(std::min(a, b));
+        const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+        auto h = static_cast<std::size_t>(start[lo]);
+        while ((rec[h] >> 32) != hi) ++h;  // the edge is in lo's bucket
+        const auto e = static_cast<std::int64_t>(rec_edge[h]);
+        face_edge[static_cast<std::size_t>(face_start[static_cast<std::size_t>(f)] + v)] = a < b ? e : ~e;
+      }
+    }
+  }
+  std::vector<std::uint32_t>().swap(rec_edge);
   std::vector<std::uint64_t>().swap(rec);
   std::vector<std::int64_t>().swap(start);
 
@@ -380,23 +432,35 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       return;
     }
     // 3×3 Gauss–Legendre; |3×3 − 2×2| bounds the error (the 2×2 rule's error, far above the 3×3's).
+    // The density needs only sin φ = z of the geographic unit vector: a dot product of the rotation's
+    // last row with (cos φ' cos λ', cos φ' sin λ', sin φ'), where sin φ' is the quadrature
+    // coordinate itself and cos φ' = √(1 − sin² φ'); cos/sin λ' once per quadrature column.
     const double i0 = static_cast<double>(m.node_i[static_cast<std::size_t>(m.squares[qq][0])]);
-    const auto density = [&](double u, double v) {  // u, v in [-1, 1] across the square
+    constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
+    constexpr std::array<double, 3> kX3{-kG3, 0.0, kG3}, kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    constexpr std::array<double, 2> kX2{-kG2, kG2};
+    const auto column = [&](double u, double& c, double& sn) {  // u in [-1, 1] across the square
       const double rlon = lat.lon0_deg + (i0 + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
-      const double rlat = std::asin(std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0)) / kDegToRad;
-      double lon = 0.0, la = 0.0;
-      rot.to_geographic(rlon, rlat, lon, la);
-      const double sp = std::sin(la * kDegToRad);
+      c = std::cos(rlon * kDegToRad);
+      sn = std::sin(rlon * kDegToRad);
+    };
+    const auto density = [&](double cl, double sl, double v) {  // v in [-1, 1] across the square
+      const double sr = std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0);
+      const double sp = rot.geographic_sin_lat(cl, sl, std::sqrt((1.0 - sr) * (1.0 + sr)), sr);
       const double d = 1.0 - e2 * sp * sp;
       return density_scale / (d * d);
     };
-    constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
-    constexpr std::array<double, 3> kX3{-kG3, 0.0, kG3}, kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     double q2 = 0.0, q3 = 0.0;
-    for (const double u : {-kG2, kG2})
-      for (const double v : {-kG2, kG2}) q2 += density(u, v);
-    for (std::size_t a = 0; a < 3; ++a)
-      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(kX3[a], kX3[b]);
+    for (const double u : kX2) {
+      double cl = 0.0, sl = 0.0;
+      column(u, cl, sl);
+      for (const double v : kX2) q2 += density(cl, sl, v);
+    }
+    for (std::size_t a = 0; a < 3; ++a) {
+      double cl = 0.0, sl = 0.0;
+      column(kX3[a], cl, sl);
+      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(cl, sl, kX3[b]);
+    }
     const double cell = 0.25 * dlam * (s1 - s0);
     square_m2[qq] = q3 * cell;
     quadrature_error[qq] = std::fabs(q3 - q2) * cell;
@@ -456,7 +520,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (int l = 0; l <= levels; ++l) {
     row_offset[static_cast<std::size_t>(l) + 1] = row_offset[static_cast<std::size_t>(l)] + (lat.ny >> (levels - l));
   }
-  const bool memo = !m.rotation.enabled && !square_faces;
+  const bool memo = !per_edge_areas;
   const auto row_of = [&](std::int64_t t) {
     const auto sq = static_cast<std::size_t>(m.triangle_square[static_cast<std::size_t>(t)]);
     const int l = m.square_level[sq];
@@ -476,6 +540,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   };
 
   // Element areas.
+  std::vector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
   std::vector<double> area(static_cast<std::size_t>(nfaces));
   if (memo) {
     std::vector<std::int32_t> shape_id(729, -1);
@@ -511,9 +576,40 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                 : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
     }
   } else {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 256)) shared(area, nfaces, lattice_area) \
-    schedule(dynamic, 256)
-    for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = lattice_area(t);
+    // Rotated frame or squares: no two cells are alike, so each edge's geodesic is solved once, for
+    // its length s12 and its area S12 (between the geodesic and the equator), and a face's area is
+    // the sum of ±S12 over its edges reduced as GeographicLib::PolygonArea does (which solved
+    // every interior edge twice, once per face, and then a third time for the length).
+    const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
+    edge_s12.assign(static_cast<std::size_t>(s.edges), 0.0);
+    edge_S12.assign(static_cast<std::size_t>(s.edges), 0.0);
+    const std::int64_t nedges_all = s.edges;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 256)) \
+    shared(m, geod, edge_a, edge_b, edge_s12, edge_S12, nedges_all) schedule(dynamic, 256)
+    for (std::int64_t e = 0; e < nedges_all; ++e) {
+      const auto k = static_cast<std::size_t>(e);
+      const auto a = static_cast<std::size_t>(edge_a[k]), b = static_cast<std::size_t>(edge_b[k]);
+      double azi1 = 0.0, azi2 = 0.0, m12 = 0.0, mm12 = 0.0, mm21 = 0.0;
+      geod.GenInverse(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b],
+                      GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AREA, edge_s12[k], azi1, azi2, m12,
+                      mm12, mm21, edge_S12[k]);
+    }
+    const double area0 = geod.EllipsoidArea();
+    const auto face_area = [&](std::int64_t t) {
+      const int n = face_size(t);
+      double sum = 0.0;
+      int crossings = 0;
+      for (int v = 0; v < n; ++v) {
+        const NodeId a = face_node(t, v), b = face_node(t, (v + 1) % n);
+        const std::int64_t e = face_edge[static_cast<std::size_t>(face_start[static_cast<std::size_t>(t)] + v)];
+        sum += e >= 0 ? edge_S12[static_cast<std::size_t>(e)] : -edge_S12[static_cast<std::size_t>(~e)];
+        crossings += polygon_transit(m.lon_deg[static_cast<std::size_t>(a)], m.lon_deg[static_cast<std::size_t>(b)]);
+      }
+      return polygon_area_reduce(sum, area0, crossings);
+    };
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 16)) shared(area, nfaces, face_area) \
+    schedule(static)
+    for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = face_area(t);
   }
   const auto face_where = [&](std::int64_t t) {
     std::string w = fmt::format("{} {} (level {}), nodes", square_faces ? "square" : "triangle", t, face_level(t));
@@ -582,9 +678,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       length[static_cast<std::size_t>(e)] = cell < 0 ? direct_length(e) : table[static_cast<std::size_t>(cell)];
     }
   } else {
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 256)) \
-    shared(length, nedges, direct_length) schedule(dynamic, 256)
-    for (std::int64_t e = 0; e < nedges; ++e) length[static_cast<std::size_t>(e)] = direct_length(e);
+    length = std::move(edge_s12);  // solved with the areas above
   }
 
   finite.values("geodesic edge length (m)", length, [&](std::int64_t e) {

@@ -22,7 +22,9 @@
 // lattice units, geodesic areas; the right-isosceles and similarity checks are for triangles).
 //
 // Without rotation, areas and lengths depend only on the rows, not on λ, and are computed once per
-// (level, row, template shape) and looked up; with rotation every element is computed (parallel).
+// (level, row, template shape) and looked up; with rotation (and for square faces) each edge's
+// geodesic is solved once (length and S12, the area between it and the equator) and an element's
+// area is the sum of ±S12 over its edges, reduced as PolygonArea does (parallel, per edge/element).
 #pragma once
 
 #include <cstdint>

@@ -172,6 +172,44 @@ TEST(Statistics, ANonFiniteAreaFailsAndSaysWhere) {
   }
 }
 
+// With rotation each edge's geodesic is solved once and an element's area is the sum of its edges'
+// ±S12 (reduced like PolygonArea): on the full globe in the Greenland frame (the triangles around
+// the geographic poles count their prime-meridian crossings, others cross the antimeridian) every
+// triangle's area equals PolygonArea's and the triangles tile the ellipsoid.
+TEST(Statistics, RotatedPerEdgeAreasEqualPolygonArea) {
+  const Lattice lat = make_lattice(45.0, 2);
+  Bitmap m(lat.nx, lat.ny);
+  for (std::int64_t j = 0; j < lat.ny; ++j) quadtree::bits::set_range(m.row(j), 0, lat.nx);
+  const PoleRotation greenland(-44.858333, 78.141667);
+  Mesh mesh = build_all(m, lat, {}, {}, greenland, testing::synthetic_bathymetry()).mesh;
+  mesh.rotation.enabled = true;
+  mesh.rotation.pole_lon_deg = -44.858333;
+  mesh.rotation.pole_lat_deg = 78.141667;
+  const MeshStatistics s = compute_statistics(mesh);
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  double total = 0.0, largest = 0.0, smallest = 0.0;
+  for (std::int64_t t = 0; t < mesh.triangle_count(); ++t) {
+    GeographicLib::PolygonArea poly(g);
+    for (const NodeId v : mesh.triangles[static_cast<std::size_t>(t)])
+      poly.AddPoint(mesh.lat_deg[static_cast<std::size_t>(v)], mesh.lon_deg[static_cast<std::size_t>(v)]);
+    double perimeter = 0, area = 0;
+    poly.Compute(false, true, perimeter, area);
+    smallest = std::min(smallest, area);
+    total += area;
+    largest = std::max(largest, area);
+  }
+  EXPECT_NEAR(s.triangle_area_km2, total * 1e-6, 1e-12 * total * 1e-6);
+  EXPECT_NEAR(s.triangle_area_km2 / (GeographicLib::Ellipsoid::WGS84().Area() * 1e-6), 1.0, 1e-12);
+  double level_min = largest, level_max = 0.0;
+  for (const LevelStatistics& ls : s.levels) {
+    if (ls.triangles == 0) continue;
+    level_min = std::min(level_min, ls.area_min_m2);
+    level_max = std::max(level_max, ls.area_max_m2);
+  }
+  EXPECT_NEAR(level_min, smallest, 1e-9 * largest);  // ~0: triangles with two vertices at a rotated pole
+  EXPECT_NEAR(level_max, largest, 1e-12 * largest);
+}
+
 // The area tolerance bounds the lenses between boundary geodesics and lattice parallels: it
 // shrinks like the pixel size squared, and the difference stays below it, with and without
 // rotation (the rotated cells are integrated on the ellipsoid, not on the authalic sphere).
