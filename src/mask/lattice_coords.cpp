@@ -25,19 +25,18 @@ LatticeRowMapper::LatticeRowMapper(const Lattice& lattice, const PoleRotation& r
   }
 }
 
-void LatticeRowMapper::map_row(double y, double* lon_deg, double* lat_deg) const {
+void LatticeRowMapper::map_row(double y, std::size_t k0, std::size_t k1, double* lon_deg, double* lat_deg) const {
   const double la = lattice_xy_to_deg(lattice_, 0.0, y).lat_deg * kDegToRad;
   const double cl = std::cos(la), sl = std::sin(la);
   // g = M·v with v = (cl·cos λ', cl·sin λ', sl); the sl terms are the same for the whole row.
   const double z0 = m_[2] * sl, z1 = m_[5] * sl, z2 = m_[8] * sl;
   const double a0 = m_[0] * cl, b0 = m_[1] * cl, a1 = m_[3] * cl, b1 = m_[4] * cl, a2 = m_[6] * cl, b2 = m_[7] * cl;
-  const std::size_t n = cos_lon_.size();
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = k0; k < k1; ++k) {
     const double g0 = a0 * cos_lon_[k] + b0 * sin_lon_[k] + z0;
     const double g1 = a1 * cos_lon_[k] + b1 * sin_lon_[k] + z1;
     const double g2 = a2 * cos_lon_[k] + b2 * sin_lon_[k] + z2;
-    lon_deg[k] = std::atan2(g1, g0) * kRadToDeg;
-    lat_deg[k] = std::atan2(g2, std::hypot(g0, g1)) * kRadToDeg;
+    lon_deg[k - k0] = std::atan2(g1, g0) * kRadToDeg;
+    lat_deg[k - k0] = std::atan2(g2, std::hypot(g0, g1)) * kRadToDeg;
   }
 }
 

@@ -96,7 +96,9 @@ class LatticeRowMapper {
   LatticeRowMapper(const Lattice& lattice, const PoleRotation& rot, const std::vector<double>& x);
   /// Geographic λ (-180, 180] and φ of the columns on the lattice row at fractional position y
   /// (φ' = -90 + y·Δ); lon and lat hold x.size() values.
-  void map_row(double y, double* lon_deg, double* lat_deg) const;
+  void map_row(double y, double* lon_deg, double* lat_deg) const { map_row(y, 0, size(), lon_deg, lat_deg); }
+  /// The same for columns k0..k1-1 only (lon and lat hold k1 - k0 values).
+  void map_row(double y, std::size_t k0, std::size_t k1, double* lon_deg, double* lat_deg) const;
   [[nodiscard]] std::size_t size() const { return cos_lon_.size(); }
 
  private:

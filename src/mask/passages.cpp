@@ -167,9 +167,59 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
   const std::int64_t rows = j1 - j0 + 1;
   std::vector<unsigned char> cell(static_cast<std::size_t>(std::max<std::int64_t>(rows, 0) * cols), 0);
   const auto at = [cols](std::int64_t x, std::int64_t y) { return static_cast<std::size_t>(y * cols + x); };
+  // Only pixel centres within `radius` of the box centre can be in the box: on the row at φ′ they
+  // are those with cos(λ′ − λ′c) >= (cos r − sin φ′ sin φ′c) / (cos φ′ cos φ′c), an interval of λ′
+  // (widened by two pixels) instead of the whole row near the rotated pole.
+  const double cos_r = std::cos(std::min(radius, 180.0) * kDegToRad), sin_c = std::sin(rc.lat_deg * kDegToRad);
+  double xc = 0.0, yc = 0.0;
+  deg_to_lattice_xy(lattice, rc, xc, yc);
+  const auto row_span = [&](std::int64_t y, std::int64_t& x_lo, std::int64_t& x_hi) {
+    x_lo = 0;
+    x_hi = cols - 1;
+    if (!wrap) return;
+    const double phi = pixel_center_lattice_deg(lattice, {0, j0 + y}).lat_deg * kDegToRad;
+    const double den = std::cos(phi) * clat;
+    if (den <= 1e-12) return;
+    const double q = (cos_r - std::sin(phi) * sin_c) / den;
+    if (q <= -1.0) return;
+    if (q > 1.0) {
+      x_hi = -1;
+      return;
+    }
+    const double half = std::acos(q) * kRadToDeg / dpx + 2.0;
+    if (2.0 * half + 1.0 >= static_cast<double>(cols)) return;
+    x_lo = static_cast<std::int64_t>(std::floor(xc - 0.5 - half));  // pixel x has its centre at x + ½
+    x_hi = static_cast<std::int64_t>(std::ceil(xc - 0.5 + half));
+  };
+  // Runs of kRun pixel centres along a row lie in the cap around the middle one of radius half
+  // the run's length; a run whose cap misses the box holds no pixel of it.
+  constexpr std::int64_t kRun = 64;
+  const auto run_may_touch_box = [&](std::int64_t y, std::int64_t xx0, std::int64_t xx1) {
+    const double xm = 0.5 * static_cast<double>(xx0 + xx1) + 0.5;  // fractional x of the middle
+    const LonLat m =
+        lattice_xy_to_deg(lattice, wrap ? xm : xm + static_cast<double>(i0), static_cast<double>(j0 + y) + 0.5);
+    const double r = 0.5 * static_cast<double>(xx1 - xx0) * dpx * std::cos(m.lat_deg * kDegToRad) + 1e-9;
+    const LonLat g = lattice_to_geographic(rot, m);
+    if (g.lat_deg - r > b.lat_max_deg || g.lat_deg + r < b.lat_min_deg) return false;
+    if (std::abs(g.lat_deg) + r >= 89.0) return true;
+    const double h = std::asin(std::min(1.0, std::sin(r * kDegToRad) / std::cos(g.lat_deg * kDegToRad))) * kRadToDeg;
+    if (h >= 180.0) return true;
+    const double w = wrap_lon_deg(g.lon_deg - h, b.lon_min_deg);  // the run's west end east of lon_min
+    return w <= b.lon_max_deg || w + 2.0 * h >= b.lon_min_deg + 360.0;
+  };
   std::int64_t in_a = 0, in_b = 0;
   for (std::int64_t y = 0; y < rows; ++y) {
-    for (std::int64_t x = 0; x < cols; ++x) {
+    std::int64_t x_lo = 0, x_hi = 0;
+    row_span(y, x_lo, x_hi);
+    for (std::int64_t xx = x_lo; xx <= x_hi; ++xx) {
+      if ((xx - x_lo) % kRun == 0) {
+        const std::int64_t xx1 = std::min(x_hi, xx + kRun - 1);
+        if (!run_may_touch_box(y, xx, xx1)) {
+          xx = xx1;
+          continue;
+        }
+      }
+      const std::int64_t x = wrap ? wrap_index(xx, cols) : xx;
       const PixelIJ px{wrap_index(i0 + x, nx), j0 + y};
       const LonLat g = lattice_to_geographic(rot, pixel_center_lattice_deg(lattice, px));
       if (!b.contains(g.lon_deg, g.lat_deg)) continue;
@@ -245,9 +295,13 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
 
 std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const Bitmap& filled,
                                           const Lattice& lattice, const PoleRotation& rot) {
-  std::vector<PassageResult> out;
-  out.reserve(passages.size());
-  for (const Passage& p : passages) out.push_back(judge_passage(p, filled, lattice, rot));
+  // Each passage is judged on its own: one per thread, results in table order.
+  std::vector<PassageResult> out(passages.size());
+  const auto n = static_cast<std::int64_t>(passages.size());
+#pragma omp parallel for default(none) shared(passages, filled, lattice, rot, out, n) \
+    schedule(dynamic, 1) if (filled.nx() * filled.ny() >= (std::int64_t{1} << 22))
+  for (std::int64_t k = 0; k < n; ++k)
+    out[static_cast<std::size_t>(k)] = judge_passage(passages[static_cast<std::size_t>(k)], filled, lattice, rot);
   return out;
 }
 

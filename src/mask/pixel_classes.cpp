@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "core/row_progress.hpp"
 #include "mask/bit_rows.hpp"
 #include "mask/lattice_coords.hpp"
+#include "raster/value_bounds.hpp"
 
 namespace aq::mask {
 
@@ -43,23 +45,96 @@ void check_depth(double h) {
     throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", h));
 }
 
-// Vertex rule through the pole rotation: per row, lattice -> geographic, sample_points (which
-// runs serially inside this parallel region).
+// The rotated vertex rule works on units of vertices [I0, I1) × [J0, J1) within one bitmap word
+// (I1 - I0 <= 64): a unit whose image lies where every raster value is on one side of the
+// threshold is decided without sampling; an undecided one is split, and sampled vertex by vertex
+// at the last level. Sizes per level (columns × rows): 64 × 32, 16 × 8.
+constexpr std::array<std::int64_t, 2> kUnitCols = {64, 16};
+constexpr std::array<std::int64_t, 2> kUnitRows = {32, 8};
+
+struct RotatedSampler {
+  const raster::Bathymetry& bathy;
+  const Lattice& lattice;
+  const PoleRotation& rot;
+  const LatticeRowMapper& mapper;
+  const raster::ValueBounds& bounds;
+  double threshold;
+  Bitmap& wv;
+
+  // +1 every vertex of the unit samples wet, -1 dry, 0 undecided. The unit is a λ′–φ′ rectangle
+  // of the rotated frame; it lies in the cap around its centre whose radius is the largest
+  // distance to a corner (a rotation keeps distances), and the cap's geographic box bounds it.
+  [[nodiscard]] int side(std::int64_t I0, std::int64_t I1, std::int64_t J0, std::int64_t J1) const {
+    if (!bounds.available()) return 0;
+    const LonLat a = vertex_lattice_deg(lattice, I0, J0), b = vertex_lattice_deg(lattice, I1 - 1, J1 - 1);
+    const LonLat c{0.5 * (a.lon_deg + b.lon_deg), 0.5 * (a.lat_deg + b.lat_deg)};
+    double r = 0.0;
+    for (const LonLat q : {a, b, LonLat{a.lon_deg, b.lat_deg}, LonLat{b.lon_deg, a.lat_deg}})
+      r = std::max(r, angular_distance_deg(c, q));
+    r += 1e-9;
+    const LonLat g = lattice_to_geographic(rot, c);
+    if (std::abs(g.lat_deg) + r >= 89.0) return 0;  // the cap reaches a pole: no λ box
+    const double half = std::asin(std::min(1.0, std::sin(r * kDegToRad) / std::cos(g.lat_deg * kDegToRad))) * kRadToDeg;
+    if (!bathy.info().global_lon && (g.lon_deg - half < -180.0 || g.lon_deg + half > 180.0)) return 0;
+    return raster::side_of_threshold(bounds.in_box(g.lon_deg - half, g.lon_deg + half, g.lat_deg - r, g.lat_deg + r),
+                                     threshold);
+  }
+
+  // Decides or samples the unit at `level` (see kUnitCols); its bits are in word I0 / 64 of
+  // rows J0..J1-1, owned by the calling thread.
+  void unit(std::size_t level, std::int64_t I0, std::int64_t I1, std::int64_t J0, std::int64_t J1,
+            std::vector<double>& lon, std::vector<double>& lat, std::vector<double>& val) const {
+    const int s = side(I0, I1, J0, J1);
+    if (s < 0) return;  // all dry: the bits stay clear
+    const std::int64_t w = I0 >> 6;
+    if (s > 0) {
+      const std::int64_t n = I1 - I0, shift = I0 & 63;
+      const std::uint64_t bits = (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1) << shift;
+      for (std::int64_t J = J0; J < J1; ++J) wv.row(J)[w] |= bits;
+      return;
+    }
+    if (level + 1 < kUnitCols.size()) {
+      const std::int64_t dc = kUnitCols[level + 1], dr = kUnitRows[level + 1];
+      for (std::int64_t j = J0; j < J1; j += dr)
+        for (std::int64_t i = I0; i < I1; i += dc)
+          unit(level + 1, i, std::min(I1, i + dc), j, std::min(J1, j + dr), lon, lat, val);
+      return;
+    }
+    const std::int64_t n = I1 - I0;
+    for (std::int64_t J = J0; J < J1; ++J) {
+      mapper.map_row(static_cast<double>(J), static_cast<std::size_t>(I0), static_cast<std::size_t>(I1), lon.data(),
+                     lat.data());
+      bathy.sample_points(lon.data(), lat.data(), n, val.data());
+      std::uint64_t word = 0;
+      threshold_row(val.data(), n, threshold, &word);
+      wv.row(J)[w] |= word << (I0 & 63);
+    }
+  }
+};
+
+// Vertex rule through the pole rotation, unit by unit (RotatedSampler): open ocean and inland,
+// most of a fine lattice, are decided from the raster's value bounds without sampling; the rest
+// is mapped (lattice -> geographic) and sampled vertex by vertex. The same bits as sampling every
+// vertex: the bounds hold every bilinear sample, and without them (bicubic) every vertex is
+// sampled.
 void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot, double threshold,
                     const ProgressFn& progress, Bitmap& wv) {
   const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
   std::vector<double> xs(static_cast<std::size_t>(nx));
   for (std::int64_t I = 0; I < nx; ++I) xs[static_cast<std::size_t>(I)] = static_cast<double>(I);
   const LatticeRowMapper mapper(lattice, rot, xs);
-  RowProgress rp(progress, nv, "vertices");
-#pragma omp parallel default(none) shared(bathy, mapper, wv, rp, nx, nv, threshold) if (nx * nv >= kParallelMinSamples)
+  const raster::ValueBounds bounds(bathy, 8);
+  const RotatedSampler sampler{bathy, lattice, rot, mapper, bounds, threshold, wv};
+  const std::int64_t ntx = bits::words_for(nx), rows0 = kUnitRows[0], nty = (nv + rows0 - 1) / rows0;
+  RowProgress rp(progress, nty, "vertices");
+#pragma omp parallel default(none) shared(sampler, rp, nx, nv, ntx, nty, rows0) if (nx * nv >= kParallelMinSamples)
   {
-    std::vector<double> lon(static_cast<std::size_t>(nx)), lat(lon.size()), val(lon.size());
-#pragma omp for schedule(static)
-    for (std::int64_t J = 0; J < nv; ++J) {
-      mapper.map_row(static_cast<double>(J), lon.data(), lat.data());
-      bathy.sample_points(lon.data(), lat.data(), nx, val.data());
-      threshold_row(val.data(), nx, threshold, wv.row(J));
+    std::vector<double> lon(64), lat(64), val(64);
+#pragma omp for schedule(static, 1)
+    for (std::int64_t ty = 0; ty < nty; ++ty) {
+      const std::int64_t J0 = ty * rows0, J1 = std::min(nv, J0 + rows0);
+      for (std::int64_t tx = 0; tx < ntx; ++tx)
+        sampler.unit(0, tx * 64, std::min(nx, tx * 64 + 64), J0, J1, lon, lat, val);
       rp.row_done();
     }
   }

@@ -435,6 +435,9 @@ Bathymetry& Bathymetry::operator=(Bathymetry&&) noexcept = default;
 Bathymetry::~Bathymetry() = default;
 
 const RasterInfo& Bathymetry::info() const { return impl_->info; }
+bool Bathymetry::samples_bilinear() const {
+  return impl_->info.streamed || !(impl_->interp == Interpolation::kBicubic && !impl_->fx.empty());
+}
 double Bathymetry::sample(double lon_deg, double lat_deg) const { return impl_->sample(lon_deg, lat_deg); }
 
 float Bathymetry::value(std::int64_t c, std::int64_t r) const {
@@ -459,6 +462,10 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
   for (std::int64_t r = a; r < b; ++r) {
     const float* src = i.streamed ? rows.data() + (r - a) * i.ncols : im.row_ptr(r);
     float* dst = out + (r - r_lo) * nc;
+    if (c_lo >= 0 && c_lo + nc <= i.ncols) {  // no wrap and nothing outside: one copy
+      std::copy(src + c_lo, src + c_lo + nc, dst);
+      continue;
+    }
     for (std::int64_t k = 0; k < nc; ++k) {
       std::int64_t c = c_lo + k;
       if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;

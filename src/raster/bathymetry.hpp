@@ -102,6 +102,9 @@ class Bathymetry {
   ~Bathymetry();
 
   [[nodiscard]] const RasterInfo& info() const;
+  /// True when `sample` interpolates bilinearly (every value is a convex combination of the four
+  /// surrounding raster values, or NaN); false for the bicubic spline.
+  [[nodiscard]] bool samples_bilinear() const;
 
   /// Elevation (m, negative below sea level) at (lon, lat) in degrees; NaN if no data or outside.
   /// Thread-safe.

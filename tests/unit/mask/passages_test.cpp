@@ -7,6 +7,8 @@
 
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mask/lattice_coords.hpp"
 #include "unit/mask/mask_drawing.hpp"
@@ -149,6 +151,82 @@ TEST(Passages, WorkOnARotatedLatticeAndAcrossTheSeam) {
     const LonLat rc = geographic_to_lattice(rot, {180.0, -40.0});
     const double expected = 8.0 * 4.0 * std::cos(40.0 * kDegToRad) / (0.0625 * std::cos(rc.lat_deg * kDegToRad));
     EXPECT_NEAR(static_cast<double>(r.pixels_in_box), expected, 0.05 * expected);
+  }
+}
+
+// The judge scans only the runs of pixels that can reach the box (around the rotated pole a box's
+// cap takes whole Mercator rows). Every passage of the table, on the Mercator lattice of the
+// Greenland frame (Nares, Fram and Davis lie next to the rotated pole), gives what a scan of every
+// pixel of the lattice gives: the pixels and filled pixels in the box and on each side, and
+// whether the filled in-box pixels join the sides.
+TEST(Passages, RotatedMercatorJudgeEqualsAScanOfTheWholeLattice) {
+  const PoleRotation rot(-44.858333, 78.141667);
+  const Lattice l = Lattice::make_mercator(2.0, 3, -180.0, 86.5);  // 0.25° pixels
+  std::vector<LonLat> centre(static_cast<std::size_t>(l.nx * l.ny));
+  Bitmap f(l.nx, l.ny);
+  for (std::int64_t j = 0; j < l.ny; ++j)
+    for (std::int64_t i = 0; i < l.nx; ++i) {
+      const LonLat g = lattice_to_geographic(rot, pixel_center_lattice_deg(l, {i, j}));
+      centre[static_cast<std::size_t>(j * l.nx + i)] = g;
+      // Water with islands and cuts at every scale: some straits open, some closed.
+      const double w = std::sin(0.9 * g.lon_deg * kDegToRad * 7.0) * std::cos(g.lat_deg * kDegToRad * 5.0) +
+                       0.6 * std::sin(g.lon_deg * 1.3 + g.lat_deg * 2.1);
+      if (w > -0.35) f.set(i, j);
+    }
+  int open = 0, closed = 0;
+  for (const Passage& p : critical_passages()) {
+    std::int64_t in_box = 0, filled = 0, side_a = 0, side_b = 0;
+    std::vector<unsigned char> in(centre.size(), 0), seen(centre.size(), 0);
+    std::vector<std::int64_t> stack;
+    for (std::int64_t q = 0; q < l.nx * l.ny; ++q) {
+      const LonLat g = centre[static_cast<std::size_t>(q)];
+      if (!p.box.contains(g.lon_deg, g.lat_deg)) continue;
+      ++in_box;
+      if (!f.get(q % l.nx, q / l.nx)) continue;
+      ++filled;
+      in[static_cast<std::size_t>(q)] = 1;
+      if (p.side_a.contains(g.lon_deg, g.lat_deg)) {
+        ++side_a;
+        seen[static_cast<std::size_t>(q)] = 1;
+        stack.push_back(q);
+      }
+      if (p.side_b.contains(g.lon_deg, g.lat_deg)) ++side_b;
+    }
+    bool joined = false;
+    while (!stack.empty() && !joined) {
+      const std::int64_t q = stack.back();
+      stack.pop_back();
+      const LonLat g = centre[static_cast<std::size_t>(q)];
+      joined = p.side_b.contains(g.lon_deg, g.lat_deg);
+      const std::int64_t i = q % l.nx, j = q / l.nx;
+      for (const auto& [di, dj] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
+        const std::int64_t jj = j + dj;
+        if (jj < 0 || jj >= l.ny) continue;
+        const std::int64_t n = jj * l.nx + wrap_index(i + di, l.nx);
+        if (in[static_cast<std::size_t>(n)] == 0 || seen[static_cast<std::size_t>(n)] != 0) continue;
+        seen[static_cast<std::size_t>(n)] = 1;
+        stack.push_back(n);
+      }
+    }
+    const PassageResult r = judge_passage(p, f, l, rot);
+    EXPECT_EQ(r.pixels_in_box, in_box) << p.name;
+    EXPECT_EQ(r.filled_in_box, filled) << p.name;
+    EXPECT_EQ(r.filled_side_a, side_a) << p.name;
+    EXPECT_EQ(r.filled_side_b, side_b) << p.name;
+    if (r.status == PassageStatus::kNotResolvable) continue;
+    EXPECT_EQ(r.status == PassageStatus::kOpen, joined) << p.name;
+    (joined ? open : closed)++;
+  }
+  EXPECT_GT(open, 3);  // the field leaves both kinds
+  EXPECT_GT(closed, 3);
+  // The judges of the whole table in one call (in parallel) are the same, in table order.
+  const std::vector<PassageResult> all = judge_passages(critical_passages(), f, l, rot);
+  ASSERT_EQ(all.size(), critical_passages().size());
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const PassageResult one = judge_passage(critical_passages()[k], f, l, rot);
+    EXPECT_EQ(all[k].name, one.name);
+    EXPECT_EQ(all[k].status, one.status);
+    EXPECT_EQ(all[k].pixels_in_box, one.pixels_in_box);
   }
 }
 

@@ -218,6 +218,56 @@ TEST(PixelClasses, RotatedLatticeSamplesGeographicPoints) {
   }
 }
 
+// The rotated vertex rule decides whole units of open ocean and inland from the raster's value
+// bounds without sampling them. It must give the bits of sampling every vertex (the reference
+// here: every lattice row mapped to geographic points and sampled), on both lattices, with
+// no-data holes, a coast of fine detail, a raster value exactly at the threshold and a lattice
+// finer than the raster; and with a bicubic raster (no bounds) as well.
+TEST(PixelClasses, RotatedUnitsGiveTheBitsOfSamplingEveryVertex) {
+  const auto coast = [](double lon, double lat) {
+    if (lat > 20.0 && lat < 23.0 && lon > 40.0 && lon < 47.0) return std::nan("");  // a no-data hole
+    if (lat > -30.0 && lat < -29.0 && lon > 100.0 && lon < 101.0) return 0.0;       // exactly at h = 0
+    return wavy(lon, lat) + 400.0 * std::sin(7.0 * lon * kDegToRad) * std::sin(11.0 * lat * kDegToRad);
+  };
+  const auto b = global_raster(0.5, coast);
+  const auto cubic = [&] {
+    const auto smooth = global_raster(0.5, [](double lon, double lat) { return wavy(lon, lat); });
+    std::vector<float> v(static_cast<std::size_t>(smooth.info().ncols * smooth.info().nrows));
+    smooth.values(0, smooth.info().ncols, 0, smooth.info().nrows, v.data());
+    return raster::Bathymetry::from_grid(std::move(v), smooth.info().ncols, smooth.info().nrows, -180.0, -90.0, 0.5,
+                                         0.5, raster::Interpolation::kBicubic);
+  }();
+  const PoleRotation rot(-44.858333, 78.141667);
+  const std::vector<Lattice> lattices = {Lattice::make(1.0, 2, -180.0),  // 0.25° vertices on a 0.5° raster
+                                         Lattice::make_mercator(2.0, 3, -180.0, 86.5)};
+  for (const Lattice& l : lattices) {
+    std::vector<double> xs(static_cast<std::size_t>(l.nx));
+    for (std::int64_t I = 0; I < l.nx; ++I) xs[static_cast<std::size_t>(I)] = static_cast<double>(I);
+    const LatticeRowMapper mapper(l, rot, xs);
+    for (const raster::Bathymetry* r : {&b, &cubic}) {
+      for (const double h : {0.0, 150.0}) {
+        const Bitmap wv = sample_wet_vertices(*r, l, rot, h, {});
+        std::vector<double> lon(xs.size()), lat(xs.size()), val(xs.size());
+        std::int64_t mismatches = 0, wet = 0;
+        for (std::int64_t J = 0; J <= l.ny; ++J) {
+          mapper.map_row(static_cast<double>(J), lon.data(), lat.data());
+          r->sample_points(lon.data(), lat.data(), l.nx, val.data());
+          for (std::int64_t I = 0; I < l.nx; ++I) {
+            const bool expect = val[static_cast<std::size_t>(I)] <= -h;
+            wet += expect ? 1 : 0;
+            mismatches += expect != wv.get(I, J) ? 1 : 0;
+          }
+        }
+        EXPECT_EQ(mismatches, 0) << "nx = " << l.nx << ", h = " << h << (r == &cubic ? ", bicubic" : "");
+        EXPECT_GT(wet, l.nx);  // both classes are present
+        EXPECT_LT(wet, l.nx * (l.ny + 1) - l.nx);
+        for (std::int64_t J = 0; J <= l.ny; ++J)  // padding bits stay clear
+          if (l.nx % 64 != 0) EXPECT_EQ(wv.row(J)[wv.words_per_row() - 1] >> (l.nx % 64), 0U);
+      }
+    }
+  }
+}
+
 TEST(PixelClasses, ProgressReachesOneAndBadOptionsThrow) {
   const auto b = global_raster(1.0, wavy);
   const Lattice l = Lattice::make(1.0, 0, -180.0);

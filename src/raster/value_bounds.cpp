@@ -1,0 +1,119 @@
+// Block minima/maxima of a raster and their box queries (value_bounds.hpp).
+#include "raster/value_bounds.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace aq::raster {
+
+ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block) : info_(bathy.info()), block_(block) {
+  if (info_.streamed || !bathy.samples_bilinear() || info_.ncols <= 0 || info_.nrows <= 0) return;
+  available_ = true;
+  const std::int64_t nc = info_.ncols, nr = info_.nrows;
+  nbx_ = (nc + block_ - 1) / block_;
+  nby_ = (nr + block_ - 1) / block_;
+  const auto nb = static_cast<std::size_t>(nbx_ * nby_);
+  lo_.assign(nb, std::numeric_limits<float>::infinity());
+  hi_.assign(nb, -std::numeric_limits<float>::infinity());
+  nan_.assign(nb, 0);
+  const std::int64_t B = block_, nbx = nbx_, nby = nby_;
+  float* lo = lo_.data();
+  float* hi = hi_.data();
+  unsigned char* nan = nan_.data();
+#pragma omp parallel default(none) shared(bathy, nc, nr, B, nbx, nby, lo, hi, nan)
+  {
+    std::vector<float> rows(static_cast<std::size_t>(B * nc));
+#pragma omp for schedule(static)
+    for (std::int64_t by = 0; by < nby; ++by) {
+      const std::int64_t r0 = by * B, n = std::min(B, nr - r0);
+      bathy.values(0, nc, r0, n, rows.data());
+      for (std::int64_t r = 0; r < n; ++r) {
+        const float* v = rows.data() + r * nc;
+        for (std::int64_t bx = 0; bx < nbx; ++bx) {
+          const auto s = static_cast<std::size_t>(by * nbx + bx);
+          float mn = lo[s], mx = hi[s];
+          unsigned char has_nan = nan[s];
+          const std::int64_t c1 = std::min(nc, (bx + 1) * B);
+          for (std::int64_t c = bx * B; c < c1; ++c) {
+            const float x = v[c];
+            if (std::isnan(x)) {
+              has_nan = 1;
+            } else {
+              mn = std::min(mn, x);
+              mx = std::max(mx, x);
+            }
+          }
+          lo[s] = mn;
+          hi[s] = mx;
+          nan[s] = has_nan;
+        }
+      }
+    }
+  }
+}
+
+void ValueBounds::add_blocks(std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi,
+                             ValueRange& out) const {
+  for (std::int64_t by = r_lo / block_; by <= r_hi / block_; ++by)
+    for (std::int64_t bx = c_lo / block_; bx <= c_hi / block_; ++bx) {
+      const auto s = static_cast<std::size_t>(by * nbx_ + bx);
+      out.nan = out.nan || nan_[s] != 0;
+      if (lo_[s] <= hi_[s]) {
+        out.lo = out.any_finite ? std::min(out.lo, static_cast<double>(lo_[s])) : lo_[s];
+        out.hi = out.any_finite ? std::max(out.hi, static_cast<double>(hi_[s])) : hi_[s];
+        out.any_finite = true;
+      }
+    }
+}
+
+ValueRange ValueBounds::in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const {
+  ValueRange out;
+  if (!available_ || !(lon_lo <= lon_hi) || !(lat_lo <= lat_hi) || !std::isfinite(lon_hi - lon_lo) ||
+      !std::isfinite(lat_hi - lat_lo)) {
+    out.nan = true;
+    out.lo = -std::numeric_limits<double>::infinity();
+    out.hi = std::numeric_limits<double>::infinity();
+    out.any_finite = true;
+    return out;
+  }
+  const std::int64_t nc = info_.ncols, nr = info_.nrows;
+  // Sample positions in raster units; a sample uses the cells floor(x) and floor(x) + 1 (after a
+  // 1e-9 snap to grid lines), so one cell more on each side is enough.
+  const double x_lo = (lon_lo - info_.lon_first) / info_.dlon, x_hi = (lon_hi - info_.lon_first) / info_.dlon;
+  const double y_lo = (lat_lo - info_.lat_first) / info_.dlat, y_hi = (lat_hi - info_.lat_first) / info_.dlat;
+  std::int64_t r_lo = static_cast<std::int64_t>(std::floor(y_lo)) - 1;
+  std::int64_t r_hi = static_cast<std::int64_t>(std::floor(y_hi)) + 2;
+  if (y_lo < -0.5 || y_hi > static_cast<double>(nr) - 0.5) out.nan = true;  // NaN, or the edge row clamped
+  r_lo = std::clamp<std::int64_t>(r_lo, 0, nr - 1);
+  r_hi = std::clamp<std::int64_t>(r_hi, 0, nr - 1);
+  auto c_lo = static_cast<std::int64_t>(std::floor(x_lo)) - 1;
+  auto c_hi = static_cast<std::int64_t>(std::floor(x_hi)) + 2;
+  if (!info_.global_lon) {
+    if (x_lo < -0.5 || x_hi > static_cast<double>(nc) - 0.5) out.nan = true;
+    add_blocks(std::clamp<std::int64_t>(c_lo, 0, nc - 1), std::clamp<std::int64_t>(c_hi, 0, nc - 1), r_lo, r_hi, out);
+    return out;
+  }
+  if (c_hi - c_lo + 1 >= nc) {
+    add_blocks(0, nc - 1, r_lo, r_hi, out);
+    return out;
+  }
+  const std::int64_t a = ((c_lo % nc) + nc) % nc, b = ((c_hi % nc) + nc) % nc;
+  if (a <= b) {
+    add_blocks(a, b, r_lo, r_hi, out);
+  } else {  // across the seam
+    add_blocks(a, nc - 1, r_lo, r_hi, out);
+    add_blocks(0, b, r_lo, r_hi, out);
+  }
+  return out;
+}
+
+int side_of_threshold(const ValueRange& r, double threshold) {
+  constexpr double kMargin = 1e-6;
+  if (!r.any_finite) return -1;  // nothing but NaN: dry
+  if (!r.nan && r.hi <= threshold - kMargin) return 1;
+  if (r.lo > threshold + kMargin) return -1;
+  return 0;
+}
+
+}  // namespace aq::raster
