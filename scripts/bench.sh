@@ -87,6 +87,10 @@ PY
 if [ "$mode" != global ]; then
 $bin mesh -q -o "$work/seed" >/dev/null
 table "seed reference: ETOPO5, Δ0=4°, L=3, K=2, h=0, all outputs (target < 0.5 s)" 0.5 "$work/seed/seed_4deg_L3_report.json"
+# The same size on the Mercator lattice of the rotated frame (issue 12: the lon-lat budget).
+$bin mesh -q -c configs/global_mercator.toml -o "$work/mercator" >/dev/null
+table "ETOPO5 Mercator lattice + rotation (configs/global_mercator.toml), all outputs (target < 0.5 s)" 0.5 \
+  "$work/mercator/global_mercator_report.json"
 
 if [ -f configs/black_sea.toml ]; then
   $bin regional -q -c configs/black_sea.toml -o "$work/black_sea" >/dev/null
