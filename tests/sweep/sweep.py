@@ -10,7 +10,10 @@ key and every pair of keys appears (the assignment is checked below):
   balance  = (ih + iL + shift) mod 2
   elements = (ih + ir + shift) mod 2
 with shift 0 for ETOPO5 and 1 for ETOPO60. Δ0 per L keeps each run small (lattices up to
-1920 × 960 pixels) and varies Δ0 too: 2°, 4°, 5°, 6° for L = 2, 3, 4, 5.
+1920 × 960 pixels) and varies Δ0 too: 2°, 4°, 5°, 6° for L = 2, 3, 4, 5. The rotated runs take the
+Mercator lattice (issue 12) when (iL div 2 + ih + shift) is even, so each h, L, K, balance, elements
+value meets both lattices (rows to the default |φ′| of 86.5° rounded up to whole level-0 squares); every
+run also writes the global run file (`tif`).
 
 Regional part, on the Black Sea contour: every projection × spline type × param × solver ×
 schedule in a pairwise design (12 runs; sqrt with max_outer = 80), one full run per projection
@@ -47,7 +50,8 @@ def global_design(shift):
     runs = []
     for (ih, h), (ir, r), (il, lv) in itertools.product(enumerate(HS), enumerate(ROT), enumerate(LS)):
         runs.append(dict(h=h, rot=r, L=lv, K=KS[(ih + ir + il + shift) % 4], balance=BAL[(ih + il + shift) % 2],
-                         elements=ELEM[(ih + ir + shift) % 2]))
+                         elements=ELEM[(ih + ir + shift) % 2],
+                         lattice="mercator" if r and (il // 2 + ih + shift) % 2 == 0 else "lonlat"))
     return runs
 
 
@@ -61,6 +65,12 @@ def check_design():
             want = set(itertools.product(values[a], values[b]))
             if seen != want:
                 sys.exit(f"sweep design: pairs {a} x {b} missing: {sorted(want - seen)}")
+        rotated = [r for r in runs if r["rot"]]
+        for a in ("h", "L", "K", "balance", "elements"):
+            seen = {(r[a], r["lattice"]) for r in rotated}
+            want = set(itertools.product(values[a], ["lonlat", "mercator"]))
+            if seen != want:
+                sys.exit(f"sweep design: rotated pairs {a} x lattice missing: {sorted(want - seen)}")
 
 
 class Failures:
@@ -117,15 +127,16 @@ def run_global(binary, raster, part, tmp):
     for k, r in enumerate(runs):
         if k % PARTS != part:
             continue
-        name = f"{raster}_h{r['h']}_K{r['K']}_L{r['L']}_{'rot' if r['rot'] else 'plain'}_{r['balance']}_{r['elements']}"
+        name = (f"{raster}_h{r['h']}_K{r['K']}_L{r['L']}_{'rot' if r['rot'] else 'plain'}_{r['balance']}_"
+                f"{r['elements']}_{r['lattice']}")
         out = os.path.join(tmp, name)
         sets = [f"input.path={ETOPO}/{raster}.cdf", f"mask.min_depth_m={r['h']}", f"mask.cursor={r['K']}",
                 f"quadtree.step_deg={STEP[r['L']]}", f"quadtree.levels={r['L']}", f"quadtree.balance={r['balance']}",
                 f"rotation.enabled={'true' if r['rot'] else 'false'}", f"mesh.elements={r['elements']}",
-                f"output.name={name}",
+                f"quadtree.lattice={r['lattice']}", f"output.name={name}",
                 # fort14 is triangular: refused (a config error) with squares only
-                'output.formats=["msh","ugrid","fort14"]' if r["elements"] == "triangles" else
-                'output.formats=["msh","ugrid"]']
+                'output.formats=["msh","ugrid","fort14","tif"]' if r["elements"] == "triangles" else
+                'output.formats=["msh","ugrid","tif"]']
         cmd = f"{shlex.quote(binary)} mesh -o {shlex.quote(out)} " + " ".join(f"--set {shlex.quote(s)}" for s in sets)
         f.run(cmd, tmp, global_check(out, name))
     return f
