@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/output_files.hpp"
+#include "raster/bathymetry.hpp"
 #include "raster/byte_geotiff.hpp"
 
 namespace aq::mask {
@@ -44,10 +45,26 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       mtime = std::to_string(time.time_since_epoch().count());
     }
   }
+  // The other files GDAL reads for it (a VRT's tiles, sidecars), each by size and time, so that
+  // changing a tile changes the inputs; none for a single file (its checksum is as before).
+  std::string sources;
+  if (size != kNotAFile) {
+    for (const std::string& f : raster::raster_files(raster.string())) {
+      const fs::path p = fs::absolute(f).lexically_normal();
+      if (p == raster) continue;
+      std::string entry = p.string() + " " + kNotAFile;
+      if (fs::is_regular_file(p, ec)) {
+        const auto bytes = fs::file_size(p, ec);
+        const auto time = fs::last_write_time(p, ec);
+        if (!ec) entry = fmt::format("{} {} bytes, mtime {}", p.string(), bytes, time.time_since_epoch().count());
+      }
+      sources += (sources.empty() ? "" : "; ") + entry;
+    }
+  }
   std::string seeds;
   for (const auto& s : c.mask.seeds)
     seeds += fmt::format("{}[{}, {}]", seeds.empty() ? "" : ", ", number(s[0]), number(s[1]));
-  return {
+  std::vector<std::pair<std::string, std::string>> items = {
       {"input.path", raster.string()},
       {"input.file_bytes", size},
       {"input.file_mtime", mtime},
@@ -70,6 +87,8 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       {"mask.sampling", c.mask.sampling},
       {"mask.remove_pinches", c.mask.remove_pinches ? "true" : "false"},
   };
+  if (!sources.empty()) items.insert(items.begin() + 3, {"input.source_files", sources});
+  return items;
 }
 
 std::string mask_inputs_checksum(const std::vector<std::pair<std::string, std::string>>& items) {

@@ -15,8 +15,9 @@
 // The inputs of the mask stage (mask_inputs): the raster (absolute path, size in bytes and
 // modification time of the file; input.variable, band, positive_down, interpolation), the lattice
 // (quadtree.step_deg, levels, lon0_deg), rotation.* and every mask.* key except passages (a
-// report only). A VRT's tiles are not followed: touch the .vrt after changing a tile. A source
-// that is not a plain file (a GDAL subdataset string, /vsicurl/...) is never reused.
+// report only). The other files GDAL reads for the raster (a VRT's tiles, sidecars) count by size
+// and modification time (input.source_files). A source that is not a plain file (a GDAL subdataset
+// string, /vsicurl/...) is never reused.
 #pragma once
 
 #include <cstdint>

@@ -640,6 +640,18 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
   }
 }
 
+std::vector<std::string> raster_files(const std::string& path) {
+  gdal_init();
+  std::vector<std::string> out;
+  DatasetPtr ds(static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!ds) return out;
+  char** files = ds->GetFileList();
+  for (char** f = files; f != nullptr && *f != nullptr; ++f) out.emplace_back(*f);
+  CSLDestroy(files);
+  return out;
+}
+
 std::int64_t estimate_raster_bytes(std::int64_t width, std::int64_t height) {
   return width * height * static_cast<std::int64_t>(sizeof(float));
 }

@@ -148,6 +148,10 @@ class Bathymetry {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The files GDAL reads for the raster at `path`: the file itself, a VRT's source tiles, sidecar
+/// files, as GDAL's GetFileList names them; empty when GDAL cannot open it as a raster.
+std::vector<std::string> raster_files(const std::string& path);
+
 /// Estimated bytes `open` would hold for a raster of width×height (values as float32).
 std::int64_t estimate_raster_bytes(std::int64_t width, std::int64_t height);
 
