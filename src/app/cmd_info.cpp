@@ -2,6 +2,7 @@
 // sampled elevations at given points.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@ struct InfoArgs {
   int band = 1;
   bool positive_down = false;
   std::string interpolation = "bilinear";
+  double max_memory_gb = 0.0;
 };
 
 int run_info(const InfoArgs& a, const Logger& log) {
@@ -29,6 +31,9 @@ int run_info(const InfoArgs& a, const Logger& log) {
   o.variable = a.variable;
   o.band = a.band;
   o.positive_down = a.positive_down;
+  if (!(a.max_memory_gb >= 0.0) || !std::isfinite(a.max_memory_gb))
+    throw ConfigError(fmt::format("--max-memory-gb = {}: must be a finite number >= 0", a.max_memory_gb));
+  o.max_memory_bytes = static_cast<std::int64_t>(a.max_memory_gb * 1e9);
   if (a.interpolation == "bicubic") {
     o.interpolation = raster::Interpolation::kBicubic;
   } else if (a.interpolation != "bilinear") {
@@ -44,7 +49,15 @@ int run_info(const InfoArgs& a, const Logger& log) {
     }
     pts.emplace_back(lon, lat);
   }
+  // A raster too big to hold (15" GEBCO/ETOPO 2022) is streamed: one banded pass gives its
+  // statistics, and the --at samples read single values.
+  o.allow_streaming = o.interpolation == raster::Interpolation::kBilinear;
   const auto b = raster::Bathymetry::open(o, log);
+  if (b.info().streamed) {
+    const raster::Bathymetry::Columns none = b.prepare_columns(nullptr, 0);
+    b.sample_rows(
+        none, nullptr, 0, [](std::int64_t, const float*) {}, log.progress("statistics"));
+  }
   const auto& i = b.info();
   const double lon_last = i.lon_first_found + static_cast<double>(i.ncols - 1) * i.dlon;
   std::printf("file:          %s\n", i.path.c_str());
@@ -65,7 +78,8 @@ int run_info(const InfoArgs& a, const Logger& log) {
   if (i.scale != 1.0 || i.offset != 0.0) std::printf("scale/offset:  %g / %g\n", i.scale, i.offset);
   std::printf("elevation:     min %.1f m, max %.1f m, mean %.1f m (%lld valid values)\n", i.min_m, i.max_m, i.mean_m,
               static_cast<long long>(i.valid_count));
-  std::printf("memory:        %.1f MB held (float32)\n", static_cast<double>(i.memory_bytes) / 1048576.0);
+  std::printf("memory:        %.1f MB held (float32%s)\n", static_cast<double>(i.memory_bytes) / 1048576.0,
+              i.streamed ? fmt::format(", streamed in bands of {} rows", i.band_rows).c_str() : "");
   for (const auto& [lon, lat] : pts) {
     const double z = b.sample(lon, lat);
     std::printf("at %.6g,%.6g: %s\n", lon, lat,
@@ -85,6 +99,9 @@ void add_info_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--band", args->band, "1-based band number");
   cmd->add_flag("--positive-down", args->positive_down, "The file stores depth as positive numbers");
   cmd->add_option("--interpolation", args->interpolation, "bilinear (default) or bicubic");
+  cmd->add_option("--max-memory-gb", args->max_memory_gb,
+                  "Hold the raster only below this size as float32 (GB; 0 = 80% of RAM); above it, or above 1 GiB, "
+                  "it is streamed in bands of rows");
   cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_info(*args, ctx.log); }; });
 }
 

@@ -15,6 +15,7 @@ using aq::test::fresh_dir;
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
 using ::testing::MatchesRegex;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 namespace {
@@ -74,3 +75,31 @@ TEST(StreamCli, EstimateIsPrintedAndReportedWithThePeak) {
   EXPECT_LT(m.at("peak_rss_bytes").get<double>(), 2.0 * m.at("estimate_bytes").get<double>());
   EXPECT_FALSE(m.at("raster_streamed").get<bool>());
 }
+
+namespace {
+
+// `aquatoria info` streams a raster it cannot hold (a 15" GEBCO/ETOPO 2022 file needs 15 GB as
+// float32): one banded pass gives the same statistics and samples as holding it whole.
+TEST(StreamCli, InfoStreamsABigRasterWithTheSameStatistics) {
+  const std::string etopo5 = "/usr/share/ferret-vis/data/etopo5.cdf";
+  const auto whole = run_aquatoria("info " + etopo5 + " --at -150,0 --at 10,50");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto streamed = run_aquatoria("info " + etopo5 + " --at -150,0 --at 10,50 --max-memory-gb 0.02");
+  ASSERT_EQ(streamed.exit_code, 0) << streamed.err;
+  EXPECT_THAT(streamed.out, HasSubstr("streamed in bands of"));
+  EXPECT_THAT(whole.out, Not(HasSubstr("streamed")));
+  const auto line = [](const std::string& text, const std::string& head) {
+    const auto p = text.find(head);
+    return p == std::string::npos ? std::string() : text.substr(p, text.find('\n', p) - p);
+  };
+  for (const std::string head : {"elevation:", "at -150,0:", "at 10,50:", "size:", "latitude:"}) {
+    EXPECT_FALSE(line(whole.out, head).empty()) << head;
+    EXPECT_EQ(line(whole.out, head), line(streamed.out, head));
+  }
+  EXPECT_THAT(line(whole.out, "elevation:"), HasSubstr("min -10376.0 m, max 7833.0 m"));
+  const auto bad = run_aquatoria("info " + etopo5 + " --max-memory-gb -1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("--max-memory-gb"));
+}
+
+}  // namespace
