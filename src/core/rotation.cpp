@@ -37,8 +37,14 @@ void PoleRotation::to_geographic(double rlon_deg, double rlat_deg, double& lon_d
     lat_deg = rlat_deg;
     return;
   }
-  double v[3];
-  to_xyz(rlon_deg, rlat_deg, v);
+  const double lo = rlon_deg * kDegToRad;
+  const double la = rlat_deg * kDegToRad;
+  to_geographic(std::cos(lo), std::sin(lo), std::cos(la), std::sin(la), lon_deg, lat_deg);
+}
+
+void PoleRotation::to_geographic(double cos_rlon, double sin_rlon, double cos_rlat, double sin_rlat, double& lon_deg,
+                                 double& lat_deg) const {
+  const double v[3] = {cos_rlat * cos_rlon, cos_rlat * sin_rlon, sin_rlat};
   const double g[3] = {m_[0] * v[0] + m_[1] * v[1] + m_[2] * v[2], m_[3] * v[0] + m_[4] * v[1] + m_[5] * v[2],
                        m_[6] * v[0] + m_[7] * v[1] + m_[8] * v[2]};
   from_xyz(g, lon_deg, lat_deg);

@@ -18,6 +18,11 @@ class PoleRotation {
 
   /// Rotated (λ', φ') -> geographic (λ, φ), degrees; λ in (-180, 180].
   void to_geographic(double rlon_deg, double rlat_deg, double& lon_deg, double& lat_deg) const;
+  /// The same from the sines and cosines of λ' and φ' (radians of the degrees given above), for
+  /// callers that map whole rows: bit for bit what to_geographic gives (it calls this), the
+  /// identity included only when the caller passes the angles themselves (see identity()).
+  void to_geographic(double cos_rlon, double sin_rlon, double cos_rlat, double sin_rlat, double& lon_deg,
+                     double& lat_deg) const;
   /// Geographic -> rotated, degrees; λ' in (-180, 180].
   void to_rotated(double lon_deg, double lat_deg, double& rlon_deg, double& rlat_deg) const;
   [[nodiscard]] bool identity() const { return identity_; }

@@ -207,10 +207,20 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
     const double w = wrap_lon_deg(g.lon_deg - h, b.lon_min_deg);  // the run's west end east of lon_min
     return w <= b.lon_max_deg || w + 2.0 * h >= b.lon_min_deg + 360.0;
   };
+  // Pixel centres to geographic: sines and cosines once per lattice column and row, then the
+  // rotation (the same bits as lattice_to_geographic of pixel_center_lattice_deg).
+  std::vector<double> cos_lon(static_cast<std::size_t>(cols)), sin_lon(cos_lon.size());
+  for (std::int64_t x = 0; x < cols; ++x) {
+    const double lo = pixel_center_lattice_deg(lattice, {wrap_index(i0 + x, nx), j0}).lon_deg * kDegToRad;
+    cos_lon[static_cast<std::size_t>(x)] = std::cos(lo);
+    sin_lon[static_cast<std::size_t>(x)] = std::sin(lo);
+  }
   std::int64_t in_a = 0, in_b = 0;
   for (std::int64_t y = 0; y < rows; ++y) {
     std::int64_t x_lo = 0, x_hi = 0;
     row_span(y, x_lo, x_hi);
+    const double row_lat = pixel_center_lattice_deg(lattice, {0, j0 + y}).lat_deg;
+    const double cos_lat = std::cos(row_lat * kDegToRad), sin_lat = std::sin(row_lat * kDegToRad);
     for (std::int64_t xx = x_lo; xx <= x_hi; ++xx) {
       if ((xx - x_lo) % kRun == 0) {
         const std::int64_t xx1 = std::min(x_hi, xx + kRun - 1);
@@ -221,7 +231,12 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
       }
       const std::int64_t x = wrap ? wrap_index(xx, cols) : xx;
       const PixelIJ px{wrap_index(i0 + x, nx), j0 + y};
-      const LonLat g = lattice_to_geographic(rot, pixel_center_lattice_deg(lattice, px));
+      LonLat g;
+      if (rot.identity())
+        g = pixel_center_lattice_deg(lattice, px);
+      else
+        rot.to_geographic(cos_lon[static_cast<std::size_t>(x)], sin_lon[static_cast<std::size_t>(x)], cos_lat, sin_lat,
+                          g.lon_deg, g.lat_deg);
       if (!b.contains(g.lon_deg, g.lat_deg)) continue;
       unsigned char f = kInBox;
       if (p.side_a.contains(g.lon_deg, g.lat_deg)) {
