@@ -102,7 +102,7 @@ BlockCandidate box_candidate(const Bitmap& filled, const Bitmap& coast, const La
 std::optional<mask::PixelIJ> pixel_holding(const Lattice& lat, mask::LonLat q) {
   double x = 0.0, y = 0.0;
   mask::deg_to_lattice_xy(lat, q, x, y);
-  if (lat.mercator() && !(y >= 0.0 && y <= static_cast<double>(lat.ny))) return std::nullopt;
+  if (!mask::on_lattice_rows(lat, y)) return std::nullopt;
   return mask::PixelIJ{std::clamp(static_cast<std::int64_t>(x), std::int64_t{0}, lat.nx - 1),
                        std::clamp(static_cast<std::int64_t>(y), std::int64_t{0}, lat.ny - 1)};
 }
