@@ -216,8 +216,13 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
         s = std::min(s, q[1]);
         n = std::max(n, q[1]);
       }
-      const double pad = 0.5 * std::max(e - w, n - s);
-      zoom.zoom = {w - pad, e + pad, std::max(-90.0, s - pad), std::min(90.0, n + pad)};
+      // Half the block's larger side around it, measured in the map plane (on the Mercator
+      // lattice its rows are Mercator ordinates, so a latitude pad would stretch the picture).
+      const double cap = lat.mercator() ? lat.lat_max_deg() : 90.0;  // the Mercator rows' reach
+      const double ys = lat.plane_y_of_lat(std::max(s, -cap)), yn = lat.plane_y_of_lat(std::min(n, cap));
+      const double pad = 0.5 * std::max(e - w, yn - ys);
+      const auto lat_of_plane = [&](double y) { return lat.mercator() ? mercator_lat_deg(y) : y; };
+      zoom.zoom = {w - pad, e + pad, std::max(-90.0, lat_of_plane(ys - pad)), std::min(90.0, lat_of_plane(yn + pad))};
       zoom.outlines.push_back(outline);
       io::write_preview_zoom_png(run.mesh, *run.bathy, out.temp_path(name + ".png"), zoom);
     }
