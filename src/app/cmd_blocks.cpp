@@ -58,7 +58,8 @@ double latlongrid_for(const handoff::BlockBox& b) {
   return best;
 }
 
-// The block's box as a closed polygon in the map plane (lattice system), λ continuous.
+// The block's box as a closed polygon in the lattice system (λ′, φ′; the preview draws φ′ at its
+// plane ordinate), λ continuous.
 std::vector<std::array<double, 2>> map_outline(const handoff::BlockBox& b, const PoleRotation& rot) {
   std::vector<std::array<double, 2>> pts;
   const int n = 16;
@@ -106,17 +107,13 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   report["config"]["blocks"]["top"] = c.blocks.top;
 
   const GlobalSetup setup = prepare_global_run(c);
-  if (setup.lattice.mercator())
-    throw ConfigError(
-        "quadtree.lattice = \"mercator\": aquatoria blocks works on the lon-lat lattice only (its blocks are "
-        "level-0 squares in λ′–φ′ and the regional handoff locates points by φ′ rows); use quadtree.lattice = "
-        "\"lonlat\" for this config");
   log_memory_estimate(setup, log);
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;
   log.info(
-      "aquatoria blocks: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}); top {} blocks{}",
-      loaded.source, c.input.path, lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels, c.blocks.top,
+      "aquatoria blocks: {} ({}); {} lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}); top {} blocks{}",
+      loaded.source, c.input.path, lat.kind_name(), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
+      c.blocks.top,
       c.blocks.boxes.empty() ? " of the level-0 squares" : fmt::format(" of {} user boxes", c.blocks.boxes.size()));
   const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
   OutputSet out(dir);
@@ -219,8 +216,13 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
         s = std::min(s, q[1]);
         n = std::max(n, q[1]);
       }
-      const double pad = 0.5 * std::max(e - w, n - s);
-      zoom.zoom = {w - pad, e + pad, std::max(-90.0, s - pad), std::min(90.0, n + pad)};
+      // Half the block's larger side around it, measured in the map plane (on the Mercator
+      // lattice its rows are Mercator ordinates, so a latitude pad would stretch the picture).
+      const double cap = lat.mercator() ? lat.lat_max_deg() : 90.0;  // the Mercator rows' reach
+      const double ys = lat.plane_y_of_lat(std::max(s, -cap)), yn = lat.plane_y_of_lat(std::min(n, cap));
+      const double pad = 0.5 * std::max(e - w, yn - ys);
+      const auto lat_of_plane = [&](double y) { return lat.mercator() ? mercator_lat_deg(y) : y; };
+      zoom.zoom = {w - pad, e + pad, std::max(-90.0, lat_of_plane(ys - pad)), std::min(90.0, lat_of_plane(yn + pad))};
       zoom.outlines.push_back(outline);
       io::write_preview_zoom_png(run.mesh, *run.bathy, out.temp_path(name + ".png"), zoom);
     }
@@ -253,7 +255,8 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   io::write_preview_png(run.mesh, *run.bathy, out.temp_path("blocks.png"), overview);
   write_stage.done(fmt::format("{} blocks (config, contour, picture) + blocks.png in {}", count, dir.string()));
 
-  report["blocks"] = Json{{"candidates", ranked.size()},
+  report["blocks"] = Json{{"lattice", lat.kind_name()},
+                          {"candidates", ranked.size()},
                           {"written", count},
                           {"coastal_pixel", "filled pixel with a non-filled pixel among its 8 neighbours"},
                           {"global_config", global_path},

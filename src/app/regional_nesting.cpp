@@ -26,8 +26,8 @@ void write_regional_nesting(const config::RegionalConfig& c, const std::string& 
   if (!wants_regional_nesting(c, result)) return;
   const config::GlobalConfig& g = global.loaded.options;
   const GlobalRun& run = global.run;
-  log.info("nesting: the global mesh of {} (Δ0 = {}°, L = {})", global.loaded.source, g.quadtree.step_deg,
-           g.quadtree.levels);
+  log.info("nesting: the global mesh of {} ({} lattice, Δ0 = {}°, L = {})", global.loaded.source,
+           run.setup.lattice.kind_name(), g.quadtree.step_deg, g.quadtree.levels);
 
   StageScope stage("nesting", &report, log);
   handoff::NestingSummary sum;

@@ -52,10 +52,6 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   GlobalSetup setup;
   try {
     setup = prepare_global_run(g);
-    if (setup.lattice.mercator())
-      throw ConfigError(
-          "quadtree.lattice = \"mercator\": nesting in the global mesh works on the lon-lat lattice only (the mesh "
-          "locator finds points by φ′ rows); use quadtree.lattice = \"lonlat\" in that config");
   } catch (const ConfigError& e) {
     throw named(e);
   }
@@ -66,10 +62,10 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   r.run = run_global_pipeline(g, setup, quiet, nullptr, false, true);
   if (!r.run.area_file_differs.empty()) log.warn("global run: {}; ran the global fill again", r.run.area_file_differs);
   stage.done(
-      fmt::format("{} (Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels{}, {} triangles "
-                  "(the ocean, depth and mesh this grid shares)",
-                  r.loaded.source, g.quadtree.step_deg, g.quadtree.levels, setup.lattice.pixel_deg() * 60.0,
-                  g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels,
+      fmt::format("{} ({} lattice, Δ0 = {}°, L = {}, {:.4g}' pixels, K = {}, h = {} m): {} filled pixels{}, {} "
+                  "triangles (the ocean, depth and mesh this grid shares)",
+                  r.loaded.source, setup.lattice.kind_name(), g.quadtree.step_deg, g.quadtree.levels,
+                  setup.lattice.pixel_deg() * 60.0, g.mask.cursor, g.mask.min_depth_m, r.run.area.filled_pixels,
                   r.run.area_file.empty() ? std::string() : " (mask reused from " + r.run.area_file + ")",
                   r.run.mesh.triangle_count()));
   return r;
@@ -209,6 +205,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                    "of the adjacent mask_rho")},
       {"mask_min_depth_m", g.mask.min_depth_m},
       {"mask_cursor", static_cast<std::int64_t>(g.mask.cursor)},
+      {"lattice_kind", std::string(lattice.kind_name())},
       {"lattice_pixel_deg", lattice.pixel_deg()},
       {"lattice_lon0_deg", lattice.lon0_deg},
       {"rotation", g.rotation.enabled
@@ -330,6 +327,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                        {"volume_added_rel", depth.volume_added_rel},
                                        {"sweeps", depth.sweeps},
                                        {"h_max_wet_m", hmax}}}};
+  report["roms"]["lattice"]["kind"] = lattice.kind_name();
   if (refined != nullptr) report["nested"] = nested_report;
   rs.done(fmt::format(
       "{} ({} x {} ρ points, {} wet; land although deeper than h: {} in unconnected water, {} in "

@@ -14,13 +14,16 @@
 //                                       -1 outside the global wet mesh (over its land)
 //     int64  element_nodes(point, vertex)  the triangle's global node ids (0-based; -1 outside)
 //     double weights(point, vertex)     barycentric weights in the global lattice plane (sum 1;
-//                                       0 outside): value(p) = Σ w_k value(node_k)
+//                                       0 outside): value(p) = Σ w_k value(node_k); the plane is
+//                                       λ′, φ′ on the lon-lat lattice and λ′ and the Mercator
+//                                       ordinate of φ′ on the Mercator one (lattice_kind)
 //     byte   element_level(point)       quadtree level of the element (-1 outside)
 //     double global_element_size(point) the element's leg length, metres
 //     double regional_cell_size(point)  the regional grid's cell size there, metres
 //     double refinement_ratio(point)    global_element_size / regional_cell_size (NaN outside)
 //   global attributes: title, Conventions, history, regional_grid, global_config, global_mesh
-//     (nodes/triangles), lattice (Δ0, L, λ0), pole rotation, points_outside, refinement_ratio
+//     (nodes/triangles), lattice (kind, Δ0, L, λ0; y0 on the Mercator lattice), pole rotation,
+//     points_outside, refinement_ratio
 //     (median over the points inside), staggering (how ρ/u/v come from the supergrid).
 #pragma once
 

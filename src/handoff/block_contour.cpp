@@ -73,11 +73,16 @@ BoxFrame::BoxFrame(const BlockBox& box, const PoleRotation& rotation)
     box_.lat_min_deg = -90.0 + off;
     trimmed_ = true;
   }
+  if (box_.mercator_rows) {
+    y_min_deg_ = mercator_y_deg(box_.lat_min_deg);
+    y_max_deg_ = mercator_y_deg(box_.lat_max_deg);
+  }
 }
 
 curvilinear::GeoPoint BoxFrame::system(double s, double t) const {
-  return {box_.lon_min_deg + s * (box_.lon_max_deg - box_.lon_min_deg),
-          box_.lat_min_deg + t * (box_.lat_max_deg - box_.lat_min_deg)};
+  const double lon = box_.lon_min_deg + s * (box_.lon_max_deg - box_.lon_min_deg);
+  if (box_.mercator_rows) return {lon, mercator_lat_deg(y_min_deg_ + t * (y_max_deg_ - y_min_deg_))};
+  return {lon, box_.lat_min_deg + t * (box_.lat_max_deg - box_.lat_min_deg)};
 }
 
 curvilinear::GeoPoint BoxFrame::geographic(double s, double t) const {
@@ -109,19 +114,16 @@ SideInsets shrink_to_wet(const BoxFrame& frame, const Bitmap& filled, const Latt
   if (filled.nx() != lat.nx || filled.ny() != lat.ny) throw InternalError("shrink_to_wet: bitmap and lattice differ");
   const double cap = std::clamp(max_inset, 0.0, 0.45);
   const BlockBox& b = frame.box();
-  const double extent = std::max(b.lon_max_deg - b.lon_min_deg, b.lat_max_deg - b.lat_min_deg);
+  const std::array<double, 2> extent_px = box_extent_px(b, lat, rotation);
   SideInsets out;
-  out.n = static_cast<int>(std::clamp(2.0 * std::ceil(extent / lat.pixel_deg()), 32.0, 1024.0));
+  out.n = static_cast<int>(std::clamp(2.0 * std::ceil(std::max(extent_px[0], extent_px[1])), 32.0, 1024.0));
   const int n = out.n;
   const auto wet = [&](double s, double t) {
     const curvilinear::GeoPoint p = frame.system(s, t);
     const mask::LonLat q = b.lattice_system ? mask::LonLat{p.lon_deg, p.lat_deg}
                                             : mask::geographic_to_lattice(rotation, {p.lon_deg, p.lat_deg});
-    double x = 0.0, y = 0.0;
-    mask::deg_to_lattice_xy(lat, q, x, y);
-    const auto i = std::clamp(static_cast<std::int64_t>(x), std::int64_t{0}, lat.nx - 1);
-    const auto j = std::clamp(static_cast<std::int64_t>(y), std::int64_t{0}, lat.ny - 1);
-    return filled.get(i, j);
+    const auto px = pixel_holding(lat, q);
+    return px && filled.get(px->i, px->j);
   };
   const int m_max = static_cast<int>(std::floor(cap * n));
   const double step = 1.0 / n;

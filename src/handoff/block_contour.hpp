@@ -13,6 +13,11 @@
 //      t = 0  SW +--------- S --------+ SE       projection is conformal, so the box's corners
 //             s = 0                 s = 1        are right angles in the plane too.
 //
+// A box with `mercator_rows` (a level-0 square of the Mercator lattice) runs t linearly in the
+// Mercator ordinate instead: y(φ) = y(φ0) + t (y(φ1) − y(φ0)), y = ln tan(π/4 + φ/2), as its
+// lattice rows do, so t = m/2^L is row m of the square and the (s, t) grid of shrink-to-wet has
+// the same number of cells per pixel along both sides. Its outline is the same box.
+//
 // Projection choice: rotated Mercator (ME) centred on the box centre, with `rota` = the azimuth
 // of the box's own meridian there (0 for geographic boxes and an unrotated lattice), so the box
 // stands upright in the plane; stereographic (ST), same centre and rota, when the box reaches
@@ -24,7 +29,7 @@
 // Shrink to wet (`shrink_to_wet`). Each side moves inward over land toward the wet area while
 // staying smooth; corners stay right angles:
 //   1. Sample Ω_L on an n × n grid of cell centres in (s, t) (n ≈ 2 cells per lattice pixel of
-//      the box, 32..1024). For side S, station k (s_k = (k + ½)/n) gets the raw inset
+//      the box's longer side, box_extent_px, 32..1024). For side S, station k (s_k = (k + ½)/n) gets the raw inset
 //      d_k = (number of consecutive non-filled cells from t = 0 upward) / n, capped at
 //      `max_inset` (so opposite sides never meet); likewise E (from s = 1 leftward), N (from
 //      t = 1 downward), W (from s = 0 rightward). At every station the strip between the old and
@@ -74,6 +79,7 @@ class BoxFrame {
   PoleRotation rotation_;
   bool rotate_ = false;
   bool trimmed_ = false;
+  double y_min_deg_ = 0.0, y_max_deg_ = 0.0;  ///< Mercator ordinates of the box's φ range (mercator_rows)
 };
 
 /// Inset profiles of the sides S, E, N, W: `n` stations at (k + ½)/n along each side (S and N

@@ -55,7 +55,8 @@ std::vector<BlockCandidate> square_candidates(const Bitmap& filled, const Bitmap
       BlockCandidate c;
       c.square_a = a;
       c.square_b = b;
-      c.box = {lat.lon_of(a * s), lat.lon_of((a + 1) * s), lat.lat_of(b * s), lat.lat_of((b + 1) * s), true};
+      c.box = {lat.lon_of(a * s), lat.lon_of((a + 1) * s), lat.lat_of(b * s), lat.lat_of((b + 1) * s), true,
+               lat.mercator()};
       c.coastal_pixels = nc[k];
       c.filled_pixels = nf[k];
       c.wet_fraction = static_cast<double>(nf[k]) / static_cast<double>(s * s);
@@ -71,11 +72,11 @@ BlockCandidate box_candidate(const Bitmap& filled, const Bitmap& coast, const La
   BlockCandidate c;
   c.box = {b[0], b[1], b[2], b[3], false};
   c.box_index = index;
-  const double d = lat.pixel_deg();
-  const auto ns = [&](double extent) {
-    return static_cast<std::int64_t>(std::clamp(std::ceil(extent / d), 1.0, 2048.0));
+  const auto ns = [](double extent_px) {
+    return static_cast<std::int64_t>(std::clamp(std::ceil(extent_px), 1.0, 2048.0));
   };
-  const std::int64_t nu = ns(b[1] - b[0]), nv = ns(b[3] - b[2]);
+  const std::array<double, 2> px = box_extent_px(c.box, lat, rot);
+  const std::int64_t nu = ns(px[0]), nv = ns(px[1]);
   const double du = (b[1] - b[0]) / static_cast<double>(nu), dv = (b[3] - b[2]) / static_cast<double>(nv);
   double wet_w = 0.0, all_w = 0.0;
   for (std::int64_t v = 0; v < nv; ++v) {
@@ -83,16 +84,12 @@ BlockCandidate box_candidate(const Bitmap& filled, const Bitmap& coast, const La
     const double w = std::cos(lat_deg * kDegToRad);
     for (std::int64_t u = 0; u < nu; ++u) {
       const double lon_deg = b[0] + (static_cast<double>(u) + 0.5) * du;
-      const mask::LonLat q = mask::geographic_to_lattice(rot, {lon_deg, lat_deg});
-      double x = 0.0, y = 0.0;
-      mask::deg_to_lattice_xy(lat, q, x, y);
-      const auto i = std::clamp(static_cast<std::int64_t>(x), std::int64_t{0}, lat.nx - 1);
-      const auto j = std::clamp(static_cast<std::int64_t>(y), std::int64_t{0}, lat.ny - 1);
+      const auto p = pixel_holding(lat, mask::geographic_to_lattice(rot, {lon_deg, lat_deg}));
       all_w += w;
-      if (filled.get(i, j)) {
+      if (p && filled.get(p->i, p->j)) {
         ++c.filled_pixels;
         wet_w += w;
-        if (coast.get(i, j)) ++c.coastal_pixels;
+        if (coast.get(p->i, p->j)) ++c.coastal_pixels;
       }
     }
   }
@@ -102,15 +99,32 @@ BlockCandidate box_candidate(const Bitmap& filled, const Bitmap& coast, const La
 
 }  // namespace
 
+std::optional<mask::PixelIJ> pixel_holding(const Lattice& lat, mask::LonLat q) {
+  double x = 0.0, y = 0.0;
+  mask::deg_to_lattice_xy(lat, q, x, y);
+  if (!mask::on_lattice_rows(lat, y)) return std::nullopt;
+  return mask::PixelIJ{std::clamp(static_cast<std::int64_t>(x), std::int64_t{0}, lat.nx - 1),
+                       std::clamp(static_cast<std::int64_t>(y), std::int64_t{0}, lat.ny - 1)};
+}
+
 std::string BlockCandidate::describe() const {
   if (box_index >= 0) return fmt::format("blocks.boxes[{}]", box_index);
   return fmt::format("level-0 square ({}, {})", square_a, square_b);
 }
 
-int suggest_ny(const BlockBox& box, const Lattice& lat, int refinement, int fixed_ny) {
+std::array<double, 2> box_extent_px(const BlockBox& box, const Lattice& lat, const PoleRotation& rotation) {
+  const double d = lat.pixel_deg();
+  const double w = box.lon_max_deg - box.lon_min_deg, h = box.lat_max_deg - box.lat_min_deg;
+  if (!lat.mercator()) return {w / d, h / d};
+  if (box.lattice_system) return {w / d, (mercator_y_deg(box.lat_max_deg) - mercator_y_deg(box.lat_min_deg)) / d};
+  const double lon_c = box.lon_min_deg + 0.5 * w, lat_c = box.lat_min_deg + 0.5 * h;
+  const double scale = std::cos(mask::geographic_to_lattice(rotation, {lon_c, lat_c}).lat_deg * kDegToRad);
+  return {w * std::cos(lat_c * kDegToRad) / (d * scale), h / (d * scale)};
+}
+
+int suggest_ny(const BlockBox& box, const Lattice& lat, const PoleRotation& rotation, int refinement, int fixed_ny) {
   if (fixed_ny > 0) return fixed_ny;
-  const double cell = lat.pixel_deg() / std::max(1, refinement);
-  const double n = std::ceil((box.lat_max_deg - box.lat_min_deg) / cell - 1e-9);
+  const double n = std::ceil(box_extent_px(box, lat, rotation)[1] * std::max(1, refinement) - 1e-9);
   auto ny = static_cast<int>(std::clamp(n, 8.0, 100000.0));
   return ny + (ny & 1);
 }
@@ -146,7 +160,7 @@ std::vector<BlockCandidate> rank_blocks(const Bitmap& filled, const Lattice& lat
       c.push_back(bc);
     }
   }
-  for (auto& x : c) x.suggested_ny = suggest_ny(x.box, lat, options.refinement, options.ny);
+  for (auto& x : c) x.suggested_ny = suggest_ny(x.box, lat, rotation, options.refinement, options.ny);
   std::stable_sort(c.begin(), c.end(), [](const BlockCandidate& a, const BlockCandidate& b) {
     if (a.coastal_pixels != b.coastal_pixels) return a.coastal_pixels > b.coastal_pixels;
     return a.wet_fraction > b.wet_fraction;

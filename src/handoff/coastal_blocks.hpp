@@ -2,7 +2,10 @@
 // "aquatoria blocks"). A block is a longitude/latitude box in one of two spherical systems:
 //
 //   * a level-0 square of the lattice (the default candidates): a box in the lattice system
-//     (rotated λ', φ' when the pole is rotated), exactly 2^L × 2^L pixels;
+//     (rotated λ', φ' when the pole is rotated), exactly 2^L × 2^L pixels. On the Mercator
+//     lattice its latitudes are those of its Mercator rows (Lattice::lat_of) and the box is
+//     marked `mercator_rows`: inside it the rows are evenly spaced in the Mercator ordinate, not
+//     in φ' (block_contour.hpp parametrises it so);
 //   * a user box ([blocks] boxes = [[lon_min, lon_max, lat_min, lat_max], ...]): a box in
 //     geographic λ, φ (lon_max may pass 180: the box then crosses the antimeridian).
 //
@@ -17,15 +20,17 @@
 //             . . # # #                      . . c c #
 //
 // Level-0 squares are counted exactly, word by word on the bitmaps. A user box is sampled at the
-// lattice resolution: sample points (λ, φ) at the centres of a grid of step Δ_L (at most 2048 per
-// side) are mapped to the lattice pixel holding them (through the pole rotation), so a box
-// counts every pixel under it about once; the wet fraction weights samples by cos φ (area).
+// lattice resolution: sample points (λ, φ) at the centres of a grid of about one pixel's step
+// (box_extent_px cells per side, at most 2048) are mapped to the lattice pixel holding them
+// (through the pole rotation), so a box counts every pixel under it about once; the wet fraction
+// weights samples by cos φ (area).
 // Ranking: coastal pixels descending, then wet fraction descending, then candidate order
 // (level-0 squares row-major from the south-west, user boxes in the order given): deterministic.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +38,7 @@
 #include "core/bitmap.hpp"
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
+#include "mask/lattice_coords.hpp"
 
 namespace aq::handoff {
 
@@ -40,6 +46,7 @@ namespace aq::handoff {
 struct BlockBox {
   double lon_min_deg = 0.0, lon_max_deg = 0.0, lat_min_deg = 0.0, lat_max_deg = 0.0;
   bool lattice_system = false;  ///< true: rotated lattice coordinates; false: geographic
+  bool mercator_rows = false;   ///< a box of the Mercator lattice's system: rows even in the Mercator ordinate
 };
 
 struct BlockCandidate {
@@ -53,9 +60,22 @@ struct BlockCandidate {
   [[nodiscard]] std::string describe() const;  ///< "level-0 square (a, b)" or "box k"
 };
 
-/// Suggested η cells of a block: the box's height (degrees of its system) over the finest global
-/// element Δ_L divided by `refinement`, at least 8, rounded up to even; `fixed_ny` > 0 wins.
-int suggest_ny(const BlockBox& box, const Lattice& lat, int refinement, int fixed_ny);
+/// The box's width and height in lattice pixels, {along λ, along φ} of its system: on the lon-lat
+/// lattice its extents in degrees over Δ_L (the seed's measure, also for a geographic box under a
+/// rotated pole). On the Mercator lattice a pixel is a square of side Δ_L·cos φ' degrees of arc:
+/// a box of the lattice system measures Δλ/Δ_L by its Mercator height over Δ_L (exact: 2^L × 2^L
+/// for a level-0 square); a geographic box measures its arc extents at its centre (Δλ·cos φ and
+/// Δφ) over the pixel side at the centre's φ'.
+std::array<double, 2> box_extent_px(const BlockBox& box, const Lattice& lat, const PoleRotation& rotation);
+
+/// Suggested η cells of a block: its height in lattice pixels (box_extent_px, the finest global
+/// element) times `refinement`, at least 8, rounded up to even; `fixed_ny` > 0 wins.
+int suggest_ny(const BlockBox& box, const Lattice& lat, const PoleRotation& rotation, int refinement, int fixed_ny);
+
+/// The pixel holding a point given in lattice degrees (the last row or column for a point on the
+/// lattice's edge), or nothing for a point beyond the Mercator lattice's rows (a cap, dry by
+/// construction).
+std::optional<mask::PixelIJ> pixel_holding(const Lattice& lat, mask::LonLat lattice_deg);
 
 /// The filled pixels with a non-filled pixel among their 8 neighbours (see the file comment).
 Bitmap coastal_pixels(const Bitmap& filled);

@@ -136,7 +136,8 @@ MeshLocation MeshLocator::locate_lattice(double rlon_deg, double rlat_deg) const
           best.square = k;
           best.level = mesh_.square_level[ks];
           best.lattice_lon_deg = lat.lon0_deg + (static_cast<double>(I0) + px) * d;
-          best.lattice_lat_deg = lat.lat_of_row(static_cast<double>(J0) + py);
+          best.lattice_row = static_cast<double>(J0) + py;
+          best.lattice_lat_deg = lat.lat_of_row(best.lattice_row);
         }
       }
     }

@@ -13,8 +13,11 @@
 //
 // A point on a pixel edge (within 1e-9 pixel) is tried in the pixels on both sides, so points on
 // the coast or on a leaf boundary are found in whichever filled leaf touches them. Weights are in
-// the lattice plane: λ'_p = Σ w_k λ'_k, φ'_p = Σ w_k φ'_k (λ' of the nodes unwrapped as the
-// element is drawn), which the tests check to 1e-9°. Weights are in [0, 1] and sum to 1: a point
+// the lattice plane, where the elements are flat triangles: λ'_p = Σ w_k λ'_k and y_p = Σ w_k y_k
+// with y the plane ordinate of a row (Lattice::plane_y: φ' on the lon-lat lattice, the Mercator
+// ordinate ln tan(π/4 + φ'/2) on the Mercator one, where φ' itself is not linear inside an
+// element) and λ' of the nodes unwrapped as the element is drawn; the tests check this to 1e-9°
+// on both lattices. Weights are in [0, 1] and sum to 1: a point
 // on an element's edge (within 1e-9 in weight) gets the tiny negative weights of rounding
 // clamped to 0 and the rest renormalised.
 #pragma once
@@ -38,6 +41,7 @@ struct MeshLocation {
   int level = -1;                                ///< its level
   double lattice_lon_deg = 0.0;                  ///< the point in the lattice system, λ' as used for the
   double lattice_lat_deg = 0.0;                  ///<   weights (unwrapped to the element's nodes)
+  double lattice_row = 0.0;                      ///< its fractional row (Lattice::lat_of_row gives φ')
   [[nodiscard]] bool inside() const { return triangle >= 0; }
 };
 

@@ -148,8 +148,7 @@ io::NestingFile global_nesting(const curvilinear::Grid2D& g, const curvilinear::
     f.weights[k] = loc.weights;
     f.element_level[k] = static_cast<std::int8_t>(loc.level);
     const double leg_px = std::sqrt(twice_area_px2(mesh, loc.nodes));
-    const double size =
-        leg_px * pixel_rad * radius * std::sqrt(std::max(0.0, std::cos(loc.lattice_lat_deg * kDegToRad)));
+    const double size = leg_px * pixel_rad * radius * lat.size_scale(loc.lattice_row);
     f.global_element_size_m[k] = size;
     f.refinement_ratio[k] = size / cell;
     ratios.push_back(size / cell);
@@ -172,8 +171,12 @@ io::NestingFile global_nesting(const curvilinear::Grid2D& g, const curvilinear::
                             "rho(i,j) = G[2i][2j] on the contour, u(k,j) = G[2k+1][2j], v(i,l) = G[2i][2l+1] "
                             "(supergrid G; aquatoria curvilinear/cgrid.hpp)");
   f.attributes.emplace_back("weights_plane",
-                            "global lattice plane (rotated lon/lat when the pole is rotated), lon unwrapped to the "
-                            "element: value = sum of weights * node values");
+                            lat.mercator()
+                                ? "global lattice plane: lon and the Mercator ordinate y = ln tan(pi/4 + lat/2) "
+                                  "(rotated lon/lat when the pole is rotated), lon unwrapped to the element: value = "
+                                  "sum of weights * node values"
+                                : "global lattice plane (rotated lon/lat when the pole is rotated), lon unwrapped to "
+                                  "the element: value = sum of weights * node values");
   f.attributes.emplace_back("points_total", sum.points);
   f.attributes.emplace_back("points_outside", sum.outside);
   f.attributes.emplace_back("refinement_ratio", sum.ratio_median);
@@ -181,9 +184,11 @@ io::NestingFile global_nesting(const curvilinear::Grid2D& g, const curvilinear::
   f.attributes.emplace_back("refinement_ratio_max", sum.ratio_max);
   f.attributes.emplace_back("global_mesh_nodes", mesh.node_count());
   f.attributes.emplace_back("global_mesh_triangles", mesh.triangle_count());
+  f.attributes.emplace_back("lattice_kind", std::string(lat.kind_name()));
   f.attributes.emplace_back("lattice_step0_deg", lat.step0_deg);
   f.attributes.emplace_back("lattice_levels", static_cast<std::int64_t>(lat.levels));
   f.attributes.emplace_back("lattice_lon0_deg", lat.lon0_deg);
+  if (lat.mercator()) f.attributes.emplace_back("lattice_y0_deg", lat.y0_deg);
   if (mesh.rotation.enabled) {
     f.attributes.emplace_back("pole_lon_deg", mesh.rotation.pole_lon_deg);
     f.attributes.emplace_back("pole_lat_deg", mesh.rotation.pole_lat_deg);

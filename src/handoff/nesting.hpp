@@ -12,10 +12,12 @@
 // — the outermost row/column of each of ρ, u and v, where ROMS reads boundary values (u(0, j) is
 // ROMS's u(1, j) on the western boundary, v(i, 0) its v(i, 1) on the southern one).
 //
-// Location: handoff/mesh_locator.hpp (O(L) per point). Refinement ratio = global element size /
-// regional cell size, with the element's leg length ℓ = √(2·area) in pixels times Δ_L in radians
-// times R·√(cos φ') (geometric mean of the metres per radian along λ' and φ' at the point; R =
-// the C-grid's earth radius), and the regional cell size √(1/(pm·pn)) at ρ points (the mean of the
+// Location: handoff/mesh_locator.hpp (O(L) per point), on either lattice: the weights are those of
+// the lattice plane (λ', φ' or λ' and the Mercator ordinate). Refinement ratio = global element
+// size / regional cell size, with the element's leg length ℓ = √(2·area) in pixels times Δ_L in
+// radians times R·Lattice::size_scale at the point (R = the C-grid's earth radius; the scale is
+// √(cos φ'), the geometric mean of the metres per radian along λ' and φ', on the lon-lat lattice
+// and cos φ' on the Mercator one), and the regional cell size √(1/(pm·pn)) at ρ points (the mean of the
 // two neighbouring ρ points for u and v). Points outside the global wet mesh get element −1,
 // weights 0 and ratio NaN and are counted.
 #pragma once
@@ -58,8 +60,9 @@ struct NestingSummary {
 /// Nesting data of the regional grid (`supergrid` in the plane of `cgrid`'s projection; `cgrid`
 /// built from it by curvilinear::build_cgrid) in `mesh`. Fills every per-point array of the
 /// result and the attributes points_total, points_outside, refinement_ratio (median),
-/// refinement_ratio_min/max, global_mesh_nodes/triangles, lattice_step0_deg, lattice_levels,
-/// lattice_lon0_deg, pole_lon/lat_deg (with rotation) and staggering. Throws InternalError when
+/// refinement_ratio_min/max, global_mesh_nodes/triangles, lattice_kind, lattice_step0_deg,
+/// lattice_levels, lattice_lon0_deg, lattice_y0_deg (Mercator), pole_lon/lat_deg (with rotation)
+/// and staggering. Throws InternalError when
 /// the supergrid and the C-grid disagree in size, and what MeshLocator throws.
 io::NestingFile global_nesting(const curvilinear::Grid2D& supergrid, const curvilinear::CGrid& cgrid,
                                const mesh::Mesh& mesh, NestingSummary* summary = nullptr);

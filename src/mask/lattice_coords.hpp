@@ -61,6 +61,13 @@ inline void deg_to_lattice_xy(const Lattice& lat, LonLat p, double& x, double& y
   y = lat.row_of_lat(p.lat_deg);
 }
 
+/// Whether the fractional row y (deg_to_lattice_xy) lies on the lattice's rows: always on the
+/// lon-lat lattice, whose rows reach the poles; on the Mercator lattice 0 <= y <= ny (the caps
+/// beyond its rows are dry by construction, so nothing there is in a pixel set of the run).
+[[nodiscard]] inline bool on_lattice_rows(const Lattice& lat, double y) {
+  return !lat.mercator() || (y >= 0.0 && y <= static_cast<double>(lat.ny));
+}
+
 /// Lattice (rotated) coordinates of the centre of pixel (i, j).
 [[nodiscard]] inline LonLat pixel_center_lattice_deg(const Lattice& lat, PixelIJ p) {
   return lattice_xy_to_deg(lat, static_cast<double>(p.i) + 0.5, static_cast<double>(p.j) + 0.5);

@@ -18,10 +18,11 @@ std::size_t cells(int ni, int nj) {
 
 }  // namespace
 
-PixelIJ pixel_of_point(const Lattice& lattice, const PoleRotation& rot, double lon_deg, double lat_deg) {
+PixelIJ pixel_of_point(const Lattice& lattice, const PoleRotation& rot, double lon_deg, double lat_deg, bool* on_rows) {
   const LonLat q = rot.identity() ? LonLat{lon_deg, lat_deg} : geographic_to_lattice(rot, {lon_deg, lat_deg});
   double x = 0.0, y = 0.0;
   deg_to_lattice_xy(lattice, q, x, y);
+  if (on_rows != nullptr) *on_rows = on_lattice_rows(lattice, y);
   PixelIJ p;
   p.i = std::clamp(static_cast<std::int64_t>(std::floor(x)), std::int64_t{0}, lattice.nx - 1);
   p.j = std::clamp(static_cast<std::int64_t>(std::floor(y)), std::int64_t{0}, lattice.ny - 1);
@@ -64,13 +65,14 @@ std::vector<std::uint8_t> rho_mask_from_filled(const Bitmap& filled, const Latti
   RegionalMaskStats s;
   s.rho_points = static_cast<std::int64_t>(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const PixelIJ p = pixel_of_point(lattice, rot, lon_deg[k], lat_deg[k]);
-    const bool in = filled.get(p.i, p.j);
+    bool on_rows = true;
+    const PixelIJ p = pixel_of_point(lattice, rot, lon_deg[k], lat_deg[k], &on_rows);
+    const bool in = on_rows && filled.get(p.i, p.j);
     const bool deep = elevation_m == nullptr || elevation_m[k] <= -threshold_m;
     s.in_filled += in ? 1 : 0;
     s.deep_enough += deep ? 1 : 0;
     if (deep && !in) {
-      const bool wet_pixel = wet_pixels == nullptr || wet_pixels->get(p.i, p.j);
+      const bool wet_pixel = wet_pixels == nullptr || (on_rows && wet_pixels->get(p.i, p.j));
       s.lake_points += wet_pixel ? 1 : 0;
       s.coastal_points += wet_pixel ? 0 : 1;
     }

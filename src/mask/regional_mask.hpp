@@ -10,7 +10,9 @@
 //
 // where pixel(λ, φ) is the lattice pixel containing the point after the global run's pole
 // rotation: (λ', φ') = rotated(λ, φ), i = floor((λ' − lon0)/Δ_L) mod nx, j = floor((φ' + 90)/Δ_L)
-// (φ' = 90 goes to the top row). A point on a pixel edge belongs to the pixel east / north of it.
+// (φ' = 90 goes to the top row; on the Mercator lattice j = floor(row_of_lat(φ')), and a point
+// beyond its rows lies in the dry cap, in no pixel of Ω_L). A point on a pixel edge belongs to the
+// pixel east / north of it.
 // The depth test removes islands smaller than a pixel; it never adds water outside Ω_L.
 //
 // Then, as ROMS expects (ROMS's boundary ρ points are ghost points outside the physical domain):
@@ -56,8 +58,10 @@ struct RomsMasks {
   RegionalMaskStats stats;
 };
 
-/// The lattice pixel containing geographic point (lon, lat), by the rule above.
-[[nodiscard]] PixelIJ pixel_of_point(const Lattice& lattice, const PoleRotation& rot, double lon_deg, double lat_deg);
+/// The lattice pixel containing geographic point (lon, lat), by the rule above (the nearest row's
+/// pixel for a point beyond the Mercator rows; `on_rows`, when given, says whether it was on them).
+[[nodiscard]] PixelIJ pixel_of_point(const Lattice& lattice, const PoleRotation& rot, double lon_deg, double lat_deg,
+                                     bool* on_rows = nullptr);
 
 /// Elevations (m, negative below sea level) of n points sampled with the raster's own sampling
 /// (as the global mesh samples it). Throws InputError naming the raster when any point has no

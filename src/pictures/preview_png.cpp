@@ -553,7 +553,9 @@ void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOp
 }
 
 // Outlines (o.outlines) in magenta, each also shifted by ±360°, labels on a white box.
-void draw_outlines(cairo_t* cr, const View& v, const std::vector<PreviewOutline>& outlines) {
+void draw_outlines(cairo_t* cr, const View& v, const Lattice& lattice, const std::vector<PreviewOutline>& outlines) {
+  const double lat_max = lattice.lat_max_deg();
+  const auto py = [&](double lat_deg) { return v.py(lattice.plane_y_of_lat(std::clamp(lat_deg, -lat_max, lat_max))); };
   const double font = std::clamp(v.width / 110.0, 9.0, 28.0);
   cairo_set_font_size(cr, font);
   for (const PreviewOutline& ol : outlines) {
@@ -562,13 +564,13 @@ void draw_outlines(cairo_t* cr, const View& v, const std::vector<PreviewOutline>
       cairo_set_line_width(cr, std::clamp(v.width / 1000.0, 1.5, 4.0));
       cairo_set_source_rgb(cr, 0.85, 0.0, 0.75);
       for (std::size_t k = 0; k < ol.points.size(); ++k) {
-        const double x = v.px(ol.points[k][0] + shift), y = v.py(ol.points[k][1]);
+        const double x = v.px(ol.points[k][0] + shift), y = py(ol.points[k][1]);
         k == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
       }
       cairo_close_path(cr);
       cairo_stroke(cr);
       if (ol.label.empty()) continue;
-      const double x = v.px(ol.points[0][0] + shift) + 2.0, y = v.py(ol.points[0][1]) - 2.0;
+      const double x = v.px(ol.points[0][0] + shift) + 2.0, y = py(ol.points[0][1]) - 2.0;
       cairo_set_source_rgb(cr, 1, 1, 1);
       cairo_rectangle(cr, x - 1.0, y - font, text_advance(cr, ol.label) + 2.0, font * 1.2);
       cairo_fill(cr);
@@ -631,7 +633,7 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
     cairo_rectangle(cr, v.px(b[0]), v.py(y3), v.px(b[1]) - v.px(b[0]), v.py(y2) - v.py(y3));
     cairo_stroke(cr);
   }
-  draw_outlines(cr, v, o.outlines);
+  draw_outlines(cr, v, mesh.lattice, o.outlines);
   cairo_restore(cr);
   draw_bands(cr, v, mesh, o, title);
   cairo_surface_flush(surface);

@@ -37,7 +37,9 @@
 namespace aq::io {
 
 /// A closed polygon drawn on the map (e.g. a regional block), with a label at its first point.
-/// Points are (λ, φ) in map degrees (the lattice plane); they are also drawn shifted by ±360°.
+/// Points are (λ', φ') in degrees of the lattice system (as the zoom box), drawn at the plane
+/// ordinate of φ' (Lattice::plane_y_of_lat: the Mercator ordinate on the Mercator lattice, so an
+/// outline along lattice rows lies on them, φ' clamped to the rows); also shifted by ±360°.
 struct PreviewOutline {
   std::vector<std::array<double, 2>> points;
   std::string label;

@@ -2,7 +2,8 @@
 // triangles that are well shaped on the sphere (min angles computed here from the written UGRID
 // file with the netCDF C API, independently of the program's own statistics), leaf sizes within
 // √2 of the size targets per latitude band, the same files with one and two threads; and the
-// unrotated Mercator lattice is refused because the Arctic Ocean lies beyond its rows.
+// unrotated Mercator lattice is refused because the Arctic Ocean lies beyond its rows. Blocks and
+// nesting on this lattice: mercator_blocks_cli_test.cpp.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <netcdf.h>
@@ -125,15 +126,6 @@ TEST(MercatorCli, WithoutRotationTheArcticBeyondTheRowsIsAnErrorAndNothingIsWrit
   EXPECT_THAT(r.err, HasSubstr("north cap"));
   EXPECT_THAT(r.err, HasSubstr("quadtree.mercator_lat_max_deg"));
   EXPECT_THAT(r.err, HasSubstr("rotation.enabled = true"));
-  EXPECT_TRUE(!fs::exists(d) || fs::is_empty(d));
-}
-
-TEST(MercatorCli, BlocksRefuseTheMercatorLattice) {
-  const fs::path d = aq::test::fresh_dir("mercator", "blocks");
-  const auto r =
-      aq::test::run_command(std::string(AQ_BINARY) + " blocks -q -c " + kConfig + " --set output.dir=" + d.string());
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_THAT(r.err, HasSubstr("lon-lat lattice only"));
   EXPECT_TRUE(!fs::exists(d) || fs::is_empty(d));
 }
 

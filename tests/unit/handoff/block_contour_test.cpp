@@ -1,6 +1,7 @@
 // Block contours: projection choice, the written .izogrid + TOML loading back through
 // config::load_regional with the expected centre and 4 corners, upright boxes of a rotated
-// lattice, poles, and shrink-to-wet (moves over land only, smooth, corners kept at 90°).
+// lattice, poles, shrink-to-wet (moves over land only, smooth, corners kept at 90°), and the
+// squares of the Mercator lattice (box coordinates and contours on its rows).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -273,4 +274,74 @@ TEST(ShrinkToWet, BumpyCoastGivesSmoothSidesWithStraightCorners) {
     EXPECT_GE(c.y[k], lo.y - 1e-9);
     EXPECT_LE(c.y[k], hi.y + 1e-9);
   }
+}
+
+// A level-0 square of the Mercator lattice (Δ0 = 4°, L = 3, rows to ±86.5° as
+// configs/global_mercator.toml): its 8 rows are evenly spaced in the Mercator ordinate, not in φ.
+namespace {
+
+Lattice mercator_lattice() { return Lattice::make_mercator(4.0, 3, -180.0, 86.5); }
+
+// The square (a, b) of the Mercator lattice as rank_blocks makes it.
+BlockBox mercator_square(const Lattice& lat, std::int64_t a, std::int64_t b) {
+  const std::int64_t s = lat.pixels_per_square(0);
+  return BlockBox{lat.lon_of(a * s), lat.lon_of((a + 1) * s), lat.lat_of(b * s), lat.lat_of((b + 1) * s), true, true};
+}
+
+// Fractional row of φ' from the Mercator formula written out (independent of Lattice::row_of_lat).
+double mercator_row(const Lattice& lat, double lat_deg) {
+  const double y = std::log(std::tan(M_PI / 4.0 + 0.5 * lat_deg * aq::kDegToRad)) * aq::kRadToDeg;
+  return (y - lat.y0_deg) / lat.pixel_deg();
+}
+
+}  // namespace
+
+TEST(MercatorBlock, BoxCoordinatesFollowTheMercatorRowsAndTheContourLiesOnThem) {
+  const Lattice lat = mercator_lattice();
+  const std::int64_t b = lat.ny / 16 + 17;  // a level-0 square at about 56° N of the lattice frame
+  const BoxFrame fr(mercator_square(lat, 45, b), PoleRotation());
+  EXPECT_FALSE(fr.trimmed());
+  for (int m = 0; m <= 8; ++m)
+    EXPECT_NEAR(mercator_row(lat, fr.system(0.3, m / 8.0).lat_deg), static_cast<double>(b * 8 + m), 1e-9) << m;
+  // φ-linear box coordinates would put the middle row 0.059 pixel off here.
+  const double phi_mid = 0.5 * (fr.box().lat_min_deg + fr.box().lat_max_deg);
+  EXPECT_GT(std::abs(mercator_row(lat, phi_mid) - static_cast<double>(b * 8 + 4)), 0.05);
+  // 8 control points per side: every one on a lattice vertex of the square's outline.
+  const BlockContour c = aq::handoff::block_contour(fr, {}, 8);
+  ASSERT_EQ(c.x.size(), 32u);
+  const aq::curvilinear::Projection proj(c.projection);
+  for (std::size_t k = 0; k < c.x.size(); ++k) {
+    const auto g = proj.inverse(c.x[k], c.y[k]);
+    const double col = (g.lon_deg - lat.lon0_deg) / lat.pixel_deg(), row = mercator_row(lat, g.lat_deg);
+    EXPECT_NEAR(col, std::round(col), 1e-7) << k;
+    EXPECT_NEAR(row, std::round(row), 1e-7) << k;
+    const double b0 = static_cast<double>(b * 8);
+    EXPECT_TRUE(std::round(col) == 360.0 || std::round(col) == 368.0 || std::round(row) == b0 ||
+                std::round(row) == b0 + 8.0)
+        << k;
+  }
+  expect_right_angles(spline_of(c));
+}
+
+TEST(MercatorBlock, ShrinkToWetStopsAtTheCoastRow) {
+  const Lattice lat = mercator_lattice();
+  const std::int64_t b = lat.ny / 16 + 17;
+  Bitmap f = all_filled(lat);
+  // Land: the three southern rows of the square (and beyond it, west to east).
+  for (std::int64_t j = b * 8 - 4; j < b * 8 + 3; ++j)
+    for (std::int64_t i = 40 * 8; i < 50 * 8; ++i) f.clear(i, j);
+  const BoxFrame fr(mercator_square(lat, 45, b), PoleRotation());
+  const SideInsets in = aq::handoff::shrink_to_wet(fr, f, lat, PoleRotation(), 0.45);
+  EXPECT_EQ(in.n, 32);  // 2 stations per pixel of the 8 x 8 square, at least 32
+  EXPECT_DOUBLE_EQ(in.max(0), 3.0 / 8.0);
+  EXPECT_DOUBLE_EQ(in.at(0, 0.5), 3.0 / 8.0);
+  EXPECT_EQ(in.max(1), 0.0);
+  EXPECT_EQ(in.max(2), 0.0);
+  EXPECT_EQ(in.max(3), 0.0);
+  expect_strips_dry(fr, in, f, lat);
+  // The shrunk south side is the Mercator row 3 of the square.
+  const BlockContour c = aq::handoff::block_contour(fr, in, 8);
+  const aq::curvilinear::Projection proj(c.projection);
+  const auto sw = proj.inverse(c.x[0], c.y[0]);
+  EXPECT_NEAR(mercator_row(lat, sw.lat_deg), static_cast<double>(b * 8 + 3), 1e-7);
 }

@@ -1,12 +1,15 @@
 // Coastal blocks: the coastal-pixel definition on a drawn mask, exact per-square counts, the
-// ranking order, suggested ny, user boxes (sampled counts) and the error for a box without water.
+// ranking order, suggested ny, user boxes (sampled counts), the error for a box without water, and
+// Mercator-lattice squares (boxes of their Mercator rows, 2^L pixels high).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/types.hpp"
 #include "handoff/coastal_blocks.hpp"
 
 namespace {
@@ -164,10 +167,40 @@ TEST(RankBlocks, BoxWithoutWaterNamesTheBox) {
 TEST(SuggestNy, FromRefinementOrFixed) {
   const Lattice lat = Lattice::make(4.0, 3, -180.0);  // Δ_L = 0.5°
   const aq::handoff::BlockBox b{0.0, 4.0, 40.0, 44.0, true};
-  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, 3, 0), 24);  // 4° / (0.5°/3)
-  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, 5, 0), 40);
-  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, 1, 0), 8);    // 8 at least
-  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, 3, 77), 77);  // fixed wins
+  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, PoleRotation(), 3, 0), 24);  // 4° / (0.5°/3)
+  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, PoleRotation(), 5, 0), 40);
+  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, PoleRotation(), 1, 0), 8);    // 8 at least
+  EXPECT_EQ(aq::handoff::suggest_ny(b, lat, PoleRotation(), 3, 77), 77);  // fixed wins
   const aq::handoff::BlockBox c{0.0, 4.0, 40.0, 42.25, false};
-  EXPECT_EQ(aq::handoff::suggest_ny(c, lat, 3, 0), 14);  // ceil(13.5) -> 14, even
+  EXPECT_EQ(aq::handoff::suggest_ny(c, lat, PoleRotation(), 3, 0), 14);  // ceil(13.5) -> 14, even
+}
+
+TEST(RankBlocks, MercatorSquaresAreBoxesOfTheirRowsAndMeasureTheirPixels) {
+  const Lattice lat = Lattice::make_mercator(4.0, 3, -180.0, 86.5);
+  Bitmap f(lat.nx, lat.ny);
+  for (std::int64_t j = 0; j < lat.ny; ++j)
+    for (std::int64_t i = 0; i < lat.nx; ++i) f.set(i, j);
+  const std::int64_t b = lat.ny / 8 / 2 + 14;  // a level-0 square row at about 50° of the lattice frame
+  f.clear(10 * 8 + 3, b * 8 + 3);
+  const auto r = aq::handoff::rank_blocks(f, lat, PoleRotation(), {});
+  ASSERT_EQ(r.size(), 1u);
+  const aq::handoff::BlockBox& box = r[0].box;
+  EXPECT_TRUE(box.lattice_system);
+  EXPECT_TRUE(box.mercator_rows);
+  EXPECT_EQ(box.lat_min_deg, lat.lat_of(b * 8));
+  EXPECT_EQ(box.lat_max_deg, lat.lat_of(b * 8 + 8));
+  EXPECT_LT(box.lat_max_deg - box.lat_min_deg, 3.0);  // 4°·cos φ: shorter than wide in degrees
+  EXPECT_EQ(r[0].coastal_pixels, 8);
+  // 8 x 8 pixels, so ny = 8 · refinement, as for a lon-lat square (which φ-degrees would not give).
+  const auto px = aq::handoff::box_extent_px(box, lat, PoleRotation());
+  EXPECT_NEAR(px[0], 8.0, 1e-9);
+  EXPECT_NEAR(px[1], 8.0, 1e-9);
+  EXPECT_EQ(r[0].suggested_ny, 24);
+  // A geographic box: about as many pixels as the rows and columns it covers (centre scale).
+  const aq::handoff::BlockBox g{0.0, 4.0, 60.0, 62.0, false};
+  const auto gp = aq::handoff::box_extent_px(g, lat, PoleRotation());
+  EXPECT_NEAR(gp[1], lat.row_of_lat(62.0) - lat.row_of_lat(60.0), 0.02 * gp[1]);
+  EXPECT_NEAR(gp[0], 8.0, 1e-9);  // 4° of arc·cos 61° over pixels of 0.5°·cos 61° (no rotation)
+  EXPECT_NEAR(gp[1], 2.0 / (0.5 * std::cos(61.0 * aq::kDegToRad)), 1e-9);
+  EXPECT_EQ(aq::handoff::suggest_ny(g, lat, PoleRotation(), 1, 0), 10);  // ceil(8.25) = 9 -> even
 }

@@ -1,10 +1,13 @@
 // A real small global mesh for the hand-off tests: ETOPO60 (1°), Δ0 = 4°, L = 3, K = 2, h = 0,
-// optionally with the seed's rotated pole; built once per process and configuration.
+// optionally with the seed's rotated pole, on the lon-lat or the Mercator lattice (rows to
+// ±86.5°, as configs/global_mercator.toml; it needs the rotation, which puts the caps beyond the
+// rows on Greenland and East Antarctica); built once per process and configuration.
 #pragma once
 
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "config/options.hpp"
 #include "core/lattice.hpp"
@@ -26,9 +29,9 @@ struct GlobalMeshFixture {
   mesh::Mesh mesh;
 };
 
-inline const GlobalMeshFixture& etopo60_mesh(bool rotated) {
-  static std::map<bool, std::unique_ptr<GlobalMeshFixture>> cache;
-  auto& slot = cache[rotated];
+inline const GlobalMeshFixture& etopo60_mesh(bool rotated, LatticeKind kind = LatticeKind::kLonLat) {
+  static std::map<std::pair<bool, LatticeKind>, std::unique_ptr<GlobalMeshFixture>> cache;
+  auto& slot = cache[{rotated, kind}];
   if (slot) return *slot;
   auto f = std::make_unique<GlobalMeshFixture>();
   config::GlobalConfig& c = f->config;
@@ -37,7 +40,11 @@ inline const GlobalMeshFixture& etopo60_mesh(bool rotated) {
   c.quadtree.levels = 3;
   c.mask.passages = false;
   c.rotation.enabled = rotated;
-  f->lattice = Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
+  c.quadtree.lattice = kind == LatticeKind::kMercator ? "mercator" : "lonlat";
+  f->lattice = kind == LatticeKind::kMercator
+                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
+                                            c.quadtree.mercator_lat_max_deg)
+                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   f->rotation = rotated ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
   raster::OpenOptions ro;
   ro.path = c.input.path;

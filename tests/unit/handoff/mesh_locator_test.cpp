@@ -1,9 +1,13 @@
 // Point location in a real global mesh (ETOPO60, Δ0 = 4°, L = 3): every triangle's centroid is
 // found in that triangle, random points agree with a brute-force search over all triangles,
 // barycentric weights reproduce the points to 1e-9° and lie in [0, 1] within 1e-12, points on
-// the seam, on nodes, at the North pole and in a rotated-pole mesh, and land points outside.
+// the seam, on nodes, at the North pole and in a rotated-pole mesh, and land points outside; on
+// the rotated Mercator lattice, plane centroids and random points against a brute-force search in
+// the (λ', Mercator y) plane, whose weights reproduce the points (and φ'-linear ones would not).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -43,6 +47,14 @@ void expect_weights_ok(const MeshLocation& loc) {
     sum += w;
   }
   EXPECT_NEAR(sum, 1.0, 1e-14);
+}
+
+// Whether the locator found a point exactly when a brute-force search over all triangles does:
+// `best` is the largest smallest weight over them (a point within 1e-9 of an edge may go either way).
+::testing::AssertionResult agrees_with_brute_force(const MeshLocation& l, double best) {
+  if (best >= 1e-9 && !l.inside()) return ::testing::AssertionFailure() << "inside (weight " << best << ") not found";
+  if (best < -1e-9 && l.inside()) return ::testing::AssertionFailure() << "outside (weight " << best << ") found";
+  return ::testing::AssertionSuccess();
 }
 
 // Smallest barycentric weight of point (lon, lat) (lattice degrees, λ near the triangle) in t.
@@ -90,11 +102,7 @@ TEST(MeshLocator, AgreesWithBruteForceAndReproducesPositions) {
     const MeshLocation l = loc.locate_geographic(lon, lat);
     double best = -1e300;
     for (std::size_t t = 0; t < m.triangles.size(); ++t) best = std::max(best, min_weight(m, t, lon, lat));
-    if (best >= 1e-9) {
-      ASSERT_TRUE(l.inside()) << lon << ", " << lat;
-    } else if (best < -1e-9) {
-      ASSERT_FALSE(l.inside()) << lon << ", " << lat;
-    }
+    ASSERT_TRUE(agrees_with_brute_force(l, best)) << lon << ", " << lat;
     if (!l.inside()) {
       ++outside;
       continue;
@@ -216,12 +224,7 @@ TEST(MeshLocator, RotatedPoleMesh) {
     f.rotation.to_rotated(lon, lat, rlon, rlat);
     double best = -1e300;
     for (std::size_t t = 0; t < m.triangles.size(); ++t) best = std::max(best, min_weight(m, t, rlon, rlat));
-    if (best >= 1e-9) {
-      ASSERT_TRUE(l.inside());
-    }
-    if (best < -1e-9) {
-      ASSERT_FALSE(l.inside());
-    }
+    ASSERT_TRUE(agrees_with_brute_force(l, best)) << lon << ", " << lat;
     if (!l.inside()) continue;
     ++inside;
     expect_weights_ok(l);
@@ -267,4 +270,132 @@ TEST(MeshLocator, FindSquareUsesTheLeafStructure) {
   EXPECT_EQ(loc.find_square(m.lattice.nx + 3, 100), loc.find_square(3, 100));
   EXPECT_EQ(loc.find_square(0, -1), -1);
   EXPECT_EQ(loc.find_square(0, m.lattice.ny), -1);
+}
+
+// The Mercator lattice (rotated, as configs/global_mercator.toml): rows are evenly spaced in the
+// Mercator ordinate y = ln tan(π/4 + φ'/2), so an element is a flat triangle in (λ', y), not in
+// (λ', φ'). The geometry here is written out from the lattice's parameters (λ0, y0, Δ_L) and the
+// Mercator formulas, independently of Lattice::lat_of_row / row_of_lat.
+namespace {
+
+double merc_y_deg(double lat_deg) {
+  return std::log(std::tan(M_PI / 4.0 + 0.5 * lat_deg * aq::kDegToRad)) * aq::kRadToDeg;
+}
+double merc_lat_deg(double y_deg) {
+  return (2.0 * std::atan(std::exp(y_deg * aq::kDegToRad)) - M_PI / 2.0) * aq::kRadToDeg;
+}
+
+// (λ', y) of a node as drawn in the triangle, from its integer lattice indices.
+std::array<double, 2> node_plane(const Mesh& m, const std::array<aq::NodeId, 3>& t, aq::NodeId n) {
+  const double d = m.lattice.pixel_deg();
+  return {m.lattice.lon0_deg + static_cast<double>(m.unwrapped_i(t, n)) * d,
+          m.lattice.y0_deg + static_cast<double>(m.node_j[static_cast<std::size_t>(n)]) * d};
+}
+
+// Barycentric weights of the plane point (x, y) (λ' brought next to the triangle) in triangle t.
+std::array<double, 3> plane_weights(const Mesh& m, std::size_t t, double x, double y) {
+  const auto& tri = m.triangles[t];
+  std::array<std::array<double, 2>, 3> v{};
+  for (std::size_t q = 0; q < 3; ++q) v[q] = node_plane(m, tri, tri[q]);
+  x = v[0][0] + lon_diff(x, v[0][0]);
+  const double det = (v[1][1] - v[2][1]) * (v[0][0] - v[2][0]) + (v[2][0] - v[1][0]) * (v[0][1] - v[2][1]);
+  const double w0 = ((v[1][1] - v[2][1]) * (x - v[2][0]) + (v[2][0] - v[1][0]) * (y - v[2][1])) / det;
+  const double w1 = ((v[2][1] - v[0][1]) * (x - v[2][0]) + (v[0][0] - v[2][0]) * (y - v[2][1])) / det;
+  return {w0, w1, 1.0 - w0 - w1};
+}
+
+const aq::testing::GlobalMeshFixture& mercator_mesh() {
+  return aq::testing::etopo60_mesh(true, aq::LatticeKind::kMercator);
+}
+
+}  // namespace
+
+TEST(MeshLocatorMercator, EveryPlaneCentroidIsInItsTriangleWithWeightsOneThird) {
+  const auto& f = mercator_mesh();
+  const Mesh& m = f.mesh;
+  ASSERT_TRUE(m.lattice.mercator());
+  ASSERT_GT(m.triangle_count(), 10000);
+  // The lattice's rows are the Mercator ordinates of their latitudes, evenly spaced.
+  for (const std::int64_t j : {std::int64_t{0}, m.lattice.ny / 3, m.lattice.ny})
+    EXPECT_NEAR(merc_y_deg(m.lattice.lat_of(j)), m.lattice.y0_deg + static_cast<double>(j) * m.lattice.pixel_deg(),
+                1e-9);
+  const MeshLocator loc(m);
+  int phi_mean_off = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    double x = 0.0, y = 0.0, phi_mean = 0.0;
+    for (const auto n : tri) {
+      const auto p = node_plane(m, tri, n);
+      x += p[0] / 3.0;
+      y += p[1] / 3.0;
+      phi_mean += merc_lat_deg(p[1]) / 3.0;
+    }
+    const MeshLocation l = loc.locate_lattice(x, merc_lat_deg(y));
+    ASSERT_EQ(l.triangle, static_cast<aq::ElementId>(t)) << "centroid (" << x << ", " << y << ")";
+    for (const double w : l.weights) EXPECT_NEAR(w, 1.0 / 3.0, 1e-10);
+    expect_weights_ok(l);
+    // The mean of the nodes' φ' is another point: a locator interpolating φ' linearly would take it.
+    const MeshLocation p = loc.locate_lattice(x, phi_mean);
+    if (p.inside() && std::abs(p.weights[0] - 1.0 / 3.0) + std::abs(p.weights[1] - 1.0 / 3.0) > 1e-6) ++phi_mean_off;
+  }
+  EXPECT_GT(phi_mean_off, static_cast<int>(m.triangles.size()) / 2);
+}
+
+TEST(MeshLocatorMercator, RandomPointsAgreeWithBruteForceInTheMercatorPlane) {
+  const auto& f = mercator_mesh();
+  const Mesh& m = f.mesh;
+  ASSERT_TRUE(m.rotation.enabled);
+  const MeshLocator loc(m);
+  std::mt19937_64 rng(4242);
+  std::uniform_real_distribution<double> ulon(-180.0, 180.0), usin(-1.0, 1.0);
+  int inside = 0, outside = 0, phi_linear_off = 0;
+  for (int k = 0; k < 800; ++k) {
+    const double lon = ulon(rng), lat = std::asin(usin(rng)) * aq::kRadToDeg;
+    const MeshLocation l = loc.locate_geographic(lon, lat);
+    double rlon = 0, rlat = 0;
+    f.rotation.to_rotated(lon, lat, rlon, rlat);
+    const double y = merc_y_deg(rlat);
+    double best = -1e300;
+    std::size_t best_t = 0;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const auto w = plane_weights(m, t, rlon, y);
+      const double mw = std::min({w[0], w[1], w[2]});
+      if (mw > best) {
+        best = mw;
+        best_t = t;
+      }
+    }
+    ASSERT_TRUE(agrees_with_brute_force(l, best)) << lon << ", " << lat;
+    if (best >= 1e-9) {
+      EXPECT_EQ(l.triangle, static_cast<aq::ElementId>(best_t));
+    }
+    if (!l.inside()) {
+      ++outside;
+      continue;
+    }
+    ++inside;
+    expect_weights_ok(l);
+    const auto bw = plane_weights(m, static_cast<std::size_t>(l.triangle), rlon, y);
+    for (std::size_t q = 0; q < 3; ++q) EXPECT_NEAR(l.weights[q], bw[q], 1e-9);
+    // The weights reproduce (λ', y); y gives φ' and, rotated back, the geographic point.
+    double px = 0.0, py = 0.0, phi_linear = 0.0;
+    for (std::size_t q = 0; q < 3; ++q) {
+      const auto p = node_plane(m, l.nodes, l.nodes[q]);
+      px += l.weights[q] * p[0];
+      py += l.weights[q] * p[1];
+      phi_linear += l.weights[q] * merc_lat_deg(p[1]);
+    }
+    EXPECT_NEAR(lon_diff(px, rlon), 0.0, 1e-9);
+    EXPECT_NEAR(py, y, 1e-9);
+    double glon = 0, glat = 0;
+    f.rotation.to_geographic(px, merc_lat_deg(py), glon, glat);
+    EXPECT_NEAR(glat, lat, 1e-9);
+    if (std::abs(lat) < 89.9) {
+      EXPECT_NEAR(lon_diff(glon, lon), 0.0, 1e-9);
+    }
+    if (std::abs(phi_linear - rlat) > 1e-6) ++phi_linear_off;  // φ' is not linear in an element
+  }
+  EXPECT_GT(inside, 400);
+  EXPECT_GT(outside, 150);
+  EXPECT_GT(phi_linear_off, inside / 2);
 }

@@ -1,10 +1,13 @@
 // Nesting data: the ROMS boundary point layout, a regional grid in the open South Atlantic located
 // in the real global mesh (weights reproduce the boundary points to 1e-9°, refinement ratio
 // from the element and cell sizes), a grid over the coast (points outside flagged and counted),
-// and the netCDF round trip.
+// the same on the rotated Mercator lattice (weights in the λ', Mercator-y plane, element sizes
+// with the Mercator scale cos φ'), and the netCDF round trip.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <string>
 #include <variant>
 
 #include "core/types.hpp"
@@ -176,4 +179,48 @@ TEST(NestingNetcdf, RoundTrip) {
   EXPECT_EQ(r.history, "test");
   EXPECT_EQ(attribute_int(r, "points_total"), static_cast<std::int64_t>(n.size()));
   EXPECT_EQ(attribute_int(r, "global_mesh_triangles"), f.mesh.triangle_count());
+}
+
+TEST(GlobalNesting, RotatedMercatorMeshWeightsAreInTheMercatorPlane) {
+  const auto& f = aq::testing::etopo60_mesh(true, aq::LatticeKind::kMercator);
+  const auto& m = f.mesh;
+  ASSERT_TRUE(m.lattice.mercator());
+  const Projection proj = mercator_at(-25.0, -40.0);  // the open South Atlantic
+  const Grid2D g = plane_grid(10, 8, 50.0, 40.0);
+  const auto cg = aq::curvilinear::build_cgrid(g, proj);
+  aq::handoff::NestingSummary sum;
+  const aq::io::NestingFile n = aq::handoff::global_nesting(g, cg, m, &sum);
+  EXPECT_EQ(sum.outside, 0);
+  std::string kind;
+  for (const auto& [key, v] : n.attributes)
+    if (key == "lattice_kind") kind = std::get<std::string>(v);
+  EXPECT_EQ(kind, "mercator");
+  const double d = m.lattice.pixel_deg();
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    ASSERT_GE(n.element[k], 0);
+    double rlon = 0.0, rlat = 0.0;
+    f.rotation.to_rotated(n.lon[k], n.lat[k], rlon, rlat);
+    const double y = std::log(std::tan(M_PI / 4.0 + 0.5 * rlat * aq::kDegToRad)) * aq::kRadToDeg;
+    const auto& tri = m.triangles[static_cast<std::size_t>(n.element[k])];
+    double px = 0.0, py = 0.0, sum_w = 0.0, area2 = 0.0;
+    std::array<std::array<double, 2>, 3> v{};
+    for (std::size_t q = 0; q < 3; ++q) {
+      const double w = n.weights[k][q];
+      EXPECT_GE(w, 0.0);
+      EXPECT_LE(w, 1.0);
+      sum_w += w;
+      v[q] = {static_cast<double>(m.unwrapped_i(tri, tri[q])),
+              static_cast<double>(m.node_j[static_cast<std::size_t>(tri[q])])};
+      px += w * (m.lattice.lon0_deg + v[q][0] * d);
+      py += w * (m.lattice.y0_deg + v[q][1] * d);
+    }
+    EXPECT_NEAR(sum_w, 1.0, 1e-14);
+    EXPECT_NEAR(std::remainder(px - rlon, 360.0), 0.0, 1e-9);
+    EXPECT_NEAR(py, y, 1e-9);
+    // Element size: leg √(2·area) pixels of Δ_L·cos φ' on the sphere (a Mercator pixel is square).
+    area2 = std::abs((v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[2][0] - v[0][0]) * (v[1][1] - v[0][1]));
+    const double size =
+        std::sqrt(area2) * d * aq::kDegToRad * cg.options.earth_radius_m * std::cos(rlat * aq::kDegToRad);
+    EXPECT_NEAR(n.global_element_size_m[k], size, 1e-6 * size);
+  }
 }

@@ -1,12 +1,13 @@
-// Regional (ROMS) masks from the global Ω_L: the pixel of a point (edges, seam, poles, rotation),
-// the wet rule against a drawn filled set with a lake and a sub-pixel island, the boundary copy,
-// the ROMS u/v/ψ product rules, and the raster-coverage error.
+// Regional (ROMS) masks from the global Ω_L: the pixel of a point (edges, seam, poles, rotation,
+// beyond the Mercator rows), the wet rule against a drawn filled set with a lake and a sub-pixel
+// island, the boundary copy, the ROMS u/v/ψ product rules, and the raster-coverage error.
 #include "mask/regional_mask.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string_view>
+#include <vector>
 
 #include "core/error.hpp"
 #include "mask_drawing.hpp"
@@ -43,6 +44,23 @@ TEST(RegionalMask, PixelOfAPointTakesTheEastAndNorthPixelOnEdges) {
     EXPECT_EQ(p.i, static_cast<std::int64_t>(std::floor((rl + 180.0) / 4.0)) % 90);
     EXPECT_EQ(p.j, static_cast<std::int64_t>(std::floor((rp + 90.0) / 4.0)));
   }
+}
+
+TEST(RegionalMask, PointsBeyondTheMercatorRowsAreInNoPixelOfTheOcean) {
+  // Δ0 = 4°, L = 0, rows to ±80.2° (y = ±136°): an ocean everywhere on the rows.
+  const Lattice lat = Lattice::make_mercator(4.0, 0, -180.0, 80.0);
+  ASSERT_LT(lat.lat_max_deg(), 81.0);
+  Bitmap filled(lat.nx, lat.ny);
+  for (std::int64_t j = 0; j < lat.ny; ++j)
+    for (std::int64_t i = 0; i < lat.nx; ++i) filled.set(i, j);
+  const std::vector<double> lon{10.0, 10.0, 10.0, 10.0}, la{0.0, 79.0, 83.0, -88.0};
+  bool on_rows = false;
+  EXPECT_EQ(pixel_of_point(lat, PoleRotation(), 10.0, 83.0, &on_rows), (PixelIJ{47, lat.ny - 1}));  // the nearest row
+  EXPECT_FALSE(on_rows);
+  (void)pixel_of_point(lat, PoleRotation(), 10.0, 79.0, &on_rows);
+  EXPECT_TRUE(on_rows);
+  const auto m = rho_mask_from_filled(filled, lat, PoleRotation(), lon.data(), la.data(), nullptr, 0.0, lon.size());
+  EXPECT_EQ(m, (std::vector<std::uint8_t>{1, 1, 0, 0}));  // the caps beyond the rows are dry
 }
 
 class DrawnBlock : public ::testing::Test {
