@@ -38,7 +38,7 @@ Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, const 
                      std::string& line) {
   std::vector<SizeBand> bands(9);
   for (const Leaf& f : leaves) {
-    const double centre = static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
+    const double centre = leaf_centre_row(lat, f);
     const auto band = std::min<std::size_t>(8, static_cast<std::size_t>(std::fabs(lat.lat_of_row(centre)) / 10.0));
     bands[band].sizes.push_back(square_size_km(lat, f.level, centre));
   }

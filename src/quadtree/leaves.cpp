@@ -245,14 +245,13 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     }
     // Rules are sampled at the centres of the level-l squares.
     const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
-    const auto side = static_cast<double>(lat.pixels_per_square(l));  // pixels per level-l square
     const double lon0 = lat.lon0_deg;
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
-    shared(om, rows, words, step, side, lat, lon0, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
+    shared(om, rows, words, step, lat, lon0, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
-      const double centre = (static_cast<double>(b) + 0.5) * side;
+      const double centre = square_centre_row(lat, l, b);
       const double size = square_size_km(lat, l, centre);
       bool need_box = false, need_depth = false;
       for (const config::BoxRule& r : box_rules) need_box = need_box || asks_split(r, l, size);
@@ -318,10 +317,9 @@ void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, dou
       const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
       for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
     }
-    const auto side = static_cast<double>(lat.pixels_per_square(l));
     const std::int64_t words = om.words_per_row();
     for (std::int64_t b = 0; b < om.ny(); ++b) {
-      const double size = square_size_km(lat, l, (static_cast<double>(b) + 0.5) * side);
+      const double size = square_size_km(lat, l, square_centre_row(lat, l, b));
       std::uint64_t* row = om.row(b);
       if (size_km > 0.0 && exceeds_size_target(size, size_km)) {
         std::fill(row, row + words, std::uint64_t{0});

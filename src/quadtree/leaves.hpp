@@ -76,6 +76,13 @@ inline std::int64_t leaf_i0(const Lattice& lat, const Leaf& f) { return f.a * le
 /// Row of the leaf's SW pixel (= J of its SW corner vertex).
 inline std::int64_t leaf_j0(const Lattice& lat, const Leaf& f) { return f.b * leaf_size(lat, f); }
 
+/// Fractional pixel row of the centre of the level-l squares of row b: (b + ½)·2^(L - level).
+inline double square_centre_row(const Lattice& lat, int level, std::int64_t b) {
+  return (static_cast<double>(b) + 0.5) * static_cast<double>(lat.pixels_per_square(level));
+}
+/// Fractional pixel row of the leaf's centre.
+inline double leaf_centre_row(const Lattice& lat, const Leaf& f) { return square_centre_row(lat, f.level, f.b); }
+
 /// Sort key of the deterministic leaf order: level-0 square row-major, then Morton of the SW
 /// pixel inside it. Keys of non-overlapping leaves are distinct.
 struct LeafKey {

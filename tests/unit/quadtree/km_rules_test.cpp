@@ -46,6 +46,11 @@ double size_km_at(const Lattice& lat, int l, double y) {
   return lat.mercator() ? side * c : side * std::sqrt(c);
 }
 
+// Fractional pixel row of a leaf's centre.
+double centre_row(const Lattice& lat, const Leaf& f) {
+  return static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
+}
+
 using InRange = std::function<bool(double lon, double lat)>;
 
 // One size rule: range test (geographic) and target.
@@ -136,7 +141,7 @@ TEST_P(KmBoxRule, LeavesTakeTheLevelNearestTheTargetAtTheirLatitude) {
   // The guarantee in physical terms, and that the level follows the latitude.
   std::vector<int> seen(static_cast<std::size_t>(lat.levels) + 1, 0);
   for (const Leaf& f : leaves) {
-    const double row = static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
+    const double row = centre_row(lat, f);
     double lon = 0.0, la = 0.0;
     rot.to_geographic(lat.lon0_deg + (static_cast<double>(f.a) + 0.5) * lat.step0_deg / (1 << f.level),
                       row_lat(lat, row), lon, la);
@@ -237,7 +242,7 @@ TEST(KmRules, TargetsBeyondTheLevelsClampToLevelLOrLeaveLevelZero) {
   const std::vector<Leaf> fl = leaves_with(lat, fine, PoleRotation());
   int finest = 0;
   for (const Leaf& f : fl) {
-    const double row = static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
+    const double row = centre_row(lat, f);
     const double lon = lat.lon0_deg + (static_cast<double>(f.a) + 0.5) * lat.step0_deg / (1 << f.level);
     if (in_box(lon, row_lat(lat, row))) {
       EXPECT_EQ(f.level, lat.levels);
