@@ -1,6 +1,7 @@
 // The key table of the global run (ARCHITECTURE §7) and its validation. Adding a key here
 // without documenting it in configs/example.toml fails tests/unit/config/example_toml_test.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -39,87 +40,113 @@ std::function<V&(GlobalConfig&)> F(V& (*f)(GlobalConfig&)) {
   return f;
 }
 
+// A number field of a depth or box rule (every field but level / size_km).
+template <typename R>
+struct RuleField {
+  const char* name;
+  double R::*member;
+};
+
+constexpr std::array<RuleField<DepthRule>, 2> kDepthRuleFields{
+    {{"min_depth_m", &DepthRule::min_depth_m}, {"max_depth_m", &DepthRule::max_depth_m}}};
+constexpr std::array<RuleField<BoxRule>, 4> kBoxRuleFields{{{"lon_min_deg", &BoxRule::lon_min_deg},
+                                                            {"lon_max_deg", &BoxRule::lon_max_deg},
+                                                            {"lat_min_deg", &BoxRule::lat_min_deg},
+                                                            {"lat_max_deg", &BoxRule::lat_max_deg}}};
+
+std::string depth_range_problem(const DepthRule& r) {
+  return r.min_depth_m < r.max_depth_m ? std::string() : "needs min_depth_m < max_depth_m";
+}
+std::string box_range_problem(const BoxRule& r) {
+  if (r.lon_min_deg < r.lon_max_deg && r.lat_min_deg < r.lat_max_deg && r.lat_min_deg >= -90 && r.lat_max_deg <= 90)
+    return {};
+  return "needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg <= 90";
+}
+
+// Reads the array of rule tables `key` (quadtree.depth_rules / box_rules): the number fields
+// `fields` and exactly one of level (>= 0) and size_km (finite, > 0). Every bad rule is reported,
+// named key[index]; `out` is set only when all rules are good.
+template <typename R, std::size_t N>
+void read_rules(std::vector<R>& out, const toml::value& v, const Origin& o, Problems& p, const std::string& key,
+                const std::array<RuleField<R>, N>& fields, std::string (*range_problem)(const R&)) {
+  if (!v.is_array()) return p.add(o, key, "expected an array of tables");
+  std::string names;
+  for (const RuleField<R>& f : fields) names += fmt::format("{}, ", f.name);
+  names += "and level or size_km";
+  std::vector<R> rules;
+  const auto& items = v.as_array();
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const std::string at = fmt::format("{}[{}]", key, k);
+    if (!items[k].is_table()) {
+      p.add(o, at, "expected a table {" + names + "}");
+      continue;
+    }
+    R r;
+    bool has_level = false, has_size = false, good = true;
+    for (const auto& [name, x] : items[k].as_table()) {
+      const auto f = std::find_if(fields.begin(), fields.end(), [&](const RuleField<R>& g) { return name == g.name; });
+      std::optional<std::string> err;
+      if (f != fields.end())
+        err = detail::convert(x, r.*(f->member));
+      else if (name == "level") {
+        has_level = true;
+        err = detail::convert(x, r.level);
+      } else if (name == "size_km") {
+        has_size = true;
+        err = detail::convert(x, r.size_km);
+      } else {
+        err = "unknown field '" + name + "' (" + names + ")";
+      }
+      if (err) p.add(o, at + "." + name, *err);
+      good = good && !err;
+    }
+    if (!good) continue;
+    if (const std::string range = range_problem(r); !range.empty()) p.add(o, at, range);
+    if (has_level == has_size)
+      p.add(o, at, has_level ? "gives both level and size_km: give one of them" : "needs level or size_km");
+    else if (has_level && r.level < 0)
+      p.add(o, at + ".level", fmt::format("{} is below 0", r.level));
+    else if (has_size && !(std::isfinite(r.size_km) && r.size_km > 0.0))
+      p.add(o, at + ".size_km", fmt::format("{} is not a finite number > 0 (km)", r.size_km));
+    rules.push_back(r);
+  }
+  if (rules.size() == items.size()) out = std::move(rules);
+}
+
+// A rule as the user gave it: its fields, then level or size_km.
+template <typename R, std::size_t N>
+Json rule_json(const R& r, const std::array<RuleField<R>, N>& fields) {
+  Json j = Json::object();
+  for (const RuleField<R>& f : fields) j[f.name] = r.*(f.member);
+  if (r.size_km != 0.0)
+    j["size_km"] = r.size_km;
+  else
+    j["level"] = r.level;
+  return j;
+}
+
+template <typename R>
+Json rules_json(const std::vector<R>& rules) {
+  Json a = Json::array();
+  for (const R& r : rules) a.push_back(config::rule_json(r));
+  return a;
+}
+
 void add_rules(S& s) {
   s.add_custom(
       "quadtree", "depth_rules",
       [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-        if (!v.is_array()) return p.add(o, "quadtree.depth_rules", "expected an array of tables");
-        std::vector<DepthRule> rules;
-        for (const auto& e : v.as_array()) {
-          DepthRule r;
-          if (!e.is_table()) return p.add(o, "quadtree.depth_rules", "expected {min_depth_m, max_depth_m, level}");
-          for (const auto& [k, x] : e.as_table()) {
-            std::optional<std::string> err;
-            if (k == "min_depth_m")
-              err = detail::convert(x, r.min_depth_m);
-            else if (k == "max_depth_m")
-              err = detail::convert(x, r.max_depth_m);
-            else if (k == "level")
-              err = detail::convert(x, r.level);
-            else
-              err = "unknown field '" + k + "' (min_depth_m, max_depth_m, level)";
-            if (err) return p.add(o, "quadtree.depth_rules", *err);
-          }
-          if (!(r.min_depth_m < r.max_depth_m))
-            return p.add(o, "quadtree.depth_rules", "needs min_depth_m < max_depth_m");
-          if (r.level < 0) return p.add(o, "quadtree.depth_rules", "level must be >= 0");
-          rules.push_back(r);
-        }
-        c.quadtree.depth_rules = rules;
+        read_rules(c.quadtree.depth_rules, v, o, p, "quadtree.depth_rules", kDepthRuleFields, depth_range_problem);
       },
-      [](const GlobalConfig& c) {
-        Json a = Json::array();
-        for (const auto& r : c.quadtree.depth_rules)
-          a.push_back({{"min_depth_m", r.min_depth_m}, {"max_depth_m", r.max_depth_m}, {"level", r.level}});
-        return a;
-      },
-      "minimum level in depth bands");
+      [](const GlobalConfig& c) { return rules_json(c.quadtree.depth_rules); },
+      "minimum level (or size target in km) in depth bands");
   s.add_custom(
       "quadtree", "box_rules",
       [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-        if (!v.is_array()) return p.add(o, "quadtree.box_rules", "expected an array of tables");
-        std::vector<BoxRule> rules;
-        for (const auto& e : v.as_array()) {
-          BoxRule r;
-          if (!e.is_table())
-            return p.add(o, "quadtree.box_rules",
-                         "expected {lon_min_deg, lon_max_deg, lat_min_deg, lat_max_deg, level}");
-          for (const auto& [k, x] : e.as_table()) {
-            std::optional<std::string> err;
-            if (k == "lon_min_deg")
-              err = detail::convert(x, r.lon_min_deg);
-            else if (k == "lon_max_deg")
-              err = detail::convert(x, r.lon_max_deg);
-            else if (k == "lat_min_deg")
-              err = detail::convert(x, r.lat_min_deg);
-            else if (k == "lat_max_deg")
-              err = detail::convert(x, r.lat_max_deg);
-            else if (k == "level")
-              err = detail::convert(x, r.level);
-            else
-              err = "unknown field '" + k + "' (lon_min_deg, lon_max_deg, lat_min_deg, lat_max_deg, level)";
-            if (err) return p.add(o, "quadtree.box_rules", *err);
-          }
-          if (!(r.lon_min_deg < r.lon_max_deg) || !(r.lat_min_deg < r.lat_max_deg) || r.lat_min_deg < -90 ||
-              r.lat_max_deg > 90)
-            return p.add(o, "quadtree.box_rules",
-                         "needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg <= 90");
-          if (r.level < 0) return p.add(o, "quadtree.box_rules", "level must be >= 0");
-          rules.push_back(r);
-        }
-        c.quadtree.box_rules = rules;
+        read_rules(c.quadtree.box_rules, v, o, p, "quadtree.box_rules", kBoxRuleFields, box_range_problem);
       },
-      [](const GlobalConfig& c) {
-        Json a = Json::array();
-        for (const auto& r : c.quadtree.box_rules)
-          a.push_back({{"lon_min_deg", r.lon_min_deg},
-                       {"lon_max_deg", r.lon_max_deg},
-                       {"lat_min_deg", r.lat_min_deg},
-                       {"lat_max_deg", r.lat_max_deg},
-                       {"level", r.level}});
-        return a;
-      },
-      "minimum level inside lon/lat boxes");
+      [](const GlobalConfig& c) { return rules_json(c.quadtree.box_rules); },
+      "minimum level (or size target in km) inside lon/lat boxes");
 }
 
 const S& schema() {
@@ -351,19 +378,24 @@ const S& schema() {
   return s;
 }
 
+// The level form of a rule asks at most quadtree.levels (a size rule asks at most level L).
+template <typename R>
+void check_rule_levels(const std::vector<R>& rules, const char* key, int levels, Problems& p) {
+  for (std::size_t k = 0; k < rules.size(); ++k)
+    if (rules[k].level > levels)
+      p.add_plain(999999, fmt::format("{}[{}]: level {} exceeds quadtree.levels = {}", key, k, rules[k].level, levels));
+}
+
 // Checks that involve several keys.
 void cross_check(const GlobalConfig& c, Problems& p) {
-  for (const auto& r : c.quadtree.depth_rules)
-    if (r.level > c.quadtree.levels)
-      p.add_plain(999999, fmt::format("quadtree.depth_rules: level {} exceeds quadtree.levels = {}", r.level,
-                                      c.quadtree.levels));
-  for (const auto& r : c.quadtree.box_rules)
-    if (r.level > c.quadtree.levels)
-      p.add_plain(999999,
-                  fmt::format("quadtree.box_rules: level {} exceeds quadtree.levels = {}", r.level, c.quadtree.levels));
+  check_rule_levels(c.quadtree.depth_rules, "quadtree.depth_rules", c.quadtree.levels, p);
+  check_rule_levels(c.quadtree.box_rules, "quadtree.box_rules", c.quadtree.levels, p);
 }
 
 }  // namespace
+
+Json rule_json(const DepthRule& r) { return rule_json(r, kDepthRuleFields); }
+Json rule_json(const BoxRule& r) { return rule_json(r, kBoxRuleFields); }
 
 Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
   Loaded<GlobalConfig> out;

@@ -24,6 +24,11 @@ struct Loaded {
 /// applies `overrides` ("section.key=value"). Throws ConfigError listing every problem.
 Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides);
 
+/// A depth or box rule as the user gives it in [quadtree]: its range fields, then `size_km` when
+/// it is a size rule (size_km != 0), else `level`. The echo of quadtree.depth_rules / box_rules.
+Json rule_json(const DepthRule& r);
+Json rule_json(const BoxRule& r);
+
 /// Every key of the global configuration as "section.key", in documentation order.
 std::vector<std::string> global_keys();
 

@@ -28,15 +28,20 @@ struct MaskOptions {
   bool passages = true;             ///< report the critical-passage table
 };
 
+// A depth or box rule asks either a level (`level`) or a size (`size_km` > 0, with level = 0):
+// then each square in its range takes the level whose size on the sphere is nearest the target
+// (quadtree/leaves.hpp). The config reader takes exactly one of the two keys.
 struct DepthRule {
   double min_depth_m = 0.0;  ///< rule applies where depth (positive down) is in [min, max)
   double max_depth_m = 0.0;
-  int level = 0;  ///< minimum quadtree level there
+  int level = 0;         ///< minimum quadtree level there
+  double size_km = 0.0;  ///< > 0: square size target (km) instead of a level; 0 = the level form
 };
 
 struct BoxRule {
   double lon_min_deg = 0.0, lon_max_deg = 0.0, lat_min_deg = 0.0, lat_max_deg = 0.0;
-  int level = 0;  ///< minimum quadtree level inside the box
+  int level = 0;         ///< minimum quadtree level inside the box
+  double size_km = 0.0;  ///< > 0: square size target (km) instead of a level; 0 = the level form
 };
 
 struct QuadtreeOptions {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "quadtree/balance.hpp"
@@ -37,7 +38,7 @@ Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, const 
                      std::string& line) {
   std::vector<SizeBand> bands(9);
   for (const Leaf& f : leaves) {
-    const double centre = static_cast<double>(leaf_j0(lat, f)) + 0.5 * static_cast<double>(leaf_size(lat, f));
+    const double centre = leaf_centre_row(lat, f);
     const auto band = std::min<std::size_t>(8, static_cast<std::size_t>(std::fabs(lat.lat_of_row(centre)) / 10.0));
     bands[band].sizes.push_back(square_size_km(lat, f.level, centre));
   }
@@ -63,6 +64,34 @@ Json size_bands_json(const std::vector<Leaf>& leaves, const Lattice& lat, const 
       b["share_within_sqrt2_of_a_target"] = round3(static_cast<double>(within) / static_cast<double>(v.size()));
     }
     out.push_back(b);
+  }
+  return out;
+}
+
+// The depth or box rules as the user gave them (config::rule_json), logged one a line; a size rule
+// also with the level it asks at φ′ = 0 and at the lattice's last pixel row (the lon-lat lattice's
+// pole row, the Mercator rows' end), where level L means the pixels are coarser than its target.
+template <typename Rule>
+Json rules_json(const std::vector<Rule>& rules, const char* key, const Lattice& lat, const Logger& log) {
+  Json out = Json::array();
+  for (std::size_t k = 0; k < rules.size(); ++k) {
+    Json j = config::rule_json(rules[k]);
+    const std::string given = j.dump();
+    std::string asks;
+    if (rules[k].size_km > 0.0) {
+      const double equator = lat.row_of_lat(0.0), last = 0.5;
+      const int at_equator = level_for_size(lat, rules[k].size_km, equator);
+      const int at_last = level_for_size(lat, rules[k].size_km, last);
+      const double last_lat = std::fabs(lat.lat_of_row(last));
+      j["level_at_equator"] = at_equator;
+      j["level_at_last_row"] = at_last;
+      j["last_row_abs_lat_deg"] = round3(last_lat);
+      asks =
+          fmt::format(": level {} ({:.0f} km) at φ′ = 0°, level {} ({:.0f} km) at |φ′| = {:.1f}°", at_equator,
+                      square_size_km(lat, at_equator, equator), at_last, square_size_km(lat, at_last, last), last_lat);
+    }
+    log.info("quadtree: {}[{}] = {}{}", key, k, given, asks);
+    out.push_back(j);
   }
   return out;
 }
@@ -113,6 +142,8 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   }
   const double check_s = t_check.wall_s();
 
+  const Json depth_rules = rules_json(options.depth_rules, "depth_rules", lat, log);
+  const Json box_rules = rules_json(options.box_rules, "box_rules", lat, log);
   std::string size_line;
   std::vector<double> targets;
   for (const double t : {options.size_km, options.coast_size_km})
@@ -130,8 +161,8 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
     q["step_deg"] = lat.step0_deg;
     q["coast_band"] = options.coast_band;
     q["balance"] = std::string(balance_mode_name(mode));
-    q["depth_rules"] = options.depth_rules.size();
-    q["box_rules"] = options.box_rules.size();
+    q["depth_rules"] = depth_rules;
+    q["box_rules"] = box_rules;
     q["filled_pixels"] = filled_pixels;
     q["leaves_per_level_bare"] = bare;
     q["leaves_per_level_coast_band"] = banded;

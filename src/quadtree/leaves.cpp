@@ -67,13 +67,28 @@ bool in_box(const config::BoxRule& r, double lon, double lat) {
   return wrap_lon_deg(lon, r.lon_min_deg) <= hi;
 }
 
+// The level or size a rule asks (both forms): throws ConfigError naming key[k].
+template <typename Rule>
+void validate_target(const Rule& r, const char* key, std::size_t k, int levels) {
+  if (r.size_km != 0.0) {
+    if (!std::isfinite(r.size_km) || r.size_km < 0.0) {
+      throw ConfigError(
+          fmt::format("quadtree.{}[{}].size_km = {}: must be a finite number > 0 (km)", key, k, r.size_km));
+    }
+    if (r.level != 0) {
+      throw ConfigError(fmt::format("quadtree.{}[{}]: gives both level = {} and size_km = {}: give one of them", key, k,
+                                    r.level, r.size_km));
+    }
+  } else if (r.level < 0 || r.level > levels) {
+    throw ConfigError(
+        fmt::format("quadtree.{}[{}].level = {}: must be between 0 and quadtree.levels = {}", key, k, r.level, levels));
+  }
+}
+
 void validate_rules(const config::QuadtreeOptions& o, int levels) {
   for (std::size_t k = 0; k < o.depth_rules.size(); ++k) {
     const config::DepthRule& r = o.depth_rules[k];
-    if (r.level < 0 || r.level > levels) {
-      throw ConfigError(fmt::format("quadtree.depth_rules[{}].level = {}: must be between 0 and quadtree.levels = {}",
-                                    k, r.level, levels));
-    }
+    validate_target(r, "depth_rules", k, levels);
     if (!(r.max_depth_m > r.min_depth_m)) {
       throw ConfigError(
           fmt::format("quadtree.depth_rules[{}]: empty depth range [{}, {}) m", k, r.min_depth_m, r.max_depth_m));
@@ -81,15 +96,24 @@ void validate_rules(const config::QuadtreeOptions& o, int levels) {
   }
   for (std::size_t k = 0; k < o.box_rules.size(); ++k) {
     const config::BoxRule& r = o.box_rules[k];
-    if (r.level < 0 || r.level > levels) {
-      throw ConfigError(fmt::format("quadtree.box_rules[{}].level = {}: must be between 0 and quadtree.levels = {}", k,
-                                    r.level, levels));
-    }
+    validate_target(r, "box_rules", k, levels);
     if (!(r.lat_max_deg >= r.lat_min_deg)) {
       throw ConfigError(fmt::format("quadtree.box_rules[{}]: lat_min_deg = {} is above lat_max_deg = {}", k,
                                     r.lat_min_deg, r.lat_max_deg));
     }
   }
+}
+
+// Whether rule `r` asks to split a level-l square of size `size_km` whose centre is in its range:
+// the level form on the level-(level-1) grid only, the size form wherever the square is too large.
+template <typename Rule>
+bool asks_split(const Rule& r, int l, double size_km) {
+  return r.size_km > 0.0 ? exceeds_size_target(size_km, r.size_km) : r.level == l + 1;
+}
+
+template <typename Rule>
+bool has_size_rule(const std::vector<Rule>& rules) {
+  return std::any_of(rules.begin(), rules.end(), [](const Rule& r) { return r.size_km > 0.0; });
 }
 
 void collect_leaves(const LevelMasks& m, int levels, int l, std::int64_t a, std::int64_t b, std::vector<Leaf>& out) {
@@ -204,34 +228,36 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
   if (!options.depth_rules.empty() && bathy == nullptr) {
     throw InternalError("quadtree: depth rules need the bathymetry raster");
   }
+  // The finest level a rule may split: below its level for the level form, L-1 for the size form.
   int max_level = 0;
   for (const config::DepthRule& r : options.depth_rules) max_level = std::max(max_level, r.level);
   for (const config::BoxRule& r : options.box_rules) max_level = std::max(max_level, r.level);
+  if (has_size_rule(options.depth_rules) || has_size_rule(options.box_rules)) max_level = levels;
+  const int top = std::min(levels, max_level) - 1;
 
   const std::vector<config::DepthRule>& depth_rules = options.depth_rules;
   const std::vector<config::BoxRule>& box_rules = options.box_rules;
-  for (int l = std::min(levels, max_level) - 1; l >= 0; --l) {
+  for (int l = top; l >= 0; --l) {
     Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
-    if (l + 1 < max_level && l + 1 < levels) {  // keep omega monotone after the finer level's splits
+    if (l < top) {  // keep omega monotone after the finer level's splits
       const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
       for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
     }
-    // Rules asking level l+1 are sampled at the centres of the level-l squares.
-    const int want = l + 1;
-    bool need_box = false, need_depth = false;
-    for (const config::BoxRule& r : box_rules) need_box = need_box || r.level == want;
-    for (const config::DepthRule& r : depth_rules) need_depth = need_depth || r.level == want;
-    if (!need_box && !need_depth) continue;
+    // Rules are sampled at the centres of the level-l squares.
     const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
-    const auto side = static_cast<double>(lat.pixels_per_square(l));  // pixels per level-l square
     const double lon0 = lat.lon0_deg;
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) shared(                  \
-    om, rows, words, step, side, lat, lon0, want, need_box, need_depth, rotation, bathy, depth_rules, box_rules) \
-    schedule(dynamic, 16)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
+    shared(om, rows, words, step, lat, lon0, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
-      const double rlat = lat.lat_of_row((static_cast<double>(b) + 0.5) * side);
+      const double centre = square_centre_row(lat, l, b);
+      const double size = square_size_km(lat, l, centre);
+      bool need_box = false, need_depth = false;
+      for (const config::BoxRule& r : box_rules) need_box = need_box || asks_split(r, l, size);
+      for (const config::DepthRule& r : depth_rules) need_depth = need_depth || asks_split(r, l, size);
+      if (!need_box && !need_depth) continue;
+      const double rlat = lat.lat_of_row(centre);
       std::uint64_t* row = om.row(b);
       for (std::int64_t w = 0; w < words; ++w) {
         std::uint64_t bitsleft = row[w];
@@ -243,12 +269,13 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
           rotation.to_geographic(lon0 + (static_cast<double>(a) + 0.5) * step, rlat, lon, lat_deg);
           bool split = false;
           if (need_box) {
-            for (const config::BoxRule& r : box_rules) split = split || (r.level == want && in_box(r, lon, lat_deg));
+            for (const config::BoxRule& r : box_rules)
+              split = split || (asks_split(r, l, size) && in_box(r, lon, lat_deg));
           }
           if (!split && need_depth) {
             const double depth = -bathy->sample(lon, lat_deg);
             for (const config::DepthRule& r : depth_rules) {
-              split = split || (r.level == want && depth >= r.min_depth_m && depth < r.max_depth_m);
+              split = split || (asks_split(r, l, size) && depth >= r.min_depth_m && depth < r.max_depth_m);
             }
           }
           if (split) row[w] &= ~(1ULL << t);
@@ -261,6 +288,12 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
 double square_size_km(const Lattice& lat, int level, double row_centre) {
   const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << level) * kDegToRad;
   return side_rad * kEarthRadiusKm * lat.size_scale(row_centre);
+}
+
+int level_for_size(const Lattice& lat, double target_km, double row) {
+  int l = 0;
+  while (l < lat.levels && exceeds_size_target(square_size_km(lat, l, row), target_km)) ++l;
+  return l;
 }
 
 void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, double coast_size_km, int coast_band) {
@@ -278,21 +311,19 @@ void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, dou
     for (int l = levels - 2; l >= 0; --l)
       band[static_cast<std::size_t>(l)] = bits::reduce(band[static_cast<std::size_t>(l) + 1], true);
   }
-  const double open_limit = std::sqrt(2.0) * size_km, coast_limit = std::sqrt(2.0) * coast_size_km;
   for (int l = levels - 1; l >= 0; --l) {
     Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
     if (l + 1 < levels) {  // keep omega monotone after the finer level's splits
       const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
       for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
     }
-    const auto side = static_cast<double>(lat.pixels_per_square(l));
     const std::int64_t words = om.words_per_row();
     for (std::int64_t b = 0; b < om.ny(); ++b) {
-      const double size = square_size_km(lat, l, (static_cast<double>(b) + 0.5) * side);
+      const double size = square_size_km(lat, l, square_centre_row(lat, l, b));
       std::uint64_t* row = om.row(b);
-      if (size_km > 0.0 && size > open_limit) {
+      if (size_km > 0.0 && exceeds_size_target(size, size_km)) {
         std::fill(row, row + words, std::uint64_t{0});
-      } else if (coast_size_km > 0.0 && size > coast_limit) {
+      } else if (coast_size_km > 0.0 && exceeds_size_target(size, coast_size_km)) {
         const std::uint64_t* in_band = band[static_cast<std::size_t>(l)].row(b);
         for (std::int64_t w = 0; w < words; ++w) row[w] &= ~in_band[w];
       }

@@ -35,10 +35,18 @@
 //    box crosses the antimeridian). Centres are taken in the lattice (rotated) system and mapped
 //    to geographic (λ, φ) through the PoleRotation. Where several rules apply the finest level
 //    wins; level 0 asks nothing.
+//  * a depth or box rule may ask a size instead of a level (`size_km` > 0, issue 12): then every
+//    square of every level whose centre is in the rule's range and whose square_size_km exceeds
+//    √2·size_km is split, with every coarser square containing it — the open-ocean size rule
+//    (apply_size_rules) restricted to the range. So each square there takes the level whose size
+//    at its latitude is nearest the target (within √2), bounded by level L, unless the filled set,
+//    another rule or the 2:1 balance asks for a finer one; on the Mercator lattice that level
+//    grows toward the rotated poles as the squares shrink as cos φ′.
 #pragma once
 
 #include <compare>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 #include "config/options.hpp"
@@ -67,6 +75,13 @@ inline std::int64_t leaf_size(const Lattice& lat, const Leaf& f) { return lat.pi
 inline std::int64_t leaf_i0(const Lattice& lat, const Leaf& f) { return f.a * leaf_size(lat, f); }
 /// Row of the leaf's SW pixel (= J of its SW corner vertex).
 inline std::int64_t leaf_j0(const Lattice& lat, const Leaf& f) { return f.b * leaf_size(lat, f); }
+
+/// Fractional pixel row of the centre of the level-l squares of row b: (b + ½)·2^(L - level).
+inline double square_centre_row(const Lattice& lat, int level, std::int64_t b) {
+  return (static_cast<double>(b) + 0.5) * static_cast<double>(lat.pixels_per_square(level));
+}
+/// Fractional pixel row of the leaf's centre.
+inline double leaf_centre_row(const Lattice& lat, const Leaf& f) { return square_centre_row(lat, f.level, f.b); }
 
 /// Sort key of the deterministic leaf order: level-0 square row-major, then Morton of the SW
 /// pixel inside it. Keys of non-overlapping leaves are distinct.
@@ -108,8 +123,9 @@ void apply_coast_band(LevelMasks& masks, int coast_band);
 
 /// Applies the depth and box rules of `options` in place (see the file comment). `bathy` may be
 /// null when there are no depth rules. Throws ConfigError naming quadtree.depth_rules[k] /
-/// quadtree.box_rules[k] for a level outside 0..L, an empty depth range or an inverted latitude
-/// range, and InternalError when depth rules are given without a raster.
+/// quadtree.box_rules[k] for a level outside 0..L, a size_km that is not finite or negative, a
+/// rule with both a level and a size_km, an empty depth range or an inverted latitude range, and
+/// InternalError when depth rules are given without a raster.
 void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
                             const PoleRotation& rotation, const raster::Bathymetry* bathy);
 
@@ -120,6 +136,18 @@ inline constexpr double kEarthRadiusKm = 6371.0088;
 /// `row_centre`: its side Δ0/2^l in λ times the lattice's size scale there (Mercator: cos φ′ for
 /// both sides; lon-lat: √cos φ′, the square root of its area), on a sphere of radius kEarthRadiusKm.
 [[nodiscard]] double square_size_km(const Lattice& lat, int level, double row_centre);
+
+/// Whether a square of `size_km` is split for the size target `target_km` (> 0): when it is
+/// larger than √2·target, so that the squares left take the level whose size is nearest the
+/// target (sizes halve from one level to the next). The one test of the size rules.
+[[nodiscard]] inline bool exceeds_size_target(double size_km, double target_km) {
+  return size_km > std::numbers::sqrt2 * target_km;
+}
+
+/// The level a size target `target_km` (> 0) asks at the fractional pixel row `row`: the coarsest
+/// l in 0..L whose square_size_km(lat, l, row) does not exceed √2·target, and L when even the
+/// pixels do. (The rules test each square at its own centre row; this is for logs and reports.)
+[[nodiscard]] int level_for_size(const Lattice& lat, double target_km, double row);
 
 /// The size rules of issue 12 (quadtree.size_km, quadtree.coast_size_km), applied in place after
 /// the coastal band and the depth/box rules and before smoothing. A level-l square (l < L) whose

@@ -77,6 +77,19 @@ TEST(Cli, UnknownConfigKeyNamesKeyAndLine) {
   EXPECT_THAT(r.err, HasSubstr("quadtree.levles"));
 }
 
+TEST(Cli, BadSizeRulesNameTheRuleAndExitTwo) {
+  const std::string box = "lon_min_deg = 0, lon_max_deg = 5, lat_min_deg = 0, lat_max_deg = 5";
+  const auto r = run_aquatoria("mesh -q --set 'quadtree.box_rules=[{" + box + ", level = 2, size_km = 50}, {" + box +
+                               ", size_km = nan}, {" + box + "}]' --set 'quadtree.depth_rules=[{min_depth_m = 0, " +
+                               "max_depth_m = 200, size_km = -5}]'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("4 configuration errors"));
+  EXPECT_THAT(r.err, HasSubstr("quadtree.box_rules[0]: gives both level and size_km"));
+  EXPECT_THAT(r.err, HasSubstr("quadtree.box_rules[1].size_km: nan is not a finite number > 0 (km)"));
+  EXPECT_THAT(r.err, HasSubstr("quadtree.box_rules[2]: needs level or size_km"));
+  EXPECT_THAT(r.err, HasSubstr("quadtree.depth_rules[0].size_km: -5 is not a finite number > 0 (km)"));
+}
+
 TEST(Cli, ThreeBadValuesAllReported) {
   const auto p =
       write_temp("bad3.toml", "[mask]\ncursor = -1\n[quadtree]\nstep_deg = 5.5\n[output]\nformats = [\"stl\"]\n");

@@ -151,15 +151,70 @@ TEST(Config, RulesParseAndCrossCheckLevels) {
       "rules.toml",
       "[quadtree]\nlevels = 3\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, level = 2}]\n"
       "box_rules = [{lon_min_deg = -10.0, lon_max_deg = 40.0, lat_min_deg = 30.0, lat_max_deg = 46.0, level = 5}]\n");
-  EXPECT_THAT(error_of(p.string()), HasSubstr("level 5 exceeds quadtree.levels = 3"));
+  EXPECT_THAT(error_of(p.string()), HasSubstr("quadtree.box_rules[0]: level 5 exceeds quadtree.levels = 3"));
   const auto ok = load_global(p.string(), {"quadtree.levels=5"});
   ASSERT_EQ(ok.options.quadtree.depth_rules.size(), 1u);
   EXPECT_EQ(ok.options.quadtree.depth_rules[0].level, 2);
   EXPECT_DOUBLE_EQ(ok.options.quadtree.box_rules[0].lat_max_deg, 46.0);
 }
 
+TEST(Config, RulesInKilometresParseAndEchoAsGiven) {
+  const auto p = write_temp("km_rules.toml",
+                            "[quadtree]\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, size_km = 25.5}]\n"
+                            "box_rules = [{lon_min_deg = -10.0, lon_max_deg = 40.0, lat_min_deg = 30.0, lat_max_deg = "
+                            "46.0, level = 2},\n  {lon_min_deg = 0.0, lon_max_deg = 5.0, lat_min_deg = 0.0, "
+                            "lat_max_deg = 5.0, size_km = 100}]\n");
+  const auto c = load_global(p.string(), {});
+  ASSERT_EQ(c.options.quadtree.depth_rules.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.options.quadtree.depth_rules[0].size_km, 25.5);
+  EXPECT_EQ(c.options.quadtree.depth_rules[0].level, 0);
+  ASSERT_EQ(c.options.quadtree.box_rules.size(), 2u);
+  EXPECT_EQ(c.options.quadtree.box_rules[0].level, 2);
+  EXPECT_EQ(c.options.quadtree.box_rules[0].size_km, 0.0);
+  EXPECT_DOUBLE_EQ(c.options.quadtree.box_rules[1].size_km, 100.0);
+  // The echo (the report's config) has each rule in the form it was given: size_km or level.
+  const auto& depth = c.echo["quadtree"]["depth_rules"][0];
+  EXPECT_EQ(depth["size_km"], 25.5);
+  EXPECT_FALSE(depth.contains("level"));
+  const auto& boxes = c.echo["quadtree"]["box_rules"];
+  EXPECT_EQ(boxes[0]["level"], 2);
+  EXPECT_FALSE(boxes[0].contains("size_km"));
+  EXPECT_EQ(boxes[1]["size_km"], 100.0);
+  EXPECT_FALSE(boxes[1].contains("level"));
+  // Through --set; a km rule is not checked against quadtree.levels (it asks at most level L).
+  const auto s = load_global(std::nullopt, {"quadtree.levels=1",
+                                            "quadtree.box_rules=[{lon_min_deg = -50, lon_max_deg "
+                                            "= -20, lat_min_deg = 0, lat_max_deg = 50, size_km = 0.5}]"});
+  EXPECT_DOUBLE_EQ(s.options.quadtree.box_rules.at(0).size_km, 0.5);
+}
+
+TEST(Config, RulesNeedExactlyOneOfLevelAndSizeKm) {
+  const std::string box = "lon_min_deg = 0, lon_max_deg = 5, lat_min_deg = 0, lat_max_deg = 5";
+  const auto bad = [&](const std::string& second) {
+    return error_of(std::nullopt, {"quadtree.box_rules=[{" + box + ", level = 1}, {" + box + second + "}]"});
+  };
+  EXPECT_THAT(bad(", level = 1, size_km = 50"), HasSubstr("quadtree.box_rules[1]: gives both level and size_km"));
+  EXPECT_THAT(bad(""), HasSubstr("quadtree.box_rules[1]: needs level or size_km"));
+  EXPECT_THAT(bad(", size_km = -5"), HasSubstr("quadtree.box_rules[1].size_km: -5 is not a finite number > 0"));
+  EXPECT_THAT(bad(", size_km = 0"), HasSubstr("quadtree.box_rules[1].size_km: 0 is not a finite number > 0"));
+  EXPECT_THAT(bad(", size_km = nan"), HasSubstr("quadtree.box_rules[1].size_km: nan is not a finite number > 0"));
+  EXPECT_THAT(bad(", size_km = inf"), HasSubstr("quadtree.box_rules[1].size_km: inf is not a finite number > 0"));
+  EXPECT_THAT(bad(", size_km = \"50\""), HasSubstr("quadtree.box_rules[1].size_km: expected a number"));
+  const auto p = write_temp("km_depth_bad.toml",
+                            "[quadtree]\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, level = 1},\n"
+                            "  {min_depth_m = 200.0, max_depth_m = 4000.0}, {min_depth_m = 9.0, max_depth_m = 1.0, "
+                            "size_km = 10, level = 2}]\n");
+  const std::string e = error_of(p.string());
+  EXPECT_THAT(e, HasSubstr("km_depth_bad.toml:2:"));
+  EXPECT_THAT(e, HasSubstr("quadtree.depth_rules[1]: needs level or size_km"));
+  // Every bad rule is reported: the third has an empty range and both forms.
+  EXPECT_THAT(e, HasSubstr("quadtree.depth_rules[2]: needs min_depth_m < max_depth_m"));
+  EXPECT_THAT(e, HasSubstr("quadtree.depth_rules[2]: gives both level and size_km"));
+}
+
 TEST(Config, ShippedConfigsLoad) {
-  for (const char* name : {"seed_4deg_L3.toml", "global_1deg_L5.toml", "rotated_greenland.toml", "global_15s.toml"}) {
+  for (const char* name : {"seed_4deg_L3.toml", "global_1deg_L5.toml", "rotated_greenland.toml", "global_15s.toml",
+                           "global_mercator.toml"}) {
     const fs::path p = fs::path(AQ_SOURCE_DIR) / "configs" / name;
     EXPECT_NO_THROW((void)load_global(p.string(), {})) << name;
   }
