@@ -206,6 +206,18 @@ void face_coefficients(const Grid2D& g, const ControlFunction& w, EllipticMethod
 
 const char* elliptic_method_name(EllipticMethod m) { return m == EllipticMethod::kEd2 ? "ed2" : "rl"; }
 
+const char* elliptic_stop_name(EllipticStop s) {
+  switch (s) {
+    case EllipticStop::kNodesSettled:
+      return "nodes and criteria settled";
+    case EllipticStop::kAveragesSettled:
+      return "averages settled";
+    case EllipticStop::kIterationCap:
+      break;
+  }
+  return "iteration cap";
+}
+
 Criteria grid_criteria(const Grid2D& grid, const ControlFunction& w) {
   CheckOptions co;
   co.cells_only = true;
@@ -240,15 +252,19 @@ EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const Ellipt
   res.history.push_back(grid_criteria(g, w));
   FaceOperator op(L, M);
   std::vector<double> r(g.x.size()), dx, dy;
-  const auto changed = [&](const Criteria& a, const Criteria& b) {
+  // Between two checks: did any f(k)_o (and, for `all`, any f(k)) change by criteria_tolerance or
+  // more, or turn finite / infinite?
+  const auto changed = [&](const Criteria& a, const Criteria& b, bool all) {
     for (std::size_t k = 0; k < 4; ++k) {
       const double dw = std::fabs(a.worst[k] - b.worst[k]), da = std::fabs(a.average[k] - b.average[k]);
-      if (!(dw < o.criteria_tolerance) && std::isfinite(a.worst[k])) return true;
+      if (all && !(dw < o.criteria_tolerance) && std::isfinite(a.worst[k])) return true;
       if (!(da < o.criteria_tolerance) && std::isfinite(a.average[k])) return true;
-      if (std::isfinite(a.worst[k]) != std::isfinite(b.worst[k])) return true;
+      if (all && std::isfinite(a.worst[k]) != std::isfinite(b.worst[k])) return true;
+      if (std::isfinite(a.average[k]) != std::isfinite(b.average[k])) return true;
     }
     return false;
   };
+  int quiet_checks = 0;  // consecutive checks at which no average changed
   for (int it = 1; it <= o.max_iterations; ++it) {
     face_coefficients(g, w, o.method, floor, op.a(), op.b());
     op.factor();
@@ -268,12 +284,18 @@ EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const Ellipt
     res.last_move = o.relaxation * std::sqrt(move2) / diam;
     if (it % o.check_every == 0 || it == o.max_iterations) {
       const Criteria c = grid_criteria(g, w);
-      const bool settled = !changed(c, res.history.back());
+      const bool settled = !changed(c, res.history.back(), true);
+      quiet_checks = changed(c, res.history.back(), false) ? 0 : quiet_checks + 1;
       res.history.push_back(c);
       if (settled && res.last_move < o.tolerance) {
-        res.converged = true;
-        break;
+        res.stop = EllipticStop::kNodesSettled;
+      } else if (o.stop_when_averages_settle && quiet_checks >= 2) {
+        res.stop = EllipticStop::kAveragesSettled;
+      } else {
+        continue;
       }
+      res.converged = true;
+      break;
     }
   }
   return res;
