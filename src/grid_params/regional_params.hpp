@@ -137,7 +137,8 @@ struct RegionalParams {
   double weight_depth = 0.0;
   /// [relaxation] ω of the ED2/RL Picard update, (0, 1].
   double relaxation = 0.7;
-  /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled).
+  /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled); ED2/RL
+  /// also stop when the averages f_o settle (elliptic_grids.hpp).
   double elliptic_tolerance = 1e-4;
   /// [elliptic_iterations] ED2/RL Picard iterations at most, ≥ 1.
   int elliptic_iterations = 400;
