@@ -17,6 +17,7 @@ EllipticOptions elliptic_options(const RegionalParams& p, GridMethod m) {
   o.method = m == GridMethod::kRl ? EllipticMethod::kRyskinLeal : EllipticMethod::kEd2;
   o.relaxation = p.relaxation;
   o.tolerance = p.elliptic_tolerance;
+  o.criteria_tolerance = p.elliptic_criteria_tolerance;
   o.max_iterations = p.elliptic_iterations;
   // RL is sensitive to λ (seed 004 Sec. 3) and takes the more exact inner solve: with 0.2/6 its
   // Black Sea grid settles at the same 60 iterations with twice the orthogonality error (50), 0.053
