@@ -55,7 +55,8 @@ struct EllipticOptions {
   int check_every = 5;
   /// Inner CG: stop at this relative residual, (0, 1), or after inner_iterations, ≥ 1. The
   /// coefficients are lagged, so a more exact inner solve buys little: on the Black Sea (131 × 101)
-  /// 0.2/6 takes 120 Picard and 1221 CG iterations to settle, 0.1/10 190 and 3270.
+  /// 0.2/6 takes 120 Picard and 1221 CG iterations to settle, 0.1/10 190 and 3270. RL is sensitive to
+  /// λ: the regional pipeline gives it 0.1/10 (with 0.2/6 its Black Sea orthogonality error doubles).
   double inner_tolerance = 0.2;
   int inner_iterations = 6;
   /// Also stop when the averages f(k)_o have settled (see the rules above).
