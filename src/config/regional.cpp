@@ -272,6 +272,7 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "weight_depth") return p.weight_depth;
   if (key == "relaxation") return p.relaxation;
   if (key == "elliptic_tolerance") return p.elliptic_tolerance;
+  if (key == "elliptic_criteria_tolerance") return p.elliptic_criteria_tolerance;
   if (key == "elliptic_iterations") return p.elliptic_iterations;
   if (key == "lwidth") return p.lwidth;
   if (key == "solver") return p.solver == curvilinear::LaplaceSolver::kDst ? "dst" : "sor";

@@ -33,6 +33,10 @@ double eta_on_interface(const SurfaceGrid& ref, const std::vector<double>& eta, 
 TwoBlockResult orthogonal_bvp_two_blocks(const SurfaceGrid& a_initial, const SurfaceGrid& b_initial,
                                          const BvpOptions& o, const std::vector<double>& b_theta_levels,
                                          const std::function<void(SurfaceGrid&)>& b_project) {
+  if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))
+    throw ConfigError(
+        fmt::format("two blocks: max_iterations = {}, min_iterations = {}, level_off = {} (need >= 1, >= 1, >= 0)",
+                    o.max_iterations, o.min_iterations, o.level_off));
   TwoBlockResult r;
   auto record = [&r](const SurfaceGrid& a, const SurfaceGrid& b) {
     const SurfaceOrthogonality qa = surface_orthogonality(a), qb = surface_orthogonality(b);
@@ -66,8 +70,13 @@ TwoBlockResult orthogonal_bvp_two_blocks(const SurfaceGrid& a_initial, const Sur
     for (int q = 0; q < nq; ++q) b(0, q) = a(a.nx_pts - 1, q);
     record(a, b);
     r.eta_levels_b = eb;
+    r.iterations = k;
     ref_a = std::move(a);
     ref_b = std::move(b);
+    const std::size_t n = r.f_max.size();
+    if (k >= o.min_iterations && bvp_leveled_off(r.f_max[n - 2], r.f_max[n - 1], o.level_off) &&
+        bvp_leveled_off(r.f_avg[n - 2], r.f_avg[n - 1], o.level_off))
+      break;
   }
   r.a = ref_a;
   r.b = ref_b;

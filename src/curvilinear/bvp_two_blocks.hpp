@@ -22,6 +22,7 @@ struct TwoBlockResult {
   SurfaceGrid a, b;                  ///< the grids; a's column P = b's column 0
   std::vector<double> eta_levels_b;  ///< B's derived η levels (last iteration)
   std::vector<double> f_max, f_avg;  ///< over both blocks (f_avg area-weighted), k = 0..iterations
+  int iterations = 0;                ///< outer iterations run
   /// Largest angle (radians) between an η-line's last segment in A and its first in B, over
   /// the interior interface nodes: the kink across the interface (0 for C1 lines).
   double max_kink = 0.0;
@@ -29,7 +30,10 @@ struct TwoBlockResult {
 
 /// `a_options` gives A's θ and η levels and the common iteration settings (its `project` is
 /// applied to A, `b_project` to B); `b_theta_levels` are B's θ levels. B's η levels are derived.
-/// Runs a_options.max_iterations outer iterations (no level-off test) and returns the last.
+/// Runs outer iterations until f_max and f_avg over both blocks level off as in orthogonal_bvp()
+/// (relative change ≤ level_off after min_iterations; digest A.8) or max_iterations, and returns
+/// the last (C0 across the interface holds for every iterate, the best-f_avg pick of one block
+/// would not keep it for a pair).
 /// The reference grids must share the interface curve (A's column nx−1, B's column 0) and its
 /// end points. Throws as orthogonal_bvp().
 TwoBlockResult orthogonal_bvp_two_blocks(const SurfaceGrid& a_initial, const SurfaceGrid& b_initial,

@@ -17,13 +17,33 @@ namespace {
 // Grids with fewer nodes compute their coefficients on one thread (a parallel region costs more).
 constexpr std::size_t kParallelNodes = 40000;
 
-// The interior operator K (boundary values zero), its IC(0) factor and PCG for K δ = r.
+// The interior operator K (boundary values zero), its IC(0) factor and PCG for K δ = r. The factor
+// stores its entries divided by the pivots, so the two triangular sweeps of the preconditioner
+// multiply (a division on their serial dependency chain cost more than the rest of CG), and the
+// neighbour along the row comes last, so the chain is one multiply-add per node; the dot
+// products ride along with the loops that produce their operands. Sums run in one fixed order.
 class FaceOperator {
  public:
-  FaceOperator(int nx, int ny) : L_(nx), M_(ny), a_(static_cast<std::size_t>(nx) * ny), b_(a_.size()), d_(a_.size()) {}
+  FaceOperator(int nx, int ny)
+      : L_(nx),
+        M_(ny),
+        a_(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny)),
+        b_(a_.size()),
+        d_(a_.size()),
+        inv_(a_.size()),
+        lo_a_(a_.size()),
+        lo_b_(a_.size()),
+        up_a_(a_.size()),
+        up_b_(a_.size()),
+        res_(a_.size()),
+        z_(a_.size()),
+        p_(a_.size()),
+        q_(a_.size()) {}
   std::vector<double>& a() { return a_; }
   std::vector<double>& b() { return b_; }
 
+  // IC(0) of K: pivots d; forward sweep z_p = r_p/d_p + (a₋ z_{p−1} + b₋ z_{p−s})/d_p, backward
+  // sweep z_p += (a₊ z_{p+1} + b₊ z_{p+s})/d_p.
   void factor() {
     for (int j = 1; j < M_ - 1; ++j)
       for (int i = 1; i < L_ - 1; ++i) {
@@ -32,6 +52,11 @@ class FaceOperator {
         if (i > 1) d -= a_[p - 1] * a_[p - 1] / d_[p - 1];
         if (j > 1) d -= b_[p - s()] * b_[p - s()] / d_[p - s()];
         d_[p] = d;
+        inv_[p] = 1.0 / d;
+        lo_a_[p] = a_[p - 1] * inv_[p];
+        lo_b_[p] = b_[p - s()] * inv_[p];
+        up_a_[p] = a_[p] * inv_[p];
+        up_b_[p] = b_[p] * inv_[p];
       }
   }
 
@@ -50,32 +75,29 @@ class FaceOperator {
   int solve(const std::vector<double>& r, std::vector<double>& delta, double rel_tol, int max_iterations) {
     const std::size_t n = a_.size();
     delta.assign(n, 0.0);
-    res_ = r;
-    z_.assign(n, 0.0);
-    precondition(res_, z_);
-    p_ = z_;
-    q_.assign(n, 0.0);
-    double rz = dot(res_, z_);
-    const double r0 = std::sqrt(dot(res_, res_));
-    if (!(r0 > 0.0)) return 0;
+    std::copy(r.begin(), r.end(), res_.begin());
+    const double rr0 = dot(res_, res_);
+    if (!(rr0 > 0.0)) return 0;
+    double rz = precondition(res_, z_);
+    std::copy(z_.begin(), z_.end(), p_.begin());
     int it = 0;
     for (; it < max_iterations; ++it) {
-      apply(p_, q_);
-      const double pq = dot(p_, q_);
+      const double pq = apply(p_, q_);
       if (!(pq > 0.0)) break;
       const double alpha = rz / pq;
+      double rr = 0.0;
       for (int j = 1; j < M_ - 1; ++j)
         for (int i = 1; i < L_ - 1; ++i) {
           const std::size_t k = idx(i, j);
           delta[k] += alpha * p_[k];
           res_[k] -= alpha * q_[k];
+          rr += res_[k] * res_[k];
         }
-      if (std::sqrt(dot(res_, res_)) < rel_tol * r0) {
+      if (rr < rel_tol * rel_tol * rr0) {
         ++it;
         break;
       }
-      precondition(res_, z_);
-      const double rz_new = dot(res_, z_);
+      const double rz_new = precondition(res_, z_);
       const double beta = rz_new / rz;
       rz = rz_new;
       for (int j = 1; j < M_ - 1; ++j)
@@ -89,7 +111,7 @@ class FaceOperator {
 
  private:
   int L_, M_;
-  std::vector<double> a_, b_, d_, res_, z_, p_, q_;
+  std::vector<double> a_, b_, d_, inv_, lo_a_, lo_b_, up_a_, up_b_, res_, z_, p_, q_;
   [[nodiscard]] std::size_t s() const { return static_cast<std::size_t>(L_); }
   [[nodiscard]] std::size_t idx(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(L_) + static_cast<std::size_t>(i);
@@ -100,26 +122,34 @@ class FaceOperator {
       for (int i = 1; i < L_ - 1; ++i) sum += u[idx(i, j)] * v[idx(i, j)];
     return sum;
   }
-  void apply(const std::vector<double>& u, std::vector<double>& out) const {
+  // out = K u on the interior; returns u·out.
+  double apply(const std::vector<double>& u, std::vector<double>& out) const {
+    double sum = 0.0;
     for (int j = 1; j < M_ - 1; ++j)
       for (int i = 1; i < L_ - 1; ++i) {
         const std::size_t p = idx(i, j);
         const double d = a_[p] + a_[p - 1] + b_[p] + b_[p - s()];
         out[p] = d * u[p] - a_[p] * u[p + 1] - a_[p - 1] * u[p - 1] - b_[p] * u[p + s()] - b_[p - s()] * u[p - s()];
+        sum += u[p] * out[p];
       }
+    return sum;
   }
-  // z = (D + Lo)⁻ᵀ D (D + Lo)⁻¹ r; boundary entries of z stay 0.
-  void precondition(const std::vector<double>& r, std::vector<double>& z) const {
+  // z = (D + Lo)⁻ᵀ D (D + Lo)⁻¹ r; boundary entries of z stay 0 (never written). Returns r·z,
+  // summed in the backward sweep's order.
+  double precondition(const std::vector<double>& r, std::vector<double>& z) const {
     for (int j = 1; j < M_ - 1; ++j)
       for (int i = 1; i < L_ - 1; ++i) {
         const std::size_t p = idx(i, j);
-        z[p] = (r[p] + a_[p - 1] * z[p - 1] + b_[p - s()] * z[p - s()]) / d_[p];
+        z[p] = r[p] * inv_[p] + lo_b_[p] * z[p - s()] + lo_a_[p] * z[p - 1];
       }
+    double sum = 0.0;
     for (int j = M_ - 2; j >= 1; --j)
       for (int i = L_ - 2; i >= 1; --i) {
         const std::size_t p = idx(i, j);
-        z[p] += (a_[p] * z[p + 1] + b_[p] * z[p + s()]) / d_[p];
+        z[p] = z[p] + up_b_[p] * z[p + s()] + up_a_[p] * z[p + 1];
+        sum += r[p] * z[p];
       }
+    return sum;
   }
 };
 
@@ -177,6 +207,18 @@ void face_coefficients(const Grid2D& g, const ControlFunction& w, EllipticMethod
 
 const char* elliptic_method_name(EllipticMethod m) { return m == EllipticMethod::kEd2 ? "ed2" : "rl"; }
 
+const char* elliptic_stop_name(EllipticStop s) {
+  switch (s) {
+    case EllipticStop::kNodesSettled:
+      return "nodes and criteria settled";
+    case EllipticStop::kAveragesSettled:
+      return "averages settled";
+    case EllipticStop::kIterationCap:
+      break;
+  }
+  return "iteration cap";
+}
+
 Criteria grid_criteria(const Grid2D& grid, const ControlFunction& w) {
   CheckOptions co;
   co.cells_only = true;
@@ -211,15 +253,19 @@ EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const Ellipt
   res.history.push_back(grid_criteria(g, w));
   FaceOperator op(L, M);
   std::vector<double> r(g.x.size()), dx, dy;
-  const auto changed = [&](const Criteria& a, const Criteria& b) {
+  // Between two checks: did any f(k)_o (and, for `all`, any f(k)) change by criteria_tolerance or
+  // more, or turn finite / infinite?
+  const auto changed = [&](const Criteria& a, const Criteria& b, bool all) {
     for (std::size_t k = 0; k < 4; ++k) {
       const double dw = std::fabs(a.worst[k] - b.worst[k]), da = std::fabs(a.average[k] - b.average[k]);
-      if (!(dw < o.criteria_tolerance) && std::isfinite(a.worst[k])) return true;
+      if (all && !(dw < o.criteria_tolerance) && std::isfinite(a.worst[k])) return true;
       if (!(da < o.criteria_tolerance) && std::isfinite(a.average[k])) return true;
-      if (std::isfinite(a.worst[k]) != std::isfinite(b.worst[k])) return true;
+      if (all && std::isfinite(a.worst[k]) != std::isfinite(b.worst[k])) return true;
+      if (std::isfinite(a.average[k]) != std::isfinite(b.average[k])) return true;
     }
     return false;
   };
+  int quiet_checks = 0;  // consecutive checks at which no average changed
   for (int it = 1; it <= o.max_iterations; ++it) {
     face_coefficients(g, w, o.method, floor, op.a(), op.b());
     op.factor();
@@ -227,24 +273,30 @@ EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const Ellipt
     res.cg_iterations += op.solve(r, dx, o.inner_tolerance, o.inner_iterations);
     op.residual(g.y, r);
     res.cg_iterations += op.solve(r, dy, o.inner_tolerance, o.inner_iterations);
-    double move = 0.0;
+    double move2 = 0.0;
     for (int j = 1; j < M - 1; ++j)
       for (int i = 1; i < L - 1; ++i) {
         const std::size_t p = g.at(i, j);
         g.x[p] += o.relaxation * dx[p];
         g.y[p] += o.relaxation * dy[p];
-        move = std::max(move, o.relaxation * std::hypot(dx[p], dy[p]));
+        move2 = std::max(move2, dx[p] * dx[p] + dy[p] * dy[p]);
       }
     res.iterations = it;
-    res.last_move = move / diam;
+    res.last_move = o.relaxation * std::sqrt(move2) / diam;
     if (it % o.check_every == 0 || it == o.max_iterations) {
       const Criteria c = grid_criteria(g, w);
-      const bool settled = !changed(c, res.history.back());
+      const bool settled = !changed(c, res.history.back(), true);
+      quiet_checks = changed(c, res.history.back(), false) ? 0 : quiet_checks + 1;
       res.history.push_back(c);
       if (settled && res.last_move < o.tolerance) {
-        res.converged = true;
-        break;
+        res.stop = EllipticStop::kNodesSettled;
+      } else if (o.stop_when_averages_settle && quiet_checks >= 2) {
+        res.stop = EllipticStop::kAveragesSettled;
+      } else {
+        continue;
       }
+      res.converged = true;
+      break;
     }
   }
   return res;

@@ -9,14 +9,10 @@
 
 namespace aq::curvilinear {
 
-namespace {
-
-bool leveled_off(double prev, double now, double tol) {
+bool bvp_leveled_off(double prev, double now, double tol) {
   if (now == prev) return true;
   return std::fabs(now - prev) <= tol * std::max(std::fabs(now), std::fabs(prev));
 }
-
-}  // namespace
 
 BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o, const ThetaEta* initial_solution) {
   if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))
@@ -49,8 +45,8 @@ BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o, const 
       r.grid = grid;
       r.best_iteration = k;
     }
-    if (k >= o.min_iterations && leveled_off(r.f_max[r.f_max.size() - 2], q.f_max, o.level_off) &&
-        leveled_off(r.f_avg[r.f_avg.size() - 2], q.f_avg, o.level_off))
+    if (k >= o.min_iterations && bvp_leveled_off(r.f_max[r.f_max.size() - 2], q.f_max, o.level_off) &&
+        bvp_leveled_off(r.f_avg[r.f_avg.size() - 2], q.f_avg, o.level_off))
       break;
     if (q.f_max < 1e-13) break;  // exact to round-off (orthogonal by construction)
     // The new grid is the next reference; its nodes sit on the levels, a good CG start.

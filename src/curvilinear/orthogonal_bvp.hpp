@@ -49,4 +49,7 @@ struct BvpResult {
 BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& options,
                          const ThetaEta* initial_solution = nullptr);
 
+/// The A.8 level-off test of one measure: |now − prev| ≤ tol · max(|now|, |prev|) (true when equal).
+bool bvp_leveled_off(double prev, double now, double tol);
+
 }  // namespace aq::curvilinear

@@ -293,6 +293,7 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
         j["elliptic_iterations"] = m.elliptic->iterations;
         j["elliptic_cg_iterations"] = m.elliptic->cg_iterations;
         j["elliptic_converged"] = m.elliptic->converged;
+        j["elliptic_stop"] = elliptic_stop_name(m.elliptic->stop);
         j["elliptic_last_move"] = m.elliptic->last_move;
         j["elliptic_rejected"] = m.elliptic_rejected;
       }
@@ -315,12 +316,11 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
     }
     std::string what = m.initial;
     if (m.elliptic)
-      what = fmt::format("{} from {} ({} iterations, {} CG iterations{})",
-                         grid_method_name(p.method == GridMethod::kBest ? p.best_final : p.method), m.initial,
-                         m.elliptic->iterations, m.elliptic->cg_iterations,
-                         m.elliptic_rejected     ? ", " + m.rejected_because + ": initial grid kept"
-                         : m.elliptic->converged ? ""
-                                                 : ", not settled");
+      what = fmt::format(
+          "{} from {} ({} iterations, {} CG iterations, {}, last node move {:.1e} of the diameter{})",
+          grid_method_name(p.method == GridMethod::kBest ? p.best_final : p.method), m.initial, m.elliptic->iterations,
+          m.elliptic->cg_iterations, m.elliptic->converged ? elliptic_stop_name(m.elliptic->stop) : "not settled",
+          m.elliptic->last_move, m.elliptic_rejected ? ", " + m.rejected_because + ": initial grid kept" : "");
     scope.done(
         fmt::format("{} x {} supergrid by {}; {} self-intersecting cells", r.grid.nx_pts, r.grid.ny_pts, what, folded));
   }

@@ -232,8 +232,8 @@ RegionalBvp regional_bvp(const SplineContour& contour, const BoundaryNodes& unif
   out.aspect_ratio = a.aspect_ratio + b.aspect_ratio;  // W/H add along ξ for blocks side by side
   out.bvp.f_max = t.f_max;
   out.bvp.f_avg = t.f_avg;
-  out.bvp.iterations = o.max_iterations;
-  out.bvp.best_iteration = o.max_iterations;
+  out.bvp.iterations = t.iterations;
+  out.bvp.best_iteration = t.iterations;
   out.interface_kink = t.max_kink;
   return out;
 }

@@ -213,6 +213,7 @@ const std::map<std::string, Setter>& setters() {
       {"weight_depth", real(&RegionalParams::weight_depth)},
       {"relaxation", real(&RegionalParams::relaxation)},
       {"elliptic_tolerance", real(&RegionalParams::elliptic_tolerance)},
+      {"elliptic_criteria_tolerance", real(&RegionalParams::elliptic_criteria_tolerance)},
       {"elliptic_iterations", integer(&RegionalParams::elliptic_iterations)},
       {"best_final",
        [](RegionalParams& p, std::string_view v) -> std::string {

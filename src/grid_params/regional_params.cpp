@@ -57,6 +57,8 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
   check(p.relaxation > 0.0 && p.relaxation <= 1.0, "relaxation", num(p.relaxation), "must be within (0, 1]");
   check(p.elliptic_tolerance > 0.0 && p.elliptic_tolerance < 1.0, "elliptic_tolerance", num(p.elliptic_tolerance),
         "must be within (0, 1)");
+  check(p.elliptic_criteria_tolerance > 0.0 && p.elliptic_criteria_tolerance < 1.0, "elliptic_criteria_tolerance",
+        num(p.elliptic_criteria_tolerance), "must be within (0, 1)");
   check(p.elliptic_iterations >= 1, "elliptic_iterations", std::to_string(p.elliptic_iterations), "must be >= 1");
   check(p.best_final == GridMethod::kEd2 || p.best_final == GridMethod::kRl, "best_final",
         grid_method_name(p.best_final), "must be ed2 or rl");

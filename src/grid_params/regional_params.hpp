@@ -137,8 +137,12 @@ struct RegionalParams {
   double weight_depth = 0.0;
   /// [relaxation] ω of the ED2/RL Picard update, (0, 1].
   double relaxation = 0.7;
-  /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled).
+  /// [elliptic_tolerance] ED2/RL stop: largest node move / diameter, > 0 (and f, f_o settled); ED2/RL
+  /// also stop when the averages f_o settle (elliptic_grids.hpp).
   double elliptic_tolerance = 1e-4;
+  /// [elliptic_criteria_tolerance] ED2/RL stop: f, f_o "settled" when they change by less than this
+  /// between checks 5 iterations apart, (0, 1). Smaller runs longer (1e-5 usually to the cap).
+  double elliptic_criteria_tolerance = 1e-3;
   /// [elliptic_iterations] ED2/RL Picard iterations at most, ≥ 1.
   int elliptic_iterations = 400;
   /// [best_final] the elliptic method `best` runs from the chosen initial grid: ed2 or rl.

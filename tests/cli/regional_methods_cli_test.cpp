@@ -38,6 +38,12 @@ TEST(RegionalMethodsCli, BlackSeaEd2WritesEveryFileAndChecks) {
   EXPECT_EQ(g.at("self_intersecting_cells"), 0);
   EXPECT_EQ(g.at("boundary_crossings"), 0);
   EXPECT_GT(g.at("elliptic_iterations").get<int>(), 5);
+  // The Black Sea's thin corner cells creep, so ED2 stops when the averages settle, well before the cap.
+  EXPECT_EQ(g.at("elliptic_stop"), "averages settled");
+  EXPECT_TRUE(g.at("elliptic_converged").get<bool>());
+  EXPECT_LT(g.at("elliptic_iterations").get<int>(), 200);
+  EXPECT_GT(g.at("elliptic_last_move").get<double>(), 0.0);
+  EXPECT_LT(g.at("elliptic_last_move").get<double>(), 1e-3);
   EXPECT_FALSE(g.at("elliptic_rejected").get<bool>());
   EXPECT_GT(rep.at("quality").at("f1").at("worst").get<double>(), 0.0);
   const auto c = run_aquatoria("check " + (out / "black_sea_xygrid.nc").string());
@@ -123,6 +129,11 @@ TEST(RegionalMethodsCli, BadMethodKeysAreClearErrors) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("regional.sections_eta"));
   EXPECT_THAT(r.err, HasSubstr("cannot be combined with sections"));
+  r = run_aquatoria("regional -q -c " + kConfigs +
+                    "swan.toml --set regional.method=ed2 --set regional.elliptic_criteria_tolerance=0 -o " +
+                    out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("elliptic_criteria_tolerance"));
   // The swan is not star-shaped (the top's tangents at both ends meet below the bottom).
   r = run_aquatoria("regional -q -c " + kConfigs + "swan.toml --set regional.method=star -o " + out.string());
   EXPECT_EQ(r.exit_code, 1);

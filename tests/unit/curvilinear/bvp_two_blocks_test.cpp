@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/error.hpp"
 #include "curvilinear/bvp_two_blocks.hpp"
 #include "curvilinear/transfinite_interpolation.hpp"
 
@@ -51,11 +52,11 @@ std::function<void(SurfaceGrid&)> projector(double x0, double x1) {
   };
 }
 
-TwoBlockResult run(int n) {
+TwoBlockResult run(int n, int max_iterations = 3) {
   BvpOptions o;
   o.theta_levels = graded_levels(n);
   o.eta_levels = graded_levels(n);
-  o.max_iterations = 3;
+  o.max_iterations = max_iterations;
   o.project = projector(0.0, kCut);
   return orthogonal_bvp_two_blocks(block(0.0, kCut, n + 1, n + 1), block(kCut, 2.0, 2 * n + 1, n + 1), o,
                                    graded_levels(2 * n), projector(kCut, 2.0));
@@ -85,6 +86,33 @@ TEST(BvpTwoBlocks, LinesAreContinuousAndSmoothAcrossTheInterface) {
     }
     kink_prev = r.max_kink;
   }
+}
+
+TEST(BvpTwoBlocks, OuterIterationsStopWhenFmaxAndFavgLevelOff) {
+  // Digest A.8 for the pair: stop at the first k >= min_iterations (2) where f_max and f_avg over
+  // both blocks changed by at most level_off (1 %) relative; the same grids as a run capped there.
+  const TwoBlockResult r = run(16, 20);
+  ASSERT_EQ(r.f_max.size(), static_cast<std::size_t>(r.iterations) + 1);
+  EXPECT_GE(r.iterations, 2);
+  EXPECT_LT(r.iterations, 20);
+  const auto rel = [](const std::vector<double>& f, int k) {
+    return std::fabs(f[static_cast<std::size_t>(k)] - f[static_cast<std::size_t>(k) - 1]) /
+           std::max(std::fabs(f[static_cast<std::size_t>(k)]), std::fabs(f[static_cast<std::size_t>(k) - 1]));
+  };
+  EXPECT_LE(rel(r.f_max, r.iterations), 1e-2);
+  EXPECT_LE(rel(r.f_avg, r.iterations), 1e-2);
+  for (int k = 2; k < r.iterations; ++k) EXPECT_TRUE(rel(r.f_max, k) > 1e-2 || rel(r.f_avg, k) > 1e-2) << k;
+  const TwoBlockResult capped = run(16, r.iterations);
+  EXPECT_EQ(capped.iterations, r.iterations);
+  EXPECT_EQ(capped.b(5, 7).x, r.b(5, 7).x);
+  EXPECT_EQ(capped.b(5, 7).y, r.b(5, 7).y);
+  std::printf("two blocks n = 16: stopped after %d outer iterations, f_max %.3e, f_avg %.3e\n", r.iterations,
+              r.f_max.back(), r.f_avg.back());
+  BvpOptions bad;
+  bad.theta_levels = bad.eta_levels = graded_levels(4);
+  bad.max_iterations = 0;
+  EXPECT_THROW(orthogonal_bvp_two_blocks(block(0.0, kCut, 5, 5), block(kCut, 2.0, 9, 5), bad, graded_levels(8)),
+               ConfigError);
 }
 
 }  // namespace
