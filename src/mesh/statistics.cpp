@@ -60,6 +60,10 @@ double polygon_area_m2(const Lattice& lat, const PoleRotation& rot, const std::a
 /// +1/-1 when the edge lon1 -> lon2 crosses the prime meridian eastward/westward, as
 /// GeographicLib::PolygonArea counts it (its transit(), which is private).
 int polygon_transit(double lon1, double lon2) {
+  // Both in (-180, 180) (where AngNormalize is the identity) and on one side of the prime
+  // meridian: no crossing (the general test below gives 0 too).
+  if (std::abs(lon1) < 180.0 && std::abs(lon2) < 180.0 && ((lon1 > 0.0 && lon2 > 0.0) || (lon1 < 0.0 && lon2 < 0.0)))
+    return 0;
   const double lon12 = GeographicLib::Math::AngDiff(lon1, lon2);
   lon1 = GeographicLib::Math::AngNormalize(lon1);
   lon2 = GeographicLib::Math::AngNormalize(lon2);
@@ -71,7 +75,7 @@ int polygon_transit(double lon1, double lon2) {
 /// Signed (anticlockwise positive) polygon area from the sum of its edges' S12 and its prime
 /// meridian crossings, reduced as GeographicLib::PolygonArea::Compute(false, true) does.
 double polygon_area_reduce(double sum, double area0, int crossings) {
-  double area = std::remainder(sum, area0);
+  double area = std::abs(sum) < 0.5 * area0 ? sum : std::remainder(sum, area0);  // remainder is exact there
   if ((crossings & 1) != 0) area += (area < 0 ? 1 : -1) * area0 / 2;
   area = -area;
   if (area > area0 / 2)
@@ -292,6 +296,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (std::int64_t t = 0; t < nfaces; ++t) parent[static_cast<std::size_t>(t)] = t;
   std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
   std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
+  std::vector<std::uint8_t> edge_inner;               // 1: two triangles, opposite directions
   // Rotated frame or squares: the edge index of each half-edge record, for the face areas below.
   const bool per_edge_areas = m.rotation.enabled || square_faces;
   std::vector<std::uint32_t> rec_edge(per_edge_areas ? rec.size() : 0);
@@ -309,6 +314,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       edge_b.push_back(static_cast<std::uint32_t>(b));
       edge_t.push_back(static_cast<std::uint32_t>(t0));
       std::uint8_t level = face_level(t0);
+      edge_inner.push_back(e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0 ? 1 : 0);
       if (e - k == 1) {
         ++s.boundary_edges;
       } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {
@@ -580,15 +586,75 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     // its length s12 and its area S12 (between the geodesic and the equator), and a face's area is
     // the sum of ±S12 over its edges reduced as GeographicLib::PolygonArea does (which solved
     // every interior edge twice, once per face, and then a third time for the length).
+    //
+    // Interior edges shorter than kShortEdgeM (45 km: every interior edge of a lattice with
+    // pixels of 6' or less) take closed forms, about ten times cheaper than a geodesic:
+    //  * S12 of the arc between their authalic-sphere images (c² · 2 atan(tan(Δλ/2)(t1 + t2) /
+    //    (1 + t1 t2)), t = tan(β/2), β the authalic latitude): the authalic map keeps areas and maps
+    //    meridians and the equator to themselves, so this is the area between the arc's preimage and
+    //    the equator. Each interior edge enters its two faces with opposite signs, so the total area
+    //    is unchanged; a face's area is that of the region its edges bound, which differs from the
+    //    all-geodesic face by lenses of order e²·s³/R (a relative e²·s/R: below 1e-6 at 1', and
+    //    within 3e-6 for edges up to 45 km in the unit test that compares every level);
+    //  * the length from the ECEF chord d and the normal-section radius ρ along it,
+    //    s = d (1 + d² / (24 ρ²)) (within 1e-9 relative of the geodesic in the same test).
+    // Boundary edges, which the total area and its check rest on, and longer edges are geodesics.
     const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
     edge_s12.assign(static_cast<std::size_t>(s.edges), 0.0);
     edge_S12.assign(static_cast<std::size_t>(s.edges), 0.0);
     const std::int64_t nedges_all = s.edges;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 256)) \
-    shared(m, geod, edge_a, edge_b, edge_s12, edge_S12, nedges_all) schedule(dynamic, 256)
+    constexpr double kShortEdgeM = 45000.0;
+    const double a_eq = ell.EquatorialRadius(), ecc = std::sqrt(e2);
+    const double c2 = rq2;  // the authalic radius squared
+    const auto q_of = [ecc, e2](double sn) {
+      return (1.0 - e2) * (sn / (1.0 - e2 * sn * sn) + std::atanh(ecc * sn) / ecc);
+    };
+    const double qp = q_of(1.0);
+    // Per node: tan(β/2) and the ECEF position.
+    const auto nnodes = static_cast<std::int64_t>(nn);
+    std::vector<double> tb(nn), ecef(3 * nn);
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nnodes * 16)) \
+    shared(m, tb, ecef, nnodes, q_of, qp, a_eq, e2) schedule(static)
+    for (std::int64_t v = 0; v < nnodes; ++v) {
+      const auto k = static_cast<std::size_t>(v);
+      const double phi = m.lat_deg[k] * kDegToRad, lam = m.lon_deg[k] * kDegToRad;
+      const double sp = std::sin(phi), cp = std::cos(phi);
+      const double sb = std::clamp(q_of(sp) / qp, -1.0, 1.0);
+      tb[k] = sb / (1.0 + std::sqrt((1.0 - sb) * (1.0 + sb)));
+      const double n = a_eq / std::sqrt(1.0 - e2 * sp * sp);
+      ecef[3 * k] = n * cp * std::cos(lam);
+      ecef[3 * k + 1] = n * cp * std::sin(lam);
+      ecef[3 * k + 2] = n * (1.0 - e2) * sp;
+    }
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 64))                   \
+    shared(m, geod, edge_a, edge_b, edge_inner, edge_s12, edge_S12, nedges_all, tb, ecef, c2, a_eq, e2) \
+        schedule(dynamic, 256)
     for (std::int64_t e = 0; e < nedges_all; ++e) {
       const auto k = static_cast<std::size_t>(e);
       const auto a = static_cast<std::size_t>(edge_a[k]), b = static_cast<std::size_t>(edge_b[k]);
+      if (edge_inner[k] != 0) {
+        const double dx = ecef[3 * b] - ecef[3 * a], dy = ecef[3 * b + 1] - ecef[3 * a + 1],
+                     dz = ecef[3 * b + 2] - ecef[3 * a + 2];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 < kShortEdgeM * kShortEdgeM) {
+          // The local frame at node a from its ECEF position (geocentric: the direction and the
+          // latitude enter only the small curvature term).
+          const double x = ecef[3 * a], y = ecef[3 * a + 1], z = ecef[3 * a + 2];
+          const double p2 = x * x + y * y, p = std::sqrt(p2), r = std::sqrt(p2 + z * z);
+          const double east = p > 0.0 ? (-y * dx + x * dy) / p : dx;
+          const double north = p > 0.0 ? (-z * (x * dx + y * dy) / p + p * dz) / r : dy;
+          const double sp = z / r;
+          const double w2 = 1.0 - e2 * sp * sp;
+          const double inv_m = w2 * std::sqrt(w2) / (a_eq * (1.0 - e2)), inv_n = std::sqrt(w2) / a_eq;
+          const double h2 = east * east + north * north;
+          const double inv_rho = h2 > 0.0 ? (north * north * inv_m + east * east * inv_n) / h2 : inv_n;
+          edge_s12[k] = std::sqrt(d2) * (1.0 + d2 * inv_rho * inv_rho / 24.0);
+          double dlam = m.lon_deg[b] - m.lon_deg[a];
+          dlam = (dlam > 180.0 ? dlam - 360.0 : dlam <= -180.0 ? dlam + 360.0 : dlam) * kDegToRad;
+          edge_S12[k] = c2 * 2.0 * std::atan2(std::tan(0.5 * dlam) * (tb[a] + tb[b]), 1.0 + tb[a] * tb[b]);
+          continue;
+        }
+      }
       double azi1 = 0.0, azi2 = 0.0, m12 = 0.0, mm12 = 0.0, mm21 = 0.0;
       geod.GenInverse(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b],
                       GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AREA, edge_s12[k], azi1, azi2, m12,
