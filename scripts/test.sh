@@ -34,5 +34,5 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 echo "test.sh: sanitizer suite done in $(( $(date +%s) - t1 )) s" >&2
 
 t2=$(date +%s)
-(cd build && ctest --output-on-failure -j 1 -L slow --timeout 1800)
+(cd build && ctest --output-on-failure -j 2 -L slow --timeout 1800)
 echo "test.sh: slow suite done in $(( $(date +%s) - t2 )) s; total $(( $(date +%s) - t0 )) s" >&2
