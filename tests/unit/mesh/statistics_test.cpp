@@ -43,26 +43,31 @@ TEST(Statistics, FullGlobeFilledAreaIsTheEllipsoidArea) {
   EXPECT_EQ(s.euler, s.euler_expected);
 }
 
+// GeographicLib's area (PolygonArea) of every triangle of `level`, sorted; adds them to `total`.
+std::vector<double> geodesic_areas(const Mesh& mesh, int level, double& total) {
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  std::vector<double> areas;
+  for (std::int64_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (mesh.triangle_level[static_cast<std::size_t>(t)] != level) continue;
+    GeographicLib::PolygonArea poly(g);
+    for (const NodeId v : mesh.triangles[static_cast<std::size_t>(t)])
+      poly.AddPoint(mesh.lat_deg[static_cast<std::size_t>(v)], mesh.lon_deg[static_cast<std::size_t>(v)]);
+    double perimeter = 0, area = 0;
+    poly.Compute(false, true, perimeter, area);
+    areas.push_back(area);
+    total += area;
+  }
+  std::sort(areas.begin(), areas.end());
+  return areas;
+}
+
 TEST(Statistics, MemoisedSizesEqualDirectComputation) {
   const Mesh mesh = small_mesh();
   const MeshStatistics s = compute_statistics(mesh);
   ASSERT_TRUE(s.failed_checks().empty());
-  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
   double total = 0.0;
   for (const LevelStatistics& ls : s.levels) {
-    std::vector<double> areas, lengths;
-    for (std::int64_t t = 0; t < mesh.triangle_count(); ++t) {
-      if (mesh.triangle_level[static_cast<std::size_t>(t)] != ls.level) continue;
-      GeographicLib::PolygonArea poly(g);
-      for (const NodeId v : mesh.triangles[static_cast<std::size_t>(t)]) {
-        poly.AddPoint(mesh.lat_deg[static_cast<std::size_t>(v)], mesh.lon_deg[static_cast<std::size_t>(v)]);
-      }
-      double perimeter = 0, area = 0;
-      poly.Compute(false, true, perimeter, area);
-      areas.push_back(area);
-      total += area;
-    }
-    std::sort(areas.begin(), areas.end());
+    const std::vector<double> areas = geodesic_areas(mesh, ls.level, total);
     ASSERT_EQ(static_cast<std::int64_t>(areas.size()), ls.triangles);
     EXPECT_NEAR(ls.area_min_m2, areas.front(), 1e-6 * areas.back());
     EXPECT_NEAR(ls.area_max_m2, areas.back(), 1e-6 * areas.back());
@@ -105,19 +110,7 @@ TEST(Statistics, ShortInteriorEdgesOfFineRotatedMeshesMatchGeodesics) {
   std::int64_t checked_levels = 0;
   for (const LevelStatistics& ls : s.levels) {
     if (ls.triangles == 0) continue;
-    std::vector<double> areas, lengths;
-    for (std::int64_t t = 0; t < mesh.triangle_count(); ++t) {
-      const auto& tr = mesh.triangles[static_cast<std::size_t>(t)];
-      if (mesh.triangle_level[static_cast<std::size_t>(t)] != ls.level) continue;
-      GeographicLib::PolygonArea poly(g);
-      for (const NodeId v : tr)
-        poly.AddPoint(mesh.lat_deg[static_cast<std::size_t>(v)], mesh.lon_deg[static_cast<std::size_t>(v)]);
-      double perimeter = 0, area = 0;
-      poly.Compute(false, true, perimeter, area);
-      areas.push_back(area);
-      total += area;
-    }
-    std::sort(areas.begin(), areas.end());
+    const std::vector<double> areas = geodesic_areas(mesh, ls.level, total);
     ASSERT_EQ(static_cast<std::int64_t>(areas.size()), ls.triangles);
     EXPECT_NEAR(ls.area_min_m2, areas.front(), 3e-6 * areas.front()) << "level " << ls.level;
     EXPECT_NEAR(ls.area_max_m2, areas.back(), 3e-6 * areas.back()) << "level " << ls.level;
