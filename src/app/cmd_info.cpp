@@ -53,11 +53,7 @@ int run_info(const InfoArgs& a, const Logger& log) {
   // statistics, and the --at samples read single values.
   o.allow_streaming = o.interpolation == raster::Interpolation::kBilinear;
   const auto b = raster::Bathymetry::open(o, log);
-  if (b.info().streamed) {
-    const raster::Bathymetry::Columns none = b.prepare_columns(nullptr, 0);
-    b.sample_rows(
-        none, nullptr, 0, [](std::int64_t, const float*) {}, log.progress("statistics"));
-  }
+  b.ensure_statistics(log.progress("statistics"));
   const auto& i = b.info();
   const double lon_last = i.lon_first_found + static_cast<double>(i.ncols - 1) * i.dlon;
   std::printf("file:          %s\n", i.path.c_str());

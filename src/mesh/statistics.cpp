@@ -296,7 +296,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (std::int64_t t = 0; t < nfaces; ++t) parent[static_cast<std::size_t>(t)] = t;
   std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
   std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
-  std::vector<std::uint8_t> edge_inner;               // 1: two triangles, opposite directions
+  std::vector<std::uint8_t> edge_inner;               // per_edge_areas: 1 = two faces, opposite directions
   // Rotated frame or squares: the edge index of each half-edge record, for the face areas below.
   const bool per_edge_areas = m.rotation.enabled || square_faces;
   std::vector<std::uint32_t> rec_edge(per_edge_areas ? rec.size() : 0);
@@ -314,7 +314,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       edge_b.push_back(static_cast<std::uint32_t>(b));
       edge_t.push_back(static_cast<std::uint32_t>(t0));
       std::uint8_t level = face_level(t0);
-      edge_inner.push_back(e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0 ? 1 : 0);
+      if (per_edge_areas) edge_inner.push_back(e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0 ? 1 : 0);
       if (e - k == 1) {
         ++s.boundary_edges;
       } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {

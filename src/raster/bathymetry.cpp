@@ -640,6 +640,13 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
   }
 }
 
+void Bathymetry::ensure_statistics(const ProgressFn& progress) const {
+  if (!impl_->info.streamed || impl_->stats_done) return;
+  // A pass that samples no row still reads every band for the statistics (sample_rows).
+  sample_rows(
+      prepare_columns(nullptr, 0), nullptr, 0, [](std::int64_t, const float*) {}, progress);
+}
+
 std::vector<std::string> raster_files(const std::string& path) {
   gdal_init();
   std::vector<std::string> out;

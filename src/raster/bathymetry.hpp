@@ -133,6 +133,11 @@ class Bathymetry {
   void sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
                    const ProgressFn& progress = {}) const;
 
+  /// Fills the statistics of info() (min, max, mean, valid count) of a streamed raster with one
+  /// banded pass when no pass has yet (a raster held whole has them from `open`); throws what
+  /// sample_rows throws.
+  void ensure_statistics(const ProgressFn& progress = {}) const;
+
   /// Raster value (c, r) in normalised layout (c wraps for global rasters); NaN if no data.
   /// Streamed: one small read per call (use `values` for blocks).
   [[nodiscard]] float value(std::int64_t c, std::int64_t r) const;
