@@ -11,7 +11,7 @@ PACKAGES=(
   libnetcdf-dev netcdf-bin
   libgtest-dev libgmock-dev
   libtoml11-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-  libcairo2-dev zlib1g-dev
+  libcairo2-dev zlib1g-dev libxxhash-dev xxhash
   libfftw3-dev
   ferret-datasets
   gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy

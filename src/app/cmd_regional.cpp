@@ -148,7 +148,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   if (c.params.mode != 5 || stage != curvilinear::Stage::kGrid) {
     StageScope ps("picture", &report, log);
     io::write_regional_png(out.temp_path(png), result, result.completed, po);
-    outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
+    outputs.push_back(Json{{"file", png}, {kChecksumKey, file_checksum(out.pending_path(png))}});
     ps.done(png);
   }
 
@@ -186,7 +186,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
                      {"source", loaded.source}};
     const std::string nc = c.name + "_xygrid.nc";
     io::write_xygrid(out.temp_path(nc), xy, &q);
-    outputs.push_back(Json{{"file", nc}, {"checksum_fnv1a64", file_checksum(out.pending_path(nc))}});
+    outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
     Json qj = Json::object();
     for (const auto* f : q.fields())
       qj[f->name] =

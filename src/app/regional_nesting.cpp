@@ -37,7 +37,7 @@ void write_regional_nesting(const config::RegionalConfig& c, const std::string& 
   f.attributes.emplace(f.attributes.begin() + 1, "global_config", global.loaded.source);
   const std::string name = c.name + "_nesting.nc";
   io::write_nesting(out.temp_path(name), f);
-  outputs.push_back(Json{{"file", name}, {"checksum_fnv1a64", file_checksum(out.pending_path(name))}});
+  outputs.push_back(Json{{"file", name}, {kChecksumKey, file_checksum(out.pending_path(name))}});
   const auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   report["nesting"] =
       Json{{"global_config", global.loaded.source},

@@ -289,7 +289,7 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
         fmt::format("aquatoria {} regional {}: h and masks over the refinement {} made consistent with it", AQ_VERSION,
                     config_source, grd);
     io::write_updated_roms_grid(c.nesting.parent, out.temp_path(parent_file), u);
-    outputs.push_back(Json{{"file", parent_file}, {"checksum_fnv1a64", file_checksum(out.pending_path(parent_file))}});
+    outputs.push_back(Json{{"file", parent_file}, {kChecksumKey, file_checksum(out.pending_path(parent_file))}});
   }
   const io::RomsGridFields& parent = g.nested ? g.parent_nested : g.parent;
   handoff::ContactSummary sum;
@@ -319,7 +319,7 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
                   {"refinement_ratio_median", sum.ratio_median}};
   const std::string name = c.name + "_contact.nc";
   io::write_contact(out.temp_path(name), f);
-  outputs.push_back(Json{{"file", name}, {"checksum_fnv1a64", file_checksum(out.pending_path(name))}});
+  outputs.push_back(Json{{"file", name}, {kChecksumKey, file_checksum(out.pending_path(name))}});
   // The parent with this grid outlined.
   io::RomsPictureOptions po;
   po.title = fmt::format("{} in {}: psi I {}..{} x J {}..{} split {} x {} ({} x {} rho points)", c.name, parent_file,
@@ -329,7 +329,7 @@ void write_refinement_contact(const config::RegionalConfig& c, const std::string
   for (std::size_t k = 0; k < pmask.size(); ++k) pmask[k] = parent.mask_rho[k] > 0.5 ? 1 : 0;
   const std::string png = c.name + "_in_parent.png";
   io::write_roms_png(out.temp_path(png), g.parent_plane, pmask, parent.h, po);
-  outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
+  outputs.push_back(Json{{"file", png}, {kChecksumKey, file_checksum(out.pending_path(png))}});
 
   const auto& a = sum.coarse_to_fine;
   const auto& b = sum.fine_to_coarse;

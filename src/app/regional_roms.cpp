@@ -247,7 +247,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   }
   const std::string nc = c.name + "_grd.nc";
   io::write_roms_grid(out.temp_path(nc), data);
-  outputs.push_back(Json{{"file", nc}, {"checksum_fnv1a64", file_checksum(out.pending_path(nc))}});
+  outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
 
   // The picture, with the coastline of the global bathymetry.
   io::RomsPictureOptions po;
@@ -271,7 +271,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   }
   const std::string png = c.name + "_roms.png";
   io::write_roms_png(out.temp_path(png), result.grid, masks.rho, depth.h, po);
-  outputs.push_back(Json{{"file", png}, {"checksum_fnv1a64", file_checksum(out.pending_path(png))}});
+  outputs.push_back(Json{{"file", png}, {kChecksumKey, file_checksum(out.pending_path(png))}});
 
   double hmax = 0.0;
   for (std::size_t k = 0; k < nr; ++k)

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 #include <unistd.h>
+#include <xxhash.h>
 
 #include <fstream>
 #include <system_error>
@@ -26,12 +27,19 @@ std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t hash) {
 std::string file_checksum(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open for checksum", path.string()));
-  std::vector<char> buf(1 << 20);
-  std::uint64_t h = kFnvOffset;
+  // XXH64 rather than byte-wise FNV-1a: 15 GB/s instead of 0.9 (the 732 MB MSH of a 1' run
+  // took 0.8 s to checksum), and users can check a file with the standard xxhsum.
+  std::vector<char> buf(1 << 22);
+  XXH64_state_t* state = XXH64_createState();
+  if (state == nullptr) throw InputError(fmt::format("{}: no memory for the checksum", path.string()));
+  XXH64_reset(state, 0);
   while (in) {
     in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    h = fnv1a(buf.data(), static_cast<std::size_t>(in.gcount()), h);
+    XXH64_update(state, buf.data(), static_cast<std::size_t>(in.gcount()));
   }
+  const std::uint64_t h = XXH64_digest(state);
+  XXH64_freeState(state);
+  if (in.bad()) throw InputError(fmt::format("{}: read error during checksum", path.string()));
   return fmt::format("{:016x}", h);
 }
 

@@ -12,8 +12,11 @@
 
 namespace aq {
 
-/// 64-bit FNV-1a checksum of a file's bytes, as 16 hex digits. Throws InputError if unreadable.
+/// XXH64 (seed 0) of a file's bytes, as 16 hex digits: what `xxhsum -H1 FILE` prints. Throws
+/// InputError if unreadable. Reports list it under kChecksumKey.
 std::string file_checksum(const std::filesystem::path& path);
+/// The report key of an output file's checksum (file_checksum).
+inline constexpr const char* kChecksumKey = "checksum_xxh64";
 /// 64-bit FNV-1a over a byte range, continuing from `hash` (start with kFnvOffset).
 inline constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
 std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t hash = kFnvOffset);

@@ -142,7 +142,7 @@ TEST(SphereQualityEtopo5, NewFormatsAreBitIdenticalForOneAndTwoThreads) {
   const MeshRun one = run_mesh("t1", args, 1), two = run_mesh("t2", args, 2);
   ASSERT_EQ(one.report.at("outputs").size(), 6u);
   for (std::size_t k = 0; k < 6; ++k)
-    EXPECT_EQ(one.report.at("outputs")[k].at("checksum_fnv1a64"), two.report.at("outputs")[k].at("checksum_fnv1a64"))
+    EXPECT_EQ(one.report.at("outputs")[k].at("checksum_xxh64"), two.report.at("outputs")[k].at("checksum_xxh64"))
         << one.report.at("outputs")[k].at("file");
   json qa = one.report.at("quality"), qb = two.report.at("quality");
   for (auto* q : {&qa, &qb})

@@ -46,6 +46,22 @@ TEST(OutputSet, CommitRenamesEverything) {
   EXPECT_NE(aq::file_checksum(dir / "a.txt"), aq::file_checksum(dir / "b.txt"));
 }
 
+// The report's checksum is XXH64 with seed 0, what `xxhsum -H1` prints (values from xxhsum 0.8.1),
+// also across the reader's buffer boundary (4 MiB).
+TEST(FileChecksum, IsXxh64AsXxhsumPrints) {
+  const fs::path dir = fs::temp_directory_path() / "aq_core_checksum";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "a.txt", std::ios::binary) << "A";
+  { std::ofstream(dir / "q.bin", std::ios::binary) << std::string(5000000, 'q'); }
+  std::ofstream(dir / "empty", std::ios::binary).close();
+  EXPECT_EQ(aq::file_checksum(dir / "a.txt"), "13099d40d095b684");
+  EXPECT_EQ(aq::file_checksum(dir / "q.bin"), "8c2ea88c6b894209");
+  EXPECT_EQ(aq::file_checksum(dir / "empty"), "ef46db3751d8e999");
+  EXPECT_THROW(aq::file_checksum(dir / "missing"), aq::InputError);
+  fs::remove_all(dir);
+}
+
 // What an interrupt handler removes (core/temp_registry.hpp): every temporary of an unfinished
 // output set, and the renamed files of an unfinished commit; nothing once the set is committed.
 TEST(TempRegistry, RemovesTemporariesOfUnfinishedOutputSets) {
