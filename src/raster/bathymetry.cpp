@@ -199,22 +199,36 @@ struct Bathymetry::Impl {
   // (resized). Records per-row statistics in `stats` (indexed by normalised row) when given.
   void read_stored(std::int64_t y0, std::int64_t y1, float* dst, std::int64_t lo, std::vector<float>& raw,
                    RowStats* stats) const {
-    const std::int64_t w = info.width, h = info.height, ny = y1 - y0;
+    read_raw(y0, y1, raw);
+    normalise_rows(y0, y1, raw.data(), dst, lo, stats, false);
+  }
+
+  // Stored rows [y0, y1) as GDAL gives them (Float32) into `raw` (resized). One read at a time.
+  void read_raw(std::int64_t y0, std::int64_t y1, std::vector<float>& raw) const {
+    const std::int64_t w = info.width, ny = y1 - y0;
     raw.resize(static_cast<std::size_t>(ny * w));
-    {
-      const std::lock_guard<std::mutex> lock(io);
-      if (band->RasterIO(GF_Read, 0, static_cast<int>(y0), static_cast<int>(w), static_cast<int>(ny), raw.data(),
-                         static_cast<int>(w), static_cast<int>(ny), GDT_Float32, 0, 0, nullptr) != CE_None) {
-        throw InputError(fmt::format("{}: read error at rows {}..{}{}", info.path, y0, y1 - 1, gdal_message()));
-      }
+    const std::lock_guard<std::mutex> lock(io);
+    if (band->RasterIO(GF_Read, 0, static_cast<int>(y0), static_cast<int>(w), static_cast<int>(ny), raw.data(),
+                       static_cast<int>(w), static_cast<int>(ny), GDT_Float32, 0, 0, nullptr) != CE_None) {
+      throw InputError(fmt::format("{}: read error at rows {}..{}{}", info.path, y0, y1 - 1, gdal_message()));
     }
+  }
+
+  // The stored rows [y0, y1) in `raw` normalised into dst (see read_stored); rows are shared
+  // among the OpenMP threads when `parallel` (each row is written and summarised on its own).
+  void normalise_rows(std::int64_t y0, std::int64_t y1, const float* raw, float* dst, std::int64_t lo, RowStats* stats,
+                      bool parallel) const {
+    const std::int64_t w = info.width, h = info.height, ny = y1 - y0, nc = info.ncols;
+    const bool north_up = info.north_up;
+#pragma omp parallel for schedule(static) default(none) \
+    shared(y0, raw, dst, lo, stats, w, h, ny, nc, north_up) if (parallel && ny * nc >= (std::int64_t{1} << 20))
     for (std::int64_t yy = 0; yy < ny; ++yy) {
       const std::int64_t y = y0 + yy;
-      const std::int64_t r = info.north_up ? h - 1 - y : y;
-      const float* src = raw.data() + yy * w;
-      float* out = dst + (r - lo) * info.ncols;
-      for (std::int64_t c = 0; c < info.ncols; ++c) out[c] = normalise(src[c]);
-      if (stats != nullptr) stats[r] = row_stats(out, info.ncols);
+      const std::int64_t r = north_up ? h - 1 - y : y;
+      const float* src = raw + yy * w;
+      float* out = dst + (r - lo) * nc;
+      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c]);
+      if (stats != nullptr) stats[r] = row_stats(out, nc);
     }
   }
 
@@ -374,6 +388,10 @@ struct Bathymetry::Impl {
     std::vector<RowStats> rows(static_cast<std::size_t>(nr));
     for (std::int64_t r = 0; r < nr; ++r)
       rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), info.ncols);
+    finish_stats(rows);
+  }
+  // The statistics from the held rows' own (rows [row_lo, row_hi) in order), and the memory held.
+  void finish_stats(const std::vector<RowStats>& rows) {
     set_stats(rows);
     info.memory_bytes = static_cast<std::int64_t>((v.size() + fx.size() + fy.size() + fxy.size()) * sizeof(float));
   }
@@ -889,16 +907,32 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   const std::int64_t chunk = std::max<std::int64_t>(1, (64LL << 20) / std::max<std::int64_t>(1, w * 4));
   const std::int64_t y_lo = info.north_up ? h - im->row_hi : im->row_lo;
   const std::int64_t y_hi = info.north_up ? h - im->row_lo : im->row_hi;
-  std::vector<float> raw;
+  // GDAL reads chunk k + 1 on a second thread while the threads normalise chunk k and take its
+  // row statistics (combined in row order afterwards: the same figures as compute_stats).
+  std::vector<float> raw[2];
+  std::vector<RowStats> rows(static_cast<std::size_t>(info.nrows));
   auto progress = log.progress("read");
-  for (std::int64_t y0 = y_lo; y0 < y_hi; y0 += chunk) {
+  Impl* const p = im.get();
+  const auto read = [p, &raw, chunk, y_hi](std::int64_t y0, std::size_t k) {
+    p->read_raw(y0, std::min(y_hi, y0 + chunk), raw[k % 2]);
+  };
+  std::future<void> next = std::async(std::launch::async, read, y_lo, std::size_t{0});
+  std::size_t k = 0;
+  for (std::int64_t y0 = y_lo; y0 < y_hi; y0 += chunk, ++k) {
     const std::int64_t y1 = std::min(y_hi, y0 + chunk);
-    im->read_stored(y0, y1, im->v.data(), im->row_lo, raw, nullptr);
-    if (progress) progress(static_cast<double>(y1 - y_lo) / static_cast<double>(y_hi - y_lo), "rows");
+    next.get();
+    if (y1 < y_hi) next = std::async(std::launch::async, read, y1, k + 1);
+    try {
+      im->normalise_rows(y0, y1, raw[k % 2].data(), im->v.data(), im->row_lo, rows.data(), true);
+      if (progress) progress(static_cast<double>(y1 - y_lo) / static_cast<double>(y_hi - y_lo), "rows");
+    } catch (...) {
+      if (next.valid()) next.wait();
+      throw;
+    }
   }
   im->ds.reset();  // everything is held
   im->band = nullptr;
-  im->compute_stats();
+  im->finish_stats(std::vector<RowStats>(rows.begin() + im->row_lo, rows.begin() + im->row_hi));
   if (im->info.valid_count == 0) {
     throw InputError(
         fmt::format("{}: band {} ({}) holds no data: every value is no-data", o.path, o.band, info.variable));
