@@ -2,6 +2,9 @@
 // a memory buffer (text through fmt::format_to, binary through `put`) and handed to the kernel
 // in chunks of ~4 MiB with POSIX write(2), so that every failure (no permission, ENOSPC, EIO,
 // a failing close on NFS) is seen with its errno and reported as an OutputError naming the file.
+// A full chunk is written by a second thread while the caller fills the next one (the kernel's
+// copy into the page cache cost the 732 MB MSH of a 1' run 0.8 s on the writing thread); its
+// failure is reported by the next flush or close.
 // Nothing is written to a final name here: callers pass the temporary path OutputSet gave them.
 #pragma once
 
@@ -9,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <future>
 #include <string_view>
 #include <type_traits>
 
@@ -47,24 +51,34 @@ class FileWriter {
   void maybe_flush() {
     if (buf_.size() >= kChunkBytes) flush();
   }
-  /// Writes everything buffered. Throws OutputError naming the file (with strerror).
+  /// Hands everything buffered to the kernel: waits for the chunk before (rethrowing its
+  /// failure) and writes this one on a second thread. Throws OutputError naming the file.
   void flush();
   /// Flushes and closes. Throws OutputError naming the file. Returns the file size in bytes.
   std::int64_t close();
 
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
   /// Bytes handed to the kernel plus bytes still buffered.
-  [[nodiscard]] std::int64_t size() const { return written_ + static_cast<std::int64_t>(buf_.size()); }
+  [[nodiscard]] std::int64_t size() const {
+    return written_ + static_cast<std::int64_t>(writing_.size() + buf_.size());
+  }
 
   static constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
 
  private:
   [[noreturn]] void fail(const char* what, int err) const;
 
+  // write(2) of every byte of `data`; throws OutputError (what the caller of wait() sees).
+  void write_all(const fmt::memory_buffer& data) const;
+  // Waits for the chunk being written, if any; rethrows its failure.
+  void wait();
+
   std::filesystem::path path_;
   int fd_ = -1;
   std::int64_t written_ = 0;
   fmt::memory_buffer buf_;
+  fmt::memory_buffer writing_;   ///< the chunk the second thread writes
+  std::future<void> pending_;    ///< its write
 };
 
 }  // namespace aq::io
