@@ -48,7 +48,8 @@ void check_depth(double h) {
 // The rotated vertex rule works on units of vertices [I0, I1) × [J0, J1) within one bitmap word
 // (I1 - I0 <= 64): a unit whose image lies where every raster value is on one side of the
 // threshold is decided without sampling; an undecided one is split, and sampled vertex by vertex
-// at the last level. Sizes per level (columns × rows): 64 × 32, 16 × 8.
+// at the last level. Sizes per level (columns × rows): 64 × 32, 16 × 8. (A third level of 4 × 4
+// decided only a quarter of its units on the 1' run and cost more than it saved.)
 constexpr std::array<std::int64_t, 2> kUnitCols = {64, 16};
 constexpr std::array<std::int64_t, 2> kUnitRows = {32, 8};
 
@@ -123,7 +124,12 @@ void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, con
   std::vector<double> xs(static_cast<std::size_t>(nx));
   for (std::int64_t I = 0; I < nx; ++I) xs[static_cast<std::size_t>(I)] = static_cast<double>(I);
   const LatticeRowMapper mapper(lattice, rot, xs);
-  const raster::ValueBounds bounds(bathy, 8);
+  // Blocks of 4 raster cells when a lattice pixel is under 2 cells, 8 otherwise (the bounds'
+  // coarser levels serve the large units): on the 1' run the 16 × 8 units decide 52 % instead of
+  // 42 %, and 16 % fewer vertices are sampled.
+  const auto& in = bathy.info();
+  const double cells_per_pixel = lattice.pixel_deg() / std::min(in.dlon, in.dlat);
+  const raster::ValueBounds bounds(bathy, cells_per_pixel < 2.0 ? 4 : 8);
   const RotatedSampler sampler{bathy, lattice, rot, mapper, bounds, threshold, wv};
   const std::int64_t ntx = bits::words_for(nx), rows0 = kUnitRows[0], nty = (nv + rows0 - 1) / rows0;
   RowProgress rp(progress, nty, "vertices");

@@ -7,20 +7,22 @@
 
 namespace aq::raster {
 
-ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block) : info_(bathy.info()), block_(block) {
-  if (info_.streamed || !bathy.samples_bilinear() || info_.ncols <= 0 || info_.nrows <= 0) return;
+ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block) : info_(bathy.info()) {
+  if (info_.streamed || !bathy.samples_bilinear() || info_.ncols <= 0 || info_.nrows <= 0 || block < 1) return;
   available_ = true;
   const std::int64_t nc = info_.ncols, nr = info_.nrows;
-  nbx_ = (nc + block_ - 1) / block_;
-  nby_ = (nr + block_ - 1) / block_;
-  const auto nb = static_cast<std::size_t>(nbx_ * nby_);
-  lo_.assign(nb, std::numeric_limits<float>::infinity());
-  hi_.assign(nb, -std::numeric_limits<float>::infinity());
-  nan_.assign(nb, 0);
-  const std::int64_t B = block_, nbx = nbx_, nby = nby_;
-  float* lo = lo_.data();
-  float* hi = hi_.data();
-  unsigned char* nan = nan_.data();
+  Level& l0 = levels_.emplace_back();
+  l0.block = block;
+  l0.nbx = (nc + block - 1) / block;
+  l0.nby = (nr + block - 1) / block;
+  const auto nb = static_cast<std::size_t>(l0.nbx * l0.nby);
+  l0.lo.assign(nb, std::numeric_limits<float>::infinity());
+  l0.hi.assign(nb, -std::numeric_limits<float>::infinity());
+  l0.nan.assign(nb, 0);
+  const std::int64_t B = block, nbx = l0.nbx, nby = l0.nby;
+  float* lo = l0.lo.data();
+  float* hi = l0.hi.data();
+  unsigned char* nan = l0.nan.data();
 #pragma omp parallel default(none) shared(bathy, nc, nr, B, nbx, nby, lo, hi, nan)
   {
     std::vector<float> rows(static_cast<std::size_t>(B * nc));
@@ -51,17 +53,54 @@ ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block) : info_(ba
       }
     }
   }
+  // Coarser levels: 2 × 2 blocks of the one below, while a level has more than a few blocks.
+  constexpr std::int64_t kMerge = 2;
+  while (levels_.back().nbx > 8 || levels_.back().nby > 8) {
+    const Level& f = levels_.back();
+    Level c;
+    c.block = f.block * kMerge;
+    c.nbx = (f.nbx + kMerge - 1) / kMerge;
+    c.nby = (f.nby + kMerge - 1) / kMerge;
+    const auto n = static_cast<std::size_t>(c.nbx * c.nby);
+    c.lo.assign(n, std::numeric_limits<float>::infinity());
+    c.hi.assign(n, -std::numeric_limits<float>::infinity());
+    c.nan.assign(n, 0);
+    for (std::int64_t by = 0; by < f.nby; ++by)
+      for (std::int64_t bx = 0; bx < f.nbx; ++bx) {
+        const auto s = static_cast<std::size_t>(by * f.nbx + bx);
+        const auto t = static_cast<std::size_t>((by / kMerge) * c.nbx + bx / kMerge);
+        c.lo[t] = std::min(c.lo[t], f.lo[s]);
+        c.hi[t] = std::max(c.hi[t], f.hi[s]);
+        c.nan[t] = static_cast<unsigned char>(c.nan[t] | f.nan[s]);
+      }
+    levels_.push_back(std::move(c));
+  }
 }
 
-void ValueBounds::add_blocks(std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi,
-                             ValueRange& out) const {
-  for (std::int64_t by = r_lo / block_; by <= r_hi / block_; ++by)
-    for (std::int64_t bx = c_lo / block_; bx <= c_hi / block_; ++bx) {
-      const auto s = static_cast<std::size_t>(by * nbx_ + bx);
-      out.nan = out.nan || nan_[s] != 0;
-      if (lo_[s] <= hi_[s]) {
-        out.lo = out.any_finite ? std::min(out.lo, static_cast<double>(lo_[s])) : lo_[s];
-        out.hi = out.any_finite ? std::max(out.hi, static_cast<double>(hi_[s])) : hi_[s];
+std::int64_t ValueBounds::bytes() const {
+  std::int64_t b = 0;
+  for (const Level& l : levels_) b += static_cast<std::int64_t>(l.lo.size() * (2 * sizeof(float) + 1));
+  return b;
+}
+
+const ValueBounds::Level& ValueBounds::level_for(std::int64_t cols, std::int64_t rows) const {
+  for (const Level& l : levels_) {
+    // Blocks a range of `cols` cells can touch: cols / block + 1 (+1 more when it straddles).
+    const std::int64_t bx = cols / l.block + 2, by = rows / l.block + 2;
+    if (bx * by <= kMaxBlocksPerQuery) return l;
+  }
+  return levels_.back();
+}
+
+void ValueBounds::add_blocks(const Level& l, std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo,
+                             std::int64_t r_hi, ValueRange& out) {
+  for (std::int64_t by = r_lo / l.block; by <= r_hi / l.block; ++by)
+    for (std::int64_t bx = c_lo / l.block; bx <= c_hi / l.block; ++bx) {
+      const auto s = static_cast<std::size_t>(by * l.nbx + bx);
+      out.nan = out.nan || l.nan[s] != 0;
+      if (l.lo[s] <= l.hi[s]) {
+        out.lo = out.any_finite ? std::min(out.lo, static_cast<double>(l.lo[s])) : l.lo[s];
+        out.hi = out.any_finite ? std::max(out.hi, static_cast<double>(l.hi[s])) : l.hi[s];
         out.any_finite = true;
       }
     }
@@ -89,21 +128,23 @@ ValueRange ValueBounds::in_box(double lon_lo, double lon_hi, double lat_lo, doub
   r_hi = std::clamp<std::int64_t>(r_hi, 0, nr - 1);
   auto c_lo = static_cast<std::int64_t>(std::floor(x_lo)) - 1;
   auto c_hi = static_cast<std::int64_t>(std::floor(x_hi)) + 2;
+  const Level& l = level_for(std::min(c_hi - c_lo + 1, nc), r_hi - r_lo + 1);
   if (!info_.global_lon) {
     if (x_lo < -0.5 || x_hi > static_cast<double>(nc) - 0.5) out.nan = true;
-    add_blocks(std::clamp<std::int64_t>(c_lo, 0, nc - 1), std::clamp<std::int64_t>(c_hi, 0, nc - 1), r_lo, r_hi, out);
+    add_blocks(l, std::clamp<std::int64_t>(c_lo, 0, nc - 1), std::clamp<std::int64_t>(c_hi, 0, nc - 1), r_lo, r_hi,
+               out);
     return out;
   }
   if (c_hi - c_lo + 1 >= nc) {
-    add_blocks(0, nc - 1, r_lo, r_hi, out);
+    add_blocks(l, 0, nc - 1, r_lo, r_hi, out);
     return out;
   }
   const std::int64_t a = ((c_lo % nc) + nc) % nc, b = ((c_hi % nc) + nc) % nc;
   if (a <= b) {
-    add_blocks(a, b, r_lo, r_hi, out);
+    add_blocks(l, a, b, r_lo, r_hi, out);
   } else {  // across the seam
-    add_blocks(a, nc - 1, r_lo, r_hi, out);
-    add_blocks(0, b, r_lo, r_hi, out);
+    add_blocks(l, a, nc - 1, r_lo, r_hi, out);
+    add_blocks(l, 0, b, r_lo, r_hi, out);
   }
   return out;
 }

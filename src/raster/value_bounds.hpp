@@ -20,22 +20,36 @@ struct ValueRange {
 
 class ValueBounds {
  public:
-  /// Summarises `bathy` in blocks of `block` × `block` raster values. Not available (every query
-  /// answers "unknown") for a streamed raster or bicubic sampling, where the bound would not hold.
+  /// Summarises `bathy` in blocks of `block` × `block` raster values, and in blocks 2, 4, ...
+  /// times larger (a pyramid: a query reads the finest level that needs at most kMaxBlocksPerQuery
+  /// blocks, so a small box gets tight bounds and a large one stays cheap). Not available (every
+  /// query answers "unknown") for a streamed raster or bicubic sampling, where the bound would not
+  /// hold.
   explicit ValueBounds(const Bathymetry& bathy, std::int64_t block = 32);
   [[nodiscard]] bool available() const { return available_; }
   /// Bounds of every value that `Bathymetry::sample` can return at a point of
   /// [lon_lo, lon_hi] × [lat_lo, lat_hi] (degrees; lon_lo <= lon_hi, any range of λ on a global
   /// raster, wrapping at the seam). Conservative: one raster cell more on every side.
   [[nodiscard]] ValueRange in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const;
+  /// Bytes held (every level).
+  [[nodiscard]] std::int64_t bytes() const;
+
+  static constexpr std::int64_t kMaxBlocksPerQuery = 96;
 
  private:
-  void add_blocks(std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi, ValueRange& out) const;
+  struct Level {
+    std::int64_t block = 8, nbx = 0, nby = 0;
+    std::vector<float> lo, hi;      ///< per block, over its finite values (+inf/-inf when none)
+    std::vector<unsigned char> nan;  ///< per block: holds a NaN
+  };
+  // The level whose blocks of the cell range [c_lo, c_hi] × [r_lo, r_hi] are fewest but at most
+  // kMaxBlocksPerQuery, or the coarsest.
+  [[nodiscard]] const Level& level_for(std::int64_t cols, std::int64_t rows) const;
+  static void add_blocks(const Level& l, std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi,
+                         ValueRange& out);
   RasterInfo info_;
   bool available_ = false;
-  std::int64_t block_ = 32, nbx_ = 0, nby_ = 0;
-  std::vector<float> lo_, hi_;      ///< per block, over its finite values (+inf/-inf when none)
-  std::vector<unsigned char> nan_;  ///< per block: holds a NaN
+  std::vector<Level> levels_;  ///< finest first; each coarser one merges 2 × 2 blocks
 };
 
 /// Which side of `threshold` every bilinear sample with values in `r` falls on: +1 all <= threshold

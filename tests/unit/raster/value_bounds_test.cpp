@@ -33,14 +33,18 @@ TEST(ValueBounds, HoldEverySampleInTheBoxAndFlagNoData) {
     const ValueBounds vb(b, block);
     ASSERT_TRUE(vb.available());
     std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> ulon(-400.0, 400.0), ulat(-95.0, 95.0), usize(0.0, 6.0);
-    for (int k = 0; k < 400; ++k) {
-      const double lon0 = ulon(rng), lat0 = ulat(rng), w = usize(rng), h = usize(rng);
+    // Small boxes read the finest blocks, large ones (up to 80°) the coarser levels of the pyramid.
+    std::uniform_real_distribution<double> ulon(-400.0, 400.0), ulat(-95.0, 95.0), usize(0.0, 6.0), ularge(0.0, 80.0);
+    for (int k = 0; k < 600; ++k) {
+      const bool large = k % 3 == 2;
+      const double lon0 = ulon(rng), lat0 = ulat(rng), w = large ? ularge(rng) : usize(rng),
+                   h = large ? ularge(rng) : usize(rng);
       const ValueRange r = vb.in_box(lon0, lon0 + w, lat0, lat0 + h);
       bool saw_nan = false;
-      for (int a = 0; a <= 12; ++a)
-        for (int c = 0; c <= 12; ++c) {
-          const double x = b.sample(lon0 + w * a / 12.0, std::clamp(lat0 + h * c / 12.0, -90.0, 90.0));
+      const int steps = large ? 80 : 12;
+      for (int a = 0; a <= steps; ++a)
+        for (int c = 0; c <= steps; ++c) {
+          const double x = b.sample(lon0 + w * a / steps, std::clamp(lat0 + h * c / steps, -90.0, 90.0));
           if (std::isnan(x)) {
             saw_nan = true;
             continue;
@@ -49,7 +53,9 @@ TEST(ValueBounds, HoldEverySampleInTheBoxAndFlagNoData) {
           EXPECT_GE(x, r.lo - 1e-9) << lon0 << " " << lat0;
           EXPECT_LE(x, r.hi + 1e-9) << lon0 << " " << lat0;
         }
-      if (saw_nan) EXPECT_TRUE(r.nan) << lon0 << " " << lat0;
+      if (saw_nan) {
+        EXPECT_TRUE(r.nan) << lon0 << " " << lat0;
+      }
     }
   }
   // A box over the no-data patch, one across the seam, and one well inside.
@@ -71,6 +77,32 @@ TEST(ValueBounds, HoldEverySampleInTheBoxAndFlagNoData) {
   EXPECT_GE(inner.lo, lo);
   EXPECT_LE(inner.hi, hi);
   EXPECT_LT(inner.hi - inner.lo, 0.5 * (b.info().max_m - b.info().min_m));
+}
+
+// The pyramid: a small box is bounded by the finest blocks around it, a large one by coarser
+// blocks (fewer than kMaxBlocksPerQuery reads), still holding every value under it.
+TEST(ValueBounds, SmallBoxesUseTheFinestBlocks) {
+  const Bathymetry b = global_1deg();
+  const ValueBounds vb(b, 2);
+  EXPECT_GT(vb.bytes(), 0);
+  // Box λ -60..-59.5, φ 10..10.5: cells c 120..121, r 100..100, one more before and two after:
+  // c 119..123, r 99..102; with 2-cell blocks that is c 118..123, r 98..103.
+  const ValueRange small = vb.in_box(-60.0, -59.5, 10.0, 10.5);
+  double lo = 1e30, hi = -1e30;
+  for (std::int64_t r = 98; r <= 103; ++r)
+    for (std::int64_t c = 118; c <= 123; ++c) {
+      lo = std::min(lo, static_cast<double>(b.value(c, r)));
+      hi = std::max(hi, static_cast<double>(b.value(c, r)));
+    }
+  EXPECT_DOUBLE_EQ(small.lo, lo);
+  EXPECT_DOUBLE_EQ(small.hi, hi);
+  // A 40° box: conservative over its own cells.
+  const ValueRange large = vb.in_box(-100.0, -60.0, -20.0, 20.0);
+  for (std::int64_t r = 70; r <= 110; ++r)
+    for (std::int64_t c = 80; c <= 120; ++c) {
+      EXPECT_LE(large.lo, b.value(c, r));
+      EXPECT_GE(large.hi, b.value(c, r));
+    }
 }
 
 TEST(ValueBounds, SideOfThreshold) {
