@@ -292,8 +292,15 @@ struct Bathymetry::Impl {
     const auto n = info.ncols;
     double x = (lon - info.lon_first) / info.dlon;
     if (info.global_lon) {
-      x = std::fmod(x, static_cast<double>(n));
-      if (x < 0.0) x += static_cast<double>(n);
+      // fmod(x, n), which is x - n exactly for n <= x < 2n and x for |x| < n (the usual cases:
+      // a call of fmod costs as much as the rest of the sample).
+      const auto nd = static_cast<double>(n);
+      if (x >= nd && x < 2.0 * nd) {
+        x -= nd;
+      } else if (!(x > -nd && x < nd)) {
+        x = std::fmod(x, nd);
+      }
+      if (x < 0.0) x += nd;
     }
     const double xr = std::round(x);
     if (std::abs(x - xr) < 1e-9) x = xr;  // a point on a grid line takes the grid value exactly
