@@ -192,20 +192,38 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
     x_hi = static_cast<std::int64_t>(std::ceil(xc - 0.5 + half));
   };
   // Runs of kRun pixel centres along a row lie in the cap around the middle one of radius half
-  // the run's length; a run whose cap misses the box holds no pixel of it.
+  // the run's length (an arc of the row's parallel, longer than the great circle). A run whose cap
+  // misses the box holds no pixel of it; one whose cap lies inside the box, and inside or outside
+  // each side, holds only pixels of that kind: both are decided without mapping their pixels. The
+  // cap's radius has a margin of 1e-9° over the rounding of a pixel's coordinates, so the pixels
+  // decided this way are those the per-pixel test would decide the same way.
   constexpr std::int64_t kRun = 64;
-  const auto run_may_touch_box = [&](std::int64_t y, std::int64_t xx0, std::int64_t xx1) {
+  struct RunCap {
+    LonLat g;
+    double r = 0.0, h = 0.0;  ///< radius; half-width in λ (only when `lon_box`)
+    bool lon_box = false;     ///< the cap has a λ extent (does not reach a pole)
+  };
+  const auto run_cap = [&](std::int64_t y, std::int64_t xx0, std::int64_t xx1) {
+    RunCap c;
     const double xm = 0.5 * static_cast<double>(xx0 + xx1) + 0.5;  // fractional x of the middle
     const LonLat m =
         lattice_xy_to_deg(lattice, wrap ? xm : xm + static_cast<double>(i0), static_cast<double>(j0 + y) + 0.5);
-    const double r = 0.5 * static_cast<double>(xx1 - xx0) * dpx * std::cos(m.lat_deg * kDegToRad) + 1e-9;
-    const LonLat g = lattice_to_geographic(rot, m);
-    if (g.lat_deg - r > b.lat_max_deg || g.lat_deg + r < b.lat_min_deg) return false;
-    if (std::abs(g.lat_deg) + r >= 89.0) return true;
-    const double h = std::asin(std::min(1.0, std::sin(r * kDegToRad) / std::cos(g.lat_deg * kDegToRad))) * kRadToDeg;
-    if (h >= 180.0) return true;
-    const double w = wrap_lon_deg(g.lon_deg - h, b.lon_min_deg);  // the run's west end east of lon_min
-    return w <= b.lon_max_deg || w + 2.0 * h >= b.lon_min_deg + 360.0;
+    c.r = 0.5 * static_cast<double>(xx1 - xx0) * dpx * std::cos(m.lat_deg * kDegToRad) + 1e-9;
+    c.g = lattice_to_geographic(rot, m);
+    if (std::abs(c.g.lat_deg) + c.r < 89.0) {
+      c.h = std::asin(std::min(1.0, std::sin(c.r * kDegToRad) / std::cos(c.g.lat_deg * kDegToRad))) * kRadToDeg;
+      c.lon_box = c.h < 180.0;
+    }
+    return c;
+  };
+  // -1: the cap misses `q`; +1: it lies inside `q`; 0: either may hold.
+  const auto relation = [](const RunCap& c, const GeoBox& q) {
+    if (c.g.lat_deg - c.r > q.lat_max_deg || c.g.lat_deg + c.r < q.lat_min_deg) return -1;
+    if (!c.lon_box) return 0;
+    const double w = wrap_lon_deg(c.g.lon_deg - c.h, q.lon_min_deg);  // the run's west end east of lon_min
+    if (w > q.lon_max_deg && w + 2.0 * c.h < q.lon_min_deg + 360.0) return -1;
+    const bool lat_in = c.g.lat_deg - c.r >= q.lat_min_deg && c.g.lat_deg + c.r <= q.lat_max_deg;
+    return lat_in && w + 2.0 * c.h <= q.lon_max_deg ? 1 : 0;
   };
   // Pixel centres to geographic: sines and cosines once per lattice column and row, then the
   // rotation (the same bits as lattice_to_geographic of pixel_center_lattice_deg).
@@ -216,6 +234,19 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
     sin_lon[static_cast<std::size_t>(x)] = std::sin(lo);
   }
   std::int64_t in_a = 0, in_b = 0;
+  // Records pixel (x, y) of lattice pixel px, in the box, with its side flags.
+  const auto record = [&](std::int64_t x, std::int64_t y, const PixelIJ& px, unsigned char f) {
+    if ((f & kSideA) != 0) ++in_a;
+    if ((f & kSideB) != 0) ++in_b;
+    ++res.pixels_in_box;
+    if (filled.get(px.i, px.j)) {
+      f |= kFilled;
+      ++res.filled_in_box;
+      if ((f & kSideA) != 0) ++res.filled_side_a;
+      if ((f & kSideB) != 0) ++res.filled_side_b;
+    }
+    cell[at(x, y)] = f;
+  };
   for (std::int64_t y = 0; y < rows; ++y) {
     std::int64_t x_lo = 0, x_hi = 0;
     row_span(y, x_lo, x_hi);
@@ -224,7 +255,19 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
     for (std::int64_t xx = x_lo; xx <= x_hi; ++xx) {
       if ((xx - x_lo) % kRun == 0) {
         const std::int64_t xx1 = std::min(x_hi, xx + kRun - 1);
-        if (!run_may_touch_box(y, xx, xx1)) {
+        const RunCap c = run_cap(y, xx, xx1);
+        const int in_box = relation(c, b);
+        if (in_box < 0) {
+          xx = xx1;
+          continue;
+        }
+        const int sa = in_box > 0 ? relation(c, p.side_a) : 0, sb = in_box > 0 ? relation(c, p.side_b) : 0;
+        if (in_box > 0 && sa != 0 && sb != 0) {
+          const auto f = static_cast<unsigned char>(kInBox | (sa > 0 ? kSideA : 0) | (sb > 0 ? kSideB : 0));
+          for (std::int64_t k = xx; k <= xx1; ++k) {
+            const std::int64_t x = wrap ? wrap_index(k, cols) : k;
+            record(x, y, PixelIJ{wrap_index(i0 + x, nx), j0 + y}, f);
+          }
           xx = xx1;
           continue;
         }
@@ -238,23 +281,10 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
         rot.to_geographic(cos_lon[static_cast<std::size_t>(x)], sin_lon[static_cast<std::size_t>(x)], cos_lat, sin_lat,
                           g.lon_deg, g.lat_deg);
       if (!b.contains(g.lon_deg, g.lat_deg)) continue;
-      unsigned char f = kInBox;
-      if (p.side_a.contains(g.lon_deg, g.lat_deg)) {
-        f |= kSideA;
-        ++in_a;
-      }
-      if (p.side_b.contains(g.lon_deg, g.lat_deg)) {
-        f |= kSideB;
-        ++in_b;
-      }
-      ++res.pixels_in_box;
-      if (filled.get(px.i, px.j)) {
-        f |= kFilled;
-        ++res.filled_in_box;
-        if ((f & kSideA) != 0) ++res.filled_side_a;
-        if ((f & kSideB) != 0) ++res.filled_side_b;
-      }
-      cell[at(x, y)] = f;
+      auto f = static_cast<unsigned char>(kInBox);
+      if (p.side_a.contains(g.lon_deg, g.lat_deg)) f |= kSideA;
+      if (p.side_b.contains(g.lon_deg, g.lat_deg)) f |= kSideB;
+      record(x, y, px, f);
     }
   }
   if (in_a == 0 || in_b == 0) {
