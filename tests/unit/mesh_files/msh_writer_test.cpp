@@ -185,6 +185,29 @@ TEST(MshWriter, BinaryHasTheSameContentAsAscii) {
   EXPECT_EQ(a.element_data, b.element_data);
 }
 
+// A mesh large enough that the binary records are filled by all threads in several batches
+// (and the file written in several chunks): the same content as the ASCII file.
+TEST(MshWriter, BinaryOfALargeMeshHasTheSameContentAsAscii) {
+  testing::TempDir dir;
+  const auto m = testing::band_mesh(Lattice::make(1.0, 3, -180.0), 700, 800);
+  ASSERT_GT(m.triangle_count(), std::int64_t{1} << 19);
+  const MshFile a = write_and_parse(m, {}, dir / "a.msh");
+  MshOptions o;
+  o.binary = true;
+  const MshFile b = write_and_parse(m, o, dir / "b.msh");
+  EXPECT_EQ(a.nodes, b.nodes);
+  ASSERT_EQ(a.elements.size(), b.elements.size());
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < a.elements.size(); ++k)
+    differ += a.elements[k].tag != b.elements[k].tag || a.elements[k].type != b.elements[k].type ||
+                      a.elements[k].nodes != b.elements[k].nodes
+                  ? 1
+                  : 0;
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(a.node_data, b.node_data);
+  EXPECT_EQ(a.element_data, b.element_data);
+}
+
 TEST(MshWriter, SphereMergesPoleNodesAndDropsDegenerateTriangles) {
   testing::TempDir dir;
   MshOptions o;
