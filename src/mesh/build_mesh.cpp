@@ -112,8 +112,22 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   mesh.rlat_deg.resize(static_cast<std::size_t>(n));
   mesh.depth_m.resize(static_cast<std::size_t>(n));
   const bool rotated = mesh.rotation.enabled;
+  // Rotated: the sines and cosines of every lattice column and row once (nodes sit on lattice
+  // vertices), then the rotation; the same bits as to_geographic in degrees, which takes them
+  // from the same angles.
+  std::vector<double> cos_i, sin_i, cos_j, sin_j;
+  if (rotated) {
+    for (std::int64_t i = 0; i <= lat.nx; ++i) {
+      cos_i.push_back(std::cos(lat.lon_of(i) * kDegToRad));
+      sin_i.push_back(std::sin(lat.lon_of(i) * kDegToRad));
+    }
+    for (std::int64_t j = 0; j <= lat.ny; ++j) {
+      cos_j.push_back(std::cos(lat.lat_of(j) * kDegToRad));
+      sin_j.push_back(std::sin(lat.lat_of(j) * kDegToRad));
+    }
+  }
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(n * (rotated ? 32 : 2))) \
-    shared(mesh, lat, rotation, n, rotated) schedule(static)
+    shared(mesh, lat, rotation, n, rotated, cos_i, sin_i, cos_j, sin_j) schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto p = static_cast<std::size_t>(k);
     const double rlon = lat.lon_of(mesh.node_i[p]);
@@ -122,7 +136,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
     mesh.rlat_deg[p] = rlat;
     if (rotated) {
       double lon = 0.0, la = 0.0;
-      rotation.to_geographic(rlon, rlat, lon, la);
+      const auto i = static_cast<std::size_t>(mesh.node_i[p]), j = static_cast<std::size_t>(mesh.node_j[p]);
+      rotation.to_geographic(cos_i[i], sin_i[i], cos_j[j], sin_j[j], lon, la);
       mesh.lon_deg[p] = wrap_lon_deg(lon, lat.lon0_deg);
       mesh.lat_deg[p] = la;
     } else {
