@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "core/error.hpp"
@@ -41,12 +43,6 @@ std::vector<std::string> requested_formats(const config::OutputOptions& o) {
   for (const auto& f : o.formats)
     if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
   return out;
-}
-
-std::string facts_text(const std::vector<std::pair<std::string, std::int64_t>>& facts) {
-  std::string s;
-  for (const auto& [k, v] : facts) s += fmt::format(", {} {}", v, k);
-  return s;
 }
 
 }  // namespace
@@ -85,7 +81,13 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
   const auto formats = requested_formats(options);
   if (std::find(formats.begin(), formats.end(), "tif") != formats.end() && !info.global_run_file)
     throw ConfigError("output.formats: \"tif\" (the global run file) is written by `aquatoria mesh` only");
-  std::vector<WrittenFile> written;
+
+  // Every file is planned first, on this thread: its temporary path reserved, the meshes it
+  // needs built, its writer bound to them; the lines logged meanwhile are held back and go out
+  // in order with the files' lines (output_jobs.hpp).
+  std::vector<OutputJob> jobs;
+  std::vector<LogLine> pending;
+  auto hold = [&](LogLevel level, std::string text) { pending.push_back({level, std::move(text)}); };
 
   // Writers in geographic coordinates get the mesh without the degenerate pole row (made once,
   // when the first of them needs it; fort.14 always writes triangles).
@@ -99,7 +101,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     std::optional<GeographicMesh>& g = kinds == info.elements ? geo : geo_triangles;
     if (!g) {
       g.emplace(mesh, kinds, elevation);
-      for (const auto& line : g->describe()) log.info("geographic mesh: {}", line);
+      for (const auto& line : g->describe()) hold(LogLevel::kInfo, fmt::format("geographic mesh: {}", line));
       // "geographic_mesh": the mesh of UGRID/text/VTU; with mesh.elements = "both" fort.14 writes
       // the triangles with the pole cap, reported as "geographic_mesh_fort14".
       if (report != nullptr)
@@ -118,7 +120,8 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     const Timer timer;
     shapes = triangle_shapes(g);
     const SphereQuality q = summarize_quality(*shapes);
-    log.info("quality: {} ({:.3f} s, {:.3f} s CPU)", q.describe(), timer.wall_s(), timer.cpu_s());
+    hold(LogLevel::kInfo,
+         fmt::format("quality: {} ({:.3f} s, {:.3f} s CPU)", q.describe(), timer.wall_s(), timer.cpu_s()));
     if (report != nullptr) {
       Json j = q.json();
       j["mesh"] = "geographic (as written to ugrid, vtu, fort14, text, fesom, schism)";
@@ -139,32 +142,32 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     return v;
   };
 
-  auto write = [&](const std::string& format, const std::string& file,
-                   const std::function<WriteStats(const std::filesystem::path&)>& writer,
-                   const std::function<std::vector<std::pair<std::string, std::int64_t>>(const WriteStats&)>& facts) {
-    const std::filesystem::path tmp = outputs.temp_path(file);
-    const Timer timer;
-    WrittenFile w;
-    w.stats = writer(tmp);
-    w.seconds = timer.wall_s();
-    w.name = file;
-    w.format = format;
-    w.path = outputs.final_path(file);
-    w.bytes = w.stats.bytes;
-    w.facts = facts(w.stats);
-    log.info("output: {} ({}, {} bytes, {:.3f} s{})", file, format, w.bytes, w.seconds, facts_text(w.facts));
-    written.push_back(std::move(w));
+  // Plans one file; the writer and the facts run later, so they capture what they use by value
+  // or refer to what outlives this call (the caller's arguments, the geographic meshes).
+  auto plan = [&](const std::string& format, const std::string& file,
+                  std::function<WriteStats(const std::filesystem::path&)> writer,
+                  std::function<Facts(const WriteStats&)> facts, bool own_thread = false) {
+    OutputJob job;
+    job.format = format;
+    job.name = file;
+    job.temp_path = outputs.temp_path(file);
+    job.final_path = outputs.final_path(file);
+    job.writer = std::move(writer);
+    job.facts = std::move(facts);
+    job.own_thread = own_thread;
+    job.log_before = std::move(pending);
+    pending.clear();
+    jobs.push_back(std::move(job));
   };
-  using Facts = std::vector<std::pair<std::string, std::int64_t>>;
   const std::string& name = options.name;
 
-  for (const auto& format : formats) {
+  auto plan_format = [&](const std::string& format) {
     if (format == "msh") {
       MshOptions o;
       o.binary = options.msh_binary;
       o.elements = info.elements;
-      write(
-          format, name + ".msh", [&](const auto& p) { return write_msh(mesh, p, o); },
+      plan(
+          format, name + ".msh", [&mesh, o](const auto& p) { return write_msh(mesh, p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}, {"seam duplicates", s.seam_duplicates}};
           });
@@ -174,17 +177,20 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.source = info.source;
       o.history = fmt::format("written by aquatoria ({})", info.source);
       o.deflate = options.ugrid_deflate;
-      write(
-          format, name + ".nc", [&](const auto& p) { return write_ugrid(geographic(info.elements), p, o); },
+      // The only writer that uses netCDF/HDF5 (neither is thread-safe): it may run beside the
+      // others when nothing else can call netCDF meanwhile (see the header).
+      plan(
+          format, name + ".nc", [&g = geographic(info.elements), o](const auto& p) { return write_ugrid(g, p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"faces", s.elements}};
-          });
+          },
+          true);
     } else if (format == "vtu") {
       VtuOptions o;
       o.coordinates = parse_vtu_coordinates(options.vtu_coordinates);
       o.elements = info.elements;
-      write(
-          format, name + ".vtu", [&](const auto& p) { return write_vtu(geographic(info.elements), p, o); },
+      plan(
+          format, name + ".vtu", [&g = geographic(info.elements), o](const auto& p) { return write_vtu(g, p, o); },
           [](const WriteStats& s) {
             return Facts{{"points", s.nodes},
                          {"cells", s.elements},
@@ -194,16 +200,17 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     } else if (format == "fort14") {
       Fort14Options o;
       o.title = fmt::format("aquatoria mesh {} ({})", name, info.source);
-      write(
-          format, name + ".14", [&](const auto& p) { return write_fort14(geographic(ElementKinds::kTriangles), p, o); },
+      plan(
+          format, name + ".14",
+          [&g = geographic(ElementKinds::kTriangles), o](const auto& p) { return write_fort14(g, p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
           });
     } else if (format == "text") {
       TextOptions o;
       o.elements = info.elements;
-      write(
-          format, name + ".txt", [&](const auto& p) { return write_text(geographic(info.elements), p, o); },
+      plan(
+          format, name + ".txt", [&g = geographic(info.elements), o](const auto& p) { return write_text(g, p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}};
           });
@@ -211,29 +218,29 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       const std::vector<double>& levels =
           options.fesom_levels.empty() ? default_fesom_levels_m() : options.fesom_levels;
       const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
-      write(
-          format, name + "_nod2d.out", [&](const auto& p) { return write_fesom_nod2d(g, p); },
+      plan(
+          format, name + "_nod2d.out", [&g](const auto& p) { return write_fesom_nod2d(g, p); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"boundary nodes", s.boundary_edges}};
           });
-      write(
-          format, name + "_elem2d.out", [&](const auto& p) { return write_fesom_elem2d(g, p); },
+      plan(
+          format, name + "_elem2d.out", [&g](const auto& p) { return write_fesom_elem2d(g, p); },
           [](const WriteStats& s) {
             return Facts{{"triangles", s.elements}};
           });
-      write(
-          format, name + "_aux3d.out", [&](const auto& p) { return write_fesom_aux3d(g, p, levels); },
-          [&](const WriteStats& s) {
+      plan(
+          format, name + "_aux3d.out", [&g, &levels](const auto& p) { return write_fesom_aux3d(g, p, levels); },
+          [&levels](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"levels", static_cast<std::int64_t>(levels.size())}};
           });
       const FesomRotation r = fesom_rotation(mesh.rotation);
       if (r.force_rotation) {
-        log.info(
-            "FESOM namelist.config: force_rotation = .true., alphaEuler = {:.10g}, betaEuler = {:.10g}, "
-            "gammaEuler = {:.10g} (FESOM's rotated frame = the mesh's)",
-            r.alpha_deg, r.beta_deg, r.gamma_deg);
+        hold(LogLevel::kInfo,
+             fmt::format("FESOM namelist.config: force_rotation = .true., alphaEuler = {:.10g}, betaEuler = {:.10g}, "
+                         "gammaEuler = {:.10g} (FESOM's rotated frame = the mesh's)",
+                         r.alpha_deg, r.beta_deg, r.gamma_deg));
       } else {
-        log.info("FESOM namelist.config: force_rotation = .false. (the mesh is not rotated)");
+        hold(LogLevel::kInfo, "FESOM namelist.config: force_rotation = .false. (the mesh is not rotated)");
       }
       if (report != nullptr) {
         (*report)["fesom"] = Json{{"force_rotation", r.force_rotation},
@@ -247,39 +254,60 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.title = fmt::format("aquatoria mesh {} ({}), lon/lat: SCHISM ics = 2", name, info.source);
       const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
       if (!g.pinch_nodes.empty()) {
-        log.warn(
-            "SCHISM: {} pinch vertices (the ocean touching itself at one node); SCHISM stops on them with "
-            "\"Illegal bnd node\": set mask.remove_pinches = true",
-            g.pinch_nodes.size());
+        hold(LogLevel::kWarning,
+             fmt::format("SCHISM: {} pinch vertices (the ocean touching itself at one node); SCHISM stops on them with "
+                         "\"Illegal bnd node\": set mask.remove_pinches = true",
+                         g.pinch_nodes.size()));
       }
       for (const char* ext : {".gr3", ".ll"}) {
-        write(
-            format, name + ext, [&](const auto& p) { return write_schism_hgrid(g, p, o); },
+        plan(
+            format, name + ext, [&g, o](const auto& p) { return write_schism_hgrid(g, p, o); },
             [](const WriteStats& s) {
               return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
             });
       }
     } else if (format == "png") {
-      PreviewOptions o = preview_options(options, info.elements);
-      if (o.colour == PreviewColour::kAngle && shapes) o.triangle_values = lattice_values(shapes->min_angle_deg);
-      if (o.colour == PreviewColour::kSize && shapes) o.triangle_values = lattice_values(shapes->size_km);
-      write(
-          format, name + ".png", [&](const auto& p) { return write_preview_png(mesh, bathy, p, o); },
+      auto o = std::make_shared<PreviewOptions>(preview_options(options, info.elements));
+      if (o->colour == PreviewColour::kAngle && shapes) o->triangle_values = lattice_values(shapes->min_angle_deg);
+      if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
+      plan(
+          format, name + ".png", [&mesh, &bathy, o](const auto& p) { return write_preview_png(mesh, bathy, p, *o); },
           [](const WriteStats& s) {
             return Facts{{"elements drawn", s.elements}};
           });
       if (!options.png_zoom.empty()) {
-        write(
-            "png_zoom", name + "_zoom.png", [&](const auto& p) { return write_preview_zoom_png(mesh, bathy, p, o); },
+        plan(
+            "png_zoom", name + "_zoom.png",
+            [&mesh, &bathy, o](const auto& p) { return write_preview_zoom_png(mesh, bathy, p, *o); },
             [](const WriteStats&) { return Facts{}; });
       }
     } else if (format == "tif") {
-      write(format, name + ".tif", info.global_run_file, [](const WriteStats& s) {
+      plan(format, name + ".tif", info.global_run_file, [](const WriteStats& s) {
         return Facts{{"pixels", s.nodes}, {"filled pixels", s.elements}};
       });
     }
+  };
+  for (const auto& format : formats) {
+    try {
+      plan_format(format);
+    } catch (...) {
+      // As if written one after another: the files before it are written and logged, then this
+      // error (a geographic mesh that cannot be built, a streamed raster that cannot be read).
+      OutputJob failing;
+      failing.format = format;
+      failing.writer = [e = std::current_exception()](const std::filesystem::path&) -> WriteStats {
+        std::rethrow_exception(e);
+      };
+      failing.log_before = std::move(pending);
+      pending.clear();
+      jobs.push_back(std::move(failing));
+      break;
+    }
   }
-  return written;
+  // A streamed raster is read through GDAL (its netCDF driver for GEBCO / SRTM15+ files) while
+  // the preview samples it: then nothing may write netCDF meanwhile.
+  const bool concurrent = info.concurrent && !bathy.info().streamed;
+  return write_output_jobs(std::move(jobs), pending, concurrent, log);
 }
 
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/output_jobs.hpp"
 #include "config/options.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
@@ -40,16 +41,6 @@
 
 namespace aq::io {
 
-struct WrittenFile {
-  std::string name;            ///< file name in the output folder, e.g. "mesh.msh"
-  std::string format;          ///< a value of output.formats, or "png_zoom"
-  std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
-  std::int64_t bytes = 0;
-  double seconds = 0.0;  ///< wall time of the writer
-  WriteStats stats;
-  std::vector<std::pair<std::string, std::int64_t>> facts;  ///< counts worth reporting, by name
-};
-
 /// What the run knows that OutputOptions does not.
 struct MeshOutputInfo {
   ElementKinds elements = ElementKinds::kTriangles;  ///< from mesh.elements (parse_element_kinds)
@@ -57,6 +48,9 @@ struct MeshOutputInfo {
   /// Writer of the "tif" format (the mesh alone does not hold the pixel masks); empty = "tif"
   /// is refused (ConfigError naming output.formats).
   std::function<WriteStats(const std::filesystem::path&)> global_run_file;
+  /// Write the UGRID file on a thread of its own while the other files are written (see
+  /// write_mesh_outputs); false: one file after another.
+  bool concurrent = true;
 };
 
 /// The formats write_mesh_outputs knows, in its order.
@@ -72,6 +66,11 @@ void check_mesh_output_options(const config::OutputOptions& options, ElementKind
 /// merged pole row; one log line per changed pole, and the "geographic_mesh" report section when
 /// `report` is given); msh (the λ–φ plane) and png draw the lattice mesh. Throws ConfigError on
 /// bad options (before writing anything), OutputError naming the file on write failures.
+/// The UGRID writer (netCDF/HDF5, which are not thread-safe) runs on a thread of its own while
+/// the others run on this one (info.concurrent), unless the raster is streamed (its reads go
+/// through GDAL, whose netCDF driver the preview would call meanwhile). The log lines, the
+/// returned files and the error thrown are those of writing one file after another
+/// (output_jobs.hpp); every temporary path is reserved and every mesh built on this thread.
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
                                             const config::OutputOptions& options, OutputSet& outputs, const Logger& log,
                                             const MeshOutputInfo& info, Report* report = nullptr);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -11,6 +12,8 @@
 #include "core/error.hpp"
 #include "support/file_size_limit.hpp"
 #include "support/io_test_mesh.hpp"
+#include "support/msh_parse.hpp"
+#include "support/synthetic_raster.hpp"
 #include "support/temp_dir.hpp"
 
 namespace aq::io {
@@ -30,6 +33,96 @@ struct CapturedLog {
   std::vector<std::string> lines;
   Logger logger{[this](LogLevel, std::string_view m) { lines.emplace_back(m); }};
 };
+
+// The lines with their timings ("0.012 s", "0.004 s CPU") replaced by "T s".
+std::vector<std::string> without_times(const std::vector<std::string>& lines) {
+  static const std::regex seconds("[0-9]+\\.[0-9]+ s");
+  std::vector<std::string> out;
+  for (const auto& l : lines) out.push_back(std::regex_replace(l, seconds, "T s"));
+  return out;
+}
+
+struct Written {
+  std::vector<WrittenFile> files;
+  std::vector<std::string> lines;
+  std::vector<std::string> bytes;  // of each file, in order
+};
+
+Written write_all(const std::filesystem::path& dir, const mesh::Mesh& m, const raster::Bathymetry& bathy,
+                  bool concurrent, ElementKinds elements = ElementKinds::kTriangles) {
+  config::OutputOptions o;
+  o.name = "tiny";
+  o.png_width = 400;
+  o.png_zoom = {150.0, 210.0, -60.0, -10.0};
+  o.formats = {"msh", "ugrid", "vtu", "fort14", "text", "png", "fesom", "schism"};
+  MeshOutputInfo info;
+  info.concurrent = concurrent;
+  info.elements = elements;
+  CapturedLog log;
+  Written w;
+  OutputSet set(dir);
+  w.files = write_mesh_outputs(m, bathy, o, set, log.logger, info);
+  set.commit();
+  w.lines = without_times(log.lines);
+  for (const auto& f : w.files) w.bytes.push_back(testing::read_file_bytes(f.path.string()));
+  return w;
+}
+
+// The UGRID file written beside the others: the same files, bytes, lines (in the same order) and
+// facts as one file after another. With squares and triangles, the UGRID file's geographic mesh
+// is built for it, and its line comes after the msh file's.
+TEST(MeshOutputs, WritingUgridBesideTheOthersChangesNothingButTheThread) {
+  testing::TempDir one, two;
+  const auto m = testing::tiny_mesh(true, {true, -44.858333, 78.141667});
+  const Written seq = write_all(one.path(), m, flat_sea(), false, ElementKinds::kBoth);
+  const Written con = write_all(two.path(), m, flat_sea(), true, ElementKinds::kBoth);
+  ASSERT_EQ(seq.files.size(), 12u);
+  ASSERT_EQ(con.files.size(), seq.files.size());
+  for (std::size_t k = 0; k < seq.files.size(); ++k) {
+    EXPECT_EQ(con.files[k].name, seq.files[k].name);
+    EXPECT_EQ(con.files[k].bytes, seq.files[k].bytes) << seq.files[k].name;
+    EXPECT_EQ(con.files[k].facts, seq.files[k].facts) << seq.files[k].name;
+    EXPECT_TRUE(con.bytes[k] == seq.bytes[k]) << seq.files[k].name;
+    EXPECT_FALSE(seq.files[k].own_thread);
+    EXPECT_EQ(con.files[k].own_thread, con.files[k].format == "ugrid") << con.files[k].name;
+  }
+  EXPECT_EQ(con.lines, seq.lines);
+  // The held-back lines (geographic meshes, quality, FESOM namelist) stay where they were.
+  ASSERT_EQ(seq.lines.size(), 16u);
+  EXPECT_EQ(seq.lines[0].rfind("geographic mesh: ", 0), 0u) << seq.lines[0];
+  EXPECT_EQ(seq.lines[2].rfind("output: tiny.msh", 0), 0u) << seq.lines[2];
+  EXPECT_EQ(seq.lines[3].rfind("geographic mesh: ", 0), 0u) << seq.lines[3];
+  EXPECT_EQ(seq.lines[4].rfind("output: tiny.nc", 0), 0u) << seq.lines[4];
+  EXPECT_EQ(seq.lines[13].rfind("FESOM namelist.config: force_rotation = .true.", 0), 0u) << seq.lines[13];
+}
+
+// A streamed raster is read through GDAL while the preview samples it: nothing beside.
+TEST(MeshOutputs, AStreamedRasterWritesOneFileAfterAnother) {
+  testing::TempDir dir;
+  raster::OpenOptions ro;
+  ro.path = aq::test::write_tiff(dir / "sea.tif", 2.0, true, true).string();
+  ro.allow_streaming = true;
+  ro.streaming = raster::OpenOptions::Streaming::kAlways;
+  const auto streamed = raster::Bathymetry::open(ro);
+  ASSERT_TRUE(streamed.info().streamed);
+  ro.streaming = raster::OpenOptions::Streaming::kNever;
+  const auto held = raster::Bathymetry::open(ro);
+  ASSERT_FALSE(held.info().streamed);
+  std::filesystem::create_directories(dir / "streamed");
+  std::filesystem::create_directories(dir / "held");
+  const auto m = testing::tiny_mesh();
+  const Written s = write_all(dir / "streamed", m, streamed, true);
+  const Written h = write_all(dir / "held", m, held, true);
+  ASSERT_EQ(s.files.size(), h.files.size());
+  int beside = 0;
+  for (std::size_t k = 0; k < s.files.size(); ++k) {
+    EXPECT_FALSE(s.files[k].own_thread) << s.files[k].name;
+    beside += h.files[k].own_thread ? 1 : 0;
+    EXPECT_TRUE(s.bytes[k] == h.bytes[k]) << s.files[k].name;
+  }
+  EXPECT_EQ(beside, 1);
+  EXPECT_EQ(s.lines, h.lines);
+}
 
 TEST(MeshOutputs, EveryFormatWithItsFileNameAndOneLogLine) {
   testing::TempDir dir;

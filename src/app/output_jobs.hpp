@@ -1,0 +1,69 @@
+// Writing a run's files in a fixed order while one of them is written on a thread of its own
+// (ARCHITECTURE §4.8). The caller plans every file first (its temporary path reserved in the
+// OutputSet, its writer ready to run, the log lines that precede it); write_output_jobs then runs
+// the writers and logs one line per file, in the jobs' order whatever the threads did:
+//
+//   calling thread:  job 0 ──> job 2 ──> job 3 ──> job 4 ──> (wait) ──> log the rest
+//   extra thread:         job 1 (own_thread: the UGRID file, netCDF/HDF5) ──────┘
+//   log:             lines of 0 │ lines of 1, 2, 3, 4 once 1 is written
+//
+// Only the calling thread logs: a line waits until every file before it is written. The first
+// failure in job order is rethrown, after both threads have stopped; the lines of the jobs
+// before it are logged (and the lines planned before the failing job), later ones are not, as
+// if the jobs had run one after another.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/log.hpp"
+#include "io/write_stats.hpp"
+
+namespace aq::io {
+
+/// Counts worth reporting about a written file, by name (e.g. {"nodes", 36681}).
+using Facts = std::vector<std::pair<std::string, std::int64_t>>;
+
+struct WrittenFile {
+  std::string name;            ///< file name in the output folder, e.g. "mesh.msh"
+  std::string format;          ///< a value of output.formats, or "png_zoom"
+  std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
+  std::int64_t bytes = 0;
+  double seconds = 0.0;  ///< wall time of the writer
+  WriteStats stats;
+  Facts facts;
+  bool own_thread = false;  ///< written on the extra thread while the other files were written
+};
+
+/// A log line held back until the files before it are written.
+struct LogLine {
+  LogLevel level = LogLevel::kInfo;
+  std::string text;
+};
+
+/// One file to write. The writer must not log, and with own_thread it must touch nothing the
+/// other writers touch (it runs beside them).
+struct OutputJob {
+  std::string format;                ///< as WrittenFile::format
+  std::string name;                  ///< as WrittenFile::name
+  std::filesystem::path temp_path;   ///< where the writer writes (OutputSet::temp_path)
+  std::filesystem::path final_path;  ///< OutputSet::final_path
+  std::function<WriteStats(const std::filesystem::path&)> writer;
+  std::function<Facts(const WriteStats&)> facts;
+  bool own_thread = false;          ///< may run on the extra thread
+  std::vector<LogLine> log_before;  ///< logged before this file's line
+};
+
+/// Runs every job's writer and returns the files in the jobs' order, logging for each job its
+/// log_before lines and "output: <name> (<format>, <bytes> bytes, <seconds> s, <facts>)", then
+/// `trailing`. With `concurrent` (and at least one job of each kind) the own_thread jobs run one
+/// after another on one extra thread while the others run on the calling thread; otherwise all
+/// run on the calling thread in order. Rethrows the first failure in job order (see above).
+std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const std::vector<LogLine>& trailing,
+                                           bool concurrent, const Logger& log);
+
+}  // namespace aq::io
