@@ -17,6 +17,7 @@
 #include "io/file_writer.hpp"
 #include "mesh_files/seam_nodes.hpp"
 #include "pictures/png_encode.hpp"
+#include "pictures/rotated_parallel.hpp"
 
 namespace aq::io {
 
@@ -161,62 +162,38 @@ std::uint32_t shade(const std::uint32_t* table, float e) {
   return table[static_cast<int>(std::lround(k)) + kShadeDeep];
 }
 
-// Geographic unit vectors of the rotated system's x, y, z axes (the columns of its rotation
-// matrix), taken from PoleRotation itself so that the background agrees with the mesh.
-std::array<std::array<double, 3>, 3> rotation_columns(const PoleRotation& r) {
-  std::array<std::array<double, 3>, 3> c{};
-  const double axes[3][2] = {{0.0, 0.0}, {90.0, 0.0}, {0.0, 90.0}};
-  for (int k = 0; k < 3; ++k) {
-    double lon = 0, lat = 0;
-    r.to_geographic(axes[k][0], axes[k][1], lon, lat);
-    const double lo = lon * kDegToRad, la = lat * kDegToRad;
-    c[static_cast<std::size_t>(k)] = {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
-  }
-  return c;
-}
-
-// Samples the raster at every map pixel centre (rows in parallel; each pixel independent).
-// With a rotated pole the pixel's rotated (λ', φ') is turned into geographic coordinates with
-// per-row and per-column sines and cosines: two inverse trigonometric calls a pixel.
-void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& mesh, const raster::Bathymetry& bathy) {
+// Samples the raster at every map pixel centre (rows in parallel; each row independent). With a
+// rotated pole the pixels' geographic positions come from RotatedParallel (two inverse
+// trigonometric calls per 16 pixels; `exact`: per pixel).
+void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
+                     bool exact) {
   cairo_surface_flush(surface);
   unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   const int w = v.width, h = v.map_h, top = v.band;
+  std::vector<double> lons(static_cast<std::size_t>(w));
+  for (std::size_t x = 0; x < lons.size(); ++x) lons[x] = v.lon_min + (static_cast<double>(x) + 0.5) / v.sx();
   const bool rotated = mesh.rotation.enabled;
-  const auto axes = rotated ? rotation_columns(PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg))
-                            : std::array<std::array<double, 3>, 3>{};
-  std::vector<double> lons(static_cast<std::size_t>(w)), cos_lon(lons.size()), sin_lon(lons.size());
-  for (std::size_t x = 0; x < lons.size(); ++x) {
-    lons[x] = v.lon_min + (static_cast<double>(x) + 0.5) / v.sx();
-    cos_lon[x] = std::cos(lons[x] * kDegToRad);
-    sin_lon[x] = std::sin(lons[x] * kDegToRad);
-  }
+  const RotatedParallel parallel(
+      rotated ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation(),
+      rotated ? lons : std::vector<double>{});
   const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), w);
-  const double* cl = cos_lon.data();
-  const double* sl = sin_lon.data();
   const raster::Bathymetry* b = &bathy;
   const raster::Bathymetry::Columns* c = &cols;
-  const auto* ax = &axes;
+  const RotatedParallel* par = &parallel;
   const View* vp = &v;
   const Lattice* lattice = &mesh.lattice;
   const std::uint32_t* table = shade_table().data();
 #pragma omp parallel for schedule(static) default(none) \
-    shared(data, stride, w, h, top, rotated, cl, sl, b, c, ax, vp, table, lattice)
+    shared(data, stride, w, h, top, rotated, exact, b, c, par, vp, table, lattice)
   for (int y = 0; y < h; ++y) {
     std::vector<float> row(static_cast<std::size_t>(w));
     const double plane_y = vp->lat_max - (y + 0.5) / vp->sy();
     const double lat = lattice->mercator() ? mercator_lat_deg(plane_y) : plane_y;
     if (rotated) {
-      const auto& a = *ax;
-      const double cp = std::cos(lat * kDegToRad), sp = std::sin(lat * kDegToRad);
-      for (int x = 0; x < w; ++x) {
-        double g[3];
-        for (int k = 0; k < 3; ++k) g[k] = cp * (cl[x] * a[0][k] + sl[x] * a[1][k]) + sp * a[2][k];
-        const double glon = std::atan2(g[1], g[0]) * kRadToDeg;
-        const double glat = std::asin(std::clamp(g[2], -1.0, 1.0)) * kRadToDeg;
-        row[static_cast<std::size_t>(x)] = static_cast<float>(b->sample(glon, glat));
-      }
+      std::vector<double> glon(static_cast<std::size_t>(w)), glat(glon.size());
+      exact ? par->exact_positions(lat, glon.data(), glat.data()) : par->positions(lat, glon.data(), glat.data());
+      for (std::size_t x = 0; x < row.size(); ++x) row[x] = static_cast<float>(b->sample(glon[x], glat[x]));
     } else {
       b->sample_row(*c, lat, row.data());
     }
@@ -598,7 +575,7 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
                                   cairo_status_to_string(cairo_status(cr))));
   }
 
-  draw_background(surface, v, mesh, bathy);
+  draw_background(surface, v, mesh, bathy, o.exact_background);
   cairo_save(cr);
   cairo_rectangle(cr, 0, v.band, v.width, v.map_h);
   cairo_clip(cr);

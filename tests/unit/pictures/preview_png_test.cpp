@@ -8,11 +8,13 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <set>
 
 #include "core/error.hpp"
 #include "support/io_test_mesh.hpp"
 #include "support/msh_parse.hpp"
 #include "support/png_pixels.hpp"
+#include "support/synthetic_raster.hpp"
 #include "support/temp_dir.hpp"
 
 namespace aq::io {
@@ -182,6 +184,51 @@ TEST(PreviewPng, SquaresRotatedAndDeterministic) {
   write_preview_png(r, bathy, dir / "1.png", o);
   write_preview_png(r, bathy, dir / "2.png", o);
   EXPECT_EQ(testing::read_file_bytes((dir / "1.png").string()), testing::read_file_bytes((dir / "2.png").string()));
+}
+
+// 0.25° global raster whose elevation crosses a tint class boundary every pixel or two of a
+// 1200-pixel map (ridges ±6500 m with periods of 2.1° and 3.3°, and a no-data patch).
+raster::Bathymetry ridged_bathy() {
+  const std::int64_t nc = 1440, nr = 721;
+  std::vector<float> v(static_cast<std::size_t>(nc * nr));
+  for (std::int64_t r = 0; r < nr; ++r)
+    for (std::int64_t c = 0; c < nc; ++c) {
+      const double lon = -180.0 + 0.25 * static_cast<double>(c), lat = -90.0 + 0.25 * static_cast<double>(r);
+      constexpr double k2pi = 6.283185307179586;
+      const double e = 6500.0 * std::sin(k2pi * lon / 2.1) * std::cos(k2pi * lat / 3.3) - 1500.0 +
+                       700.0 * std::sin(0.05 * lon * lat);
+      const bool hole = lon > 100.0 && lon < 104.0 && lat > 10.0 && lat < 13.0;
+      v[static_cast<std::size_t>(r * nc + c)] = hole ? std::nanf("") : static_cast<float>(e);
+    }
+  return raster::Bathymetry::from_grid(std::move(v), nc, nr, -180.0, -90.0, 0.25, 0.25);
+}
+
+// The rotated background from one atan2/asin per 16 pixels (RotatedParallel) is the background
+// with both at every pixel, bit for bit, and the same on 1 and 2 threads.
+TEST(PreviewPng, RotatedBackgroundIsTheExactOneOnAnyThreadCount) {
+  testing::TempDir dir;
+  const auto bathy = ridged_bathy();
+  for (const auto& pole : std::vector<std::array<double, 2>>{{-44.858333, 78.141667}, {30.0, 10.0}}) {
+    const auto m = testing::tiny_mesh(true, {true, pole[0], pole[1]});
+    PreviewOptions o;
+    o.width_px = 1200;
+    aq::test::set_threads(2);
+    write_preview_png(m, bathy, dir / "fast2.png", o);
+    aq::test::set_threads(1);
+    write_preview_png(m, bathy, dir / "fast1.png", o);
+    o.exact_background = true;
+    write_preview_png(m, bathy, dir / "exact.png", o);
+    aq::test::set_threads(2);
+    const auto fast2 = testing::read_file_bytes((dir / "fast2.png").string());
+    EXPECT_TRUE(fast2 == testing::read_file_bytes((dir / "fast1.png").string())) << pole[0];
+    EXPECT_TRUE(fast2 == testing::read_file_bytes((dir / "exact.png").string())) << pole[0];
+    // The picture has the structure the test needs: many tint classes, no-data included.
+    const Picture p = load(dir / "exact.png");
+    std::set<std::array<int, 3>> colours;
+    for (int y = 30; y < p.height - 30; y += 7)
+      for (int x = 0; x < p.width; x += 7) colours.insert(p.rgb(x, y));
+    EXPECT_GE(colours.size(), 30u) << pole[0];
+  }
 }
 
 TEST(PreviewPng, BadOptionsAreConfigErrorsNamingTheKey) {
