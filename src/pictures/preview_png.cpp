@@ -156,10 +156,12 @@ const std::vector<std::uint32_t>& shade_table() {
   }();
   return table;
 }
+// The nearest whole metre (halves away from zero, as std::lround) without a library call: for a
+// float within [-kShadeDeep, kShadeHigh], k ± 0.5 is exact in double, so the truncation is.
 std::uint32_t shade(const std::uint32_t* table, float e) {
   if (std::isnan(e)) return shade_exact(e);
-  const float k = std::clamp(e, -static_cast<float>(kShadeDeep), static_cast<float>(kShadeHigh));
-  return table[static_cast<int>(std::lround(k)) + kShadeDeep];
+  const double k = std::clamp(e, -static_cast<float>(kShadeDeep), static_cast<float>(kShadeHigh));
+  return table[static_cast<int>(k < 0.0 ? k - 0.5 : k + 0.5) + kShadeDeep];
 }
 
 // Samples the raster at every map pixel centre (rows in parallel; each row independent). With a
@@ -184,21 +186,25 @@ void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& 
   const View* vp = &v;
   const Lattice* lattice = &mesh.lattice;
   const std::uint32_t* table = shade_table().data();
-#pragma omp parallel for schedule(static) default(none) \
-    shared(data, stride, w, h, top, rotated, exact, b, c, par, vp, table, lattice)
-  for (int y = 0; y < h; ++y) {
+  // Rows in chunks handed out as threads come free: the picture may be drawn while another
+  // thread writes a file (app/output_jobs.hpp), and each row depends only on its own inputs.
+#pragma omp parallel default(none) shared(data, stride, w, h, top, rotated, exact, b, c, par, vp, table, lattice)
+  {
     std::vector<float> row(static_cast<std::size_t>(w));
-    const double plane_y = vp->lat_max - (y + 0.5) / vp->sy();
-    const double lat = lattice->mercator() ? mercator_lat_deg(plane_y) : plane_y;
-    if (rotated) {
-      std::vector<double> glon(static_cast<std::size_t>(w)), glat(glon.size());
-      exact ? par->exact_positions(lat, glon.data(), glat.data()) : par->positions(lat, glon.data(), glat.data());
-      for (std::size_t x = 0; x < row.size(); ++x) row[x] = static_cast<float>(b->sample(glon[x], glat[x]));
-    } else {
-      b->sample_row(*c, lat, row.data());
+    std::vector<double> glon(rotated ? row.size() : 0), glat(glon.size());
+#pragma omp for schedule(dynamic, 16)
+    for (int y = 0; y < h; ++y) {
+      const double plane_y = vp->lat_max - (y + 0.5) / vp->sy();
+      const double lat = lattice->mercator() ? mercator_lat_deg(plane_y) : plane_y;
+      if (rotated) {
+        exact ? par->exact_positions(lat, glon.data(), glat.data()) : par->positions(lat, glon.data(), glat.data());
+        for (std::size_t x = 0; x < row.size(); ++x) row[x] = static_cast<float>(b->sample(glon[x], glat[x]));
+      } else {
+        b->sample_row(*c, lat, row.data());
+      }
+      auto* px = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(top + y) * stride);
+      for (int x = 0; x < w; ++x) px[x] = shade(table, row[static_cast<std::size_t>(x)]);
     }
-    auto* px = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(top + y) * stride);
-    for (int x = 0; x < w; ++x) px[x] = shade(table, row[static_cast<std::size_t>(x)]);
   }
   cairo_surface_mark_dirty(surface);
 }
