@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@
 #include "io/file_writer.hpp"
 #include "mesh_files/seam_nodes.hpp"
 #include "pictures/png_encode.hpp"
-#include "pictures/rotated_parallel.hpp"
+#include "pictures/rotated_map_sampler.hpp"
 
 namespace aq::io {
 
@@ -164,46 +165,55 @@ std::uint32_t shade(const std::uint32_t* table, float e) {
   return table[static_cast<int>(k < 0.0 ? k - 0.5 : k + 0.5) + kShadeDeep];
 }
 
-// Samples the raster at every map pixel centre (rows in parallel; each row independent). With a
-// rotated pole the pixels' geographic positions come from RotatedParallel (two inverse
-// trigonometric calls per 16 pixels; `exact`: per pixel).
+// Samples the raster at every map pixel centre (bands of rows in parallel; each band
+// independent). With a rotated pole the pixels' raster values come from RotatedMapSampler
+// (`exact`: atan2, asin and Bathymetry::sample at every pixel).
 void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
                      bool exact) {
   cairo_surface_flush(surface);
   unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   const int w = v.width, h = v.map_h, top = v.band;
+  const Lattice& lattice = mesh.lattice;
+  const auto rlon = [&v](double x) { return v.lon_min + (x + 0.5) / v.sx(); };
+  const auto rlat = [&v, &lattice](double y) {
+    const double plane_y = v.lat_max - (y + 0.5) / v.sy();
+    return lattice.mercator() ? mercator_lat_deg(plane_y) : plane_y;
+  };
   std::vector<double> lons(static_cast<std::size_t>(w));
-  for (std::size_t x = 0; x < lons.size(); ++x) lons[x] = v.lon_min + (static_cast<double>(x) + 0.5) / v.sx();
+  for (std::size_t x = 0; x < lons.size(); ++x) lons[x] = rlon(static_cast<double>(x));
   const bool rotated = mesh.rotation.enabled;
-  const RotatedParallel parallel(
-      rotated ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation(),
-      rotated ? lons : std::vector<double>{});
+  const RotatedMapSampler sampler(
+      bathy, rotated ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation(),
+      rotated ? w : 0, rotated ? h : 0, rlon, rlat);
   const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), w);
   const raster::Bathymetry* b = &bathy;
   const raster::Bathymetry::Columns* c = &cols;
-  const RotatedParallel* par = &parallel;
-  const View* vp = &v;
-  const Lattice* lattice = &mesh.lattice;
+  const RotatedMapSampler* rs = &sampler;
+  const std::function<double(double)> lat_of_row = rlat;
+  const std::function<double(double)>* row_lat = &lat_of_row;
   const std::uint32_t* table = shade_table().data();
-  // Rows in chunks handed out as threads come free: the picture may be drawn while another
-  // thread writes a file (app/output_jobs.hpp), and each row depends only on its own inputs.
-#pragma omp parallel default(none) shared(data, stride, w, h, top, rotated, exact, b, c, par, vp, table, lattice)
+  constexpr int kBand = RotatedMapSampler::kTile;
+  const int bands = (h + kBand - 1) / kBand;
+  // Bands handed out as threads come free: the picture may be drawn while another thread writes
+  // a file (app/output_jobs.hpp), and each band depends only on its own inputs.
+#pragma omp parallel default(none) shared(data, stride, w, h, top, rotated, exact, b, c, rs, row_lat, table, bands)
   {
-    std::vector<float> row(static_cast<std::size_t>(w));
-    std::vector<double> glon(rotated ? row.size() : 0), glat(glon.size());
-#pragma omp for schedule(dynamic, 16)
-    for (int y = 0; y < h; ++y) {
-      const double plane_y = vp->lat_max - (y + 0.5) / vp->sy();
-      const double lat = lattice->mercator() ? mercator_lat_deg(plane_y) : plane_y;
+    std::vector<float> band(static_cast<std::size_t>(w) * kBand);
+#pragma omp for schedule(dynamic, 1)
+    for (int k = 0; k < bands; ++k) {
+      const int y0 = k * kBand, rows = std::min(int{kBand}, h - y0);
       if (rotated) {
-        exact ? par->exact_positions(lat, glon.data(), glat.data()) : par->positions(lat, glon.data(), glat.data());
-        for (std::size_t x = 0; x < row.size(); ++x) row[x] = static_cast<float>(b->sample(glon[x], glat[x]));
+        exact ? rs->sample_rows_exact(y0, rows, band.data()) : rs->sample_rows(y0, rows, band.data());
       } else {
-        b->sample_row(*c, lat, row.data());
+        for (int y = y0; y < y0 + rows; ++y)
+          b->sample_row(*c, (*row_lat)(y), band.data() + static_cast<std::ptrdiff_t>(y - y0) * w);
       }
-      auto* px = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(top + y) * stride);
-      for (int x = 0; x < w; ++x) px[x] = shade(table, row[static_cast<std::size_t>(x)]);
+      for (int y = y0; y < y0 + rows; ++y) {
+        const float* e = band.data() + static_cast<std::ptrdiff_t>(y - y0) * w;
+        auto* px = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(top + y) * stride);
+        for (int x = 0; x < w; ++x) px[x] = shade(table, e[x]);
+      }
     }
   }
   cairo_surface_mark_dirty(surface);

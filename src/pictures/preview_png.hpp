@@ -20,7 +20,7 @@
 // lat_max] of the same plane at the same width; the box may extend past λ0 + 360 (elements are
 // drawn shifted by ±360° where they fall into it).
 // The bytes are deterministic (no time stamps; fixed drawing order; rows of the background in
-// parallel but each row computed independently).
+// parallel, each band of rows computed independently).
 #pragma once
 
 #include <array>
@@ -65,8 +65,8 @@ struct PreviewOptions {
   std::string title = "aquatoria mesh";
   std::vector<PreviewOutline> outlines;  ///< drawn in magenta over the mesh, labels in black on white
   /// Hidden knob for tests and benchmarks (not a configuration key): a rotated map's background
-  /// with atan2 and asin at every pixel (RotatedParallel::exact_positions) instead of
-  /// RotatedParallel::positions (within 1e-10° of it).
+  /// with atan2, asin and Bathymetry::sample at every pixel (RotatedMapSampler::sample_rows_exact)
+  /// instead of RotatedMapSampler::sample_rows.
   bool exact_background = false;
 };
 

@@ -186,8 +186,8 @@ TEST(PreviewPng, SquaresRotatedAndDeterministic) {
   EXPECT_EQ(testing::read_file_bytes((dir / "1.png").string()), testing::read_file_bytes((dir / "2.png").string()));
 }
 
-// 0.25° global raster whose elevation crosses a tint class boundary every pixel or two of a
-// 1200-pixel map (ridges ±6500 m with periods of 2.1° and 3.3°, and a no-data patch).
+// 0.25° global raster whose elevation crosses a tint class boundary every few pixels of an
+// 800-pixel map (ridges ±6500 m with periods of 2.1° and 3.3°, and a no-data patch).
 raster::Bathymetry ridged_bathy() {
   const std::int64_t nc = 1440, nr = 721;
   std::vector<float> v(static_cast<std::size_t>(nc * nr));
@@ -203,15 +203,18 @@ raster::Bathymetry ridged_bathy() {
   return raster::Bathymetry::from_grid(std::move(v), nc, nr, -180.0, -90.0, 0.25, 0.25);
 }
 
-// The rotated background from one atan2/asin per 16 pixels (RotatedParallel) is the background
-// with both at every pixel, bit for bit, and the same on 1 and 2 threads.
-TEST(PreviewPng, RotatedBackgroundIsTheExactOneOnAnyThreadCount) {
+// The rotated background from interpolated raster positions (RotatedMapSampler) against the one
+// with atan2, asin and Bathymetry::sample at every pixel: where an elevation crosses a tint class
+// boundary within the position error, the pixel takes the neighbouring class; that is rare even
+// on this raster (1.2% of the pixels; 0.07% on ETOPO5), and the picture is the same on 1 and 2
+// threads.
+TEST(PreviewPng, RotatedBackgroundIsCloseToTheExactOneAndTheSameOnAnyThreadCount) {
   testing::TempDir dir;
   const auto bathy = ridged_bathy();
   for (const auto& pole : std::vector<std::array<double, 2>>{{-44.858333, 78.141667}, {30.0, 10.0}}) {
     const auto m = testing::tiny_mesh(true, {true, pole[0], pole[1]});
     PreviewOptions o;
-    o.width_px = 1200;
+    o.width_px = 800;  // 0.45° pixels on the 0.25° raster, as 0.15° on ETOPO5's 5'
     aq::test::set_threads(2);
     write_preview_png(m, bathy, dir / "fast2.png", o);
     aq::test::set_threads(1);
@@ -219,14 +222,23 @@ TEST(PreviewPng, RotatedBackgroundIsTheExactOneOnAnyThreadCount) {
     o.exact_background = true;
     write_preview_png(m, bathy, dir / "exact.png", o);
     aq::test::set_threads(2);
-    const auto fast2 = testing::read_file_bytes((dir / "fast2.png").string());
-    EXPECT_TRUE(fast2 == testing::read_file_bytes((dir / "fast1.png").string())) << pole[0];
-    EXPECT_TRUE(fast2 == testing::read_file_bytes((dir / "exact.png").string())) << pole[0];
-    // The picture has the structure the test needs: many tint classes, no-data included.
-    const Picture p = load(dir / "exact.png");
+    EXPECT_TRUE(testing::read_file_bytes((dir / "fast2.png").string()) ==
+                testing::read_file_bytes((dir / "fast1.png").string()))
+        << pole[0];
+    const Picture fast = load(dir / "fast2.png"), exact = load(dir / "exact.png");
+    ASSERT_EQ(fast.width, exact.width);
+    ASSERT_EQ(fast.height, exact.height);
+    std::int64_t differ = 0;
     std::set<std::array<int, 3>> colours;
-    for (int y = 30; y < p.height - 30; y += 7)
-      for (int x = 0; x < p.width; x += 7) colours.insert(p.rgb(x, y));
+    for (int y = 0; y < fast.height; ++y)
+      for (int x = 0; x < fast.width; ++x) {
+        differ += fast.rgb(x, y) != exact.rgb(x, y) ? 1 : 0;
+        if (x % 7 == 0 && y % 7 == 0) colours.insert(exact.rgb(x, y));
+      }
+    const auto pixels = static_cast<std::int64_t>(fast.width) * fast.height;
+    EXPECT_GT(differ, 0) << pole[0];  // interpolated, not the exact path
+    EXPECT_LT(differ, pixels / 50) << pole[0];
+    // The picture has the structure the test needs: many tint classes, no-data included.
     EXPECT_GE(colours.size(), 30u) << pole[0];
   }
 }
