@@ -111,29 +111,38 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
   };
 
   // Shape quality on the sphere of the triangles as the geographic files hold them; its
-  // per-triangle values also colour the preview (output.png_color).
+  // per-triangle values also colour the preview (output.png_color). Computed by the first job,
+  // a step on this thread (while the UGRID file is being written beside it); the preview's job
+  // comes later on this thread and reads `shapes`.
   std::optional<TriangleShapes> shapes;
   if (has_triangles(info.elements) && !mesh.triangles.empty()) {
     const Timer geo_timer;
     const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
     const double geo_s = geo_timer.wall_s();
-    const Timer timer;
-    shapes = triangle_shapes(g);
-    const SphereQuality q = summarize_quality(*shapes);
-    hold(LogLevel::kInfo,
-         fmt::format("quality: {} ({:.3f} s, {:.3f} s CPU)", q.describe(), timer.wall_s(), timer.cpu_s()));
-    if (report != nullptr) {
-      Json j = q.json();
-      j["mesh"] = "geographic (as written to ugrid, vtu, fort14, text, fesom, schism)";
-      j["seconds"] = std::round(timer.wall_s() * 1000.0) / 1000.0;
-      j["cpu_seconds"] = std::round(timer.cpu_s() * 1000.0) / 1000.0;
-      j["geographic_mesh_seconds"] = std::round(geo_s * 1000.0) / 1000.0;
-      (*report)["quality"] = j;
-    }
+    OutputJob quality;
+    quality.format = "quality";
+    quality.step = [&g, &shapes, report, geo_s] {
+      const Timer timer;
+      shapes = triangle_shapes(g);
+      const SphereQuality q = summarize_quality(*shapes);
+      if (report != nullptr) {
+        Json j = q.json();
+        j["mesh"] = "geographic (as written to ugrid, vtu, fort14, text, fesom, schism)";
+        j["seconds"] = std::round(timer.wall_s() * 1000.0) / 1000.0;
+        j["cpu_seconds"] = std::round(timer.cpu_s() * 1000.0) / 1000.0;
+        j["geographic_mesh_seconds"] = std::round(geo_s * 1000.0) / 1000.0;
+        (*report)["quality"] = j;
+      }
+      return std::vector<LogLine>{{LogLevel::kInfo, fmt::format("quality: {} ({:.3f} s, {:.3f} s CPU)", q.describe(),
+                                                                timer.wall_s(), timer.cpu_s())}};
+    };
+    quality.log_before = std::move(pending);
+    pending.clear();
+    jobs.push_back(std::move(quality));
   }
   // Per lattice-mesh triangle (what the preview draws): the value of the geographic triangle it
   // became, NaN where the pole cap replaced it.
-  auto lattice_values = [&](const std::vector<float>& geo_values) {
+  auto lattice_values = [&mesh, &info, &geo, &geo_triangles](const std::vector<float>& geo_values) {
     const auto& src = (info.elements == ElementKinds::kTriangles ? geo : geo_triangles)->source_triangle();
     if (src.empty()) return geo_values;
     std::vector<float> v(mesh.triangles.size(), std::numeric_limits<float>::quiet_NaN());
@@ -267,11 +276,18 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             });
       }
     } else if (format == "png") {
+      // The colours by angle or size come from the quality step, which runs before this job.
       auto o = std::make_shared<PreviewOptions>(preview_options(options, info.elements));
-      if (o->colour == PreviewColour::kAngle && shapes) o->triangle_values = lattice_values(shapes->min_angle_deg);
-      if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
+      auto colour = [o, &shapes, lattice_values] {
+        if (o->colour == PreviewColour::kAngle && shapes) o->triangle_values = lattice_values(shapes->min_angle_deg);
+        if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
+      };
       plan(
-          format, name + ".png", [&mesh, &bathy, o](const auto& p) { return write_preview_png(mesh, bathy, p, *o); },
+          format, name + ".png",
+          [&mesh, &bathy, o, colour](const auto& p) {
+            colour();
+            return write_preview_png(mesh, bathy, p, *o);
+          },
           [](const WriteStats& s) {
             return Facts{{"elements drawn", s.elements}};
           });

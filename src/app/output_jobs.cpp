@@ -4,10 +4,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
+#include <atomic>
+#include <condition_variable>
+#include <deque>
 #include <exception>
 #include <future>
+#include <mutex>
 
+#include "core/output_files.hpp"
 #include "core/timer.hpp"
 
 namespace aq::io {
@@ -39,34 +43,87 @@ std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const st
                                            bool concurrent, const Logger& log) {
   const std::size_t n = jobs.size();
   std::vector<WrittenFile> written(n);
-  std::vector<std::exception_ptr> failure(n);
+  std::vector<std::vector<LogLine>> step_lines(n);
+  std::vector<std::exception_ptr> failure(n), checksum_failure(n);
+  std::vector<std::string> checksum(n);
   // finished[k]: job k's writer has returned or thrown (set and read by the calling thread only;
-  // the extra thread's jobs count as finished once that thread is done).
+  // the extra thread's jobs count as finished once it has done them all).
   std::vector<char> finished(n, 0);
   auto run = [&](std::size_t k) {
     try {
-      written[k] = write_one(jobs[k]);
+      if (jobs[k].step) {
+        step_lines[k] = jobs[k].step();
+      } else {
+        written[k] = write_one(jobs[k]);
+      }
       return true;
     } catch (...) {
       failure[k] = std::current_exception();
       return false;
     }
   };
+  auto checksum_of = [&](std::size_t k) {
+    try {
+      checksum[k] = file_checksum(jobs[k].temp_path);
+    } catch (...) {
+      checksum_failure[k] = std::current_exception();
+    }
+  };
 
-  const auto own = [](const OutputJob& j) { return j.own_thread; };
+  // The files written on this thread are checksummed by whichever thread is free first: the
+  // extra one once its own jobs are done, or this one after its last job.
+  std::mutex queue_mutex;
+  std::condition_variable queue_changed;
+  std::deque<std::size_t> to_checksum;
+  bool no_more = false;
+  auto help_checksum = [&] {
+    for (;;) {
+      std::size_t k = 0;
+      {
+        std::unique_lock<std::mutex> lock(queue_mutex);
+        queue_changed.wait(lock, [&] { return !to_checksum.empty() || no_more; });
+        if (to_checksum.empty()) return;
+        k = to_checksum.front();
+        to_checksum.pop_front();
+      }
+      checksum_of(k);
+    }
+  };
+
+  const auto own = [](const OutputJob& j) { return j.own_thread && !j.step; };
   const bool beside =
       concurrent && std::any_of(jobs.begin(), jobs.end(), own) && !std::all_of(jobs.begin(), jobs.end(), own);
-  // The extra thread runs its jobs in order and stops at its first failure. Its results are read
-  // only after the future is ready (which orders its writes before the reads).
+  auto on_extra = [&](std::size_t k) { return beside && own(jobs[k]); };
+  // The extra thread runs its jobs in order (each file checksummed at once) and stops at its
+  // first failure; their results are read once extra_done is seen true (release/acquire). Then
+  // it helps with the checksums until this thread has no more files.
+  std::atomic<bool> extra_done{!beside};
   std::future<void> extra;
   if (beside) {
     extra = std::async(std::launch::async, [&] {
-      for (std::size_t k = 0; k < n; ++k)
-        if (jobs[k].own_thread && !run(k)) break;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!on_extra(k)) continue;
+        if (!run(k)) break;
+        checksum_of(k);
+      }
+      extra_done.store(true, std::memory_order_release);
+      help_checksum();
     });
   }
-  bool extra_done = !beside;
-  auto on_extra = [&](std::size_t k) { return beside && jobs[k].own_thread; };
+  // However this function is left, the extra thread is told that no more files come (before the
+  // future's destructor waits for it).
+  struct NoMore {
+    std::mutex& m;
+    std::condition_variable& cv;
+    bool& flag;
+    ~NoMore() {
+      {
+        const std::lock_guard<std::mutex> lock(m);
+        flag = true;
+      }
+      cv.notify_all();
+    }
+  } no_more_on_exit{queue_mutex, queue_changed, no_more};
 
   // Logs the lines of the jobs that are finished and have every job before them finished; stops
   // before the line of a failed job (its log_before lines are logged: they came before it).
@@ -74,9 +131,11 @@ std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const st
   auto log_ready = [&] {
     for (; logged < n; ++logged) {
       const OutputJob& job = jobs[logged];
-      if (on_extra(logged) ? !extra_done : !finished[logged]) return;
+      if (on_extra(logged) ? !extra_done.load(std::memory_order_acquire) : !finished[logged]) return;
       for (const LogLine& line : job.log_before) log.log(line.level, line.text);
       if (failure[logged]) return;
+      for (const LogLine& line : step_lines[logged]) log.log(line.level, line.text);
+      if (job.step) continue;
       const WrittenFile& w = written[logged];
       log.info("output: {} ({}, {} bytes, {:.3f} s{})", w.name, w.format, w.bytes, w.seconds, facts_text(w.facts));
     }
@@ -87,21 +146,38 @@ std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const st
     const bool ok = run(k);
     finished[k] = 1;
     if (!ok) break;
-    if (!extra_done) extra_done = extra.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    if (!jobs[k].step) {
+      {
+        const std::lock_guard<std::mutex> lock(queue_mutex);
+        to_checksum.push_back(k);
+      }
+      queue_changed.notify_one();
+    }
     log_ready();
   }
-  if (beside) {
-    extra.get();
-    extra_done = true;
+  {
+    const std::lock_guard<std::mutex> lock(queue_mutex);
+    no_more = true;
   }
+  queue_changed.notify_all();
+  help_checksum();
+  if (beside) extra.get();
   log_ready();
   if (logged < n) {
     // Job `logged` failed: every job before it was written and logged.
     std::rethrow_exception(failure[logged]);
   }
   for (const LogLine& line : trailing) log.log(line.level, line.text);
-  for (std::size_t k = 0; k < n; ++k) written[k].own_thread = on_extra(k);
-  return written;
+  for (const auto& e : checksum_failure)
+    if (e) std::rethrow_exception(e);
+  std::vector<WrittenFile> files;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (jobs[k].step) continue;
+    written[k].own_thread = on_extra(k);
+    written[k].checksum = std::move(checksum[k]);
+    files.push_back(std::move(written[k]));
+  }
+  return files;
 }
 
 }  // namespace aq::io

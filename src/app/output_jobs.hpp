@@ -10,7 +10,9 @@
 // Only the calling thread logs: a line waits until every file before it is written. The first
 // failure in job order is rethrown, after both threads have stopped; the lines of the jobs
 // before it are logged (and the lines planned before the failing job), later ones are not, as
-// if the jobs had run one after another.
+// if the jobs had run one after another. Every file is also checksummed (file_checksum): the
+// extra thread's at once, the calling thread's by whichever thread is free first (the extra one
+// once its own jobs are done), so that the checksums cost the run no time of their own.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +39,7 @@ struct WrittenFile {
   WriteStats stats;
   Facts facts;
   bool own_thread = false;  ///< written on the extra thread while the other files were written
+  std::string checksum;     ///< file_checksum of the written file (XXH64, 16 hex digits)
 };
 
 /// A log line held back until the files before it are written.
@@ -45,8 +48,9 @@ struct LogLine {
   std::string text;
 };
 
-/// One file to write. The writer must not log, and with own_thread it must touch nothing the
-/// other writers touch (it runs beside them).
+/// One file to write, or a step without a file (`step` set: work the files after it need, run on
+/// the calling thread in its place, its lines logged there). The writer must not log, and with
+/// own_thread it must touch nothing the other jobs touch (it runs beside them).
 struct OutputJob {
   std::string format;                ///< as WrittenFile::format
   std::string name;                  ///< as WrittenFile::name
@@ -54,15 +58,18 @@ struct OutputJob {
   std::filesystem::path final_path;  ///< OutputSet::final_path
   std::function<WriteStats(const std::filesystem::path&)> writer;
   std::function<Facts(const WriteStats&)> facts;
-  bool own_thread = false;          ///< may run on the extra thread
-  std::vector<LogLine> log_before;  ///< logged before this file's line
+  bool own_thread = false;                     ///< may run on the extra thread
+  std::vector<LogLine> log_before;             ///< logged before this file's line
+  std::function<std::vector<LogLine>()> step;  ///< set: no file; returns the lines to log
 };
 
-/// Runs every job's writer and returns the files in the jobs' order, logging for each job its
-/// log_before lines and "output: <name> (<format>, <bytes> bytes, <seconds> s, <facts>)", then
-/// `trailing`. With `concurrent` (and at least one job of each kind) the own_thread jobs run one
-/// after another on one extra thread while the others run on the calling thread; otherwise all
-/// run on the calling thread in order. Rethrows the first failure in job order (see above).
+/// Runs every job's writer (or step) and returns the files in the jobs' order, logging for each
+/// job its log_before lines and "output: <name> (<format>, <bytes> bytes, <seconds> s, <facts>)"
+/// (a step: the lines it returned), then `trailing`. With `concurrent` (and at least one job of each kind) the
+/// own_thread jobs run one after another on one extra thread while the others run on the calling thread; otherwise all
+/// run on the calling thread in order. Rethrows the first failure in job order (see above); a
+/// file that cannot be read back for its checksum throws what file_checksum throws, after the
+/// lines.
 std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const std::vector<LogLine>& trailing,
                                            bool concurrent, const Logger& log);
 

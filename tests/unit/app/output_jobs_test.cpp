@@ -1,12 +1,13 @@
 // write_output_jobs: the own_thread job really runs beside the others, yet the log lines and the
 // returned files keep the jobs' order, and the error thrown is the first failure in that order
-// (whichever thread failed first in time).
+// (whichever thread failed first in time); every file's checksum is file_checksum's.
 #include "app/output_jobs.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <functional>
 #include <future>
 #include <mutex>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/output_files.hpp"
+#include "support/temp_dir.hpp"
 
 namespace aq::io {
 namespace {
@@ -32,14 +35,26 @@ std::vector<std::string> without_times(const std::vector<std::string>& lines) {
   return out;
 }
 
-OutputJob job(const std::string& name, std::function<WriteStats(const std::filesystem::path&)> writer,
+// The jobs write their files (the name repeated, 1000 times) into this folder, then do what
+// `then` does.
+const testing::TempDir& folder() {
+  static const testing::TempDir dir;
+  return dir;
+}
+
+OutputJob job(const std::string& name, std::function<WriteStats(const std::filesystem::path&)> then,
               bool own_thread = false) {
   OutputJob j;
   j.format = "fmt";
   j.name = name;
-  j.temp_path = "/nonexistent/" + name;
-  j.final_path = "/nonexistent/" + name;
-  j.writer = std::move(writer);
+  j.temp_path = folder() / (name + ".tmp");
+  j.final_path = folder() / name;
+  j.writer = [then = std::move(then), name](const std::filesystem::path& p) {
+    std::ofstream f(p, std::ios::binary);
+    for (int k = 0; k < 1000; ++k) f << name;
+    f.close();
+    return then(p);
+  };
   j.own_thread = own_thread;
   j.log_before = {{LogLevel::kInfo, "before " + name}};
   return j;
@@ -91,7 +106,10 @@ TEST(OutputJobs, TheOwnThreadJobRunsBesideTheOthersAndTheLinesKeepTheJobOrder) {
     EXPECT_EQ(w[k].name, std::string(1, static_cast<char>('a' + k)));
     EXPECT_EQ(w[k].bytes, static_cast<std::int64_t>(k + 1));
     EXPECT_EQ(w[k].own_thread, k == 1);
+    EXPECT_EQ(w[k].checksum, file_checksum(folder() / (w[k].name + ".tmp"))) << w[k].name;
+    EXPECT_EQ(w[k].checksum.size(), 16u);
   }
+  EXPECT_NE(w[0].checksum, w[1].checksum);
 }
 
 TEST(OutputJobs, NotConcurrentRunsEverythingOnTheCallingThreadInOrder) {
@@ -111,7 +129,10 @@ TEST(OutputJobs, NotConcurrentRunsEverythingOnTheCallingThreadInOrder) {
   CapturedLog log;
   const auto w = write_output_jobs(std::move(jobs), {}, false, log.logger);
   EXPECT_EQ(order, (std::vector<std::string>{"a", "b", "c"}));
-  for (const auto& f : w) EXPECT_FALSE(f.own_thread);
+  for (const auto& f : w) {
+    EXPECT_FALSE(f.own_thread);
+    EXPECT_EQ(f.checksum, file_checksum(folder() / (f.name + ".tmp"))) << f.name;
+  }
   EXPECT_EQ(without_times(log.lines),
             (std::vector<std::string>{"before a", "output: a", "before b", "output: b", "before c", "output: c"}));
 }
@@ -193,6 +214,35 @@ TEST(OutputJobs, TheFirstFailureInJobOrderIsThrownWhicheverThreadFailedFirst) {
   EXPECT_EQ(o.error, "d failed");
   EXPECT_EQ(o.lines, (std::vector<std::string>{"before a", "output: a", "before b", "output: b", "before c",
                                                "output: c", "before d"}));
+}
+
+// A step (no file) runs on the calling thread in its place and logs what it returns; a file
+// that cannot be read back for its checksum fails the call after every line is logged.
+TEST(OutputJobs, StepsAndAFileThatCannotBeChecksummed) {
+  const auto caller = std::this_thread::get_id();
+  std::vector<OutputJob> jobs;
+  OutputJob step;
+  step.step = [&] {
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    return std::vector<LogLine>{{LogLevel::kInfo, "step line"}};
+  };
+  step.log_before = {{LogLevel::kInfo, "before step"}};
+  jobs.push_back(std::move(step));
+  jobs.push_back(job(
+      "p", [](const auto&) { return bytes(1); }, true));
+  jobs.push_back(job("q", [](const std::filesystem::path& p) {
+    std::filesystem::remove(p);  // gone before its checksum
+    return bytes(2);
+  }));
+  CapturedLog log;
+  try {
+    write_output_jobs(std::move(jobs), {{LogLevel::kInfo, "trailing"}}, true, log.logger);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("q.tmp"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(without_times(log.lines), (std::vector<std::string>{"before step", "step line", "before p", "output: p",
+                                                                "before q", "output: q", "trailing"}));
 }
 
 }  // namespace
