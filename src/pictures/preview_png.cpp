@@ -397,6 +397,13 @@ class MeshPainter {
   const mesh::Mesh& m_;
 };
 
+// std::floor to int without the library call (the baseline x86-64 build has no SSE4.1
+// rounding instruction); |v| < 2^31.
+inline int floor_int(double v) {
+  const int i = static_cast<int>(v);
+  return i - (v < static_cast<double>(i) ? 1 : 0);
+}
+
 // Thin lines blended straight into the picture, one pixel per step along the major axis. The
 // mesh has ~10^5 edges a few pixels long; Cairo's antialiased stroking of them costs more than
 // all the rest of the picture, and at one pixel width the difference does not show.
@@ -414,8 +421,8 @@ class PixelPen {
     const double dx = x1 - x0, dy = y1 - y0;
     const int n = std::max(1, static_cast<int>(std::ceil(std::max(std::abs(dx), std::abs(dy)))));
     for (int k = 0; k < n; ++k) {
-      const int ix = static_cast<int>(std::floor(x0 + dx * k / n));
-      const int iy = static_cast<int>(std::floor(y0 + dy * k / n));
+      const int ix = floor_int(x0 + dx * k / n);
+      const int iy = floor_int(y0 + dy * k / n);
       if (ix < 0 || ix >= w_ || iy < y_lo_ || iy >= y_hi_) continue;
       auto* p = reinterpret_cast<std::uint32_t*>(data_ + static_cast<std::ptrdiff_t>(iy) * stride_) + ix;
       *p = blend(*p, rgb_, a_);

@@ -186,15 +186,15 @@ void RotatedMapSampler::sample_tile(int tx, int ty, int y0, int rows, float* out
         const double dc = (b.c + v * (d.c - b.c) - static_cast<double>(bc0) - lc) / kCell,
                      dr = (b.r + v * (d.r - b.r) - static_cast<double>(br0) - lr) / kCell;
         float* row = out + static_cast<std::ptrdiff_t>(y - y0) * width_;
-        for (int x = x0; x < x1; ++x) {
-          const double s = static_cast<double>(x - x0);
-          const double pc = lc + s * dc, pr = lr + s * dr;
+        // The blend of the four values in float (they are floats; 1e-7 of relative rounding).
+        double pc = lc, pr = lr;
+        for (int x = x0; x < x1; ++x, pc += dc, pr += dr) {
           const auto c0 = static_cast<int>(pc), r0 = static_cast<int>(pr);
-          const double t = pc - c0, u = pr - r0;
+          const auto t = static_cast<float>(pc - c0), u = static_cast<float>(pr - r0);
           const float* p0 = values + r0 * stride + c0;
           const float* p1 = p0 + stride;
-          const double lo = (1.0 - t) * p0[0] + t * p0[1], hi = (1.0 - t) * p1[0] + t * p1[1];
-          row[x] = static_cast<float>((1.0 - u) * lo + u * hi);
+          const float lo = p0[0] + t * (p0[1] - p0[0]), hi = p1[0] + t * (p1[1] - p1[0]);
+          row[x] = lo + u * (hi - lo);
         }
       }
     }
