@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -17,18 +18,40 @@
 #include "core/finite.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
+#include "mesh/buckets.hpp"
 #include "quadtree/parallel.hpp"
 
 namespace aq::mesh {
 
 namespace {
 
-std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t x) {
-  while (parent[static_cast<std::size_t>(x)] != x) {
-    parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    x = parent[static_cast<std::size_t>(x)];
+/// Root of x in the union–find forest `parent` (parent[r] == r at a root, parent[x] < x elsewhere),
+/// halving the path on the way. Safe while other threads run union_faces on the same forest.
+std::int32_t find_root(std::int32_t* parent, std::int32_t x) {
+  for (;;) {
+    std::int32_t p = std::atomic_ref<std::int32_t>(parent[x]).load(std::memory_order_relaxed);
+    if (p == x) return x;
+    const std::int32_t g = std::atomic_ref<std::int32_t>(parent[p]).load(std::memory_order_relaxed);
+    // g is an ancestor of x: replacing p by g only shortens the path (if no other thread did).
+    if (g != p) std::atomic_ref<std::int32_t>(parent[x]).compare_exchange_weak(p, g, std::memory_order_relaxed);
+    x = g;
   }
-  return x;
+}
+
+/// Joins the sets of faces a and b: the larger root goes under the smaller, by compare-and-swap so
+/// that several threads may join at once (a root that another thread linked meanwhile is looked up
+/// again). Parents only decrease, so no cycle forms; the final sets, and so the number of roots,
+/// do not depend on the order of the calls.
+void union_faces(std::int32_t* parent, std::int32_t a, std::int32_t b) {
+  for (;;) {
+    a = find_root(parent, a);
+    b = find_root(parent, b);
+    if (a == b) return;
+    if (a < b) std::swap(a, b);
+    std::int32_t expected = a;
+    if (std::atomic_ref<std::int32_t>(parent[a]).compare_exchange_strong(expected, b, std::memory_order_relaxed))
+      return;
+  }
 }
 
 /// Min, lower median and max of `v` (reorders it); zeros when empty.
@@ -175,6 +198,10 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   const auto face_level = [&](std::int64_t f) {
     return square_faces ? m.square_level[static_cast<std::size_t>(f)] : m.triangle_level[static_cast<std::size_t>(f)];
   };
+  // First half-edge slot of face f (slot face_first(f) + k: from node k to node k + 1).
+  const auto face_first = [&](std::int64_t f) {
+    return square_faces ? poly_start[static_cast<std::size_t>(f)] : 3 * f;
+  };
   const auto face_square = [&](std::int64_t f) {
     return static_cast<std::size_t>(square_faces ? f : m.triangle_square[static_cast<std::size_t>(f)]);
   };
@@ -260,94 +287,144 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
   }
 
-  // Edges: half-edges bucketed by their smaller node (counting sort), each bucket sorted by the
-  // other node; a group of 1 is a boundary edge, of 2 (opposite directions) an interior one.
+  // Edges: half-edges bucketed by their smaller node (stable counting sort, mesh/buckets.hpp), each
+  // bucket sorted by the other node; a group of 1 is a boundary edge, of 2 (opposite directions) an
+  // interior one. Edges are numbered by (smaller node, larger node).
   if (nfaces >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 elements or more");
   const auto nn = static_cast<std::size_t>(s.nodes);
-  std::vector<std::int64_t> start(nn + 1, 0);
-  std::int64_t half_edges = 0;
-  for (std::int64_t f = 0; f < nfaces; ++f) {
-    const int n = face_size(f);
-    half_edges += n;
-    for (int e = 0; e < n; ++e)
-      ++start[static_cast<std::size_t>(std::min(face_node(f, e), face_node(f, (e + 1) % n))) + 1];
-  }
-  for (std::size_t v = 0; v < nn; ++v) start[v + 1] += start[v];
-  // rec = other node << 32 | triangle << 1 | (half-edge runs from the larger node to the smaller).
-  std::vector<std::uint64_t> rec(static_cast<std::size_t>(half_edges));
-  for (std::int64_t t = 0; t < nfaces; ++t) {
-    const int n = face_size(t);
-    for (int e = 0; e < n; ++e) {
-      const NodeId a = face_node(t, e), b = face_node(t, (e + 1) % n);
-      const auto lo = static_cast<std::size_t>(std::min(a, b));
-      rec[static_cast<std::size_t>(start[lo]++)] =
-          static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint64_t>(t) << 1 | (a > b ? 1U : 0U);
-    }
-  }
-  for (std::size_t v = nn; v > 0; --v) start[v] = start[v - 1];
-  start[0] = 0;
+  // rec = other node << 32 | face << 1 | (half-edge runs from the larger node to the smaller).
+  Buckets<std::uint64_t> half =
+      stable_buckets<std::uint64_t>(nfaces, s.nodes, 16, [&](std::int64_t f, const auto& emit) {
+        const int n = face_size(f);
+        for (int e = 0; e < n; ++e) {
+          const NodeId a = face_node(f, e), b = face_node(f, (e + 1) % n);
+          emit(std::min(a, b), static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint64_t>(f) << 1 |
+                                   (a > b ? 1U : 0U));
+        }
+      });
+  const std::int64_t* start = half.start.data();
+  std::uint64_t* rec = half.values.data();
   const auto nbuckets = static_cast<std::int64_t>(nn);
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, nbuckets) \
     schedule(static)
+  for (std::int64_t v = 0; v < nbuckets; ++v) std::sort(rec + start[v], rec + start[v + 1]);
+  // edge_first[v]: the first edge of bucket v (its runs of equal other node are its edges).
+  std::vector<std::int64_t> edge_first(nn + 1, 0);
+  std::int64_t* first = edge_first.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, first, nbuckets) \
+    schedule(static)
   for (std::int64_t v = 0; v < nbuckets; ++v) {
-    std::sort(rec.begin() + start[static_cast<std::size_t>(v)], rec.begin() + start[static_cast<std::size_t>(v) + 1]);
+    std::int64_t runs = 0;
+    for (std::int64_t k = start[v]; k < start[v + 1]; ++k)
+      runs += k == start[v] || (rec[k] >> 32) != (rec[k - 1] >> 32);
+    first[v + 1] = runs;
   }
-  std::vector<std::int64_t> parent(static_cast<std::size_t>(nfaces));
-  for (std::int64_t t = 0; t < nfaces; ++t) parent[static_cast<std::size_t>(t)] = t;
-  std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
-  std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
-  std::vector<std::uint8_t> edge_inner;               // per_edge_areas: 1 = two faces, opposite directions
-  // Rotated frame or squares: the edge index of each half-edge record, for the face areas below.
+  for (std::size_t v = 0; v < nn; ++v) edge_first[v + 1] += edge_first[v];
+  s.edges = edge_first[nn];
+  const auto ne = static_cast<std::size_t>(s.edges);
+  FillVector<std::uint32_t> edge_a(ne), edge_b(ne), edge_t(ne);  // nodes a < b and a face of each edge
+  FillVector<std::uint8_t> edge_level(ne);                       // finest level of the edge's faces
+  // Rotated frame or squares: the faces' areas are sums over their edges (below).
   const bool per_edge_areas = m.rotation.enabled || square_faces;
-  std::vector<std::uint32_t> rec_edge(per_edge_areas ? rec.size() : 0);
-  const auto tri_of = [](std::uint64_t r) { return static_cast<std::int64_t>((r & 0xffffffffULL) >> 1); };
-  for (std::size_t v = 0; v < nn; ++v) {
-    const auto end = static_cast<std::size_t>(start[v + 1]);
-    for (auto k = static_cast<std::size_t>(start[v]); k < end;) {
-      std::size_t e = k + 1;
-      while (e < end && (rec[e] >> 32) == (rec[k] >> 32)) ++e;
-      const auto a = static_cast<NodeId>(v), b = static_cast<NodeId>(rec[k] >> 32);
-      const std::int64_t t0 = tri_of(rec[k]);
-      if (per_edge_areas)
-        for (std::size_t h = k; h < e; ++h) rec_edge[h] = static_cast<std::uint32_t>(edge_a.size());
-      edge_a.push_back(static_cast<std::uint32_t>(a));
-      edge_b.push_back(static_cast<std::uint32_t>(b));
-      edge_t.push_back(static_cast<std::uint32_t>(t0));
-      std::uint8_t level = face_level(t0);
-      if (per_edge_areas) edge_inner.push_back(e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0 ? 1 : 0);
-      if (e - k == 1) {
-        ++s.boundary_edges;
-      } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {
-        ++s.interior_edges;
-        const std::int64_t t1 = tri_of(rec[k + 1]);
-        level = std::max(level, face_level(t1));
-        const std::int64_t r1 = find_root(parent, t0), r2 = find_root(parent, t1);
-        if (r1 != r2) parent[static_cast<std::size_t>(std::max(r1, r2))] = std::min(r1, r2);
-      } else {
-        ++s.bad_edges;
+  FillVector<std::uint8_t> edge_inner(per_edge_areas ? ne : 0);  // 1 = two faces, opposite directions
+  // per_edge_areas: face_edge[face_first(f) + k] = the edge of the face's half-edge k, ~edge when it
+  // runs from the larger node to the smaller.
+  FillVector<std::int64_t> face_edge(per_edge_areas ? half.values.size() : 0);
+  // Components of the faces joined by interior edges: union–find, the larger root linked under the
+  // smaller by compare-and-swap (parents only decrease, so no cycles form), so that the buckets can
+  // be walked in parallel; the number of roots does not depend on the order of the unions.
+  FillVector<std::int32_t> parent(static_cast<std::size_t>(nfaces));
+  std::int32_t* par = parent.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces)) shared(par, nfaces) schedule(static)
+  for (std::int64_t f = 0; f < nfaces; ++f) par[f] = static_cast<std::int32_t>(f);
+  std::int64_t boundary = 0, interior = 0, bad = 0;
+  {
+    std::uint32_t *ea = edge_a.data(), *eb = edge_b.data(), *et = edge_t.data();
+    std::uint8_t *el = edge_level.data(), *ei = edge_inner.data();
+    std::int64_t* fe = face_edge.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 16))                                 \
+    shared(rec, start, first, nbuckets, ea, eb, et, el, ei, fe, par, per_edge_areas, face_level, face_size, face_node, \
+               face_first) schedule(static) reduction(+ : boundary, interior, bad)
+    for (std::int64_t v = 0; v < nbuckets; ++v) {
+      std::int64_t edge = first[v];
+      const std::int64_t end = start[v + 1];
+      for (std::int64_t k = start[v]; k < end; ++edge) {
+        std::int64_t e = k + 1;
+        while (e < end && (rec[e] >> 32) == (rec[k] >> 32)) ++e;
+        const auto t0 = static_cast<std::int32_t>((rec[k] & 0xffffffffULL) >> 1);
+        const bool inner = e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0;
+        const auto x = static_cast<std::size_t>(edge);
+        ea[x] = static_cast<std::uint32_t>(v);
+        eb[x] = static_cast<std::uint32_t>(rec[k] >> 32);
+        et[x] = static_cast<std::uint32_t>(t0);
+        std::uint8_t level = face_level(t0);
+        if (per_edge_areas) {
+          ei[x] = inner ? 1 : 0;
+          // The slot of each half-edge in its face; a face with the same directed edge twice (a
+          // broken mesh) has that many equal records, the j-th taking its j-th such slot.
+          for (std::int64_t h = k; h < e; ++h) {
+            const std::int64_t t = static_cast<std::int64_t>((rec[h] & 0xffffffffULL) >> 1);
+            const NodeId hi = static_cast<NodeId>(rec[h] >> 32);
+            const NodeId from = (rec[h] & 1U) != 0 ? hi : v, to = (rec[h] & 1U) != 0 ? v : hi;
+            std::int64_t skip = 0;
+            for (std::int64_t g = h; g > k && rec[g - 1] == rec[h]; --g) ++skip;
+            const int n = face_size(t);
+            for (int c = 0; c < n; ++c) {
+              if (face_node(t, c) != from || face_node(t, (c + 1) % n) != to || skip-- > 0) continue;
+              fe[face_first(t) + c] = from < to ? edge : ~edge;
+              break;
+            }
+          }
+        }
+        if (e - k == 1) {
+          ++boundary;
+        } else if (inner) {
+          ++interior;
+          const auto t1 = static_cast<std::int32_t>((rec[k + 1] & 0xffffffffULL) >> 1);
+          level = std::max(level, face_level(t1));
+          union_faces(par, t0, t1);
+        } else {
+          ++bad;
+        }
+        el[x] = level;
+        k = e;
       }
-      edge_level.push_back(level);
-      k = e;
     }
   }
-  s.edges = static_cast<std::int64_t>(edge_a.size());
-  for (std::int64_t t = 0; t < nfaces; ++t) s.components += find_root(parent, t) == t;
-  std::vector<std::int64_t>().swap(parent);
-  std::vector<char> used(static_cast<std::size_t>(s.nodes), 0);
+  s.boundary_edges = boundary;
+  s.interior_edges = interior;
+  s.bad_edges = bad;
+  std::int64_t components = 0, used_nodes = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces)) shared(par, nfaces) schedule(static) \
+    reduction(+ : components)
+  for (std::int64_t f = 0; f < nfaces; ++f) components += par[f] == f;
+  s.components = components;
+  FillVector<std::int32_t>().swap(parent);
+  std::vector<std::uint8_t> used(nn, 0);
+  std::uint8_t* use = used.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 4)) \
+    shared(use, nfaces, face_size, face_node) schedule(static)
   for (std::int64_t f = 0; f < nfaces; ++f)
-    for (int k = 0; k < face_size(f); ++k) used[static_cast<std::size_t>(face_node(f, k))] = 1;
-  for (const char u : used) s.used_nodes += u;
+    for (int k = 0; k < face_size(f); ++k)
+      std::atomic_ref<std::uint8_t>(use[face_node(f, k)]).store(1, std::memory_order_relaxed);
+  for (const std::uint8_t u : used) used_nodes += u;
+  s.used_nodes = used_nodes;
   if (nfaces > 0) {
-    // Every Mesh boundary edge a -> b must be a triangle edge used once, in the same direction.
+    // Every Mesh boundary edge a -> b must be a face edge used once, in the same direction.
     std::int64_t matched = 0;
-    for (const auto& be : m.boundary_edges) {
-      if (be[0] < 0 || be[1] < 0 || be[0] >= s.nodes || be[1] >= s.nodes || be[0] == be[1]) continue;
-      const auto lo = static_cast<std::size_t>(std::min(be[0], be[1]));
+    const auto nbe = static_cast<std::int64_t>(m.boundary_edges.size());
+    const std::int64_t nodes = s.nodes;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbe * 8)) shared(m, rec, start, nbe, nodes) \
+    schedule(static) reduction(+ : matched)
+    for (std::int64_t i = 0; i < nbe; ++i) {
+      const auto& be = m.boundary_edges[static_cast<std::size_t>(i)];
+      if (be[0] < 0 || be[1] < 0 || be[0] >= nodes || be[1] >= nodes || be[0] == be[1]) continue;
+      const auto lo = std::min(be[0], be[1]);
       const auto hi = static_cast<std::uint64_t>(std::max(be[0], be[1]));
       const std::uint64_t dir = be[0] > be[1] ? 1U : 0U;
       std::int64_t count = 0;
       bool same_direction = false;
-      for (auto k = static_cast<std::size_t>(start[lo]); k < static_cast<std::size_t>(start[lo + 1]); ++k) {
+      for (std::int64_t k = start[lo]; k < start[lo + 1]; ++k) {
         if ((rec[k] >> 32) != hi) continue;
         ++count;
         same_direction = (rec[k] & 1U) == dir;
@@ -359,30 +436,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     s.euler = s.used_nodes - s.edges + nfaces;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
-  // face_edge[half-edge of a face] = its edge, signed by direction (~edge when it runs b -> a).
-  std::vector<std::int64_t> face_start;
-  std::vector<std::int64_t> face_edge;
-  if (per_edge_areas) {
-    face_start.assign(static_cast<std::size_t>(nfaces) + 1, 0);
-    for (std::int64_t f = 0; f < nfaces; ++f)
-      face_start[static_cast<std::size_t>(f) + 1] = face_start[static_cast<std::size_t>(f)] + face_size(f);
-    face_edge.resize(static_cast<std::size_t>(face_start.back()));
-    for (std::int64_t f = 0; f < nfaces; ++f) {
-      const int n = face_size(f);
-      for (int v = 0; v < n; ++v) {
-        const NodeId a = face_node(f, v), b = face_node(f, (v + 1) % n);
-        const auto lo = static_cast<std::size_t>(std::min(a, b));
-        const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-        auto h = static_cast<std::size_t>(start[lo]);
-        while ((rec[h] >> 32) != hi) ++h;  // the edge is in lo's bucket
-        const auto e = static_cast<std::int64_t>(rec_edge[h]);
-        face_edge[static_cast<std::size_t>(face_start[static_cast<std::size_t>(f)] + v)] = a < b ? e : ~e;
-      }
-    }
-  }
-  std::vector<std::uint32_t>().swap(rec_edge);
-  std::vector<std::uint64_t>().swap(rec);
-  std::vector<std::int64_t>().swap(start);
+  std::vector<std::int64_t>().swap(edge_first);
+  half = Buckets<std::uint64_t>();
 
   FiniteChecks finite;
   const auto node_where = [&](std::int64_t k) {
@@ -667,7 +722,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       int crossings = 0;
       for (int v = 0; v < n; ++v) {
         const NodeId a = face_node(t, v), b = face_node(t, (v + 1) % n);
-        const std::int64_t e = face_edge[static_cast<std::size_t>(face_start[static_cast<std::size_t>(t)] + v)];
+        const std::int64_t e = face_edge[static_cast<std::size_t>(face_first(t) + v)];
         sum += e >= 0 ? edge_S12[static_cast<std::size_t>(e)] : -edge_S12[static_cast<std::size_t>(~e)];
         crossings += polygon_transit(m.lon_deg[static_cast<std::size_t>(a)], m.lon_deg[static_cast<std::size_t>(b)]);
       }

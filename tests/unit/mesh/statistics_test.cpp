@@ -13,7 +13,12 @@
 #include <utility>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "quadtree/bits.hpp"
+#include "quadtree/parallel.hpp"
 #include "unit/mesh/mesh_fixtures.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
@@ -350,6 +355,86 @@ TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
     EXPECT_FALSE(compute_statistics(broken).failed_checks().empty());
   }
 }
+
+// The faces joined across interior edges, counted here by a plain serial union–find over an ordered
+// map of the edges (compute_statistics joins them concurrently while it walks the edge buckets).
+std::int64_t edge_connected_pieces(const Mesh& mesh) {
+  std::vector<std::int64_t> parent(static_cast<std::size_t>(mesh.triangle_count()));
+  for (std::size_t t = 0; t < parent.size(); ++t) parent[t] = static_cast<std::int64_t>(t);
+  const auto root = [&](std::int64_t x) {
+    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)];
+    return x;
+  };
+  std::map<std::pair<NodeId, NodeId>, std::vector<std::int64_t>> faces;
+  for (std::int64_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& tr = mesh.triangles[static_cast<std::size_t>(t)];
+    for (int k = 0; k < 3; ++k) {
+      const NodeId a = tr[static_cast<std::size_t>(k)], b = tr[static_cast<std::size_t>((k + 1) % 3)];
+      faces[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  }
+  for (const auto& [edge, f] : faces)
+    if (f.size() == 2) parent[static_cast<std::size_t>(root(f[0]))] = root(f[1]);
+  std::int64_t pieces = 0;
+  for (std::size_t t = 0; t < parent.size(); ++t)
+    pieces += root(static_cast<std::int64_t>(t)) == static_cast<std::int64_t>(t);
+  return pieces;
+}
+
+// Many separate basins: the component count equals the independent count above, with one thread
+// and with two (the mesh is large enough for the edge walk to run in parallel).
+TEST(Statistics, ComponentsAreTheEdgeConnectedPiecesForAnyThreadCount) {
+  const Lattice lat = make_lattice(10.0, 4);  // 576 × 288 pixels
+  const Bitmap m = random_mask(lat.nx, lat.ny, 11u, 0.3, 0.02, 5);
+  const Mesh mesh = build_all(m, lat, {}, {}, PoleRotation(), testing::synthetic_bathymetry()).mesh;
+  ASSERT_GE(mesh.node_count() * 16, quadtree::kParallelMinWork);
+  const std::int64_t want = edge_connected_pieces(mesh);
+  ASSERT_GT(want, 20);
+  for (const int threads : {1, 2}) {
+#ifdef _OPENMP
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+#endif
+    const MeshStatistics s = compute_statistics(mesh, StatisticsOptions{false, 0.0});
+#ifdef _OPENMP
+    omp_set_num_threads(saved);
+#endif
+    EXPECT_EQ(s.components, want) << threads << " threads";
+    EXPECT_EQ(s.euler, s.euler_expected) << threads << " threads";
+  }
+}
+
+#ifdef _OPENMP
+// Every parallel loop (edge table, union–find, cell and element areas, per-level medians) must give
+// the report of the serial run, bit for bit: with and without rotation, triangles and squares, on
+// meshes large enough for the loops to run on two threads.
+TEST(Statistics, SameReportForOneAndTwoThreads) {
+  const PoleRotation greenland(-44.858333, 78.141667);
+  const Lattice lat = make_lattice(10.0, 4);  // 576 × 288 pixels
+  const Bitmap m = random_mask(lat.nx, lat.ny, 7u, 0.6, 0.01, 8);
+  for (const bool rotated : {false, true}) {
+    for (const char* elements : {"triangles", "squares"}) {
+      config::MeshOptions mo;
+      mo.elements = elements;
+      Mesh mesh = build_all(m, lat, {}, mo, rotated ? greenland : PoleRotation(), testing::synthetic_bathymetry()).mesh;
+      if (rotated) {
+        mesh.rotation.enabled = true;
+        mesh.rotation.pole_lon_deg = -44.858333;
+        mesh.rotation.pole_lat_deg = 78.141667;
+      }
+      ASSERT_GE(mesh.node_count() * 4, quadtree::kParallelMinWork);
+      const int saved = omp_get_max_threads();
+      omp_set_num_threads(1);
+      const MeshStatistics one = compute_statistics(mesh);
+      omp_set_num_threads(2);
+      const MeshStatistics two = compute_statistics(mesh);
+      omp_set_num_threads(saved);
+      EXPECT_TRUE(one.failed_checks().empty()) << rotated << " " << elements;
+      EXPECT_EQ(statistics_json(one).dump(), statistics_json(two).dump()) << rotated << " " << elements;
+    }
+  }
+}
+#endif
 
 TEST(Statistics, ReportSection) {
   const MeshStatistics s = compute_statistics(small_mesh());
