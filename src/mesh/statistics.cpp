@@ -322,10 +322,11 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (std::size_t v = 0; v < nn; ++v) edge_first[v + 1] += edge_first[v];
   s.edges = edge_first[nn];
   const auto ne = static_cast<std::size_t>(s.edges);
-  FillVector<std::uint32_t> edge_a(ne), edge_b(ne), edge_t(ne);  // nodes a < b and a face of each edge
-  FillVector<std::uint8_t> edge_level(ne);                       // finest level of the edge's faces
   // Rotated frame or squares: the faces' areas are sums over their edges (below).
   const bool per_edge_areas = m.rotation.enabled || square_faces;
+  FillVector<std::uint32_t> edge_a(ne), edge_b(ne);              // nodes a < b
+  FillVector<std::uint32_t> edge_t(per_edge_areas ? 0 : ne);     // a face of the edge (for the memo)
+  FillVector<std::uint8_t> edge_level(ne);                       // finest level of the edge's faces
   FillVector<std::uint8_t> edge_inner(per_edge_areas ? ne : 0);  // 1 = two faces, opposite directions
   // per_edge_areas: face_edge[face_first(f) + k] = the edge of the face's half-edge k, ~edge when it
   // runs from the larger node to the smaller.
@@ -356,9 +357,10 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
         const auto x = static_cast<std::size_t>(edge);
         ea[x] = static_cast<std::uint32_t>(v);
         eb[x] = static_cast<std::uint32_t>(rec[k] >> 32);
-        et[x] = static_cast<std::uint32_t>(t0);
         std::uint8_t level = face_level(t0);
-        if (per_edge_areas) {
+        if (!per_edge_areas) {
+          et[x] = static_cast<std::uint32_t>(t0);
+        } else {
           ei[x] = inner ? 1 : 0;
           // The slot of each half-edge in its face; a face with the same directed edge twice (a
           // broken mesh) has that many equal records, the j-th taking its j-th such slot.
@@ -601,8 +603,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   };
 
   // Element areas.
-  std::vector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
-  std::vector<double> area(static_cast<std::size_t>(nfaces));
+  FillVector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
+  FillVector<double> area(static_cast<std::size_t>(nfaces));
   if (memo) {
     std::vector<std::int32_t> shape_id(729, -1);
     std::vector<std::int32_t> shapes;
@@ -655,8 +657,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     //    s = d (1 + d² / (24 ρ²)) (within 1e-9 relative of the geodesic in the same test).
     // Boundary edges, which the total area and its check rest on, and longer edges are geodesics.
     const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
-    edge_s12.assign(static_cast<std::size_t>(s.edges), 0.0);
-    edge_S12.assign(static_cast<std::size_t>(s.edges), 0.0);
+    edge_s12.resize(static_cast<std::size_t>(s.edges));  // every edge written below
+    edge_S12.resize(static_cast<std::size_t>(s.edges));
     const std::int64_t nedges_all = s.edges;
     constexpr double kShortEdgeM = 45000.0;
     const double a_eq = ell.EquatorialRadius(), ecc = std::sqrt(e2);
@@ -667,7 +669,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     const double qp = q_of(1.0);
     // Per node: tan(β/2) and the ECEF position.
     const auto nnodes = static_cast<std::int64_t>(nn);
-    std::vector<double> tb(nn), ecef(3 * nn);
+    FillVector<double> tb(nn), ecef(3 * nn);
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nnodes * 16)) \
     shared(m, tb, ecef, nnodes, q_of, qp, a_eq, e2) schedule(static)
     for (std::int64_t v = 0; v < nnodes; ++v) {
@@ -757,13 +759,14 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
 
   // Edge lengths, memoised by (level, row, shape) of a triangle holding the edge.
   const auto nedges = s.edges;
-  std::vector<double> length(static_cast<std::size_t>(nedges));
+  FillVector<double> length;
   const auto direct_length = [&](std::int64_t e) {
     const auto a = static_cast<std::size_t>(edge_a[static_cast<std::size_t>(e)]);
     const auto b = static_cast<std::size_t>(edge_b[static_cast<std::size_t>(e)]);
     return distance_m(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b]);
   };
   if (memo) {
+    length.resize(static_cast<std::size_t>(nedges));  // every edge written below
     const std::int64_t cells = row_offset.back() * 81;
     std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
     std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
