@@ -481,12 +481,65 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     return fmt::format("lattice row J = {} (φ = {:.17g}° in the lattice frame)", j, lat.lat_of(j));
   });
   const auto nsquares = static_cast<std::int64_t>(m.squares.size());
-  std::vector<double> square_m2(static_cast<std::size_t>(nsquares));
+  FillVector<double> square_m2(static_cast<std::size_t>(nsquares));
   const double density_scale = ell.EquatorialRadius() * ell.EquatorialRadius() * (1.0 - e2);
-  std::vector<double> quadrature_error(m.rotation.enabled ? static_cast<std::size_t>(nsquares) : 0);
+  FillVector<double> quadrature_error(m.rotation.enabled ? static_cast<std::size_t>(nsquares) : 0);
+  // Rotated: 3×3 Gauss–Legendre; |3×3 − 2×2| bounds the error (the 2×2 rule's error, far above the
+  // 3×3's). The density needs only sin φ = z of the geographic unit vector: a dot product of the
+  // rotation's last row with (cos φ' cos λ', cos φ' sin λ', sin φ'), where sin φ' is the quadrature
+  // coordinate itself and cos φ' = √(1 − sin² φ'). The quadrature nodes u (across the columns) and
+  // v (across the rows) take the 5 values of kNode (the 2×2 rule's, then the 3×3 rule's), and the
+  // squares of a level sit on a grid of their side, so cos/sin λ' of the columns and sin/cos φ' of
+  // the rows are tabled once per level (grid_cos_sin below) instead of once per square.
+  constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
+  constexpr std::array<double, 5> kNode{-kG2, kG2, -kG3, 0.0, kG3};
+  constexpr std::array<double, 3> kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  // cos/sin λ' of node u (-1..1) across the square of `side` pixels whose west side is at I = i0.
+  const auto column = [&](std::int64_t i0, std::int64_t side, double u, double& c, double& sn) {
+    const double rlon =
+        lat.lon0_deg + (static_cast<double>(i0) + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
+    c = std::cos(rlon * kDegToRad);
+    sn = std::sin(rlon * kDegToRad);
+  };
+  // sin/cos φ' of node v (-1..1) across the square of `side` pixels whose south side is at J = j0.
+  const auto row = [&](std::int64_t j0, std::int64_t side, double v, double& sr, double& cr) {
+    const double s0 = sin_xi[static_cast<std::size_t>(j0)], s1 = sin_xi[static_cast<std::size_t>(j0 + side)];
+    sr = std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0);
+    cr = std::sqrt((1.0 - sr) * (1.0 + sr));
+  };
+  // grid_cos_sin[(grid_first[l] + n) · 5 + k]: column n of level l (I = n·side) at node k, then
+  // row n (J = n·side) after all the columns: {cos λ', sin λ'} and {sin φ', cos φ'}.
+  std::vector<std::int64_t> grid_first(2 * static_cast<std::size_t>(levels + 1) + 1, 0);
+  std::vector<std::array<double, 2>> grid_cos_sin;
+  if (m.rotation.enabled) {
+    for (int axis = 0; axis < 2; ++axis) {
+      for (int l = 0; l <= levels; ++l) {
+        const auto k = static_cast<std::size_t>(axis * (levels + 1) + l);
+        grid_first[k + 1] = grid_first[k] + (axis == 0 ? lat.nx : lat.ny) / lat.pixels_per_square(l);
+      }
+    }
+    grid_cos_sin.resize(static_cast<std::size_t>(grid_first.back()) * kNode.size());
+    const std::int64_t cells = grid_first.back();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) \
+    shared(grid_first, grid_cos_sin, cells, levels, lat, kNode, column, row) schedule(static)
+    for (std::int64_t c = 0; c < cells; ++c) {
+      int k = 0;
+      while (grid_first[static_cast<std::size_t>(k) + 1] <= c) ++k;
+      const int axis = k / (levels + 1), l = k % (levels + 1);
+      const std::int64_t side = lat.pixels_per_square(l), at = (c - grid_first[static_cast<std::size_t>(k)]) * side;
+      for (std::size_t n = 0; n < kNode.size(); ++n) {
+        auto& cs = grid_cos_sin[static_cast<std::size_t>(c) * kNode.size() + n];
+        if (axis == 0)
+          column(at, side, kNode[n], cs[0], cs[1]);
+        else
+          row(at, side, kNode[n], cs[0], cs[1]);
+      }
+    }
+  }
   const auto square_area = [&](std::int64_t q) {
     const auto qq = static_cast<std::size_t>(q);
-    const std::int64_t side = lat.pixels_per_square(m.square_level[qq]);
+    const int level = m.square_level[qq];
+    const std::int64_t side = lat.pixels_per_square(level);
     const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[qq][0])];
     const double s0 = sin_xi[static_cast<std::size_t>(j0)], s1 = sin_xi[static_cast<std::size_t>(j0 + side)];
     const double dlam = static_cast<double>(side) * pixel_rad;
@@ -494,41 +547,36 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       square_m2[qq] = rq2 * dlam * (s1 - s0);
       return;
     }
-    // 3×3 Gauss–Legendre; |3×3 − 2×2| bounds the error (the 2×2 rule's error, far above the 3×3's).
-    // The density needs only sin φ = z of the geographic unit vector: a dot product of the rotation's
-    // last row with (cos φ' cos λ', cos φ' sin λ', sin φ'), where sin φ' is the quadrature
-    // coordinate itself and cos φ' = √(1 − sin² φ'); cos/sin λ' once per quadrature column.
-    const double i0 = static_cast<double>(m.node_i[static_cast<std::size_t>(m.squares[qq][0])]);
-    constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
-    constexpr std::array<double, 3> kX3{-kG3, 0.0, kG3}, kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-    constexpr std::array<double, 2> kX2{-kG2, kG2};
-    const auto column = [&](double u, double& c, double& sn) {  // u in [-1, 1] across the square
-      const double rlon = lat.lon0_deg + (i0 + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
-      c = std::cos(rlon * kDegToRad);
-      sn = std::sin(rlon * kDegToRad);
-    };
-    const auto density = [&](double cl, double sl, double v) {  // v in [-1, 1] across the square
-      const double sr = std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0);
-      const double sp = rot.geographic_sin_lat(cl, sl, std::sqrt((1.0 - sr) * (1.0 + sr)), sr);
+    const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[qq][0])];
+    std::array<std::array<double, 2>, 5> lon{}, phi{};  // cos/sin λ', sin/cos φ' at the nodes
+    const auto col_k = static_cast<std::size_t>(level), row_k = static_cast<std::size_t>(levels + 1 + level);
+    if (i0 % side == 0 && j0 % side == 0 && level <= levels && grid_first[col_k] + i0 / side < grid_first[col_k + 1] &&
+        grid_first[row_k] + j0 / side < grid_first[row_k + 1]) {
+      const auto* c = &grid_cos_sin[static_cast<std::size_t>(grid_first[col_k] + i0 / side) * kNode.size()];
+      const auto* r = &grid_cos_sin[static_cast<std::size_t>(grid_first[row_k] + j0 / side) * kNode.size()];
+      std::copy(c, c + kNode.size(), lon.begin());
+      std::copy(r, r + kNode.size(), phi.begin());
+    } else {  // not on its level's grid (not a quadtree leaf): directly
+      for (std::size_t n = 0; n < kNode.size(); ++n) {
+        column(i0, side, kNode[n], lon[n][0], lon[n][1]);
+        row(j0, side, kNode[n], phi[n][0], phi[n][1]);
+      }
+    }
+    const auto density = [&](std::size_t u, std::size_t v) {  // at nodes kNode[u], kNode[v]
+      const double sp = rot.geographic_sin_lat(lon[u][0], lon[u][1], phi[v][1], phi[v][0]);
       const double d = 1.0 - e2 * sp * sp;
       return density_scale / (d * d);
     };
     double q2 = 0.0, q3 = 0.0;
-    for (const double u : kX2) {
-      double cl = 0.0, sl = 0.0;
-      column(u, cl, sl);
-      for (const double v : kX2) q2 += density(cl, sl, v);
-    }
-    for (std::size_t a = 0; a < 3; ++a) {
-      double cl = 0.0, sl = 0.0;
-      column(kX3[a], cl, sl);
-      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(cl, sl, kX3[b]);
-    }
+    for (std::size_t u = 0; u < 2; ++u)
+      for (std::size_t v = 0; v < 2; ++v) q2 += density(u, v);
+    for (std::size_t a = 0; a < 3; ++a)
+      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(2 + a, 2 + b);
     const double cell = 0.25 * dlam * (s1 - s0);
     square_m2[qq] = q3 * cell;
     quadrature_error[qq] = std::fabs(q3 - q2) * cell;
   };
-#pragma omp parallel for default(none) if (m.rotation.enabled && quadtree::parallel_worth(nsquares * 64)) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nsquares * (m.rotation.enabled ? 64 : 4))) \
     shared(nsquares, square_area) schedule(static)
   for (std::int64_t q = 0; q < nsquares; ++q) square_area(q);
   double filled_m2 = 0.0;

@@ -326,6 +326,50 @@ TEST(Statistics, AreaToleranceFollowsTheErrorModel) {
   }
 }
 
+// With rotation a lattice cell's area is a 3×3 Gauss–Legendre quadrature of the ellipsoid's area
+// density in (λ', sin φ'); compute_statistics tables the nodes' cos/sin λ' and sin/cos φ' per level.
+// Here every square is integrated on its own, the geographic latitude of each node from
+// PoleRotation::to_geographic: the totals agree to rounding, on a Mercator and a lon-lat lattice.
+TEST(Statistics, RotatedCellAreasAreTheirGaussLegendreQuadratures) {
+  const PoleRotation greenland(-44.858333, 78.141667);
+  const GeographicLib::Ellipsoid& ell = GeographicLib::Ellipsoid::WGS84();
+  const double a = ell.EquatorialRadius(), e2 = ell.EccentricitySq(), deg = std::acos(-1.0) / 180.0;
+  for (const bool mercator : {false, true}) {
+    const Lattice lat = mercator ? Lattice::make_mercator(10.0, 3, -180.0, 80.0) : make_lattice(10.0, 3);
+    const Bitmap m = random_mask(lat.nx, lat.ny, 9u, 0.6, 0.02, 6);
+    Mesh mesh = build_all(m, lat, {}, {}, greenland, testing::synthetic_bathymetry()).mesh;
+    mesh.rotation.enabled = true;
+    mesh.rotation.pole_lon_deg = -44.858333;
+    mesh.rotation.pole_lat_deg = 78.141667;
+    const MeshStatistics s = compute_statistics(mesh);
+    const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    double total_m2 = 0.0;
+    std::int64_t levels_seen = 0;
+    for (std::size_t q = 0; q < mesh.squares.size(); ++q) {
+      const std::int64_t side = lat.pixels_per_square(mesh.square_level[q]);
+      levels_seen |= std::int64_t{1} << mesh.square_level[q];
+      const auto sw = static_cast<std::size_t>(mesh.squares[q][0]);
+      const double i0 = static_cast<double>(mesh.node_i[sw]);
+      const double s0 = std::sin(lat.lat_of(mesh.node_j[sw]) * deg);
+      const double s1 = std::sin(lat.lat_of(mesh.node_j[sw] + side) * deg);
+      double sum = 0.0;
+      for (int u = 0; u < 3; ++u) {
+        for (int v = 0; v < 3; ++v) {
+          const double rlon = lat.lon0_deg + (i0 + 0.5 * static_cast<double>(side) * (1.0 + g[u])) * lat.pixel_deg();
+          const double rlat = std::asin(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * g[v]) / deg;
+          double lon = 0.0, la = 0.0;
+          greenland.to_geographic(rlon, rlat, lon, la);
+          const double d = 1.0 - e2 * std::sin(la * deg) * std::sin(la * deg);
+          sum += w[u] * w[v] * a * a * (1.0 - e2) / (d * d);
+        }
+      }
+      total_m2 += sum * 0.25 * static_cast<double>(side) * lat.pixel_deg() * deg * (s1 - s0);
+    }
+    EXPECT_GE(std::popcount(static_cast<std::uint64_t>(levels_seen)), 3) << mercator;
+    EXPECT_NEAR(s.filled_area_km2 / (total_m2 * 1e-6), 1.0, 1e-12) << mercator;
+  }
+}
+
 // Found by the sweep: `mesh.elements = "squares"` always failed the checks ("nodes are in no
 // triangle", "triangle area 0 px²"). A squares-only mesh is now checked on its squares.
 TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
