@@ -13,6 +13,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "core/error.hpp"
 #include "core/finite.hpp"
@@ -55,7 +56,7 @@ void union_faces(std::int32_t* parent, std::int32_t a, std::int32_t b) {
 }
 
 /// Min, lower median and max of `v` (reorders it); zeros when empty.
-std::array<double, 3> min_median_max(std::vector<double>& v) {
+std::array<double, 3> min_median_max(std::span<double> v) {
   if (v.empty()) return {0.0, 0.0, 0.0};
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
   const double mn = *lo, mx = *hi;
@@ -859,20 +860,37 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   });
   s.non_finite = finite.failures();
 
-  // Per level.
+  // Per level: the areas and lengths grouped by level in face and edge order (levels outside 0..L
+  // are not counted), then the min, median and max of each group, the groups in parallel.
+  const std::int64_t nlevels = levels + 1;
+  Buckets<double> area_of = stable_buckets<double>(nfaces, nlevels, 2, [&](std::int64_t t, const auto& emit) {
+    const int l = face_level(t);
+    if (l <= levels) emit(l, area[static_cast<std::size_t>(t)]);
+  });
+  Buckets<double> length_of = stable_buckets<double>(nedges, nlevels, 2, [&](std::int64_t e, const auto& emit) {
+    const int l = edge_level[static_cast<std::size_t>(e)];
+    if (l <= levels) emit(l, length[static_cast<std::size_t>(e)]);
+  });
+  // Group g: level L − g/2, areas for even g, lengths for odd g (the finest, largest groups first).
+  std::vector<std::array<double, 3>> extremes(2 * static_cast<std::size_t>(nlevels));
+  const std::int64_t groups = 2 * nlevels;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces + nedges)) \
+    shared(area_of, length_of, extremes, groups, levels) schedule(dynamic, 1)
+  for (std::int64_t g = 0; g < groups; ++g) {
+    Buckets<double>& b = g % 2 == 0 ? area_of : length_of;  // each group reordered in place by one thread
+    const auto l = static_cast<std::size_t>(levels - g / 2);
+    extremes[static_cast<std::size_t>(g)] = min_median_max(
+        std::span<double>(b.values.data() + b.start[l], static_cast<std::size_t>(b.start[l + 1] - b.start[l])));
+  }
   for (int l = 0; l <= levels; ++l) {
-    std::vector<double> a, len;
-    for (std::int64_t t = 0; t < nfaces; ++t)
-      if (face_level(t) == l) a.push_back(area[static_cast<std::size_t>(t)]);
-    if (a.empty()) continue;
-    for (std::int64_t e = 0; e < nedges; ++e)
-      if (edge_level[static_cast<std::size_t>(e)] == l) len.push_back(length[static_cast<std::size_t>(e)]);
+    const auto k = static_cast<std::size_t>(l);
+    if (area_of.start[k + 1] == area_of.start[k]) continue;
+    const auto& am = extremes[static_cast<std::size_t>(2 * (levels - l))];
+    const auto& lm = extremes[static_cast<std::size_t>(2 * (levels - l) + 1)];
     LevelStatistics ls;
     ls.level = l;
-    ls.triangles = static_cast<std::int64_t>(a.size());
-    ls.edges = static_cast<std::int64_t>(len.size());
-    const auto am = min_median_max(a);
-    const auto lm = min_median_max(len);
+    ls.triangles = area_of.start[k + 1] - area_of.start[k];
+    ls.edges = length_of.start[k + 1] - length_of.start[k];
     ls.area_min_m2 = am[0];
     ls.area_median_m2 = am[1];
     ls.area_max_m2 = am[2];
