@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "core/types.hpp"
+#include "mesh/buckets.hpp"
 #include "mesh_files/geographic_mesh.hpp"
 
 namespace aq::io {
@@ -154,7 +155,7 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     for (const NodeId v : t)
       if (v < 0 || v >= nn) throw InternalError(fmt::format("triangle_shapes: node {} out of range", v));
 
-  std::vector<Vec3> p(static_cast<std::size_t>(nn));
+  mesh::FillVector<Vec3> p(static_cast<std::size_t>(nn));  // every node written below
   {
     const double* lon = m.lon_deg.data();
     const double* lat = m.lat_deg.data();
@@ -169,7 +170,7 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   s.edge_ratio.resize(un);
   s.neighbour_area_ratio.resize(un);
   s.size_km.resize(un);
-  std::vector<double> area(un);
+  mesh::FillVector<double> area(un);  // every triangle written below
   const auto* tri = m.triangles.data();
   const Vec3* pp = p.data();
   double* ar = area.data();
@@ -188,19 +189,13 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     size[t] = static_cast<float>((e0 + e1 + e2) / 3.0 * kAuthalicRadiusKm);
     ar[t] = std::abs(spherical_triangle_area(a, b, c));
   }
-  // Triangles round each node (CSR): for the edge neighbours.
-  std::vector<std::int64_t> first(static_cast<std::size_t>(nn) + 1, 0);
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t) ++first[static_cast<std::size_t>(v) + 1];
-  for (std::size_t k = 1; k < first.size(); ++k) first[k] += first[k - 1];
-  std::vector<std::int64_t> around(static_cast<std::size_t>(first.back()));
-  {
-    std::vector<std::int64_t> fill(first.begin(), first.end() - 1);
-    for (std::int64_t t = 0; t < nt; ++t)
-      for (const NodeId v : m.triangles[static_cast<std::size_t>(t)]) around[static_cast<std::size_t>(fill[v]++)] = t;
-  }
-  const std::int64_t* fp = first.data();
-  const std::int64_t* ap = around.data();
+  // Triangles round each node, in triangle order (mesh/buckets.hpp): for the edge neighbours.
+  const mesh::Buckets<std::int64_t> around =
+      mesh::stable_buckets<std::int64_t>(nt, nn, 4, [tri](std::int64_t t, const auto& emit) {
+        for (const NodeId v : tri[t]) emit(v, t);
+      });
+  const std::int64_t* fp = around.start.data();
+  const std::int64_t* ap = around.values.data();
   float* ratio = s.neighbour_area_ratio.data();
 #pragma omp parallel for schedule(static) default(none) shared(nt, tri, fp, ap, ar, ratio) if (nt >= kParallelMin)
   for (std::int64_t t = 0; t < nt; ++t) {
