@@ -55,6 +55,19 @@ void union_faces(std::int32_t* parent, std::int32_t a, std::int32_t b) {
   }
 }
 
+/// The smallest i in [0, n) with bad(i), or n when there is none (searched in parallel: the same
+/// answer, and so the same error message, for any thread count).
+template <class Bad>
+std::int64_t first_where(std::int64_t n, const Bad& bad) {
+  std::int64_t first = n;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n)) shared(n, bad) schedule(static) \
+    reduction(min                                                                                       \
+              : first)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (bad(i)) first = std::min(first, i);
+  return first;
+}
+
 /// Min, lower median and max of `v` (reorders it); zeros when empty.
 std::array<double, 3> min_median_max(std::span<double> v) {
   if (v.empty()) return {0.0, 0.0, 0.0};
@@ -153,20 +166,35 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   s.boundary_loops = static_cast<std::int64_t>(m.loops.size());
   s.pinch_nodes = static_cast<std::int64_t>(m.pinch_nodes.size());
   if (s.nodes >= (std::int64_t{1} << 32)) throw InternalError("mesh statistics: 2^32 nodes or more");
-  for (const std::uint8_t l : m.square_level) {
-    const std::int64_t side = lat.pixels_per_square(l);
-    s.filled_pixels += side * side;
+  {
+    std::int64_t filled = 0;
+    const auto nsq = m.square_count();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nsq)) shared(m, lat, nsq) schedule(static) \
+    reduction(+ : filled)
+    for (std::int64_t q = 0; q < nsq; ++q) {
+      const std::int64_t side = lat.pixels_per_square(m.square_level[static_cast<std::size_t>(q)]);
+      filled += side * side;
+    }
+    s.filled_pixels = filled;
   }
   const std::int64_t ntri = s.triangles;
   const bool have_squares = static_cast<std::int64_t>(m.triangle_square.size()) == ntri &&
                             static_cast<std::int64_t>(m.triangle_level.size()) == ntri;
   if (!have_squares) throw InternalError("mesh statistics: triangle_level / triangle_square missing");
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t)
-      if (v < 0 || v >= s.nodes) throw InternalError(fmt::format("mesh statistics: node id {} out of range", v));
-  for (const ElementId q : m.triangle_square)
-    if (q < 0 || q >= m.square_count())
-      throw InternalError(fmt::format("mesh statistics: square id {} out of range", q));
+  const std::int64_t nodes = s.nodes;
+  const auto node_of = [&](std::int64_t k) { return m.triangles[static_cast<std::size_t>(k / 3)][k % 3]; };
+  const std::int64_t bad_node =
+      first_where(3 * ntri, [&](std::int64_t k) { return node_of(k) < 0 || node_of(k) >= nodes; });
+  if (bad_node < 3 * ntri)
+    throw InternalError(fmt::format("mesh statistics: node id {} out of range", node_of(bad_node)));
+  const std::int64_t bad_square = first_where(ntri, [&](std::int64_t t) {
+    const ElementId q = m.triangle_square[static_cast<std::size_t>(t)];
+    return q < 0 || q >= m.square_count();
+  });
+  if (bad_square < ntri) {
+    throw InternalError(fmt::format("mesh statistics: square id {} out of range",
+                                    m.triangle_square[static_cast<std::size_t>(bad_square)]));
+  }
 
   // Faces: the triangles; or, for a mesh of squares only (mesh.elements = "squares"), the squares
   // as polygons through their corners and midside nodes (SW, S, SE, E, NE, N, NW, W), so that
@@ -416,7 +444,6 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     // Every Mesh boundary edge a -> b must be a face edge used once, in the same direction.
     std::int64_t matched = 0;
     const auto nbe = static_cast<std::int64_t>(m.boundary_edges.size());
-    const std::int64_t nodes = s.nodes;
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nbe * 8)) shared(m, rec, start, nbe, nodes) \
     schedule(static) reduction(+ : matched)
     for (std::int64_t i = 0; i < nbe; ++i) {
@@ -600,9 +627,18 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // fitted to a run. It is twice the sum of these bounds, relative to the filled area.
   double bound_m2 = 0.0;
   {
+    // Per boundary edge the two lenses (0 where one does not apply: the terms are never negative,
+    // so adding +0 changes nothing), in parallel; summed below in edge order.
     const double a2 = ell.EquatorialRadius() * ell.EquatorialRadius();
-    for (const auto& be : m.boundary_edges) {
-      if (be[0] < 0 || be[1] < 0 || be[0] >= s.nodes || be[1] >= s.nodes) continue;
+    const auto nbe = static_cast<std::int64_t>(m.boundary_edges.size());
+    FillVector<std::array<double, 2>> lens(static_cast<std::size_t>(nbe));
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbe * 16)) \
+    shared(m, lat, lens, nbe, nodes, nx, pixel_rad, a2, e2) schedule(static)
+    for (std::int64_t k = 0; k < nbe; ++k) {
+      const auto& be = m.boundary_edges[static_cast<std::size_t>(k)];
+      auto& term = lens[static_cast<std::size_t>(k)];
+      term = {0.0, 0.0};
+      if (be[0] < 0 || be[1] < 0 || be[0] >= nodes || be[1] >= nodes) continue;
       const auto na = static_cast<std::size_t>(be[0]), nb = static_cast<std::size_t>(be[1]);
       std::int64_t di = std::abs(m.node_i[nb] - m.node_i[na]);
       di = std::min(di, nx - di);
@@ -610,9 +646,12 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const double phi = lat.lat_of(m.node_j[na]) * kDegToRad;
       const double dlam = static_cast<double>(di) * pixel_rad;
       const double len = std::max(dlam * std::cos(phi), static_cast<double>(dj) * pixel_rad);
-      if (dj == 0)
-        bound_m2 += a2 * dlam * dlam * dlam * std::fabs(std::sin(phi)) * std::cos(phi) * std::cos(phi) / 12.0;
-      bound_m2 += e2 * a2 * len * len * len / 4.0;
+      if (dj == 0) term[0] = a2 * dlam * dlam * dlam * std::fabs(std::sin(phi)) * std::cos(phi) * std::cos(phi) / 12.0;
+      term[1] = e2 * a2 * len * len * len / 4.0;
+    }
+    for (const auto& term : lens) {  // serial: the same sum for any thread count
+      bound_m2 += term[0];
+      bound_m2 += term[1];
     }
     for (const double e : quadrature_error) bound_m2 += e;
     bound_m2 +=

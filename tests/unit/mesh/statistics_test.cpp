@@ -2,6 +2,7 @@
 // GeographicLib computations, and every check fails on a deliberately broken mesh.
 #include "mesh/statistics.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Geodesic.hpp>
@@ -17,6 +18,7 @@
 #include <omp.h>
 #endif
 
+#include "core/error.hpp"
 #include "quadtree/bits.hpp"
 #include "quadtree/parallel.hpp"
 #include "unit/mesh/mesh_fixtures.hpp"
@@ -445,6 +447,43 @@ TEST(Statistics, ComponentsAreTheEdgeConnectedPiecesForAnyThreadCount) {
 #endif
     EXPECT_EQ(s.components, want) << threads << " threads";
     EXPECT_EQ(s.euler, s.euler_expected) << threads << " threads";
+  }
+}
+
+// Node and square ids are checked before anything else, in parallel: the error names the first bad
+// id in triangle order, for one thread and for two.
+TEST(Statistics, OutOfRangeIdsThrowNamingTheFirstOne) {
+  const Lattice lat = make_lattice(5.0, 4);
+  const Bitmap m = random_mask(lat.nx, lat.ny, 7u, 0.6, 0.01, 8);
+  const Mesh good = build_all(m, lat, {}, {}, PoleRotation(), testing::synthetic_bathymetry()).mesh;
+  ASSERT_GE(good.triangle_count(), quadtree::kParallelMinWork);  // the searches run on two threads
+  Mesh bad_node = good, bad_square = good;
+  const auto last = static_cast<std::size_t>(good.triangle_count() - 1);
+  bad_node.triangles[last][1] = good.node_count() + 7;  // in the second thread's half
+  bad_node.triangles[last / 3][2] = -5;                 // the first in triangle order
+  bad_square.triangle_square[last] = -1;
+  bad_square.triangle_square[last / 2] = good.square_count();
+  for (const int threads : {1, 2}) {
+#ifdef _OPENMP
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+#endif
+    try {
+      (void)compute_statistics(bad_node);
+      ADD_FAILURE() << "no error for a node id out of range";
+    } catch (const InternalError& e) {
+      EXPECT_STREQ(e.what(), "mesh statistics: node id -5 out of range") << threads << " threads";
+    }
+    try {
+      (void)compute_statistics(bad_square);
+      ADD_FAILURE() << "no error for a square id out of range";
+    } catch (const InternalError& e) {
+      EXPECT_EQ(std::string(e.what()), fmt::format("mesh statistics: square id {} out of range", good.square_count()))
+          << threads << " threads";
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(saved);
+#endif
   }
 }
 
