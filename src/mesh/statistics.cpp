@@ -359,7 +359,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   FillVector<std::uint8_t> edge_inner(per_edge_areas ? ne : 0);  // 1 = two faces, opposite directions
   // per_edge_areas: face_edge[face_first(f) + k] = the edge of the face's half-edge k, ~edge when it
   // runs from the larger node to the smaller.
-  FillVector<std::int64_t> face_edge(per_edge_areas ? half.values.size() : 0);
+  if (per_edge_areas && s.edges >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 edges or more");
+  FillVector<std::int32_t> face_edge(per_edge_areas ? half.values.size() : 0);
   // Components of the faces joined by interior edges: union–find, the larger root linked under the
   // smaller by compare-and-swap (parents only decrease, so no cycles form), so that the buckets can
   // be walked in parallel; the number of roots does not depend on the order of the unions.
@@ -371,7 +372,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   {
     std::uint32_t *ea = edge_a.data(), *eb = edge_b.data(), *et = edge_t.data();
     std::uint8_t *el = edge_level.data(), *ei = edge_inner.data();
-    std::int64_t* fe = face_edge.data();
+    std::int32_t* fe = face_edge.data();
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 16))                                 \
     shared(rec, start, first, nbuckets, ea, eb, et, el, ei, fe, par, per_edge_areas, face_level, face_size, face_node, \
                face_first) schedule(static) reduction(+ : boundary, interior, bad)
@@ -402,7 +403,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
             const int n = face_size(t);
             for (int c = 0; c < n; ++c) {
               if (face_node(t, c) != from || face_node(t, (c + 1) % n) != to || skip-- > 0) continue;
-              fe[face_first(t) + c] = from < to ? edge : ~edge;
+              fe[face_first(t) + c] = static_cast<std::int32_t>(from < to ? edge : ~edge);
               break;
             }
           }
