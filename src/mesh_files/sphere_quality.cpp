@@ -151,9 +151,16 @@ float order_statistic(const std::vector<float>& values, double q) { return order
 TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   const auto nn = static_cast<std::int64_t>(m.lon_deg.size());
   const auto nt = static_cast<std::int64_t>(m.triangles.size());
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t)
-      if (v < 0 || v >= nn) throw InternalError(fmt::format("triangle_shapes: node {} out of range", v));
+  const auto* tri = m.triangles.data();
+  {  // the first node out of range in triangle order, searched in parallel
+    std::int64_t bad = 3 * nt;
+#pragma omp parallel for schedule(static) default(none) shared(nt, nn, tri) reduction(min : bad) if (nt >= kParallelMin)
+    for (std::int64_t k = 0; k < 3 * nt; ++k) {
+      const NodeId v = tri[k / 3][k % 3];
+      if (v < 0 || v >= nn) bad = std::min(bad, k);
+    }
+    if (bad < 3 * nt) throw InternalError(fmt::format("triangle_shapes: node {} out of range", tri[bad / 3][bad % 3]));
+  }
 
   mesh::FillVector<Vec3> p(static_cast<std::size_t>(nn));  // every node written below
   {
@@ -171,7 +178,6 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   s.neighbour_area_ratio.resize(un);
   s.size_km.resize(un);
   mesh::FillVector<double> area(un);  // every triangle written below
-  const auto* tri = m.triangles.data();
   const Vec3* pp = p.data();
   double* ar = area.data();
   float* min_angle = s.min_angle_deg.data();
