@@ -264,11 +264,15 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
           const std::int64_t side = lat.pixels_per_square(m.square_level[sq]);
           const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
           const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[sq][0])];
+          // side is a power of two: multiples by mask, quotients by shift (no integer division).
+          const std::int64_t mask = side - 1;
+          const int shift = std::countr_zero(static_cast<std::uint64_t>(side));
           int code = 0;
           for (std::size_t v = 0; v < 3 && code >= 0; ++v) {
             const std::int64_t px = 2 * (x[v] - i0), py = 2 * (y[v] - j0);
-            const bool on = px % side == 0 && py % side == 0 && px >= 0 && py >= 0 && px <= 2 * side && py <= 2 * side;
-            code = on ? code * 9 + static_cast<int>((py / side) * 3 + px / side) : -1;
+            const bool on =
+                (px & mask) == 0 && (py & mask) == 0 && px >= 0 && py >= 0 && px <= 2 * side && py <= 2 * side;
+            code = on ? code * 9 + static_cast<int>((py >> shift) * 3 + (px >> shift)) : -1;
           }
           shape[static_cast<std::size_t>(t)] = static_cast<std::int16_t>(code);
         }
@@ -467,7 +471,6 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     s.euler = s.used_nodes - s.edges + nfaces;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
-  std::vector<std::int64_t>().swap(edge_first);
   half = Buckets<std::uint64_t>();
 
   FiniteChecks finite;
@@ -772,39 +775,43 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       ecef[3 * k + 1] = n * cp * std::sin(lam);
       ecef[3 * k + 2] = n * (1.0 - e2) * sp;
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 64))                   \
-    shared(m, geod, edge_a, edge_b, edge_inner, edge_s12, edge_S12, nedges_all, tb, ecef, c2, a_eq, e2) \
-        schedule(dynamic, 256)
-    for (std::int64_t e = 0; e < nedges_all; ++e) {
-      const auto k = static_cast<std::size_t>(e);
-      const auto a = static_cast<std::size_t>(edge_a[k]), b = static_cast<std::size_t>(edge_b[k]);
-      if (edge_inner[k] != 0) {
-        const double dx = ecef[3 * b] - ecef[3 * a], dy = ecef[3 * b + 1] - ecef[3 * a + 1],
-                     dz = ecef[3 * b + 2] - ecef[3 * a + 2];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < kShortEdgeM * kShortEdgeM) {
-          // The local frame at node a from its ECEF position (geocentric: the direction and the
-          // latitude enter only the small curvature term).
-          const double x = ecef[3 * a], y = ecef[3 * a + 1], z = ecef[3 * a + 2];
-          const double p2 = x * x + y * y, p = std::sqrt(p2), r = std::sqrt(p2 + z * z);
-          const double east = p > 0.0 ? (-y * dx + x * dy) / p : dx;
-          const double north = p > 0.0 ? (-z * (x * dx + y * dy) / p + p * dz) / r : dy;
-          const double sp = z / r;
-          const double w2 = 1.0 - e2 * sp * sp;
-          const double inv_m = w2 * std::sqrt(w2) / (a_eq * (1.0 - e2)), inv_n = std::sqrt(w2) / a_eq;
-          const double h2 = east * east + north * north;
-          const double inv_rho = h2 > 0.0 ? (north * north * inv_m + east * east * inv_n) / h2 : inv_n;
-          edge_s12[k] = std::sqrt(d2) * (1.0 + d2 * inv_rho * inv_rho / 24.0);
-          double dlam = m.lon_deg[b] - m.lon_deg[a];
-          dlam = (dlam > 180.0 ? dlam - 360.0 : dlam <= -180.0 ? dlam + 360.0 : dlam) * kDegToRad;
-          edge_S12[k] = c2 * 2.0 * std::atan2(std::tan(0.5 * dlam) * (tb[a] + tb[b]), 1.0 + tb[a] * tb[b]);
-          continue;
+    // The edges of node a (the smaller node) are edge_first[a] .. edge_first[a + 1]: the frame at a
+    // is set up once for all of them.
+    const std::int64_t* first_edge = edge_first.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 64)) shared( \
+    m, geod, edge_b, edge_inner, edge_s12, edge_S12, first_edge, nnodes, tb, ecef, c2, a_eq, e2) schedule(dynamic, 64)
+    for (std::int64_t node = 0; node < nnodes; ++node) {
+      const auto a = static_cast<std::size_t>(node);
+      // The local frame at node a from its ECEF position (geocentric: the direction and the
+      // latitude enter only the small curvature term).
+      const double x = ecef[3 * a], y = ecef[3 * a + 1], z = ecef[3 * a + 2];
+      const double p2 = x * x + y * y, p = std::sqrt(p2), r = std::sqrt(p2 + z * z);
+      const double sp = z / r;
+      const double w2 = 1.0 - e2 * sp * sp;
+      const double inv_m = w2 * std::sqrt(w2) / (a_eq * (1.0 - e2)), inv_n = std::sqrt(w2) / a_eq;
+      for (std::int64_t e = first_edge[node]; e < first_edge[node + 1]; ++e) {
+        const auto k = static_cast<std::size_t>(e);
+        const auto b = static_cast<std::size_t>(edge_b[k]);
+        if (edge_inner[k] != 0) {
+          const double dx = ecef[3 * b] - x, dy = ecef[3 * b + 1] - y, dz = ecef[3 * b + 2] - z;
+          const double d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 < kShortEdgeM * kShortEdgeM) {
+            const double east = p > 0.0 ? (-y * dx + x * dy) / p : dx;
+            const double north = p > 0.0 ? (-z * (x * dx + y * dy) / p + p * dz) / r : dy;
+            const double h2 = east * east + north * north;
+            const double inv_rho = h2 > 0.0 ? (north * north * inv_m + east * east * inv_n) / h2 : inv_n;
+            edge_s12[k] = std::sqrt(d2) * (1.0 + d2 * inv_rho * inv_rho / 24.0);
+            double dlam = m.lon_deg[b] - m.lon_deg[a];
+            dlam = (dlam > 180.0 ? dlam - 360.0 : dlam <= -180.0 ? dlam + 360.0 : dlam) * kDegToRad;
+            edge_S12[k] = c2 * 2.0 * std::atan2(std::tan(0.5 * dlam) * (tb[a] + tb[b]), 1.0 + tb[a] * tb[b]);
+            continue;
+          }
         }
+        double azi1 = 0.0, azi2 = 0.0, m12 = 0.0, mm12 = 0.0, mm21 = 0.0;
+        geod.GenInverse(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b],
+                        GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AREA, edge_s12[k], azi1, azi2, m12,
+                        mm12, mm21, edge_S12[k]);
       }
-      double azi1 = 0.0, azi2 = 0.0, m12 = 0.0, mm12 = 0.0, mm21 = 0.0;
-      geod.GenInverse(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b],
-                      GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AREA, edge_s12[k], azi1, azi2, m12,
-                      mm12, mm21, edge_S12[k]);
     }
     const double area0 = geod.EllipsoidArea();
     const auto face_area = [&](std::int64_t t) {
@@ -823,6 +830,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     schedule(static)
     for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = face_area(t);
   }
+  std::vector<std::int64_t>().swap(edge_first);
   const auto face_where = [&](std::int64_t t) {
     std::string w = fmt::format("{} {} (level {}), nodes", square_faces ? "square" : "triangle", t, face_level(t));
     for (int k = 0; k < face_size(t); ++k) {
