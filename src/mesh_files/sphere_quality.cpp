@@ -126,6 +126,36 @@ double round_to(double v, double per_unit) { return std::isfinite(v) ? std::roun
 // JSON has no infinity: an infinite ratio (next to a zero-area triangle) is written as null.
 Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+// Largest area ratio of each triangle of tri[0 .. nt) to its edge neighbours, 1 without neighbours
+// (neighbour area ratio of sphere_quality.hpp); ar: the triangles' areas. The triangles round each
+// node are listed in triangle order (mesh/buckets.hpp), numbered by Id.
+template <class Id>
+void neighbour_area_ratios(const std::array<NodeId, 3>* tri, std::int64_t nt, std::int64_t nn, const double* ar,
+                           float* ratio) {
+  const mesh::Buckets<Id> around = mesh::stable_buckets<Id>(nt, nn, 4, [tri](std::int64_t t, const auto& emit) {
+    for (const NodeId v : tri[t]) emit(v, static_cast<Id>(t));
+  });
+  const std::int64_t* fp = around.start.data();
+  const Id* ap = around.values.data();
+#pragma omp parallel for schedule(static) default(none) shared(nt, tri, fp, ap, ar, ratio) if (nt >= kParallelMin)
+  for (std::int64_t t = 0; t < nt; ++t) {
+    const auto& v = tri[t];
+    double worst = 1.0;
+    for (int e = 0; e < 3; ++e) {
+      const NodeId a = v[e], b = v[(e + 1) % 3];
+      for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
+        const std::int64_t u = ap[k];
+        if (u == t) continue;
+        const auto& w = tri[u];
+        if (w[0] != b && w[1] != b && w[2] != b) continue;
+        const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
+        worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
+      }
+    }
+    ratio[t] = static_cast<float>(worst);
+  }
+}
+
 }  // namespace
 
 std::vector<float> order_statistics(const std::vector<float>& values, const std::vector<double>& qs) {
@@ -195,31 +225,11 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     size[t] = static_cast<float>((e0 + e1 + e2) / 3.0 * kAuthalicRadiusKm);
     ar[t] = std::abs(spherical_triangle_area(a, b, c));
   }
-  // Triangles round each node, in triangle order (mesh/buckets.hpp): for the edge neighbours.
-  const mesh::Buckets<std::int64_t> around =
-      mesh::stable_buckets<std::int64_t>(nt, nn, 4, [tri](std::int64_t t, const auto& emit) {
-        for (const NodeId v : tri[t]) emit(v, t);
-      });
-  const std::int64_t* fp = around.start.data();
-  const std::int64_t* ap = around.values.data();
-  float* ratio = s.neighbour_area_ratio.data();
-#pragma omp parallel for schedule(static) default(none) shared(nt, tri, fp, ap, ar, ratio) if (nt >= kParallelMin)
-  for (std::int64_t t = 0; t < nt; ++t) {
-    const auto& v = tri[t];
-    double worst = 1.0;
-    for (int e = 0; e < 3; ++e) {
-      const NodeId a = v[e], b = v[(e + 1) % 3];
-      for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
-        const std::int64_t u = ap[k];
-        if (u == t) continue;
-        const auto& w = tri[u];
-        if (w[0] != b && w[1] != b && w[2] != b) continue;
-        const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
-        worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
-      }
-    }
-    ratio[t] = static_cast<float>(worst);
-  }
+  // Triangle numbers of 32 bits when they fit: half the memory of the lists round the nodes.
+  if (nt < (std::int64_t{1} << 31))
+    neighbour_area_ratios<std::int32_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
+  else
+    neighbour_area_ratios<std::int64_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
   return s;
 }
 
