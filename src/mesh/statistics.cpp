@@ -254,8 +254,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     std::vector<std::vector<std::int64_t>> sim(static_cast<std::size_t>(nt), s.similarity);
     std::vector<std::array<std::int64_t, 3>> sums(static_cast<std::size_t>(nt), {0, 0, 0});
     quadtree::for_each_block(ntri, nt, [&](int th, std::int64_t begin, std::int64_t end) {
-      std::array<std::int64_t, 3>& acc = sums[static_cast<std::size_t>(th)];
-      std::vector<std::int64_t>& hist = sim[static_cast<std::size_t>(th)];
+      // Counted in locals and stored once: the blocks' slots share cache lines.
+      std::array<std::int64_t, 3> acc{0, 0, 0};
+      std::vector<std::int64_t> hist(s.similarity.size(), 0);
       for (std::int64_t t = begin; t < end; ++t) {
         std::array<std::int64_t, 3> x{}, y{};
         for (int v = 0; v < 3; ++v) vertex_ij(t, v, x[static_cast<std::size_t>(v)], y[static_cast<std::size_t>(v)]);
@@ -295,6 +296,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
         }
         if (!ok) ++acc[2];
       }
+      sums[static_cast<std::size_t>(th)] = acc;
+      sim[static_cast<std::size_t>(th)] = std::move(hist);
     });
     for (int th = 0; th < nt; ++th) {
       s.twice_triangle_area_px2 += sums[static_cast<std::size_t>(th)][0];
