@@ -17,6 +17,7 @@
 #include "core/types.hpp"
 #include "mesh/buckets.hpp"
 #include "mesh_files/geographic_mesh.hpp"
+#include "quadtree/parallel.hpp"
 
 namespace aq::io {
 
@@ -203,10 +204,14 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
 
   TriangleShapes s;
   const auto un = static_cast<std::size_t>(nt);
-  s.min_angle_deg.resize(un);
-  s.edge_ratio.resize(un);
-  s.neighbour_area_ratio.resize(un);
-  s.size_km.resize(un);
+  {  // resize zeroes the arrays (their first touch): the four spread over the threads
+    const std::array<std::vector<float>*, 4> arrays{&s.min_angle_deg, &s.edge_ratio, &s.neighbour_area_ratio,
+                                                    &s.size_km};
+    const int blocks = std::min(4, nt >= kParallelMin ? thread_count() : 1);
+    quadtree::for_each_block(4, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+      for (std::int64_t k = begin; k < end; ++k) arrays[static_cast<std::size_t>(k)]->resize(un);
+    });
+  }
   mesh::FillVector<double> area(un);  // every triangle written below
   const Vec3* pp = p.data();
   double* ar = area.data();
