@@ -16,6 +16,7 @@
 // Memory: blocks × buckets 64-bit cursors while it runs, besides the result.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -58,7 +59,7 @@ using FillVector = std::vector<T, UninitialisedAllocator<T>>;
 /// Values grouped by bucket: bucket b holds values[start[b] .. start[b + 1]).
 template <class T>
 struct Buckets {
-  std::vector<std::int64_t> start;  ///< size buckets + 1, start[0] = 0
+  FillVector<std::int64_t> start;  ///< size buckets + 1, start[0] = 0
   FillVector<T> values;
 };
 
@@ -72,15 +73,19 @@ Buckets<T> stable_buckets(std::int64_t n_items, std::int64_t n_buckets, std::int
                           const Pairs& pairs) {
   const int blocks = quadtree::block_count(n_items, work_per_item);
   const auto nb = static_cast<std::size_t>(n_buckets);
-  // cursor[block · n_buckets + bucket]: the block's pair count, then its next slot.
-  std::vector<std::int64_t> cursor(static_cast<std::size_t>(blocks) * nb, 0);
+  // cursor[block · n_buckets + bucket]: the block's pair count, then its next slot. Each block
+  // zeroes its own row, and the arrays below are first written in parallel loops, so that their
+  // pages are first touched on all the threads.
+  FillVector<std::int64_t> cursor(static_cast<std::size_t>(blocks) * nb);
   quadtree::for_each_block(n_items, blocks, [&](int b, std::int64_t begin, std::int64_t end) {
     std::int64_t* c = cursor.data() + static_cast<std::size_t>(b) * nb;
+    std::fill(c, c + nb, std::int64_t{0});
     for (std::int64_t i = begin; i < end; ++i) pairs(i, [c](std::int64_t bucket, const T& /*value*/) { ++c[bucket]; });
   });
   Buckets<T> out;
-  out.start.assign(nb + 1, 0);
+  out.start.resize(nb + 1);
   std::int64_t* start = out.start.data();
+  start[0] = 0;
   std::int64_t* cur = cursor.data();
 #pragma omp parallel for default(none) if (blocks > 1) shared(start, cur, n_buckets, blocks, nb) schedule(static)
   for (std::int64_t v = 0; v < n_buckets; ++v) {

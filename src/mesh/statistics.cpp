@@ -345,8 +345,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     schedule(static)
   for (std::int64_t v = 0; v < nbuckets; ++v) std::sort(rec + start[v], rec + start[v + 1]);
   // edge_first[v]: the first edge of bucket v (its runs of equal other node are its edges).
-  std::vector<std::int64_t> edge_first(nn + 1, 0);
+  FillVector<std::int64_t> edge_first(nn + 1);  // first touched in the parallel loop
   std::int64_t* first = edge_first.data();
+  first[0] = 0;
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, first, nbuckets) \
     schedule(static)
   for (std::int64_t v = 0; v < nbuckets; ++v) {
@@ -833,7 +834,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     schedule(static)
     for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = face_area(t);
   }
-  std::vector<std::int64_t>().swap(edge_first);
+  FillVector<std::int64_t>().swap(edge_first);
   const auto face_where = [&](std::int64_t t) {
     std::string w = fmt::format("{} {} (level {}), nodes", square_faces ? "square" : "triangle", t, face_level(t));
     for (int k = 0; k < face_size(t); ++k) {
