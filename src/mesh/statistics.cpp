@@ -68,6 +68,17 @@ std::int64_t first_where(std::int64_t n, const Bad& bad) {
   return first;
 }
 
+/// Whether every value of v is finite, checked in parallel: FiniteChecks::values, a serial scan
+/// that finds and describes the first non-finite value, then runs only when it has one to report.
+bool all_finite(std::span<const double> v) {
+  const auto n = static_cast<std::int64_t>(v.size());
+  const double* p = v.data();
+  std::int64_t bad = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n)) shared(n, p) schedule(static) reduction(+ : bad)
+  for (std::int64_t i = 0; i < n; ++i) bad += std::isfinite(p[i]) ? 0 : 1;
+  return bad == 0;
+}
+
 /// Min, lower median and max of `v` (reorders it); zeros when empty.
 std::array<double, 3> min_median_max(std::span<double> v) {
   if (v.empty()) return {0.0, 0.0, 0.0};
@@ -484,9 +495,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                        m.lat_deg[n]);
   };
   if (m.lon_deg.size() == nn && m.lat_deg.size() == nn) {
-    finite.values("node longitude", m.lon_deg, node_where);
-    finite.values("node latitude", m.lat_deg, node_where);
-    if (m.depth_m.size() == nn) finite.values("node depth", m.depth_m, node_where);
+    if (!all_finite(m.lon_deg)) finite.values("node longitude", m.lon_deg, node_where);
+    if (!all_finite(m.lat_deg)) finite.values("node latitude", m.lat_deg, node_where);
+    if (m.depth_m.size() == nn && !all_finite(m.depth_m)) finite.values("node depth", m.depth_m, node_where);
   }
   s.non_finite = finite.failures();
   if (!options.geodesic) return s;
@@ -845,9 +856,14 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
     return w;
   };
-  finite.values(square_faces ? "geodesic square area (m²)" : "geodesic triangle area (m²)", area, face_where);
   double total_m2 = 0.0;
-  for (const double a : area) total_m2 += a;  // serial: the same sum for any thread count
+  bool areas_finite = true;
+  for (const double a : area) {  // serial: the same sum for any thread count
+    total_m2 += a;
+    areas_finite = areas_finite && std::isfinite(a);
+  }
+  if (!areas_finite)
+    finite.values(square_faces ? "geodesic square area (m²)" : "geodesic triangle area (m²)", area, face_where);
   s.triangle_area_km2 = total_m2 * 1e-6;
   finite.scalar("total triangle area (km²)", s.triangle_area_km2, "the sum over all triangles");
   finite.scalar("filled area of the lattice cells (km²)", s.filled_area_km2, "the sum over all squares");
@@ -906,10 +922,12 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     length = std::move(edge_s12);  // solved with the areas above
   }
 
-  finite.values("geodesic edge length (m)", length, [&](std::int64_t e) {
-    const auto k = static_cast<std::size_t>(e);
-    return fmt::format("edge {} between {} and {}", e, node_where(edge_a[k]), node_where(edge_b[k]));
-  });
+  if (!all_finite(length)) {
+    finite.values("geodesic edge length (m)", length, [&](std::int64_t e) {
+      const auto k = static_cast<std::size_t>(e);
+      return fmt::format("edge {} between {} and {}", e, node_where(edge_a[k]), node_where(edge_b[k]));
+    });
+  }
   s.non_finite = finite.failures();
 
   // Per level: the areas and lengths grouped by level in face and edge order (levels outside 0..L

@@ -251,6 +251,30 @@ TEST(Statistics, ANonFiniteAreaFailsAndSaysWhere) {
     EXPECT_NE(f.front().find("node latitude is nan at node 7 (lattice I = "), std::string::npos) << f.front();
   }
   {
+    // With rotation the areas and lengths come from the nodes' λ, φ: the NaN spreads to the areas
+    // of the node's triangles and the lengths of its edges, each quantity reported once, at the
+    // first triangle / edge (whether there is one is checked in parallel).
+    const Lattice lattice = make_lattice(45.0, 3);
+    const Bitmap mask = random_mask(lattice.nx, lattice.ny, 3u, 0.6, 0.01, 8);
+    const PoleRotation greenland(-44.858333, 78.141667);
+    Mesh broken = build_all(mask, lattice, {}, {}, greenland, testing::synthetic_bathymetry()).mesh;
+    broken.rotation.enabled = true;
+    broken.rotation.pole_lon_deg = -44.858333;
+    broken.rotation.pole_lat_deg = 78.141667;
+    ASSERT_TRUE(compute_statistics(broken).failed_checks().empty());
+    const NodeId v = broken.triangles[40][1];
+    broken.lat_deg[static_cast<std::size_t>(v)] = std::nan("");
+    const auto f = compute_statistics(broken).failed_checks();
+    const auto has = [&](const std::string& text) {
+      return std::any_of(f.begin(), f.end(), [&](const std::string& x) { return x.find(text) != std::string::npos; });
+    };
+    EXPECT_TRUE(has(fmt::format("node latitude is nan at node {} ", v))) << ::testing::PrintToString(f);
+    EXPECT_TRUE(has("geodesic triangle area (m²) is nan at triangle ")) << ::testing::PrintToString(f);
+    EXPECT_TRUE(has("geodesic edge length (m) is -nan at edge ") || has("geodesic edge length (m) is nan at edge "))
+        << ::testing::PrintToString(f);
+    EXPECT_TRUE(has("total triangle area (km²) is nan")) << ::testing::PrintToString(f);
+  }
+  {
     Mesh broken = small_mesh();  // a NaN depth
     broken.depth_m[3] = std::nan("");
     const auto f = compute_statistics(broken, StatisticsOptions{false, 0.0}).failed_checks();
