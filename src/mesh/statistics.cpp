@@ -60,9 +60,7 @@ void union_faces(std::int32_t* parent, std::int32_t a, std::int32_t b) {
 template <class Bad>
 std::int64_t first_where(std::int64_t n, const Bad& bad) {
   std::int64_t first = n;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(n)) shared(n, bad) schedule(static) \
-    reduction(min                                                                                       \
-              : first)
+#pragma omp parallel for default(none) shared(n, bad) reduction(min : first) if (quadtree::parallel_worth(n))
   for (std::int64_t i = 0; i < n; ++i)
     if (bad(i)) first = std::min(first, i);
   return first;
