@@ -764,7 +764,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
     edge_s12.resize(static_cast<std::size_t>(s.edges));  // every edge written below
     edge_S12.resize(static_cast<std::size_t>(s.edges));
-    const std::int64_t nedges_all = s.edges;
+    [[maybe_unused]] const std::int64_t nedges_all = s.edges;  // in the OpenMP clause only
     constexpr double kShortEdgeM = 45000.0;
     const double a_eq = ell.EquatorialRadius(), ecc = std::sqrt(e2);
     const double c2 = rq2;  // the authalic radius squared
