@@ -648,9 +648,23 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     // so adding +0 changes nothing), in parallel; summed below in edge order.
     const double a2 = ell.EquatorialRadius() * ell.EquatorialRadius();
     const auto nbe = static_cast<std::int64_t>(m.boundary_edges.size());
+    // cos/sin of each row's lattice latitude, once per row (a Mercator row's latitude is not cheap).
+    const std::int64_t rows = lat.ny + 1;
+    std::vector<std::array<double, 2>> row_cos_sin(static_cast<std::size_t>(rows));
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * 64)) shared(lat, row_cos_sin, rows) \
+    schedule(static)
+    for (std::int64_t j = 0; j < rows; ++j) {
+      const double phi = lat.lat_of(j) * kDegToRad;
+      row_cos_sin[static_cast<std::size_t>(j)] = {std::cos(phi), std::sin(phi)};
+    }
+    const auto cos_sin_row = [&](std::int64_t j) {
+      if (j >= 0 && j < rows) return row_cos_sin[static_cast<std::size_t>(j)];
+      const double phi = lat.lat_of(j) * kDegToRad;  // not a lattice row (a broken mesh)
+      return std::array<double, 2>{std::cos(phi), std::sin(phi)};
+    };
     FillVector<std::array<double, 2>> lens(static_cast<std::size_t>(nbe));
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nbe * 16)) \
-    shared(m, lat, lens, nbe, nodes, nx, pixel_rad, a2, e2) schedule(static)
+    shared(m, lens, nbe, nodes, nx, pixel_rad, a2, e2, cos_sin_row) schedule(static)
     for (std::int64_t k = 0; k < nbe; ++k) {
       const auto& be = m.boundary_edges[static_cast<std::size_t>(k)];
       auto& term = lens[static_cast<std::size_t>(k)];
@@ -660,10 +674,10 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       std::int64_t di = std::abs(m.node_i[nb] - m.node_i[na]);
       di = std::min(di, nx - di);
       const std::int64_t dj = std::abs(m.node_j[nb] - m.node_j[na]);
-      const double phi = lat.lat_of(m.node_j[na]) * kDegToRad;
+      const auto [cos_phi, sin_phi] = cos_sin_row(m.node_j[na]);
       const double dlam = static_cast<double>(di) * pixel_rad;
-      const double len = std::max(dlam * std::cos(phi), static_cast<double>(dj) * pixel_rad);
-      if (dj == 0) term[0] = a2 * dlam * dlam * dlam * std::fabs(std::sin(phi)) * std::cos(phi) * std::cos(phi) / 12.0;
+      const double len = std::max(dlam * cos_phi, static_cast<double>(dj) * pixel_rad);
+      if (dj == 0) term[0] = a2 * dlam * dlam * dlam * std::fabs(sin_phi) * cos_phi * cos_phi / 12.0;
       term[1] = e2 * a2 * len * len * len / 4.0;
     }
     for (const auto& term : lens) {  // serial: the same sum for any thread count
