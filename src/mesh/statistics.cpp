@@ -9,30 +9,76 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "core/error.hpp"
 #include "core/finite.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
+#include "mesh/buckets.hpp"
 #include "quadtree/parallel.hpp"
 
 namespace aq::mesh {
 
 namespace {
 
-std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t x) {
-  while (parent[static_cast<std::size_t>(x)] != x) {
-    parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    x = parent[static_cast<std::size_t>(x)];
+/// Root of x in the union–find forest `parent` (parent[r] == r at a root, parent[x] < x elsewhere),
+/// halving the path on the way. Safe while other threads run union_faces on the same forest.
+std::int32_t find_root(std::int32_t* parent, std::int32_t x) {
+  for (;;) {
+    std::int32_t p = std::atomic_ref<std::int32_t>(parent[x]).load(std::memory_order_relaxed);
+    if (p == x) return x;
+    const std::int32_t g = std::atomic_ref<std::int32_t>(parent[p]).load(std::memory_order_relaxed);
+    // g is an ancestor of x: replacing p by g only shortens the path (if no other thread did).
+    if (g != p) std::atomic_ref<std::int32_t>(parent[x]).compare_exchange_weak(p, g, std::memory_order_relaxed);
+    x = g;
   }
-  return x;
+}
+
+/// Joins the sets of faces a and b: the larger root goes under the smaller, by compare-and-swap so
+/// that several threads may join at once (a root that another thread linked meanwhile is looked up
+/// again). Parents only decrease, so no cycle forms; the final sets, and so the number of roots,
+/// do not depend on the order of the calls.
+void union_faces(std::int32_t* parent, std::int32_t a, std::int32_t b) {
+  for (;;) {
+    a = find_root(parent, a);
+    b = find_root(parent, b);
+    if (a == b) return;
+    if (a < b) std::swap(a, b);
+    std::int32_t expected = a;
+    if (std::atomic_ref<std::int32_t>(parent[a]).compare_exchange_strong(expected, b, std::memory_order_relaxed))
+      return;
+  }
+}
+
+/// The smallest i in [0, n) with bad(i), or n when there is none (searched in parallel: the same
+/// answer, and so the same error message, for any thread count).
+template <class Bad>
+std::int64_t first_where(std::int64_t n, const Bad& bad) {
+  std::int64_t first = n;
+#pragma omp parallel for default(none) shared(n, bad) reduction(min : first) if (quadtree::parallel_worth(n))
+  for (std::int64_t i = 0; i < n; ++i)
+    if (bad(i)) first = std::min(first, i);
+  return first;
+}
+
+/// Whether every value of v is finite, checked in parallel: FiniteChecks::values, a serial scan
+/// that finds and describes the first non-finite value, then runs only when it has one to report.
+bool all_finite(std::span<const double> v) {
+  const auto n = static_cast<std::int64_t>(v.size());
+  const double* p = v.data();
+  std::int64_t bad = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(n)) shared(n, p) schedule(static) reduction(+ : bad)
+  for (std::int64_t i = 0; i < n; ++i) bad += std::isfinite(p[i]) ? 0 : 1;
+  return bad == 0;
 }
 
 /// Min, lower median and max of `v` (reorders it); zeros when empty.
-std::array<double, 3> min_median_max(std::vector<double>& v) {
+std::array<double, 3> min_median_max(std::span<double> v) {
   if (v.empty()) return {0.0, 0.0, 0.0};
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
   const double mn = *lo, mx = *hi;
@@ -129,20 +175,35 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   s.boundary_loops = static_cast<std::int64_t>(m.loops.size());
   s.pinch_nodes = static_cast<std::int64_t>(m.pinch_nodes.size());
   if (s.nodes >= (std::int64_t{1} << 32)) throw InternalError("mesh statistics: 2^32 nodes or more");
-  for (const std::uint8_t l : m.square_level) {
-    const std::int64_t side = lat.pixels_per_square(l);
-    s.filled_pixels += side * side;
+  {
+    std::int64_t filled = 0;
+    const auto nsq = m.square_count();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nsq)) shared(m, lat, nsq) schedule(static) \
+    reduction(+ : filled)
+    for (std::int64_t q = 0; q < nsq; ++q) {
+      const std::int64_t side = lat.pixels_per_square(m.square_level[static_cast<std::size_t>(q)]);
+      filled += side * side;
+    }
+    s.filled_pixels = filled;
   }
   const std::int64_t ntri = s.triangles;
   const bool have_squares = static_cast<std::int64_t>(m.triangle_square.size()) == ntri &&
                             static_cast<std::int64_t>(m.triangle_level.size()) == ntri;
   if (!have_squares) throw InternalError("mesh statistics: triangle_level / triangle_square missing");
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t)
-      if (v < 0 || v >= s.nodes) throw InternalError(fmt::format("mesh statistics: node id {} out of range", v));
-  for (const ElementId q : m.triangle_square)
-    if (q < 0 || q >= m.square_count())
-      throw InternalError(fmt::format("mesh statistics: square id {} out of range", q));
+  const std::int64_t nodes = s.nodes;
+  const auto node_of = [&](std::int64_t k) { return m.triangles[static_cast<std::size_t>(k / 3)][k % 3]; };
+  const std::int64_t bad_node =
+      first_where(3 * ntri, [&](std::int64_t k) { return node_of(k) < 0 || node_of(k) >= nodes; });
+  if (bad_node < 3 * ntri)
+    throw InternalError(fmt::format("mesh statistics: node id {} out of range", node_of(bad_node)));
+  const std::int64_t bad_square = first_where(ntri, [&](std::int64_t t) {
+    const ElementId q = m.triangle_square[static_cast<std::size_t>(t)];
+    return q < 0 || q >= m.square_count();
+  });
+  if (bad_square < ntri) {
+    throw InternalError(fmt::format("mesh statistics: square id {} out of range",
+                                    m.triangle_square[static_cast<std::size_t>(bad_square)]));
+  }
 
   // Faces: the triangles; or, for a mesh of squares only (mesh.elements = "squares"), the squares
   // as polygons through their corners and midside nodes (SW, S, SE, E, NE, N, NW, W), so that
@@ -175,6 +236,10 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   const auto face_level = [&](std::int64_t f) {
     return square_faces ? m.square_level[static_cast<std::size_t>(f)] : m.triangle_level[static_cast<std::size_t>(f)];
   };
+  // First half-edge slot of face f (slot face_first(f) + k: from node k to node k + 1).
+  const auto face_first = [&](std::int64_t f) {
+    return square_faces ? poly_start[static_cast<std::size_t>(f)] : 3 * f;
+  };
   const auto face_square = [&](std::int64_t f) {
     return static_cast<std::size_t>(square_faces ? f : m.triangle_square[static_cast<std::size_t>(f)]);
   };
@@ -198,8 +263,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     std::vector<std::vector<std::int64_t>> sim(static_cast<std::size_t>(nt), s.similarity);
     std::vector<std::array<std::int64_t, 3>> sums(static_cast<std::size_t>(nt), {0, 0, 0});
     quadtree::for_each_block(ntri, nt, [&](int th, std::int64_t begin, std::int64_t end) {
-      std::array<std::int64_t, 3>& acc = sums[static_cast<std::size_t>(th)];
-      std::vector<std::int64_t>& hist = sim[static_cast<std::size_t>(th)];
+      // Counted in locals and stored once: the blocks' slots share cache lines.
+      std::array<std::int64_t, 3> acc{0, 0, 0};
+      std::vector<std::int64_t> hist(s.similarity.size(), 0);
       for (std::int64_t t = begin; t < end; ++t) {
         std::array<std::int64_t, 3> x{}, y{};
         for (int v = 0; v < 3; ++v) vertex_ij(t, v, x[static_cast<std::size_t>(v)], y[static_cast<std::size_t>(v)]);
@@ -208,11 +274,15 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
           const std::int64_t side = lat.pixels_per_square(m.square_level[sq]);
           const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[sq][0])];
           const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[sq][0])];
+          // side is a power of two: multiples by mask, quotients by shift (no integer division).
+          const std::int64_t mask = side - 1;
+          const int shift = std::countr_zero(static_cast<std::uint64_t>(side));
           int code = 0;
           for (std::size_t v = 0; v < 3 && code >= 0; ++v) {
             const std::int64_t px = 2 * (x[v] - i0), py = 2 * (y[v] - j0);
-            const bool on = px % side == 0 && py % side == 0 && px >= 0 && py >= 0 && px <= 2 * side && py <= 2 * side;
-            code = on ? code * 9 + static_cast<int>((py / side) * 3 + px / side) : -1;
+            const bool on =
+                (px & mask) == 0 && (py & mask) == 0 && px >= 0 && py >= 0 && px <= 2 * side && py <= 2 * side;
+            code = on ? code * 9 + static_cast<int>((py >> shift) * 3 + (px >> shift)) : -1;
           }
           shape[static_cast<std::size_t>(t)] = static_cast<std::int16_t>(code);
         }
@@ -235,6 +305,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
         }
         if (!ok) ++acc[2];
       }
+      sums[static_cast<std::size_t>(th)] = acc;
+      sim[static_cast<std::size_t>(th)] = std::move(hist);
     });
     for (int th = 0; th < nt; ++th) {
       s.twice_triangle_area_px2 += sums[static_cast<std::size_t>(th)][0];
@@ -260,94 +332,147 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
   }
 
-  // Edges: half-edges bucketed by their smaller node (counting sort), each bucket sorted by the
-  // other node; a group of 1 is a boundary edge, of 2 (opposite directions) an interior one.
+  // Edges: half-edges bucketed by their smaller node (stable counting sort, mesh/buckets.hpp), each
+  // bucket sorted by the other node; a group of 1 is a boundary edge, of 2 (opposite directions) an
+  // interior one. Edges are numbered by (smaller node, larger node).
   if (nfaces >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 elements or more");
   const auto nn = static_cast<std::size_t>(s.nodes);
-  std::vector<std::int64_t> start(nn + 1, 0);
-  std::int64_t half_edges = 0;
-  for (std::int64_t f = 0; f < nfaces; ++f) {
-    const int n = face_size(f);
-    half_edges += n;
-    for (int e = 0; e < n; ++e)
-      ++start[static_cast<std::size_t>(std::min(face_node(f, e), face_node(f, (e + 1) % n))) + 1];
-  }
-  for (std::size_t v = 0; v < nn; ++v) start[v + 1] += start[v];
-  // rec = other node << 32 | triangle << 1 | (half-edge runs from the larger node to the smaller).
-  std::vector<std::uint64_t> rec(static_cast<std::size_t>(half_edges));
-  for (std::int64_t t = 0; t < nfaces; ++t) {
-    const int n = face_size(t);
-    for (int e = 0; e < n; ++e) {
-      const NodeId a = face_node(t, e), b = face_node(t, (e + 1) % n);
-      const auto lo = static_cast<std::size_t>(std::min(a, b));
-      rec[static_cast<std::size_t>(start[lo]++)] =
-          static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint64_t>(t) << 1 | (a > b ? 1U : 0U);
-    }
-  }
-  for (std::size_t v = nn; v > 0; --v) start[v] = start[v - 1];
-  start[0] = 0;
+  // rec = other node << 32 | face << 1 | (half-edge runs from the larger node to the smaller).
+  Buckets<std::uint64_t> half =
+      stable_buckets<std::uint64_t>(nfaces, s.nodes, 16, [&](std::int64_t f, const auto& emit) {
+        const int n = face_size(f);
+        for (int e = 0; e < n; ++e) {
+          const NodeId a = face_node(f, e), b = face_node(f, (e + 1) % n);
+          emit(std::min(a, b), static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint64_t>(f) << 1 |
+                                   (a > b ? 1U : 0U));
+        }
+      });
+  const std::int64_t* start = half.start.data();
+  std::uint64_t* rec = half.values.data();
   const auto nbuckets = static_cast<std::int64_t>(nn);
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, nbuckets) \
     schedule(static)
+  for (std::int64_t v = 0; v < nbuckets; ++v) std::sort(rec + start[v], rec + start[v + 1]);
+  // edge_first[v]: the first edge of bucket v (its runs of equal other node are its edges).
+  FillVector<std::int64_t> edge_first(nn + 1);  // first touched in the parallel loop
+  std::int64_t* first = edge_first.data();
+  first[0] = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 4)) shared(rec, start, first, nbuckets) \
+    schedule(static)
   for (std::int64_t v = 0; v < nbuckets; ++v) {
-    std::sort(rec.begin() + start[static_cast<std::size_t>(v)], rec.begin() + start[static_cast<std::size_t>(v) + 1]);
+    std::int64_t runs = 0;
+    for (std::int64_t k = start[v]; k < start[v + 1]; ++k)
+      runs += k == start[v] || (rec[k] >> 32) != (rec[k - 1] >> 32);
+    first[v + 1] = runs;
   }
-  std::vector<std::int64_t> parent(static_cast<std::size_t>(nfaces));
-  for (std::int64_t t = 0; t < nfaces; ++t) parent[static_cast<std::size_t>(t)] = t;
-  std::vector<std::uint32_t> edge_a, edge_b, edge_t;  // nodes a < b and a triangle of each edge
-  std::vector<std::uint8_t> edge_level;               // finest level of the edge's triangles
-  std::vector<std::uint8_t> edge_inner;               // per_edge_areas: 1 = two faces, opposite directions
-  // Rotated frame or squares: the edge index of each half-edge record, for the face areas below.
+  for (std::size_t v = 0; v < nn; ++v) edge_first[v + 1] += edge_first[v];
+  s.edges = edge_first[nn];
+  const auto ne = static_cast<std::size_t>(s.edges);
+  // Rotated frame or squares: the faces' areas are sums over their edges (below).
   const bool per_edge_areas = m.rotation.enabled || square_faces;
-  std::vector<std::uint32_t> rec_edge(per_edge_areas ? rec.size() : 0);
-  const auto tri_of = [](std::uint64_t r) { return static_cast<std::int64_t>((r & 0xffffffffULL) >> 1); };
-  for (std::size_t v = 0; v < nn; ++v) {
-    const auto end = static_cast<std::size_t>(start[v + 1]);
-    for (auto k = static_cast<std::size_t>(start[v]); k < end;) {
-      std::size_t e = k + 1;
-      while (e < end && (rec[e] >> 32) == (rec[k] >> 32)) ++e;
-      const auto a = static_cast<NodeId>(v), b = static_cast<NodeId>(rec[k] >> 32);
-      const std::int64_t t0 = tri_of(rec[k]);
-      if (per_edge_areas)
-        for (std::size_t h = k; h < e; ++h) rec_edge[h] = static_cast<std::uint32_t>(edge_a.size());
-      edge_a.push_back(static_cast<std::uint32_t>(a));
-      edge_b.push_back(static_cast<std::uint32_t>(b));
-      edge_t.push_back(static_cast<std::uint32_t>(t0));
-      std::uint8_t level = face_level(t0);
-      if (per_edge_areas) edge_inner.push_back(e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0 ? 1 : 0);
-      if (e - k == 1) {
-        ++s.boundary_edges;
-      } else if (e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0) {
-        ++s.interior_edges;
-        const std::int64_t t1 = tri_of(rec[k + 1]);
-        level = std::max(level, face_level(t1));
-        const std::int64_t r1 = find_root(parent, t0), r2 = find_root(parent, t1);
-        if (r1 != r2) parent[static_cast<std::size_t>(std::max(r1, r2))] = std::min(r1, r2);
-      } else {
-        ++s.bad_edges;
+  FillVector<std::uint32_t> edge_a(ne), edge_b(ne);              // nodes a < b
+  FillVector<std::uint32_t> edge_t(per_edge_areas ? 0 : ne);     // a face of the edge (for the memo)
+  FillVector<std::uint8_t> edge_level(ne);                       // finest level of the edge's faces
+  FillVector<std::uint8_t> edge_inner(per_edge_areas ? ne : 0);  // 1 = two faces, opposite directions
+  // per_edge_areas: face_edge[face_first(f) + k] = the edge of the face's half-edge k, ~edge when it
+  // runs from the larger node to the smaller.
+  if (per_edge_areas && s.edges >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 edges or more");
+  FillVector<std::int32_t> face_edge(per_edge_areas ? half.values.size() : 0);
+  // Components of the faces joined by interior edges: union–find, the larger root linked under the
+  // smaller by compare-and-swap (parents only decrease, so no cycles form), so that the buckets can
+  // be walked in parallel; the number of roots does not depend on the order of the unions.
+  FillVector<std::int32_t> parent(static_cast<std::size_t>(nfaces));
+  std::int32_t* par = parent.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces)) shared(par, nfaces) schedule(static)
+  for (std::int64_t f = 0; f < nfaces; ++f) par[f] = static_cast<std::int32_t>(f);
+  std::int64_t boundary = 0, interior = 0, bad = 0;
+  {
+    std::uint32_t *ea = edge_a.data(), *eb = edge_b.data(), *et = edge_t.data();
+    std::uint8_t *el = edge_level.data(), *ei = edge_inner.data();
+    std::int32_t* fe = face_edge.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbuckets * 16))                                 \
+    shared(rec, start, first, nbuckets, ea, eb, et, el, ei, fe, par, per_edge_areas, face_level, face_size, face_node, \
+               face_first) schedule(static) reduction(+ : boundary, interior, bad)
+    for (std::int64_t v = 0; v < nbuckets; ++v) {
+      std::int64_t edge = first[v];
+      const std::int64_t end = start[v + 1];
+      for (std::int64_t k = start[v]; k < end; ++edge) {
+        std::int64_t e = k + 1;
+        while (e < end && (rec[e] >> 32) == (rec[k] >> 32)) ++e;
+        const auto t0 = static_cast<std::int32_t>((rec[k] & 0xffffffffULL) >> 1);
+        const bool inner = e - k == 2 && ((rec[k] ^ rec[k + 1]) & 1U) != 0;
+        const auto x = static_cast<std::size_t>(edge);
+        ea[x] = static_cast<std::uint32_t>(v);
+        eb[x] = static_cast<std::uint32_t>(rec[k] >> 32);
+        std::uint8_t level = face_level(t0);
+        if (!per_edge_areas) {
+          et[x] = static_cast<std::uint32_t>(t0);
+        } else {
+          ei[x] = inner ? 1 : 0;
+          // The slot of each half-edge in its face; a face with the same directed edge twice (a
+          // broken mesh) has that many equal records, the j-th taking its j-th such slot.
+          for (std::int64_t h = k; h < e; ++h) {
+            const std::int64_t t = static_cast<std::int64_t>((rec[h] & 0xffffffffULL) >> 1);
+            const NodeId hi = static_cast<NodeId>(rec[h] >> 32);
+            const NodeId from = (rec[h] & 1U) != 0 ? hi : v, to = (rec[h] & 1U) != 0 ? v : hi;
+            std::int64_t skip = 0;
+            for (std::int64_t g = h; g > k && rec[g - 1] == rec[h]; --g) ++skip;
+            const int n = face_size(t);
+            for (int c = 0; c < n; ++c) {
+              if (face_node(t, c) != from || face_node(t, (c + 1) % n) != to || skip-- > 0) continue;
+              fe[face_first(t) + c] = static_cast<std::int32_t>(from < to ? edge : ~edge);
+              break;
+            }
+          }
+        }
+        if (e - k == 1) {
+          ++boundary;
+        } else if (inner) {
+          ++interior;
+          const auto t1 = static_cast<std::int32_t>((rec[k + 1] & 0xffffffffULL) >> 1);
+          level = std::max(level, face_level(t1));
+          union_faces(par, t0, t1);
+        } else {
+          ++bad;
+        }
+        el[x] = level;
+        k = e;
       }
-      edge_level.push_back(level);
-      k = e;
     }
   }
-  s.edges = static_cast<std::int64_t>(edge_a.size());
-  for (std::int64_t t = 0; t < nfaces; ++t) s.components += find_root(parent, t) == t;
-  std::vector<std::int64_t>().swap(parent);
-  std::vector<char> used(static_cast<std::size_t>(s.nodes), 0);
+  s.boundary_edges = boundary;
+  s.interior_edges = interior;
+  s.bad_edges = bad;
+  std::int64_t components = 0, used_nodes = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces)) shared(par, nfaces) schedule(static) \
+    reduction(+ : components)
+  for (std::int64_t f = 0; f < nfaces; ++f) components += par[f] == f;
+  s.components = components;
+  FillVector<std::int32_t>().swap(parent);
+  std::vector<std::uint8_t> used(nn, 0);
+  std::uint8_t* use = used.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces * 4)) \
+    shared(use, nfaces, face_size, face_node) schedule(static)
   for (std::int64_t f = 0; f < nfaces; ++f)
-    for (int k = 0; k < face_size(f); ++k) used[static_cast<std::size_t>(face_node(f, k))] = 1;
-  for (const char u : used) s.used_nodes += u;
+    for (int k = 0; k < face_size(f); ++k)
+      std::atomic_ref<std::uint8_t>(use[face_node(f, k)]).store(1, std::memory_order_relaxed);
+  for (const std::uint8_t u : used) used_nodes += u;
+  s.used_nodes = used_nodes;
   if (nfaces > 0) {
-    // Every Mesh boundary edge a -> b must be a triangle edge used once, in the same direction.
+    // Every Mesh boundary edge a -> b must be a face edge used once, in the same direction.
     std::int64_t matched = 0;
-    for (const auto& be : m.boundary_edges) {
-      if (be[0] < 0 || be[1] < 0 || be[0] >= s.nodes || be[1] >= s.nodes || be[0] == be[1]) continue;
-      const auto lo = static_cast<std::size_t>(std::min(be[0], be[1]));
+    const auto nbe = static_cast<std::int64_t>(m.boundary_edges.size());
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbe * 8)) shared(m, rec, start, nbe, nodes) \
+    schedule(static) reduction(+ : matched)
+    for (std::int64_t i = 0; i < nbe; ++i) {
+      const auto& be = m.boundary_edges[static_cast<std::size_t>(i)];
+      if (be[0] < 0 || be[1] < 0 || be[0] >= nodes || be[1] >= nodes || be[0] == be[1]) continue;
+      const auto lo = std::min(be[0], be[1]);
       const auto hi = static_cast<std::uint64_t>(std::max(be[0], be[1]));
       const std::uint64_t dir = be[0] > be[1] ? 1U : 0U;
       std::int64_t count = 0;
       bool same_direction = false;
-      for (auto k = static_cast<std::size_t>(start[lo]); k < static_cast<std::size_t>(start[lo + 1]); ++k) {
+      for (std::int64_t k = start[lo]; k < start[lo + 1]; ++k) {
         if ((rec[k] >> 32) != hi) continue;
         ++count;
         same_direction = (rec[k] & 1U) == dir;
@@ -359,30 +484,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     s.euler = s.used_nodes - s.edges + nfaces;
     s.euler_expected = 2 * s.components - s.boundary_loops - s.pinch_nodes;
   }
-  // face_edge[half-edge of a face] = its edge, signed by direction (~edge when it runs b -> a).
-  std::vector<std::int64_t> face_start;
-  std::vector<std::int64_t> face_edge;
-  if (per_edge_areas) {
-    face_start.assign(static_cast<std::size_t>(nfaces) + 1, 0);
-    for (std::int64_t f = 0; f < nfaces; ++f)
-      face_start[static_cast<std::size_t>(f) + 1] = face_start[static_cast<std::size_t>(f)] + face_size(f);
-    face_edge.resize(static_cast<std::size_t>(face_start.back()));
-    for (std::int64_t f = 0; f < nfaces; ++f) {
-      const int n = face_size(f);
-      for (int v = 0; v < n; ++v) {
-        const NodeId a = face_node(f, v), b = face_node(f, (v + 1) % n);
-        const auto lo = static_cast<std::size_t>(std::min(a, b));
-        const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-        auto h = static_cast<std::size_t>(start[lo]);
-        while ((rec[h] >> 32) != hi) ++h;  // the edge is in lo's bucket
-        const auto e = static_cast<std::int64_t>(rec_edge[h]);
-        face_edge[static_cast<std::size_t>(face_start[static_cast<std::size_t>(f)] + v)] = a < b ? e : ~e;
-      }
-    }
-  }
-  std::vector<std::uint32_t>().swap(rec_edge);
-  std::vector<std::uint64_t>().swap(rec);
-  std::vector<std::int64_t>().swap(start);
+  half = Buckets<std::uint64_t>();
 
   FiniteChecks finite;
   const auto node_where = [&](std::int64_t k) {
@@ -391,9 +493,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
                        m.lat_deg[n]);
   };
   if (m.lon_deg.size() == nn && m.lat_deg.size() == nn) {
-    finite.values("node longitude", m.lon_deg, node_where);
-    finite.values("node latitude", m.lat_deg, node_where);
-    if (m.depth_m.size() == nn) finite.values("node depth", m.depth_m, node_where);
+    if (!all_finite(m.lon_deg)) finite.values("node longitude", m.lon_deg, node_where);
+    if (!all_finite(m.lat_deg)) finite.values("node latitude", m.lat_deg, node_where);
+    if (m.depth_m.size() == nn && !all_finite(m.depth_m)) finite.values("node depth", m.depth_m, node_where);
   }
   s.non_finite = finite.failures();
   if (!options.geodesic) return s;
@@ -424,12 +526,65 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     return fmt::format("lattice row J = {} (φ = {:.17g}° in the lattice frame)", j, lat.lat_of(j));
   });
   const auto nsquares = static_cast<std::int64_t>(m.squares.size());
-  std::vector<double> square_m2(static_cast<std::size_t>(nsquares));
+  FillVector<double> square_m2(static_cast<std::size_t>(nsquares));
   const double density_scale = ell.EquatorialRadius() * ell.EquatorialRadius() * (1.0 - e2);
-  std::vector<double> quadrature_error(m.rotation.enabled ? static_cast<std::size_t>(nsquares) : 0);
+  FillVector<double> quadrature_error(m.rotation.enabled ? static_cast<std::size_t>(nsquares) : 0);
+  // Rotated: 3×3 Gauss–Legendre; |3×3 − 2×2| bounds the error (the 2×2 rule's error, far above the
+  // 3×3's). The density needs only sin φ = z of the geographic unit vector: a dot product of the
+  // rotation's last row with (cos φ' cos λ', cos φ' sin λ', sin φ'), where sin φ' is the quadrature
+  // coordinate itself and cos φ' = √(1 − sin² φ'). The quadrature nodes u (across the columns) and
+  // v (across the rows) take the 5 values of kNode (the 2×2 rule's, then the 3×3 rule's), and the
+  // squares of a level sit on a grid of their side, so cos/sin λ' of the columns and sin/cos φ' of
+  // the rows are tabled once per level (grid_cos_sin below) instead of once per square.
+  constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
+  constexpr std::array<double, 5> kNode{-kG2, kG2, -kG3, 0.0, kG3};
+  constexpr std::array<double, 3> kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  // cos/sin λ' of node u (-1..1) across the square of `side` pixels whose west side is at I = i0.
+  const auto column = [&](std::int64_t i0, std::int64_t side, double u, double& c, double& sn) {
+    const double rlon =
+        lat.lon0_deg + (static_cast<double>(i0) + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
+    c = std::cos(rlon * kDegToRad);
+    sn = std::sin(rlon * kDegToRad);
+  };
+  // sin/cos φ' of node v (-1..1) across the square of `side` pixels whose south side is at J = j0.
+  const auto row = [&](std::int64_t j0, std::int64_t side, double v, double& sr, double& cr) {
+    const double s0 = sin_xi[static_cast<std::size_t>(j0)], s1 = sin_xi[static_cast<std::size_t>(j0 + side)];
+    sr = std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0);
+    cr = std::sqrt((1.0 - sr) * (1.0 + sr));
+  };
+  // grid_cos_sin[(grid_first[l] + n) · 5 + k]: column n of level l (I = n·side) at node k, then
+  // row n (J = n·side) after all the columns: {cos λ', sin λ'} and {sin φ', cos φ'}.
+  std::vector<std::int64_t> grid_first(2 * static_cast<std::size_t>(levels + 1) + 1, 0);
+  std::vector<std::array<double, 2>> grid_cos_sin;
+  if (m.rotation.enabled) {
+    for (int axis = 0; axis < 2; ++axis) {
+      for (int l = 0; l <= levels; ++l) {
+        const auto k = static_cast<std::size_t>(axis * (levels + 1) + l);
+        grid_first[k + 1] = grid_first[k] + (axis == 0 ? lat.nx : lat.ny) / lat.pixels_per_square(l);
+      }
+    }
+    grid_cos_sin.resize(static_cast<std::size_t>(grid_first.back()) * kNode.size());
+    const std::int64_t cells = grid_first.back();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(cells * 64)) \
+    shared(grid_first, grid_cos_sin, cells, levels, lat, kNode, column, row) schedule(static)
+    for (std::int64_t c = 0; c < cells; ++c) {
+      int k = 0;
+      while (grid_first[static_cast<std::size_t>(k) + 1] <= c) ++k;
+      const int axis = k / (levels + 1), l = k % (levels + 1);
+      const std::int64_t side = lat.pixels_per_square(l), at = (c - grid_first[static_cast<std::size_t>(k)]) * side;
+      for (std::size_t n = 0; n < kNode.size(); ++n) {
+        auto& cs = grid_cos_sin[static_cast<std::size_t>(c) * kNode.size() + n];
+        if (axis == 0)
+          column(at, side, kNode[n], cs[0], cs[1]);
+        else
+          row(at, side, kNode[n], cs[0], cs[1]);
+      }
+    }
+  }
   const auto square_area = [&](std::int64_t q) {
     const auto qq = static_cast<std::size_t>(q);
-    const std::int64_t side = lat.pixels_per_square(m.square_level[qq]);
+    const int level = m.square_level[qq];
+    const std::int64_t side = lat.pixels_per_square(level);
     const std::int64_t j0 = m.node_j[static_cast<std::size_t>(m.squares[qq][0])];
     const double s0 = sin_xi[static_cast<std::size_t>(j0)], s1 = sin_xi[static_cast<std::size_t>(j0 + side)];
     const double dlam = static_cast<double>(side) * pixel_rad;
@@ -437,41 +592,36 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       square_m2[qq] = rq2 * dlam * (s1 - s0);
       return;
     }
-    // 3×3 Gauss–Legendre; |3×3 − 2×2| bounds the error (the 2×2 rule's error, far above the 3×3's).
-    // The density needs only sin φ = z of the geographic unit vector: a dot product of the rotation's
-    // last row with (cos φ' cos λ', cos φ' sin λ', sin φ'), where sin φ' is the quadrature
-    // coordinate itself and cos φ' = √(1 − sin² φ'); cos/sin λ' once per quadrature column.
-    const double i0 = static_cast<double>(m.node_i[static_cast<std::size_t>(m.squares[qq][0])]);
-    constexpr double kG2 = 0.57735026918962576, kG3 = 0.7745966692414834;  // 1/√3, √(3/5)
-    constexpr std::array<double, 3> kX3{-kG3, 0.0, kG3}, kW3{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-    constexpr std::array<double, 2> kX2{-kG2, kG2};
-    const auto column = [&](double u, double& c, double& sn) {  // u in [-1, 1] across the square
-      const double rlon = lat.lon0_deg + (i0 + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
-      c = std::cos(rlon * kDegToRad);
-      sn = std::sin(rlon * kDegToRad);
-    };
-    const auto density = [&](double cl, double sl, double v) {  // v in [-1, 1] across the square
-      const double sr = std::clamp(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * v, -1.0, 1.0);
-      const double sp = rot.geographic_sin_lat(cl, sl, std::sqrt((1.0 - sr) * (1.0 + sr)), sr);
+    const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.squares[qq][0])];
+    std::array<std::array<double, 2>, 5> lon{}, phi{};  // cos/sin λ', sin/cos φ' at the nodes
+    const auto col_k = static_cast<std::size_t>(level), row_k = static_cast<std::size_t>(levels + 1 + level);
+    if (i0 % side == 0 && j0 % side == 0 && level <= levels && grid_first[col_k] + i0 / side < grid_first[col_k + 1] &&
+        grid_first[row_k] + j0 / side < grid_first[row_k + 1]) {
+      const auto* c = &grid_cos_sin[static_cast<std::size_t>(grid_first[col_k] + i0 / side) * kNode.size()];
+      const auto* r = &grid_cos_sin[static_cast<std::size_t>(grid_first[row_k] + j0 / side) * kNode.size()];
+      std::copy(c, c + kNode.size(), lon.begin());
+      std::copy(r, r + kNode.size(), phi.begin());
+    } else {  // not on its level's grid (not a quadtree leaf): directly
+      for (std::size_t n = 0; n < kNode.size(); ++n) {
+        column(i0, side, kNode[n], lon[n][0], lon[n][1]);
+        row(j0, side, kNode[n], phi[n][0], phi[n][1]);
+      }
+    }
+    const auto density = [&](std::size_t u, std::size_t v) {  // at nodes kNode[u], kNode[v]
+      const double sp = rot.geographic_sin_lat(lon[u][0], lon[u][1], phi[v][1], phi[v][0]);
       const double d = 1.0 - e2 * sp * sp;
       return density_scale / (d * d);
     };
     double q2 = 0.0, q3 = 0.0;
-    for (const double u : kX2) {
-      double cl = 0.0, sl = 0.0;
-      column(u, cl, sl);
-      for (const double v : kX2) q2 += density(cl, sl, v);
-    }
-    for (std::size_t a = 0; a < 3; ++a) {
-      double cl = 0.0, sl = 0.0;
-      column(kX3[a], cl, sl);
-      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(cl, sl, kX3[b]);
-    }
+    for (std::size_t u = 0; u < 2; ++u)
+      for (std::size_t v = 0; v < 2; ++v) q2 += density(u, v);
+    for (std::size_t a = 0; a < 3; ++a)
+      for (std::size_t b = 0; b < 3; ++b) q3 += kW3[a] * kW3[b] * density(2 + a, 2 + b);
     const double cell = 0.25 * dlam * (s1 - s0);
     square_m2[qq] = q3 * cell;
     quadrature_error[qq] = std::fabs(q3 - q2) * cell;
   };
-#pragma omp parallel for default(none) if (m.rotation.enabled && quadtree::parallel_worth(nsquares * 64)) \
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nsquares * (m.rotation.enabled ? 64 : 4))) \
     shared(nsquares, square_area) schedule(static)
   for (std::int64_t q = 0; q < nsquares; ++q) square_area(q);
   double filled_m2 = 0.0;
@@ -494,19 +644,45 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // fitted to a run. It is twice the sum of these bounds, relative to the filled area.
   double bound_m2 = 0.0;
   {
+    // Per boundary edge the two lenses (0 where one does not apply: the terms are never negative,
+    // so adding +0 changes nothing), in parallel; summed below in edge order.
     const double a2 = ell.EquatorialRadius() * ell.EquatorialRadius();
-    for (const auto& be : m.boundary_edges) {
-      if (be[0] < 0 || be[1] < 0 || be[0] >= s.nodes || be[1] >= s.nodes) continue;
+    const auto nbe = static_cast<std::int64_t>(m.boundary_edges.size());
+    // cos/sin of each row's lattice latitude, once per row (a Mercator row's latitude is not cheap).
+    const std::int64_t rows = lat.ny + 1;
+    std::vector<std::array<double, 2>> row_cos_sin(static_cast<std::size_t>(rows));
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * 64)) shared(lat, row_cos_sin, rows) \
+    schedule(static)
+    for (std::int64_t j = 0; j < rows; ++j) {
+      const double phi = lat.lat_of(j) * kDegToRad;
+      row_cos_sin[static_cast<std::size_t>(j)] = {std::cos(phi), std::sin(phi)};
+    }
+    const auto cos_sin_row = [&](std::int64_t j) {
+      if (j >= 0 && j < rows) return row_cos_sin[static_cast<std::size_t>(j)];
+      const double phi = lat.lat_of(j) * kDegToRad;  // not a lattice row (a broken mesh)
+      return std::array<double, 2>{std::cos(phi), std::sin(phi)};
+    };
+    FillVector<std::array<double, 2>> lens(static_cast<std::size_t>(nbe));
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nbe * 16)) \
+    shared(m, lens, nbe, nodes, nx, pixel_rad, a2, e2, cos_sin_row) schedule(static)
+    for (std::int64_t k = 0; k < nbe; ++k) {
+      const auto& be = m.boundary_edges[static_cast<std::size_t>(k)];
+      auto& term = lens[static_cast<std::size_t>(k)];
+      term = {0.0, 0.0};
+      if (be[0] < 0 || be[1] < 0 || be[0] >= nodes || be[1] >= nodes) continue;
       const auto na = static_cast<std::size_t>(be[0]), nb = static_cast<std::size_t>(be[1]);
       std::int64_t di = std::abs(m.node_i[nb] - m.node_i[na]);
       di = std::min(di, nx - di);
       const std::int64_t dj = std::abs(m.node_j[nb] - m.node_j[na]);
-      const double phi = lat.lat_of(m.node_j[na]) * kDegToRad;
+      const auto [cos_phi, sin_phi] = cos_sin_row(m.node_j[na]);
       const double dlam = static_cast<double>(di) * pixel_rad;
-      const double len = std::max(dlam * std::cos(phi), static_cast<double>(dj) * pixel_rad);
-      if (dj == 0)
-        bound_m2 += a2 * dlam * dlam * dlam * std::fabs(std::sin(phi)) * std::cos(phi) * std::cos(phi) / 12.0;
-      bound_m2 += e2 * a2 * len * len * len / 4.0;
+      const double len = std::max(dlam * cos_phi, static_cast<double>(dj) * pixel_rad);
+      if (dj == 0) term[0] = a2 * dlam * dlam * dlam * std::fabs(sin_phi) * cos_phi * cos_phi / 12.0;
+      term[1] = e2 * a2 * len * len * len / 4.0;
+    }
+    for (const auto& term : lens) {  // serial: the same sum for any thread count
+      bound_m2 += term[0];
+      bound_m2 += term[1];
     }
     for (const double e : quadrature_error) bound_m2 += e;
     bound_m2 +=
@@ -546,8 +722,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   };
 
   // Element areas.
-  std::vector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
-  std::vector<double> area(static_cast<std::size_t>(nfaces));
+  FillVector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
+  FillVector<double> area(static_cast<std::size_t>(nfaces));
   if (memo) {
     std::vector<std::int32_t> shape_id(729, -1);
     std::vector<std::int32_t> shapes;
@@ -600,9 +776,9 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     //    s = d (1 + d² / (24 ρ²)) (within 1e-9 relative of the geodesic in the same test).
     // Boundary edges, which the total area and its check rest on, and longer edges are geodesics.
     const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
-    edge_s12.assign(static_cast<std::size_t>(s.edges), 0.0);
-    edge_S12.assign(static_cast<std::size_t>(s.edges), 0.0);
-    const std::int64_t nedges_all = s.edges;
+    edge_s12.resize(static_cast<std::size_t>(s.edges));  // every edge written below
+    edge_S12.resize(static_cast<std::size_t>(s.edges));
+    [[maybe_unused]] const std::int64_t nedges_all = s.edges;  // in the OpenMP clause only
     constexpr double kShortEdgeM = 45000.0;
     const double a_eq = ell.EquatorialRadius(), ecc = std::sqrt(e2);
     const double c2 = rq2;  // the authalic radius squared
@@ -612,7 +788,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     const double qp = q_of(1.0);
     // Per node: tan(β/2) and the ECEF position.
     const auto nnodes = static_cast<std::int64_t>(nn);
-    std::vector<double> tb(nn), ecef(3 * nn);
+    FillVector<double> tb(nn), ecef(3 * nn);
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nnodes * 16)) \
     shared(m, tb, ecef, nnodes, q_of, qp, a_eq, e2) schedule(static)
     for (std::int64_t v = 0; v < nnodes; ++v) {
@@ -626,39 +802,43 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       ecef[3 * k + 1] = n * cp * std::sin(lam);
       ecef[3 * k + 2] = n * (1.0 - e2) * sp;
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 64))                   \
-    shared(m, geod, edge_a, edge_b, edge_inner, edge_s12, edge_S12, nedges_all, tb, ecef, c2, a_eq, e2) \
-        schedule(dynamic, 256)
-    for (std::int64_t e = 0; e < nedges_all; ++e) {
-      const auto k = static_cast<std::size_t>(e);
-      const auto a = static_cast<std::size_t>(edge_a[k]), b = static_cast<std::size_t>(edge_b[k]);
-      if (edge_inner[k] != 0) {
-        const double dx = ecef[3 * b] - ecef[3 * a], dy = ecef[3 * b + 1] - ecef[3 * a + 1],
-                     dz = ecef[3 * b + 2] - ecef[3 * a + 2];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < kShortEdgeM * kShortEdgeM) {
-          // The local frame at node a from its ECEF position (geocentric: the direction and the
-          // latitude enter only the small curvature term).
-          const double x = ecef[3 * a], y = ecef[3 * a + 1], z = ecef[3 * a + 2];
-          const double p2 = x * x + y * y, p = std::sqrt(p2), r = std::sqrt(p2 + z * z);
-          const double east = p > 0.0 ? (-y * dx + x * dy) / p : dx;
-          const double north = p > 0.0 ? (-z * (x * dx + y * dy) / p + p * dz) / r : dy;
-          const double sp = z / r;
-          const double w2 = 1.0 - e2 * sp * sp;
-          const double inv_m = w2 * std::sqrt(w2) / (a_eq * (1.0 - e2)), inv_n = std::sqrt(w2) / a_eq;
-          const double h2 = east * east + north * north;
-          const double inv_rho = h2 > 0.0 ? (north * north * inv_m + east * east * inv_n) / h2 : inv_n;
-          edge_s12[k] = std::sqrt(d2) * (1.0 + d2 * inv_rho * inv_rho / 24.0);
-          double dlam = m.lon_deg[b] - m.lon_deg[a];
-          dlam = (dlam > 180.0 ? dlam - 360.0 : dlam <= -180.0 ? dlam + 360.0 : dlam) * kDegToRad;
-          edge_S12[k] = c2 * 2.0 * std::atan2(std::tan(0.5 * dlam) * (tb[a] + tb[b]), 1.0 + tb[a] * tb[b]);
-          continue;
+    // The edges of node a (the smaller node) are edge_first[a] .. edge_first[a + 1]: the frame at a
+    // is set up once for all of them.
+    const std::int64_t* first_edge = edge_first.data();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges_all * 64)) shared( \
+    m, geod, edge_b, edge_inner, edge_s12, edge_S12, first_edge, nnodes, tb, ecef, c2, a_eq, e2) schedule(dynamic, 64)
+    for (std::int64_t node = 0; node < nnodes; ++node) {
+      const auto a = static_cast<std::size_t>(node);
+      // The local frame at node a from its ECEF position (geocentric: the direction and the
+      // latitude enter only the small curvature term).
+      const double x = ecef[3 * a], y = ecef[3 * a + 1], z = ecef[3 * a + 2];
+      const double p2 = x * x + y * y, p = std::sqrt(p2), r = std::sqrt(p2 + z * z);
+      const double sp = z / r;
+      const double w2 = 1.0 - e2 * sp * sp;
+      const double inv_m = w2 * std::sqrt(w2) / (a_eq * (1.0 - e2)), inv_n = std::sqrt(w2) / a_eq;
+      for (std::int64_t e = first_edge[node]; e < first_edge[node + 1]; ++e) {
+        const auto k = static_cast<std::size_t>(e);
+        const auto b = static_cast<std::size_t>(edge_b[k]);
+        if (edge_inner[k] != 0) {
+          const double dx = ecef[3 * b] - x, dy = ecef[3 * b + 1] - y, dz = ecef[3 * b + 2] - z;
+          const double d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 < kShortEdgeM * kShortEdgeM) {
+            const double east = p > 0.0 ? (-y * dx + x * dy) / p : dx;
+            const double north = p > 0.0 ? (-z * (x * dx + y * dy) / p + p * dz) / r : dy;
+            const double h2 = east * east + north * north;
+            const double inv_rho = h2 > 0.0 ? (north * north * inv_m + east * east * inv_n) / h2 : inv_n;
+            edge_s12[k] = std::sqrt(d2) * (1.0 + d2 * inv_rho * inv_rho / 24.0);
+            double dlam = m.lon_deg[b] - m.lon_deg[a];
+            dlam = (dlam > 180.0 ? dlam - 360.0 : dlam <= -180.0 ? dlam + 360.0 : dlam) * kDegToRad;
+            edge_S12[k] = c2 * 2.0 * std::atan2(std::tan(0.5 * dlam) * (tb[a] + tb[b]), 1.0 + tb[a] * tb[b]);
+            continue;
+          }
         }
+        double azi1 = 0.0, azi2 = 0.0, m12 = 0.0, mm12 = 0.0, mm21 = 0.0;
+        geod.GenInverse(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b],
+                        GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AREA, edge_s12[k], azi1, azi2, m12,
+                        mm12, mm21, edge_S12[k]);
       }
-      double azi1 = 0.0, azi2 = 0.0, m12 = 0.0, mm12 = 0.0, mm21 = 0.0;
-      geod.GenInverse(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b],
-                      GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AREA, edge_s12[k], azi1, azi2, m12,
-                      mm12, mm21, edge_S12[k]);
     }
     const double area0 = geod.EllipsoidArea();
     const auto face_area = [&](std::int64_t t) {
@@ -667,7 +847,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       int crossings = 0;
       for (int v = 0; v < n; ++v) {
         const NodeId a = face_node(t, v), b = face_node(t, (v + 1) % n);
-        const std::int64_t e = face_edge[static_cast<std::size_t>(face_start[static_cast<std::size_t>(t)] + v)];
+        const std::int64_t e = face_edge[static_cast<std::size_t>(face_first(t) + v)];
         sum += e >= 0 ? edge_S12[static_cast<std::size_t>(e)] : -edge_S12[static_cast<std::size_t>(~e)];
         crossings += polygon_transit(m.lon_deg[static_cast<std::size_t>(a)], m.lon_deg[static_cast<std::size_t>(b)]);
       }
@@ -677,6 +857,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     schedule(static)
     for (std::int64_t t = 0; t < nfaces; ++t) area[static_cast<std::size_t>(t)] = face_area(t);
   }
+  FillVector<std::int64_t>().swap(edge_first);
   const auto face_where = [&](std::int64_t t) {
     std::string w = fmt::format("{} {} (level {}), nodes", square_faces ? "square" : "triangle", t, face_level(t));
     for (int k = 0; k < face_size(t); ++k) {
@@ -687,9 +868,14 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
     return w;
   };
-  finite.values(square_faces ? "geodesic square area (m²)" : "geodesic triangle area (m²)", area, face_where);
   double total_m2 = 0.0;
-  for (const double a : area) total_m2 += a;  // serial: the same sum for any thread count
+  bool areas_finite = true;
+  for (const double a : area) {  // serial: the same sum for any thread count
+    total_m2 += a;
+    areas_finite = areas_finite && std::isfinite(a);
+  }
+  if (!areas_finite)
+    finite.values(square_faces ? "geodesic square area (m²)" : "geodesic triangle area (m²)", area, face_where);
   s.triangle_area_km2 = total_m2 * 1e-6;
   finite.scalar("total triangle area (km²)", s.triangle_area_km2, "the sum over all triangles");
   finite.scalar("filled area of the lattice cells (km²)", s.filled_area_km2, "the sum over all squares");
@@ -702,13 +888,14 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
 
   // Edge lengths, memoised by (level, row, shape) of a triangle holding the edge.
   const auto nedges = s.edges;
-  std::vector<double> length(static_cast<std::size_t>(nedges));
+  FillVector<double> length;
   const auto direct_length = [&](std::int64_t e) {
     const auto a = static_cast<std::size_t>(edge_a[static_cast<std::size_t>(e)]);
     const auto b = static_cast<std::size_t>(edge_b[static_cast<std::size_t>(e)]);
     return distance_m(m.lat_deg[a], m.lon_deg[a], m.lat_deg[b], m.lon_deg[b]);
   };
   if (memo) {
+    length.resize(static_cast<std::size_t>(nedges));  // every edge written below
     const std::int64_t cells = row_offset.back() * 81;
     std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
     std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
@@ -747,26 +934,45 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     length = std::move(edge_s12);  // solved with the areas above
   }
 
-  finite.values("geodesic edge length (m)", length, [&](std::int64_t e) {
-    const auto k = static_cast<std::size_t>(e);
-    return fmt::format("edge {} between {} and {}", e, node_where(edge_a[k]), node_where(edge_b[k]));
-  });
+  if (!all_finite(length)) {
+    finite.values("geodesic edge length (m)", length, [&](std::int64_t e) {
+      const auto k = static_cast<std::size_t>(e);
+      return fmt::format("edge {} between {} and {}", e, node_where(edge_a[k]), node_where(edge_b[k]));
+    });
+  }
   s.non_finite = finite.failures();
 
-  // Per level.
+  // Per level: the areas and lengths grouped by level in face and edge order (levels outside 0..L
+  // are not counted), then the min, median and max of each group, the groups in parallel.
+  const std::int64_t nlevels = levels + 1;
+  Buckets<double> area_of = stable_buckets<double>(nfaces, nlevels, 2, [&](std::int64_t t, const auto& emit) {
+    const int l = face_level(t);
+    if (l <= levels) emit(l, area[static_cast<std::size_t>(t)]);
+  });
+  Buckets<double> length_of = stable_buckets<double>(nedges, nlevels, 2, [&](std::int64_t e, const auto& emit) {
+    const int l = edge_level[static_cast<std::size_t>(e)];
+    if (l <= levels) emit(l, length[static_cast<std::size_t>(e)]);
+  });
+  // Group g: level L − g/2, areas for even g, lengths for odd g (the finest, largest groups first).
+  std::vector<std::array<double, 3>> extremes(2 * static_cast<std::size_t>(nlevels));
+  const std::int64_t groups = 2 * nlevels;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces + nedges)) \
+    shared(area_of, length_of, extremes, groups, levels) schedule(dynamic, 1)
+  for (std::int64_t g = 0; g < groups; ++g) {
+    Buckets<double>& b = g % 2 == 0 ? area_of : length_of;  // each group reordered in place by one thread
+    const auto l = static_cast<std::size_t>(levels - g / 2);
+    extremes[static_cast<std::size_t>(g)] = min_median_max(
+        std::span<double>(b.values.data() + b.start[l], static_cast<std::size_t>(b.start[l + 1] - b.start[l])));
+  }
   for (int l = 0; l <= levels; ++l) {
-    std::vector<double> a, len;
-    for (std::int64_t t = 0; t < nfaces; ++t)
-      if (face_level(t) == l) a.push_back(area[static_cast<std::size_t>(t)]);
-    if (a.empty()) continue;
-    for (std::int64_t e = 0; e < nedges; ++e)
-      if (edge_level[static_cast<std::size_t>(e)] == l) len.push_back(length[static_cast<std::size_t>(e)]);
+    const auto k = static_cast<std::size_t>(l);
+    if (area_of.start[k + 1] == area_of.start[k]) continue;
+    const auto& am = extremes[static_cast<std::size_t>(2 * (levels - l))];
+    const auto& lm = extremes[static_cast<std::size_t>(2 * (levels - l) + 1)];
     LevelStatistics ls;
     ls.level = l;
-    ls.triangles = static_cast<std::int64_t>(a.size());
-    ls.edges = static_cast<std::int64_t>(len.size());
-    const auto am = min_median_max(a);
-    const auto lm = min_median_max(len);
+    ls.triangles = area_of.start[k + 1] - area_of.start[k];
+    ls.edges = length_of.start[k + 1] - length_of.start[k];
     ls.area_min_m2 = am[0];
     ls.area_median_m2 = am[1];
     ls.area_max_m2 = am[2];

@@ -15,7 +15,9 @@
 
 #include "core/error.hpp"
 #include "core/types.hpp"
+#include "mesh/buckets.hpp"
 #include "mesh_files/geographic_mesh.hpp"
+#include "quadtree/parallel.hpp"
 
 namespace aq::io {
 
@@ -125,6 +127,36 @@ double round_to(double v, double per_unit) { return std::isfinite(v) ? std::roun
 // JSON has no infinity: an infinite ratio (next to a zero-area triangle) is written as null.
 Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+// Largest area ratio of each triangle of tri[0 .. nt) to its edge neighbours, 1 without neighbours
+// (neighbour area ratio of sphere_quality.hpp); ar: the triangles' areas. The triangles round each
+// node are listed in triangle order (mesh/buckets.hpp), numbered by Id.
+template <class Id>
+void neighbour_area_ratios(const std::array<NodeId, 3>* tri, std::int64_t nt, std::int64_t nn, const double* ar,
+                           float* ratio) {
+  const mesh::Buckets<Id> around = mesh::stable_buckets<Id>(nt, nn, 4, [tri](std::int64_t t, const auto& emit) {
+    for (const NodeId v : tri[t]) emit(v, static_cast<Id>(t));
+  });
+  const std::int64_t* fp = around.start.data();
+  const Id* ap = around.values.data();
+#pragma omp parallel for schedule(static) default(none) shared(nt, tri, fp, ap, ar, ratio) if (nt >= kParallelMin)
+  for (std::int64_t t = 0; t < nt; ++t) {
+    const auto& v = tri[t];
+    double worst = 1.0;
+    for (int e = 0; e < 3; ++e) {
+      const NodeId a = v[e], b = v[(e + 1) % 3];
+      for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
+        const std::int64_t u = ap[k];
+        if (u == t) continue;
+        const auto& w = tri[u];
+        if (w[0] != b && w[1] != b && w[2] != b) continue;
+        const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
+        worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
+      }
+    }
+    ratio[t] = static_cast<float>(worst);
+  }
+}
+
 }  // namespace
 
 std::vector<float> order_statistics(const std::vector<float>& values, const std::vector<double>& qs) {
@@ -150,11 +182,18 @@ float order_statistic(const std::vector<float>& values, double q) { return order
 TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   const auto nn = static_cast<std::int64_t>(m.lon_deg.size());
   const auto nt = static_cast<std::int64_t>(m.triangles.size());
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t)
-      if (v < 0 || v >= nn) throw InternalError(fmt::format("triangle_shapes: node {} out of range", v));
+  const auto* tri = m.triangles.data();
+  {  // the first node out of range in triangle order, searched in parallel
+    std::int64_t bad = 3 * nt;
+#pragma omp parallel for schedule(static) default(none) shared(nt, nn, tri) reduction(min : bad) if (nt >= kParallelMin)
+    for (std::int64_t k = 0; k < 3 * nt; ++k) {
+      const NodeId v = tri[k / 3][k % 3];
+      if (v < 0 || v >= nn) bad = std::min(bad, k);
+    }
+    if (bad < 3 * nt) throw InternalError(fmt::format("triangle_shapes: node {} out of range", tri[bad / 3][bad % 3]));
+  }
 
-  std::vector<Vec3> p(static_cast<std::size_t>(nn));
+  mesh::FillVector<Vec3> p(static_cast<std::size_t>(nn));  // every node written below
   {
     const double* lon = m.lon_deg.data();
     const double* lat = m.lat_deg.data();
@@ -165,12 +204,15 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
 
   TriangleShapes s;
   const auto un = static_cast<std::size_t>(nt);
-  s.min_angle_deg.resize(un);
-  s.edge_ratio.resize(un);
-  s.neighbour_area_ratio.resize(un);
-  s.size_km.resize(un);
-  std::vector<double> area(un);
-  const auto* tri = m.triangles.data();
+  {  // resize zeroes the arrays (their first touch): the four spread over the threads
+    const std::array<std::vector<float>*, 4> arrays{&s.min_angle_deg, &s.edge_ratio, &s.neighbour_area_ratio,
+                                                    &s.size_km};
+    const int blocks = std::min(4, nt >= kParallelMin ? thread_count() : 1);
+    quadtree::for_each_block(4, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+      for (std::int64_t k = begin; k < end; ++k) arrays[static_cast<std::size_t>(k)]->resize(un);
+    });
+  }
+  mesh::FillVector<double> area(un);  // every triangle written below
   const Vec3* pp = p.data();
   double* ar = area.data();
   float* min_angle = s.min_angle_deg.data();
@@ -188,37 +230,11 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     size[t] = static_cast<float>((e0 + e1 + e2) / 3.0 * kAuthalicRadiusKm);
     ar[t] = std::abs(spherical_triangle_area(a, b, c));
   }
-  // Triangles round each node (CSR): for the edge neighbours.
-  std::vector<std::int64_t> first(static_cast<std::size_t>(nn) + 1, 0);
-  for (const auto& t : m.triangles)
-    for (const NodeId v : t) ++first[static_cast<std::size_t>(v) + 1];
-  for (std::size_t k = 1; k < first.size(); ++k) first[k] += first[k - 1];
-  std::vector<std::int64_t> around(static_cast<std::size_t>(first.back()));
-  {
-    std::vector<std::int64_t> fill(first.begin(), first.end() - 1);
-    for (std::int64_t t = 0; t < nt; ++t)
-      for (const NodeId v : m.triangles[static_cast<std::size_t>(t)]) around[static_cast<std::size_t>(fill[v]++)] = t;
-  }
-  const std::int64_t* fp = first.data();
-  const std::int64_t* ap = around.data();
-  float* ratio = s.neighbour_area_ratio.data();
-#pragma omp parallel for schedule(static) default(none) shared(nt, tri, fp, ap, ar, ratio) if (nt >= kParallelMin)
-  for (std::int64_t t = 0; t < nt; ++t) {
-    const auto& v = tri[t];
-    double worst = 1.0;
-    for (int e = 0; e < 3; ++e) {
-      const NodeId a = v[e], b = v[(e + 1) % 3];
-      for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
-        const std::int64_t u = ap[k];
-        if (u == t) continue;
-        const auto& w = tri[u];
-        if (w[0] != b && w[1] != b && w[2] != b) continue;
-        const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
-        worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
-      }
-    }
-    ratio[t] = static_cast<float>(worst);
-  }
+  // Triangle numbers of 32 bits when they fit: half the memory of the lists round the nodes.
+  if (nt < (std::int64_t{1} << 31))
+    neighbour_area_ratios<std::int32_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
+  else
+    neighbour_area_ratios<std::int64_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
   return s;
 }
 

@@ -2,6 +2,7 @@
 // GeographicLib computations, and every check fails on a deliberately broken mesh.
 #include "mesh/statistics.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Geodesic.hpp>
@@ -13,7 +14,13 @@
 #include <utility>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.hpp"
 #include "quadtree/bits.hpp"
+#include "quadtree/parallel.hpp"
 #include "unit/mesh/mesh_fixtures.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
@@ -244,6 +251,30 @@ TEST(Statistics, ANonFiniteAreaFailsAndSaysWhere) {
     EXPECT_NE(f.front().find("node latitude is nan at node 7 (lattice I = "), std::string::npos) << f.front();
   }
   {
+    // With rotation the areas and lengths come from the nodes' λ, φ: the NaN spreads to the areas
+    // of the node's triangles and the lengths of its edges, each quantity reported once, at the
+    // first triangle / edge (whether there is one is checked in parallel).
+    const Lattice lattice = make_lattice(45.0, 3);
+    const Bitmap mask = random_mask(lattice.nx, lattice.ny, 3u, 0.6, 0.01, 8);
+    const PoleRotation greenland(-44.858333, 78.141667);
+    Mesh broken = build_all(mask, lattice, {}, {}, greenland, testing::synthetic_bathymetry()).mesh;
+    broken.rotation.enabled = true;
+    broken.rotation.pole_lon_deg = -44.858333;
+    broken.rotation.pole_lat_deg = 78.141667;
+    ASSERT_TRUE(compute_statistics(broken).failed_checks().empty());
+    const NodeId v = broken.triangles[40][1];
+    broken.lat_deg[static_cast<std::size_t>(v)] = std::nan("");
+    const auto f = compute_statistics(broken).failed_checks();
+    const auto has = [&](const std::string& text) {
+      return std::any_of(f.begin(), f.end(), [&](const std::string& x) { return x.find(text) != std::string::npos; });
+    };
+    EXPECT_TRUE(has(fmt::format("node latitude is nan at node {} ", v))) << ::testing::PrintToString(f);
+    EXPECT_TRUE(has("geodesic triangle area (m²) is nan at triangle ")) << ::testing::PrintToString(f);
+    EXPECT_TRUE(has("geodesic edge length (m) is -nan at edge ") || has("geodesic edge length (m) is nan at edge "))
+        << ::testing::PrintToString(f);
+    EXPECT_TRUE(has("total triangle area (km²) is nan")) << ::testing::PrintToString(f);
+  }
+  {
     Mesh broken = small_mesh();  // a NaN depth
     broken.depth_m[3] = std::nan("");
     const auto f = compute_statistics(broken, StatisticsOptions{false, 0.0}).failed_checks();
@@ -321,6 +352,50 @@ TEST(Statistics, AreaToleranceFollowsTheErrorModel) {
   }
 }
 
+// With rotation a lattice cell's area is a 3×3 Gauss–Legendre quadrature of the ellipsoid's area
+// density in (λ', sin φ'); compute_statistics tables the nodes' cos/sin λ' and sin/cos φ' per level.
+// Here every square is integrated on its own, the geographic latitude of each node from
+// PoleRotation::to_geographic: the totals agree to rounding, on a Mercator and a lon-lat lattice.
+TEST(Statistics, RotatedCellAreasAreTheirGaussLegendreQuadratures) {
+  const PoleRotation greenland(-44.858333, 78.141667);
+  const GeographicLib::Ellipsoid& ell = GeographicLib::Ellipsoid::WGS84();
+  const double a = ell.EquatorialRadius(), e2 = ell.EccentricitySq(), deg = std::acos(-1.0) / 180.0;
+  for (const bool mercator : {false, true}) {
+    const Lattice lat = mercator ? Lattice::make_mercator(10.0, 3, -180.0, 80.0) : make_lattice(10.0, 3);
+    const Bitmap m = random_mask(lat.nx, lat.ny, 9u, 0.6, 0.02, 6);
+    Mesh mesh = build_all(m, lat, {}, {}, greenland, testing::synthetic_bathymetry()).mesh;
+    mesh.rotation.enabled = true;
+    mesh.rotation.pole_lon_deg = -44.858333;
+    mesh.rotation.pole_lat_deg = 78.141667;
+    const MeshStatistics s = compute_statistics(mesh);
+    const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    double total_m2 = 0.0;
+    std::int64_t levels_seen = 0;
+    for (std::size_t q = 0; q < mesh.squares.size(); ++q) {
+      const std::int64_t side = lat.pixels_per_square(mesh.square_level[q]);
+      levels_seen |= std::int64_t{1} << mesh.square_level[q];
+      const auto sw = static_cast<std::size_t>(mesh.squares[q][0]);
+      const double i0 = static_cast<double>(mesh.node_i[sw]);
+      const double s0 = std::sin(lat.lat_of(mesh.node_j[sw]) * deg);
+      const double s1 = std::sin(lat.lat_of(mesh.node_j[sw] + side) * deg);
+      double sum = 0.0;
+      for (int u = 0; u < 3; ++u) {
+        for (int v = 0; v < 3; ++v) {
+          const double rlon = lat.lon0_deg + (i0 + 0.5 * static_cast<double>(side) * (1.0 + g[u])) * lat.pixel_deg();
+          const double rlat = std::asin(0.5 * (s0 + s1) + 0.5 * (s1 - s0) * g[v]) / deg;
+          double lon = 0.0, la = 0.0;
+          greenland.to_geographic(rlon, rlat, lon, la);
+          const double d = 1.0 - e2 * std::sin(la * deg) * std::sin(la * deg);
+          sum += w[u] * w[v] * a * a * (1.0 - e2) / (d * d);
+        }
+      }
+      total_m2 += sum * 0.25 * static_cast<double>(side) * lat.pixel_deg() * deg * (s1 - s0);
+    }
+    EXPECT_GE(std::popcount(static_cast<std::uint64_t>(levels_seen)), 3) << mercator;
+    EXPECT_NEAR(s.filled_area_km2 / (total_m2 * 1e-6), 1.0, 1e-12) << mercator;
+  }
+}
+
 // Found by the sweep: `mesh.elements = "squares"` always failed the checks ("nodes are in no
 // triangle", "triangle area 0 px²"). A squares-only mesh is now checked on its squares.
 TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
@@ -350,6 +425,123 @@ TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
     EXPECT_FALSE(compute_statistics(broken).failed_checks().empty());
   }
 }
+
+// The faces joined across interior edges, counted here by a plain serial union–find over an ordered
+// map of the edges (compute_statistics joins them concurrently while it walks the edge buckets).
+std::int64_t edge_connected_pieces(const Mesh& mesh) {
+  std::vector<std::int64_t> parent(static_cast<std::size_t>(mesh.triangle_count()));
+  for (std::size_t t = 0; t < parent.size(); ++t) parent[t] = static_cast<std::int64_t>(t);
+  const auto root = [&](std::int64_t x) {
+    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)];
+    return x;
+  };
+  std::map<std::pair<NodeId, NodeId>, std::vector<std::int64_t>> faces;
+  for (std::int64_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& tr = mesh.triangles[static_cast<std::size_t>(t)];
+    for (int k = 0; k < 3; ++k) {
+      const NodeId a = tr[static_cast<std::size_t>(k)], b = tr[static_cast<std::size_t>((k + 1) % 3)];
+      faces[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  }
+  for (const auto& [edge, f] : faces)
+    if (f.size() == 2) parent[static_cast<std::size_t>(root(f[0]))] = root(f[1]);
+  std::int64_t pieces = 0;
+  for (std::size_t t = 0; t < parent.size(); ++t)
+    pieces += root(static_cast<std::int64_t>(t)) == static_cast<std::int64_t>(t);
+  return pieces;
+}
+
+// Many separate basins: the component count equals the independent count above, with one thread
+// and with two (the mesh is large enough for the edge walk to run in parallel).
+TEST(Statistics, ComponentsAreTheEdgeConnectedPiecesForAnyThreadCount) {
+  const Lattice lat = make_lattice(10.0, 4);  // 576 × 288 pixels
+  const Bitmap m = random_mask(lat.nx, lat.ny, 11u, 0.3, 0.02, 5);
+  const Mesh mesh = build_all(m, lat, {}, {}, PoleRotation(), testing::synthetic_bathymetry()).mesh;
+  ASSERT_GE(mesh.node_count() * 16, quadtree::kParallelMinWork);
+  const std::int64_t want = edge_connected_pieces(mesh);
+  ASSERT_GT(want, 20);
+  for (const int threads : {1, 2}) {
+#ifdef _OPENMP
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+#endif
+    const MeshStatistics s = compute_statistics(mesh, StatisticsOptions{false, 0.0});
+#ifdef _OPENMP
+    omp_set_num_threads(saved);
+#endif
+    EXPECT_EQ(s.components, want) << threads << " threads";
+    EXPECT_EQ(s.euler, s.euler_expected) << threads << " threads";
+  }
+}
+
+// Node and square ids are checked before anything else, in parallel: the error names the first bad
+// id in triangle order, for one thread and for two.
+TEST(Statistics, OutOfRangeIdsThrowNamingTheFirstOne) {
+  const Lattice lat = make_lattice(5.0, 4);
+  const Bitmap m = random_mask(lat.nx, lat.ny, 7u, 0.6, 0.01, 8);
+  const Mesh good = build_all(m, lat, {}, {}, PoleRotation(), testing::synthetic_bathymetry()).mesh;
+  ASSERT_GE(good.triangle_count(), quadtree::kParallelMinWork);  // the searches run on two threads
+  Mesh bad_node = good, bad_square = good;
+  const auto last = static_cast<std::size_t>(good.triangle_count() - 1);
+  bad_node.triangles[last][1] = good.node_count() + 7;  // in the second thread's half
+  bad_node.triangles[last / 3][2] = -5;                 // the first in triangle order
+  bad_square.triangle_square[last] = -1;
+  bad_square.triangle_square[last / 2] = good.square_count();
+  for (const int threads : {1, 2}) {
+#ifdef _OPENMP
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+#endif
+    try {
+      (void)compute_statistics(bad_node);
+      ADD_FAILURE() << "no error for a node id out of range";
+    } catch (const InternalError& e) {
+      EXPECT_STREQ(e.what(), "mesh statistics: node id -5 out of range") << threads << " threads";
+    }
+    try {
+      (void)compute_statistics(bad_square);
+      ADD_FAILURE() << "no error for a square id out of range";
+    } catch (const InternalError& e) {
+      EXPECT_EQ(std::string(e.what()), fmt::format("mesh statistics: square id {} out of range", good.square_count()))
+          << threads << " threads";
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(saved);
+#endif
+  }
+}
+
+#ifdef _OPENMP
+// Every parallel loop (edge table, union–find, cell and element areas, per-level medians) must give
+// the report of the serial run, bit for bit: with and without rotation, triangles and squares, on
+// meshes large enough for the loops to run on two threads.
+TEST(Statistics, SameReportForOneAndTwoThreads) {
+  const PoleRotation greenland(-44.858333, 78.141667);
+  const Lattice lat = make_lattice(10.0, 4);  // 576 × 288 pixels
+  const Bitmap m = random_mask(lat.nx, lat.ny, 7u, 0.6, 0.01, 8);
+  for (const bool rotated : {false, true}) {
+    for (const char* elements : {"triangles", "squares"}) {
+      config::MeshOptions mo;
+      mo.elements = elements;
+      Mesh mesh = build_all(m, lat, {}, mo, rotated ? greenland : PoleRotation(), testing::synthetic_bathymetry()).mesh;
+      if (rotated) {
+        mesh.rotation.enabled = true;
+        mesh.rotation.pole_lon_deg = -44.858333;
+        mesh.rotation.pole_lat_deg = 78.141667;
+      }
+      ASSERT_GE(mesh.node_count() * 4, quadtree::kParallelMinWork);
+      const int saved = omp_get_max_threads();
+      omp_set_num_threads(1);
+      const MeshStatistics one = compute_statistics(mesh);
+      omp_set_num_threads(2);
+      const MeshStatistics two = compute_statistics(mesh);
+      omp_set_num_threads(saved);
+      EXPECT_TRUE(one.failed_checks().empty()) << rotated << " " << elements;
+      EXPECT_EQ(statistics_json(one).dump(), statistics_json(two).dump()) << rotated << " " << elements;
+    }
+  }
+}
+#endif
 
 TEST(Statistics, ReportSection) {
   const MeshStatistics s = compute_statistics(small_mesh());

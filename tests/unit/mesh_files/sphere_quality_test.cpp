@@ -136,5 +136,31 @@ TEST(SphereQuality, SameValuesForOneAndTwoThreads) {
   EXPECT_EQ(qa, qb);
 }
 
+// Node ids are checked first, in parallel: the error names the first bad id in triangle order.
+TEST(SphereQuality, ANodeOutOfRangeThrowsNamingTheFirstOne) {
+  const Lattice lat = Lattice::make(4.0, 4, -180.0);
+  auto m = testing::regular_band_mesh(lat, 100, 220);
+  ASSERT_GT(m.triangles.size(), 300000u);  // the search runs on two threads
+  const auto last = m.triangles.size() - 1;
+  m.triangles[last][0] = -3;
+  m.triangles[last / 4][2] = static_cast<NodeId>(m.lon_deg.size());
+  for (const int threads : {1, 2}) {
+#ifdef _OPENMP
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+#endif
+    try {
+      (void)triangle_shapes(m);
+      ADD_FAILURE() << "no error";
+    } catch (const InternalError& e) {
+      EXPECT_EQ(std::string(e.what()), "triangle_shapes: node " + std::to_string(m.lon_deg.size()) + " out of range")
+          << threads << " threads";
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(saved);
+#endif
+  }
+}
+
 }  // namespace
 }  // namespace aq::io
