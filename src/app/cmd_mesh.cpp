@@ -121,7 +121,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
     outputs.push_back(Json{{"file", f.name},
                            {"format", f.format},
                            {"bytes", f.stats.bytes},
-                           {kChecksumKey, f.checksum},
+                           {kChecksumKey, file_checksum(out.pending_path(f.name))},
                            {"seconds", std::round(f.seconds * 1000.0) / 1000.0}});
   }
   report["outputs"] = outputs;

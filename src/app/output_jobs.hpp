@@ -10,9 +10,7 @@
 // Only the calling thread logs: a line waits until every file before it is written. The first
 // failure in job order is rethrown, after both threads have stopped; the lines of the jobs
 // before it are logged (and the lines planned before the failing job), later ones are not, as
-// if the jobs had run one after another. Every file is also checksummed (file_checksum): the
-// extra thread's at once, the calling thread's by whichever thread is free first (the extra one
-// once its own jobs are done), so that the checksums cost the run no time of their own.
+// if the jobs had run one after another.
 #pragma once
 
 #include <cstdint>
@@ -39,7 +37,6 @@ struct WrittenFile {
   WriteStats stats;
   Facts facts;
   bool own_thread = false;  ///< written on the extra thread while the other files were written
-  std::string checksum;     ///< file_checksum of the written file (XXH64, 16 hex digits)
 };
 
 /// A log line held back until the files before it are written.
@@ -67,9 +64,7 @@ struct OutputJob {
 /// job its log_before lines and "output: <name> (<format>, <bytes> bytes, <seconds> s, <facts>)"
 /// (a step: the lines it returned), then `trailing`. With `concurrent` (and at least one job of each kind) the
 /// own_thread jobs run one after another on one extra thread while the others run on the calling thread; otherwise all
-/// run on the calling thread in order. Rethrows the first failure in job order (see above); a
-/// file that cannot be read back for its checksum throws what file_checksum throws, after the
-/// lines.
+/// run on the calling thread in order. Rethrows the first failure in job order (see above).
 std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const std::vector<LogLine>& trailing,
                                            bool concurrent, const Logger& log);
 

@@ -83,8 +83,6 @@ TEST(MeshOutputs, WritingUgridBesideTheOthersChangesNothingButTheThread) {
     EXPECT_EQ(con.files[k].bytes, seq.files[k].bytes) << seq.files[k].name;
     EXPECT_EQ(con.files[k].facts, seq.files[k].facts) << seq.files[k].name;
     EXPECT_TRUE(con.bytes[k] == seq.bytes[k]) << seq.files[k].name;
-    EXPECT_EQ(con.files[k].checksum, file_checksum(con.files[k].path)) << con.files[k].name;
-    EXPECT_EQ(con.files[k].checksum, seq.files[k].checksum) << seq.files[k].name;
     EXPECT_FALSE(seq.files[k].own_thread);
     EXPECT_EQ(con.files[k].own_thread, con.files[k].format == "ugrid") << con.files[k].name;
   }
