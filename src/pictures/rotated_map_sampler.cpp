@@ -81,8 +81,8 @@ void RotatedMapSampler::sample_rows(int y0, int rows, float* out) const {
     for (int tx = 0; tx * kTile < width_; ++tx) sample_tile(tx, ty, y0, rows, out, block);
 }
 
-// One tile's pixels within rows [y0, y0 + rows): corners and centres exact, cells checked, the
-// raster block under the good cells read once, then every pixel.
+// One tile's pixels within rows [y0, y0 + rows): the cells' corners, side midpoints and centres
+// exact, the cells checked, the raster block under the good cells read once, then every pixel.
 void RotatedMapSampler::sample_tile(int tx, int ty, int y0, int rows, float* out, std::vector<float>& block) const {
   const double nc = static_cast<double>(info_.ncols), nr = static_cast<double>(info_.nrows);
   auto raster_point = [&](int x, int y) {

@@ -18,17 +18,17 @@
 // is a harmonic function of the pixel, whose two curvatures cancel at the centre). The raster
 // values under a tile's passing cells (their corners' bounding box and one cell of margin) are
 // read once through Bathymetry::values, and each pixel is interpolated bilinearly in that block
-// as Bathymetry::sample does. A cell takes atan2/asin and Bathymetry::sample at each of its
-// pixels instead when a check fails (near a geographic pole), when its block would reach past
-// the raster's first or last row (or column, on a raster that does not wrap), or when the
-// tile's block would exceed kMaxTileValues. Bicubic and streamed rasters are sampled the exact
-// way throughout.
+// (in float; Bathymetry::sample blends the same four values in double). A cell takes atan2/asin
+// and Bathymetry::sample at each of its pixels instead when a check fails (near a geographic
+// pole), when its block would reach past the raster's first or last row (or column, on a raster
+// that does not wrap), or when the tile's block would exceed kMaxTileValues. Bicubic and
+// streamed rasters are sampled the exact way throughout.
 //
 // So the result is close to the exact one but not equal bit for bit: a pixel's sample point may
 // be off by kMaxError of the raster's row spacing (on the ETOPO5 Mercator map: 6.3 M of 6.4 M
-// pixels interpolated, 0.07% of them in another tint class than the exact sample gives); and a
-// no-data value next to a sample exactly on a grid line, which Bathymetry::sample skips,
-// spreads to it. Each pixel depends only on its cell and its tile, so the map is the same
+// pixels interpolated; 0.066% of the map's pixels in another tint class than the exact sample
+// gives); and a no-data value next to a sample exactly on a grid line, which Bathymetry::sample
+// skips, spreads to it. Each pixel depends only on its cell and its tile, so the map is the same
 // whichever rows a call samples, and on any number of threads.
 #pragma once
 
