@@ -58,7 +58,7 @@ std::vector<WrittenFile> write_output_jobs(std::vector<OutputJob> jobs, const st
     }
   };
 
-  const auto own = [](const OutputJob& j) { return j.own_thread && !j.step; };
+  const auto own = [](const OutputJob& j) { return j.own_thread; };
   const bool beside =
       concurrent && std::any_of(jobs.begin(), jobs.end(), own) && !std::all_of(jobs.begin(), jobs.end(), own);
   auto on_extra = [&](std::size_t k) { return beside && own(jobs[k]); };

@@ -4,7 +4,7 @@
 // the writers and logs one line per file, in the jobs' order whatever the threads did:
 //
 //   calling thread:  job 0 ──> job 2 ──> job 3 ──> job 4 ──> (wait) ──> log the rest
-//   extra thread:         job 1 (own_thread: the UGRID file, netCDF/HDF5) ──────┘
+//   extra thread:         job 1 (own_thread: the UGRID file, netCDF/HDF5; the shape quality) ─┘
 //   log:             lines of 0 │ lines of 1, 2, 3, 4 once 1 is written
 //
 // Only the calling thread logs: a line waits until every file before it is written. The first
@@ -45,9 +45,10 @@ struct LogLine {
   std::string text;
 };
 
-/// One file to write, or a step without a file (`step` set: work the files after it need, run on
-/// the calling thread in its place, its lines logged there). The writer must not log, and with
-/// own_thread it must touch nothing the other jobs touch (it runs beside them).
+/// One file to write, or a step without a file (`step` set: work the files after it need, run in
+/// its place, its lines logged there). The writer must not log, and with own_thread it must touch
+/// nothing the other jobs touch (it runs beside them): a step with own_thread is one whose result
+/// no file of the calling thread reads (the shape quality when the preview does not colour by it).
 struct OutputJob {
   std::string format;                ///< as WrittenFile::format
   std::string name;                  ///< as WrittenFile::name

@@ -1,6 +1,7 @@
 // write_output_jobs: the own_thread job really runs beside the others, yet the log lines and the
 // returned files keep the jobs' order, and the error thrown is the first failure in that order
-// (whichever thread failed first in time); steps run on the calling thread in their place.
+// (whichever thread failed first in time); steps run in their place, on the extra thread when
+// they are own_thread.
 #include "app/output_jobs.hpp"
 
 #include <gtest/gtest.h>
@@ -222,7 +223,6 @@ TEST(OutputJobs, AStepRunsOnTheCallingThreadInItsPlace) {
     return std::vector<LogLine>{{LogLevel::kInfo, "step line"}};
   };
   step.log_before = {{LogLevel::kInfo, "before step"}};
-  step.own_thread = true;  // ignored: a step runs on the calling thread
   jobs.push_back(std::move(step));
   jobs.push_back(job("q", [](const auto&) { return bytes(2); }));
   CapturedLog log;
@@ -232,6 +232,41 @@ TEST(OutputJobs, AStepRunsOnTheCallingThreadInItsPlace) {
   EXPECT_TRUE(w[0].own_thread);
   EXPECT_EQ(w[1].name, "q");
   EXPECT_EQ(without_times(log.lines), (std::vector<std::string>{"before p", "output: p", "before step", "step line",
+                                                                "before q", "output: q", "trailing"}));
+}
+
+// A step with own_thread (the shape quality when the preview does not need it) runs on the extra
+// thread before that thread's files, while the calling thread writes its own; its lines keep
+// their place. The step waits until the calling thread's file has started, so the test fails if
+// the step ran on the calling thread (it would wait for itself and time out).
+TEST(OutputJobs, AnOwnThreadStepRunsBesideTheFiles) {
+  const auto caller = std::this_thread::get_id();
+  std::promise<void> q_started;
+  auto started = q_started.get_future().share();
+  std::vector<OutputJob> jobs;
+  OutputJob step;
+  step.step = [&] {
+    EXPECT_NE(std::this_thread::get_id(), caller);
+    EXPECT_EQ(started.wait_for(std::chrono::seconds(20)), std::future_status::ready);
+    return std::vector<LogLine>{{LogLevel::kInfo, "step line"}};
+  };
+  step.log_before = {{LogLevel::kInfo, "before step"}};
+  step.own_thread = true;
+  jobs.push_back(std::move(step));
+  jobs.push_back(job(
+      "p", [](const auto&) { return bytes(1); }, true));
+  jobs.push_back(job("q", [&](const auto&) {
+    q_started.set_value();
+    return bytes(2);
+  }));
+  CapturedLog log;
+  const auto w = write_output_jobs(std::move(jobs), {{LogLevel::kInfo, "trailing"}}, true, log.logger);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w[0].name, "p");
+  EXPECT_TRUE(w[0].own_thread);
+  EXPECT_EQ(w[1].name, "q");
+  EXPECT_FALSE(w[1].own_thread);
+  EXPECT_EQ(without_times(log.lines), (std::vector<std::string>{"before step", "step line", "before p", "output: p",
                                                                 "before q", "output: q", "trailing"}));
 }
 
