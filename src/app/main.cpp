@@ -2,6 +2,8 @@
 // codes (0 ok, 1 run/input failure, 2 usage/config error; ARCHITECTURE §7).
 #include <fmt/format.h>
 
+#include <malloc.h>
+
 #include <cstdio>
 #include <exception>
 
@@ -14,6 +16,11 @@
 #endif
 
 int main(int argc, char** argv) {
+  // Large arrays (lattice bitmaps, mesh and statistics tables of tens to hundreds of MB) from the
+  // heap instead of one mmap each: glibc unmaps an mmapped block when it is freed, so every stage
+  // page-faulted its memory afresh (1.3 million faults on the 1' Mercator run). Reused heap
+  // memory cut that by a fifth and the run by 0.3-0.4 s, for ~6 % more peak memory.
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
   aq::app::install_interrupt_handlers();
   aq::app::Context ctx;
   CLI::App app{"aquatoria: global finite-element ocean meshes and regional orthogonal grids from bathymetry"};
