@@ -8,9 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "support/omp_threads.hpp"
 
 namespace aq::mesh {
 namespace {
@@ -36,17 +34,13 @@ TEST(StableBuckets, SerialCountingSortOrderForOneAndTwoThreads) {
   for (std::int64_t i = 0; i < n; ++i)
     kPairs(i, [&](std::int64_t b, std::int64_t v) { values[static_cast<std::size_t>(cursor[b]++)] = v; });
   for (const int threads : {1, 2}) {
+    const testing::ThreadCount use(threads);
 #ifdef _OPENMP
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
     if (threads == 2) {
       ASSERT_EQ(quadtree::block_count(n, 4), 2);  // the parallel path runs
     }
 #endif
     const Buckets<std::int64_t> got = stable_buckets<std::int64_t>(n, kBuckets, 4, kPairs);
-#ifdef _OPENMP
-    omp_set_num_threads(saved);
-#endif
     EXPECT_EQ(std::vector<std::int64_t>(got.start.begin(), got.start.end()), start) << threads << " threads";
     ASSERT_EQ(got.values.size(), values.size());
     EXPECT_TRUE(std::equal(values.begin(), values.end(), got.values.begin())) << threads << " threads";

@@ -23,6 +23,7 @@
 #include "quadtree/parallel.hpp"
 #include "unit/mesh/mesh_fixtures.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
+#include "support/omp_threads.hpp"
 
 namespace aq::mesh {
 namespace {
@@ -463,14 +464,10 @@ TEST(Statistics, ComponentsAreTheEdgeConnectedPiecesForAnyThreadCount) {
   const std::int64_t want = edge_connected_pieces(mesh);
   ASSERT_GT(want, 20);
   for (const int threads : {1, 2}) {
-#ifdef _OPENMP
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
-#endif
-    const MeshStatistics s = compute_statistics(mesh, StatisticsOptions{false, 0.0});
-#ifdef _OPENMP
-    omp_set_num_threads(saved);
-#endif
+    const MeshStatistics s = [&] {
+      const testing::ThreadCount use(threads);
+      return compute_statistics(mesh, StatisticsOptions{false, 0.0});
+    }();
     EXPECT_EQ(s.components, want) << threads << " threads";
     EXPECT_EQ(s.euler, s.euler_expected) << threads << " threads";
   }
@@ -490,10 +487,7 @@ TEST(Statistics, OutOfRangeIdsThrowNamingTheFirstOne) {
   bad_square.triangle_square[last] = -1;
   bad_square.triangle_square[last / 2] = good.square_count();
   for (const int threads : {1, 2}) {
-#ifdef _OPENMP
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
-#endif
+    const testing::ThreadCount use(threads);
     try {
       (void)compute_statistics(bad_node);
       ADD_FAILURE() << "no error for a node id out of range";
@@ -507,9 +501,6 @@ TEST(Statistics, OutOfRangeIdsThrowNamingTheFirstOne) {
       EXPECT_EQ(std::string(e.what()), fmt::format("mesh statistics: square id {} out of range", good.square_count()))
           << threads << " threads";
     }
-#ifdef _OPENMP
-    omp_set_num_threads(saved);
-#endif
   }
 }
 
@@ -532,12 +523,14 @@ TEST(Statistics, SameReportForOneAndTwoThreads) {
         mesh.rotation.pole_lat_deg = 78.141667;
       }
       ASSERT_GE(mesh.node_count() * 4, quadtree::kParallelMinWork);
-      const int saved = omp_get_max_threads();
-      omp_set_num_threads(1);
-      const MeshStatistics one = compute_statistics(mesh);
-      omp_set_num_threads(2);
-      const MeshStatistics two = compute_statistics(mesh);
-      omp_set_num_threads(saved);
+      const MeshStatistics one = [&] {
+        const testing::ThreadCount use(1);
+        return compute_statistics(mesh);
+      }();
+      const MeshStatistics two = [&] {
+        const testing::ThreadCount use(2);
+        return compute_statistics(mesh);
+      }();
       EXPECT_TRUE(one.failed_checks().empty()) << rotated << " " << elements;
       EXPECT_EQ(statistics_json(one).dump(), statistics_json(two).dump()) << rotated << " " << elements;
     }

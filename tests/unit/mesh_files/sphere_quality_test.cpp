@@ -17,6 +17,7 @@
 
 #include "core/error.hpp"
 #include "support/io_test_mesh.hpp"
+#include "support/omp_threads.hpp"
 
 namespace aq::io {
 namespace {
@@ -145,10 +146,7 @@ TEST(SphereQuality, ANodeOutOfRangeThrowsNamingTheFirstOne) {
   m.triangles[last][0] = -3;
   m.triangles[last / 4][2] = static_cast<NodeId>(m.lon_deg.size());
   for (const int threads : {1, 2}) {
-#ifdef _OPENMP
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
-#endif
+    const testing::ThreadCount use(threads);
     try {
       (void)triangle_shapes(m);
       ADD_FAILURE() << "no error";
@@ -156,9 +154,6 @@ TEST(SphereQuality, ANodeOutOfRangeThrowsNamingTheFirstOne) {
       EXPECT_EQ(std::string(e.what()), "triangle_shapes: node " + std::to_string(m.lon_deg.size()) + " out of range")
           << threads << " threads";
     }
-#ifdef _OPENMP
-    omp_set_num_threads(saved);
-#endif
   }
 }
 
