@@ -17,6 +17,8 @@ PACKAGES=(
   gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy
   # the ADCIRC and ROMS client tests (../shared/clients/adcirc and roms build the models with these)
   gfortran libnetcdff-dev make perl patch xz-utils python3
+  # the FESOM2 and SCHISM client tests (MPI models: mpif90/mpicc and mpirun)
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: Release (with OpenMP), the configuration sweep (label
 # sweep, release build), then the sanitizer build (ASan+UBSan, OpenMP off, so the no-OpenMP build
-# is tested too), then the slow label (which includes the ADCIRC and ROMS client tests, labels
-# adcirc and roms: ../shared/clients/{adcirc,roms} build the models once into their caches, default
-# ~/.cache/aq-adcirc and ~/.cache/aq-roms, and run them on our files; skipped when absent).
+# is tested too), then the slow label (which includes the ADCIRC, ROMS, FESOM2 and SCHISM client
+# tests, labels adcirc, roms, fesom2, schism: ../shared/clients/{adcirc,roms,fesom2,schism} build the
+# models once into their caches, default ~/.cache/aq-<model>, and run them on our files; skipped
+# when absent).
 #   scripts/test.sh           everything (what CI runs)
 #   scripts/test.sh --quick   Release only, without the slow and sweep labels (local iteration)
 set -euo pipefail

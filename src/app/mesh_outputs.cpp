@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/timer.hpp"
+#include "mesh/model_cleaning.hpp"
 #include "mesh_files/fesom_writer.hpp"
 #include "mesh_files/fort14_writer.hpp"
 #include "mesh_files/geographic_mesh.hpp"
@@ -110,6 +111,38 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     return g->mesh();
   };
 
+  // The model formats (fort14, fesom, schism) write the geographic triangles cleaned for the
+  // models (mesh/model_cleaning.hpp: no triangle with fewer than two neighbours, no pinch
+  // vertex); the lattice mesh and the other files keep every triangle (README "Meshes for the
+  // models"). Made once, when the first of them needs it.
+  std::optional<mesh::ModelMesh> model;
+  auto model_mesh = [&]() -> const mesh::Mesh& {
+    if (model) return model->mesh();
+    const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
+    const Timer timer;
+    model.emplace(g);
+    hold(LogLevel::kInfo, fmt::format("mesh cleaning: {} ({:.3f} s)", model->describe(), timer.wall_s()));
+    const mesh::Mesh& c = model->mesh();
+    Json cleaning = model->json();
+    if (!c.lattice.mercator()) {
+      constexpr double kObtuseDeg = 120.0;
+      const ObtuseTriangles o = obtuse_triangles(c, kObtuseDeg);
+      cleaning["angle_above_120_deg_triangles"] = o.count;
+      if (o.count > 0) {
+        cleaning["angle_above_120_deg_from_lat_deg"] = std::round(o.from_lattice_lat_deg * 100.0) / 100.0;
+        hold(LogLevel::kWarning,
+             fmt::format("model formats: {} triangles have an angle above {:g}° on the sphere (up to {:.1f}°), "
+                         "poleward of {:.1f}° {}latitude: the lon-lat lattice's squares narrow as cos φ there. "
+                         "FESOM2's SSH solver needed 26-60 times the iterations on such meshes; use the Mercator "
+                         "lattice (quadtree.lattice = \"mercator\", as in configs/global_mercator.toml)",
+                         o.count, kObtuseDeg, o.max_angle_deg, o.from_lattice_lat_deg,
+                         c.rotation.enabled ? "rotated " : ""));
+      }
+    }
+    if (report != nullptr) (*report)["cleaning"] = cleaning;
+    return c;
+  };
+
   // Shape quality on the sphere of the triangles as the geographic files hold them; its
   // per-triangle values also colour the preview (output.png_color). Computed by the first job:
   // a step on the extra thread, before the UGRID file, unless the preview's job (later, on this
@@ -127,7 +160,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       const SphereQuality q = summarize_quality(*shapes);
       if (report != nullptr) {
         Json j = q.json();
-        j["mesh"] = "geographic (as written to ugrid, vtu, fort14, text, fesom, schism)";
+        j["mesh"] = "geographic (as written to ugrid, vtu, text; fort14, fesom, schism write it cleaned)";
         j["seconds"] = std::round(timer.wall_s() * 1000.0) / 1000.0;
         j["cpu_seconds"] = std::round(timer.cpu_s() * 1000.0) / 1000.0;
         j["geographic_mesh_seconds"] = std::round(geo_s * 1000.0) / 1000.0;
@@ -216,7 +249,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       o.title = fmt::format("aquatoria mesh {} ({})", name, info.source);
       plan(
           format, name + ".14",
-          [&g = geographic(ElementKinds::kTriangles), o](const auto& p) { return write_fort14(g, p, o); },
+          [&g = model_mesh(), o](const auto& p) { return write_fort14(g, p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
           });
@@ -231,7 +264,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     } else if (format == "fesom") {
       const std::vector<double>& levels =
           options.fesom_levels.empty() ? default_fesom_levels_m() : options.fesom_levels;
-      const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
+      const mesh::Mesh& g = model_mesh();
       plan(
           format, name + "_nod2d.out", [&g](const auto& p) { return write_fesom_nod2d(g, p); },
           [](const WriteStats& s) {
@@ -248,14 +281,11 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             return Facts{{"nodes", s.nodes}, {"levels", static_cast<std::int64_t>(levels.size())}};
           });
       const FesomRotation r = fesom_rotation(mesh.rotation);
-      if (r.force_rotation) {
-        hold(LogLevel::kInfo,
-             fmt::format("FESOM namelist.config: force_rotation = .true., alphaEuler = {:.10g}, betaEuler = {:.10g}, "
-                         "gammaEuler = {:.10g} (FESOM's rotated frame = the mesh's)",
-                         r.alpha_deg, r.beta_deg, r.gamma_deg));
-      } else {
-        hold(LogLevel::kInfo, "FESOM namelist.config: force_rotation = .false. (the mesh is not rotated)");
-      }
+      hold(LogLevel::kInfo,
+           fmt::format("FESOM namelist.config &geometry: {} ({})", r.namelist(),
+                       mesh.rotation.enabled ? "FESOM's model frame = the mesh's rotated frame"
+                                             : "the mesh is not rotated: FESOM's standard frame, its pole on "
+                                               "Greenland; force_rotation = .false. with 0, 0, 0 also works"));
       if (report != nullptr) {
         (*report)["fesom"] = Json{{"force_rotation", r.force_rotation},
                                   {"alphaEuler", r.alpha_deg},
@@ -266,12 +296,15 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     } else if (format == "schism") {
       SchismOptions o;
       o.title = fmt::format("aquatoria mesh {} ({}), lon/lat: SCHISM ics = 2", name, info.source);
-      const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
-      if (!g.pinch_nodes.empty()) {
-        hold(LogLevel::kWarning,
-             fmt::format("SCHISM: {} pinch vertices (the ocean touching itself at one node); SCHISM stops on them with "
-                         "\"Illegal bnd node\": set mask.remove_pinches = true",
-                         g.pinch_nodes.size()));
+      const mesh::Mesh& g = model_mesh();
+      const SchismTimeStep dt = schism_time_step(g);
+      hold(LogLevel::kInfo, dt.describe());
+      if (report != nullptr) {
+        (*report)["schism"] = Json{{"wet_nodes", dt.wet_nodes},
+                                   {"dt_advection_off_min_s", std::ceil(dt.dt_half_s)},
+                                   {"dt_advection_on_min_s", std::ceil(dt.dt_p95_s)},
+                                   {"dt_all_nodes_s", std::ceil(dt.dt_all_s)},
+                                   {"dt_max_s", SchismTimeStep::kMaxDtS}};
       }
       for (const char* ext : {".gr3", ".ll"}) {
         plan(

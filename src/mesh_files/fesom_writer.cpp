@@ -38,12 +38,19 @@ const std::vector<double>& default_fesom_levels_m() {
 
 FesomRotation fesom_rotation(const mesh::RotationInfo& r) {
   FesomRotation f;
-  if (!r.enabled) return f;
+  f.force_rotation = true;
+  if (!r.enabled) {
+    // FESOM's standard frame for geographic meshes (its namelist.config): the model pole on
+    // Greenland, on land, away from the pole cap's island.
+    f.alpha_deg = 50.0;
+    f.beta_deg = 15.0;
+    f.gamma_deg = -90.0;
+    return f;
+  }
   // Our rotated -> geographic matrix is R = Rz(λp)·Ry(90° − φp) (core/rotation.cpp); FESOM's
   // geographic -> rotated matrix for (α, β, γ) equals Rᵀ for α = λp + 90°, β = 90° − φp,
   // γ = −90° (the entries agree one by one; tests/unit/mesh_files/fesom_schism_writer_test.cpp
   // checks it against FESOM's formula).
-  f.force_rotation = true;
   double alpha = std::fmod(r.pole_lon_deg + 90.0, 360.0);
   if (alpha > 180.0) alpha -= 360.0;
   if (alpha <= -180.0) alpha += 360.0;
@@ -51,6 +58,11 @@ FesomRotation fesom_rotation(const mesh::RotationInfo& r) {
   f.beta_deg = 90.0 - r.pole_lat_deg;
   f.gamma_deg = -90.0;
   return f;
+}
+
+std::string FesomRotation::namelist() const {
+  return fmt::format("force_rotation = {}, alphaEuler = {:.10g}, betaEuler = {:.10g}, gammaEuler = {:.10g}",
+                     force_rotation ? ".true." : ".false.", alpha_deg, beta_deg, gamma_deg);
 }
 
 WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path& path) {

@@ -22,13 +22,17 @@
 // namelist.config has force_rotation = .true., with Euler angles alphaEuler, betaEuler,
 // gammaEuler (degrees; z, then the new x, then the new z: FESOM's gen_modules_rotate_grid.F90).
 // fesom_rotation() gives the angles whose model frame is our rotated (lattice) frame, so FESOM
-// works on the same rotated sphere the mesh was built on. Without rotation, run FESOM with
-// force_rotation = .false. (its geographic frame; the North pole cap keeps nodes off the pole).
-// FESOM also checks that an unrotated mesh has no ocean within 2.5° of its rotated pole; our
-// default pole (Greenland) is on land.
+// works on the same rotated sphere the mesh was built on. Without rotation, fesom_rotation() gives
+// FESOM's own standard for geographic meshes (force_rotation = .true., 50, 15, −90: the model pole
+// on Greenland at 40°W 75°N), what FESOM's namelist.config ships with. FESOM checks the files
+// against the setting: with force_rotation = .true. no node may lie within 2.5° of the model
+// pole (else "Your input mesh seems to be rotated"), with .false. some must ("seems to be
+// unrotated"); both hold for our meshes (the model poles are on land). force_rotation = .false.
+// with angles 0, 0, 0 also runs an unrotated mesh (the model pole on the polar island).
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "io/write_stats.hpp"
@@ -43,6 +47,8 @@ const std::vector<double>& default_fesom_levels_m();
 struct FesomRotation {
   bool force_rotation = false;
   double alpha_deg = 0.0, beta_deg = 0.0, gamma_deg = 0.0;  ///< alphaEuler, betaEuler, gammaEuler
+  /// "force_rotation = .true., alphaEuler = …, betaEuler = …, gammaEuler = …".
+  [[nodiscard]] std::string namelist() const;
 };
 FesomRotation fesom_rotation(const mesh::RotationInfo& rotation);
 

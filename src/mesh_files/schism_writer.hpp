@@ -23,6 +23,7 @@
 // geographic mesh keeps every node off the poles (geographic_mesh.hpp).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -34,6 +35,26 @@ namespace aq::io {
 struct SchismOptions {
   std::string title = "aquatoria global ocean mesh";  ///< first line (cut to 80 characters)
 };
+
+/// The time steps SCHISM runs a mesh with, from the nodes' sizes and depths. SCHISM is
+/// semi-implicit (no upper Courant limit for gravity waves) but wants the inverse condition
+/// C = √(g·H)·Δt/Δx ≥ 0.4 with momentum advection on (its Eulerian–Lagrangian backtracking is
+/// inaccurate for shorter steps; with advection on, the default mesh at C ≈ 0.03–0.05 on the
+/// shelves grew spurious elevations of 6–40 m). Per wet node (elevation below 0): H its depth,
+/// Δx its shortest edge on the authalic sphere. Δt at which C reaches 0.4 at a share of the wet
+/// nodes:
+struct SchismTimeStep {
+  std::int64_t wet_nodes = 0;
+  double dt_half_s = 0.0;  ///< at half of them: the lower bound with advection off (nadv = 0)
+  double dt_p95_s = 0.0;   ///< at 95 %: the lower bound with advection on (nadv = 1)
+  double dt_all_s = 0.0;   ///< at every one
+  /// The upper bound, for either: 1/50 of the M2 period (7.2° of tidal phase a step).
+  static constexpr double kMaxDtS = 894.0;
+
+  /// One log line with both ranges (an empty range: advection on is not advised).
+  [[nodiscard]] std::string describe() const;
+};
+SchismTimeStep schism_time_step(const mesh::Mesh& mesh);
 
 /// Writes the triangles of `mesh` in SCHISM's hgrid layout to `path` (used for both hgrid.gr3
 /// and hgrid.ll). Throws like write_fort14. WriteStats::boundary_edges counts the land boundary

@@ -35,11 +35,11 @@ double arc(const Vec3& a, const Vec3& b) {
   return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz)));
 }
 
-// Smallest angle (degrees) between the great circles at the vertices of triangle a, b, c: the
-// angles of spherical_angles_deg (geographic_mesh.hpp), but only the smallest through a
-// trigonometric call. At vertex p with neighbours q, r the tangent directions are
-// q − (p·q)p and r − (p·r)p; the smallest angle has the largest cosine.
-double min_spherical_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+// Smallest and largest angle (degrees) between the great circles at the vertices of triangle
+// a, b, c: the angles of spherical_angles_deg (geographic_mesh.hpp), through two trigonometric
+// calls only. At vertex p with neighbours q, r the tangent directions are q − (p·q)p and
+// r − (p·r)p; the smallest angle has the largest cosine, the largest the smallest.
+std::array<double, 2> min_max_spherical_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto dot = [](const Vec3& u, const Vec3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   auto tangent = [&](const Vec3& p, const Vec3& q) {
     const double d = dot(p, q);
@@ -47,19 +47,26 @@ double min_spherical_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   };
   const std::array<std::array<Vec3, 2>, 3> t{
       {{tangent(a, b), tangent(a, c)}, {tangent(b, c), tangent(b, a)}, {tangent(c, a), tangent(c, b)}}};
-  std::size_t best = 0;
-  double best_cos = -2.0;
+  std::size_t lo = 0, hi = 0;
+  double lo_cos = -2.0, hi_cos = 2.0;
   for (std::size_t k = 0; k < 3; ++k) {
     const double den = std::sqrt(dot(t[k][0], t[k][0]) * dot(t[k][1], t[k][1]));
     const double cs = den > 0.0 ? dot(t[k][0], t[k][1]) / den : 1.0;  // a zero side: a zero angle
-    if (cs > best_cos) {
-      best_cos = cs;
-      best = k;
+    if (cs > lo_cos) {
+      lo_cos = cs;
+      lo = k;
+    }
+    if (cs < hi_cos) {
+      hi_cos = cs;
+      hi = k;
     }
   }
-  const Vec3 &u = t[best][0], &v = t[best][1];
-  const Vec3 x{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  return std::atan2(std::sqrt(dot(x, x)), dot(u, v)) * kRadToDeg;
+  auto angle = [&](std::size_t k) {
+    const Vec3 &u = t[k][0], &v = t[k][1];
+    const Vec3 x{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    return std::atan2(std::sqrt(dot(x, x)), dot(u, v)) * kRadToDeg;
+  };
+  return {angle(lo), angle(hi)};
 }
 
 int thread_count() {
@@ -205,10 +212,10 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   TriangleShapes s;
   const auto un = static_cast<std::size_t>(nt);
   {  // resize zeroes the arrays (their first touch): the four spread over the threads
-    const std::array<std::vector<float>*, 4> arrays{&s.min_angle_deg, &s.edge_ratio, &s.neighbour_area_ratio,
-                                                    &s.size_km};
-    const int blocks = std::min(4, nt >= kParallelMin ? thread_count() : 1);
-    quadtree::for_each_block(4, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+    const std::array<std::vector<float>*, 5> arrays{&s.min_angle_deg, &s.max_angle_deg, &s.edge_ratio,
+                                                    &s.neighbour_area_ratio, &s.size_km};
+    const int blocks = std::min(5, nt >= kParallelMin ? thread_count() : 1);
+    quadtree::for_each_block(5, blocks, [&](int, std::int64_t begin, std::int64_t end) {
       for (std::int64_t k = begin; k < end; ++k) arrays[static_cast<std::size_t>(k)]->resize(un);
     });
   }
@@ -216,14 +223,17 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   const Vec3* pp = p.data();
   double* ar = area.data();
   float* min_angle = s.min_angle_deg.data();
+  float* max_angle = s.max_angle_deg.data();
   float* edge_ratio = s.edge_ratio.data();
   float* size = s.size_km.data();
 #pragma omp parallel for schedule(static) default(none) \
-    shared(nt, tri, pp, ar, min_angle, edge_ratio, size) if (nt >= kParallelMin)
+    shared(nt, tri, pp, ar, min_angle, max_angle, edge_ratio, size) if (nt >= kParallelMin)
   for (std::int64_t t = 0; t < nt; ++t) {
     const auto& v = tri[t];
     const Vec3 &a = pp[v[0]], &b = pp[v[1]], &c = pp[v[2]];
-    min_angle[t] = static_cast<float>(min_spherical_angle_deg(a, b, c));
+    const auto angles = min_max_spherical_angle_deg(a, b, c);
+    min_angle[t] = static_cast<float>(angles[0]);
+    max_angle[t] = static_cast<float>(angles[1]);
     const double e0 = arc(a, b), e1 = arc(b, c), e2 = arc(c, a);
     const double lo = std::min({e0, e1, e2}), hi = std::max({e0, e1, e2});
     edge_ratio[t] = lo > 0.0 ? static_cast<float>(hi / lo) : std::numeric_limits<float>::infinity();
@@ -238,6 +248,26 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
   return s;
 }
 
+ObtuseTriangles obtuse_triangles(const mesh::Mesh& m, double threshold_deg) {
+  ObtuseTriangles o;
+  const auto nn = static_cast<NodeId>(m.lon_deg.size());
+  for (const auto& t : m.triangles) {
+    for (const NodeId v : t)
+      if (v < 0 || v >= nn) throw InternalError(fmt::format("obtuse_triangles: node {} out of range", v));
+    std::array<Vec3, 3> p{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(t[k]);
+      p[k] = unit_vector_deg(m.lon_deg[v], m.lat_deg[v]);
+    }
+    const double big = min_max_spherical_angle_deg(p[0], p[1], p[2])[1];
+    o.max_angle_deg = std::max(o.max_angle_deg, big);
+    if (!(big > threshold_deg)) continue;
+    ++o.count;
+    for (const NodeId v : t) o.from_lattice_lat_deg = std::min(o.from_lattice_lat_deg, std::abs(m.rlat_deg[static_cast<std::size_t>(v)]));
+  }
+  return o;
+}
+
 SphereQuality summarize_quality(const TriangleShapes& s) {
   SphereQuality q;
   q.triangles = static_cast<std::int64_t>(s.min_angle_deg.size());
@@ -247,15 +277,22 @@ SphereQuality summarize_quality(const TriangleShapes& s) {
   q.min_angle_p1_deg = a[1];
   q.min_angle_p5_deg = a[2];
   q.min_angle_p50_deg = a[3];
-  std::int64_t below20 = 0, below30 = 0;
+  const auto m = order_statistics(s.max_angle_deg, {0.5, 0.99, 1.0});
+  q.max_angle_p50_deg = m[0];
+  q.max_angle_p99_deg = m[1];
+  q.max_angle_max_deg = m[2];
+  std::int64_t below20 = 0, below30 = 0, above120 = 0;
   const float* angle = s.min_angle_deg.data();
+  const float* big = s.max_angle_deg.data();
   const std::int64_t n = q.triangles;
-#pragma omp parallel for schedule(static) default(none) shared(n, angle) reduction(+ : below20, below30) \
-    if (n >= kParallelMin)
+#pragma omp parallel for schedule(static) default(none) shared(n, angle, big) \
+    reduction(+ : below20, below30, above120) if (n >= kParallelMin)
   for (std::int64_t k = 0; k < n; ++k) {
     below20 += angle[k] < 20.0f ? 1 : 0;
     below30 += angle[k] < 30.0f ? 1 : 0;
+    above120 += big[k] > 120.0f ? 1 : 0;
   }
+  q.max_angle_above_120_deg = above120;
   q.below_20_deg_percent = 100.0 * static_cast<double>(below20) / static_cast<double>(n);
   q.below_30_deg_percent = 100.0 * static_cast<double>(below30) / static_cast<double>(n);
   const auto e = order_statistics(s.edge_ratio, {0.5, 0.99, 1.0});
@@ -275,6 +312,10 @@ Json SphereQuality::json() const {
                                      {"p1", round_to(min_angle_p1_deg, 100)},
                                      {"p5", round_to(min_angle_p5_deg, 100)},
                                      {"p50", round_to(min_angle_p50_deg, 100)}}},
+              {"max_angle_deg", Json{{"p50", round_to(max_angle_p50_deg, 100)},
+                                     {"p99", round_to(max_angle_p99_deg, 100)},
+                                     {"max", round_to(max_angle_max_deg, 100)}}},
+              {"max_angle_above_120_deg_triangles", max_angle_above_120_deg},
               {"min_angle_below_20_deg_percent", round_to(below_20_deg_percent, 100)},
               {"min_angle_below_30_deg_percent", round_to(below_30_deg_percent, 100)},
               {"edge_ratio", Json{{"p50", round_to(edge_ratio_p50, 1e4)},
@@ -288,9 +329,10 @@ Json SphereQuality::json() const {
 std::string SphereQuality::describe() const {
   return fmt::format(
       "{} triangles on the sphere: min angle p0/p1/p5/median {:.1f}°/{:.1f}°/{:.1f}°/{:.1f}°, {:.1f}% < 20°, "
-      "{:.1f}% < 30°; edge ratio p50/p99/max {:.2f}/{:.2f}/{:.3g}; neighbour area ratio p99/max {:.2f}/{:.3g}",
+      "{:.1f}% < 30°; max angle median/p99/max {:.1f}°/{:.1f}°/{:.1f}°, {} triangles > 120°; edge ratio p50/p99/max {:.2f}/{:.2f}/{:.3g}; neighbour area ratio p99/max {:.2f}/{:.3g}",
       triangles, min_angle_p0_deg, min_angle_p1_deg, min_angle_p5_deg, min_angle_p50_deg, below_20_deg_percent,
-      below_30_deg_percent, edge_ratio_p50, edge_ratio_p99, edge_ratio_max, neighbour_area_ratio_p99,
+      below_30_deg_percent, max_angle_p50_deg, max_angle_p99_deg, max_angle_max_deg, max_angle_above_120_deg,
+      edge_ratio_p50, edge_ratio_p99, edge_ratio_max, neighbour_area_ratio_p99,
       neighbour_area_ratio_max);
 }
 

@@ -158,16 +158,20 @@ TEST(GlobalMeshEtopo5, VtkReadsTheRealVtu) {
 
 TEST(GlobalMeshEtopo5, UgridAndFort14HeadersMatchTheReport) {
   const auto& run = mesh_run("");
-  // The files hold the geographic mesh (pole cap), the report's mesh_counts the lattice mesh.
+  // The files hold the geographic mesh (pole cap), the report's mesh_counts the lattice mesh;
+  // fort.14 holds it cleaned for the models (no triangle with one neighbour, no pinch).
   const auto tri = run.report.at("geographic_mesh").at("triangles").get<long>();
-  const auto nodes = run.report.at("geographic_mesh").at("nodes").get<long>();
+  const auto& cleaning = run.report.at("cleaning");
   std::ifstream f14(run.dir / "seed_4deg_L3.14");
   std::string title;
   std::getline(f14, title);
   long ne = 0, np = 0;
   f14 >> ne >> np;
-  EXPECT_EQ(ne, tri);
-  EXPECT_EQ(np, nodes);
+  EXPECT_EQ(ne, cleaning.at("triangles").get<long>());
+  EXPECT_EQ(np, cleaning.at("nodes").get<long>());
+  EXPECT_EQ(ne, tri - cleaning.at("one_neighbour_triangles_removed").get<long>() -
+                    cleaning.at("pinch_triangles_removed").get<long>());
+  EXPECT_EQ(cleaning.at("pinches_removed").get<long>(), 2);  // the two pinches of the lattice mesh
   if (run_command("command -v ncdump").exit_code == 0) {
     const auto h = run_command("ncdump -h " + (run.dir / "seed_4deg_L3.nc").string());
     ASSERT_EQ(h.exit_code, 0);
@@ -327,8 +331,12 @@ TEST(GlobalMeshEtopo5, WrittenMeshesHaveNoDegenerateElements) {
     EXPECT_EQ(w.clockwise, 0);
     EXPECT_EQ(w.bad_edges, 0);
     EXPECT_EQ(w.boundary, declared);  // every edge in one triangle is a land boundary edge, and back
-    EXPECT_NEAR((w.geodesic_area_km2 + island_km2) / lattice_km2, 1.0, 1e-6);
-    EXPECT_NEAR(w.geodesic_area_km2 / filled_km2, 1.0, tolerance);
+    // fort.14 is the geographic mesh cleaned for the models: less the triangles removed.
+    const double removed_km2 = run.report.at("cleaning").at("area_removed_km2").get<double>();
+    EXPECT_GT(removed_km2, 0.0);
+    EXPECT_LT(removed_km2 / filled_km2, 0.01);
+    EXPECT_NEAR((w.geodesic_area_km2 + removed_km2 + island_km2) / lattice_km2, 1.0, 1e-6);
+    EXPECT_NEAR((w.geodesic_area_km2 + removed_km2) / filled_km2, 1.0, tolerance);
     // No node on (or within the island round) the pole.
     const double radius = cap.at("island_radius_deg").get<double>();
     EXPECT_GT(radius, 0.3);

@@ -148,9 +148,18 @@ TEST(SphereQualityEtopo5, NewFormatsAreBitIdenticalForOneAndTwoThreads) {
   for (auto* q : {&qa, &qb})
     for (const char* k : {"seconds", "cpu_seconds", "geographic_mesh_seconds"}) q->erase(k);
   EXPECT_EQ(qa, qb);
-  // Not rotated: FESOM runs unrotated; 2 pinch vertices make SCHISM's warning.
-  EXPECT_FALSE(one.report.at("fesom").at("force_rotation").get<bool>());
-  EXPECT_THAT(one.err, ::testing::HasSubstr("SCHISM: 2 pinch vertices"));
+  // Not rotated: FESOM's standard frame (model pole on Greenland), in the log too; the model
+  // formats are cleaned (the two pinches of the lattice mesh removed), with the lon-lat
+  // lattice's obtuse triangles a warning; SCHISM's time steps in the log.
+  EXPECT_TRUE(one.report.at("fesom").at("force_rotation").get<bool>());
+  EXPECT_EQ(one.report.at("fesom").at("alphaEuler").get<double>(), 50.0);
+  EXPECT_THAT(one.err, ::testing::HasSubstr("FESOM namelist.config &geometry: force_rotation = .true., alphaEuler = "
+                                            "50, betaEuler = 15, gammaEuler = -90"));
+  EXPECT_THAT(one.err, ::testing::HasSubstr("pinches removed"));
+  EXPECT_THAT(one.err, ::testing::HasSubstr("use the Mercator lattice"));
+  EXPECT_THAT(one.err, ::testing::HasSubstr("SCHISM time step: advection off (nadv = 0)"));
+  EXPECT_EQ(one.report.at("cleaning").at("pinches_removed").get<int>(), 2);
+  EXPECT_GT(one.report.at("cleaning").at("angle_above_120_deg_triangles").get<int>(), 1000);
 }
 
 TEST(SphereQualityEtopo5, BadNewKeysFailBeforeAnyFile) {

@@ -171,7 +171,11 @@ std::array<double, 2> fesom_g2r(double alpha, double beta, double gamma, double 
 }
 
 TEST(FesomWriter, EulerAnglesGiveTheMeshsRotatedFrame) {
-  EXPECT_FALSE(fesom_rotation(mesh::RotationInfo{}).force_rotation);
+  // An unrotated mesh: FESOM's standard geographic setting (force_rotation with 50, 15, -90, its
+  // model pole on Greenland), as the namelist line says.
+  const FesomRotation u = fesom_rotation(mesh::RotationInfo{});
+  EXPECT_TRUE(u.force_rotation);
+  EXPECT_EQ(u.namelist(), "force_rotation = .true., alphaEuler = 50, betaEuler = 15, gammaEuler = -90");
   for (const auto& [plon, plat] :
        std::vector<std::pair<double, double>>{{-44.858333, 78.141667}, {-40.0, 75.0}, {100.0, 30.0}, {170.0, -20.0}}) {
     mesh::RotationInfo ri;
