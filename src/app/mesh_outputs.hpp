@@ -17,6 +17,10 @@
 //   tif      <name>.tif           the global run file (mask/global_run_file.hpp: Ω_L, pixel
 //                                 classes, quadtree levels; GeoTIFF), written by the run's
 //                                 MeshOutputInfo::global_run_file
+// fort14, fesom and schism write the geographic mesh cleaned for the models
+// (mesh/model_cleaning.hpp: no triangle with fewer than two neighbours, no pinch vertex; logged,
+// the "cleaning" report section), with a warning when a lon-lat lattice gives them triangles with
+// an angle above 120°; fesom logs its namelist rotation, schism its time-step range.
 // With triangles, the shape quality on the sphere of the geographic mesh (sphere_quality.hpp) is
 // logged and becomes the "quality" report section, whatever the formats.
 // Every option is checked before the first file is written, so a bad option writes nothing.
@@ -62,7 +66,7 @@ const std::vector<std::string>& known_output_formats();
 void check_mesh_output_options(const config::OutputOptions& options, ElementKinds elements);
 
 /// Writes every requested format (see the table above). The writers in geographic coordinates
-/// (ugrid, vtu, fort14, text) write the geographic mesh of io/geographic_mesh.hpp (pole cap or
+/// (ugrid, vtu, text; fort14, fesom, schism cleaned for the models) write the geographic mesh of io/geographic_mesh.hpp (pole cap or
 /// merged pole row; one log line per changed pole, and the "geographic_mesh" report section when
 /// `report` is given); msh (the λ–φ plane) and png draw the lattice mesh. Throws ConfigError on
 /// bad options (before writing anything), OutputError naming the file on write failures.

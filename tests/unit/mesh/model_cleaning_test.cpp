@@ -21,6 +21,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.hpp"
+
 namespace aq::mesh {
 namespace {
 
