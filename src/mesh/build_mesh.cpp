@@ -201,9 +201,9 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
         pole_loops);
   }
   if (!mesh.pinch_nodes.empty()) {
-    log.warn(
-        "mesh: {} pinch vertices (the wet area touches itself at a single corner); mask.remove_pinches = true "
-        "removes them",
+    log.info(
+        "mesh: {} pinch vertices (the wet area touches itself at a single corner); the model formats (fort14, "
+        "fesom, schism) are written without them, and mask.remove_pinches = true removes them from the mesh",
         mesh.pinch_nodes.size());
   }
   if (report != nullptr) {
