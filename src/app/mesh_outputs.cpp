@@ -248,8 +248,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       Fort14Options o;
       o.title = fmt::format("aquatoria mesh {} ({})", name, info.source);
       plan(
-          format, name + ".14",
-          [&g = model_mesh(), o](const auto& p) { return write_fort14(g, p, o); },
+          format, name + ".14", [&g = model_mesh(), o](const auto& p) { return write_fort14(g, p, o); },
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
           });

@@ -38,8 +38,8 @@ NodeTriangles node_triangles(const std::vector<Tri>& t, std::int64_t nn) {
   a.tri.resize(t.size() * 3);
   std::vector<std::int64_t> cursor(a.start.begin(), a.start.end() - 1);
   for (std::size_t k = 0; k < t.size(); ++k)
-    for (const NodeId v : t[k]) a.tri[static_cast<std::size_t>(cursor[static_cast<std::size_t>(v)]++)] =
-        static_cast<ElementId>(k);
+    for (const NodeId v : t[k])
+      a.tri[static_cast<std::size_t>(cursor[static_cast<std::size_t>(v)]++)] = static_cast<ElementId>(k);
   return a;
 }
 
@@ -273,12 +273,13 @@ ModelMesh::ModelMesh(const Mesh& m) : input_(m) {
   for (std::size_t l = 0; l < m.loops.size(); ++l) {
     const auto& ln = m.loops[l].nodes;
     for (std::size_t k = 0; k < ln.size(); ++k) {
-      const NodeId a = new_id[static_cast<std::size_t>(ln[k])], b = new_id[static_cast<std::size_t>(ln[(k + 1) % ln.size()])];
-      if (a >= 0 && b >= 0)
-        places.push_back({a, b, static_cast<std::int64_t>(l), static_cast<std::int64_t>(k)});
+      const NodeId a = new_id[static_cast<std::size_t>(ln[k])],
+                   b = new_id[static_cast<std::size_t>(ln[(k + 1) % ln.size()])];
+      if (a >= 0 && b >= 0) places.push_back({a, b, static_cast<std::int64_t>(l), static_cast<std::int64_t>(k)});
     }
   }
-  std::sort(places.begin(), places.end(), [](const Place& x, const Place& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+  std::sort(places.begin(), places.end(),
+            [](const Place& x, const Place& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
   constexpr std::int64_t kNew = std::numeric_limits<std::int64_t>::max();
   auto place_of = [&](NodeId a, NodeId b) -> std::pair<std::int64_t, std::int64_t> {
     const auto it = std::lower_bound(places.begin(), places.end(), std::make_pair(a, b),
@@ -299,7 +300,8 @@ ModelMesh::ModelMesh(const Mesh& m) : input_(m) {
   for (std::size_t s = 0; s < gn; ++s) {
     if (next[s] < 0 || seen[s] != 0) continue;
     std::vector<NodeId> nodes;
-    for (auto v = static_cast<NodeId>(s); seen[static_cast<std::size_t>(v)] == 0; v = next[static_cast<std::size_t>(v)]) {
+    for (auto v = static_cast<NodeId>(s); seen[static_cast<std::size_t>(v)] == 0;
+         v = next[static_cast<std::size_t>(v)]) {
       if (next[static_cast<std::size_t>(v)] < 0) throw InternalError("mesh cleaning: a boundary loop does not close");
       seen[static_cast<std::size_t>(v)] = 1;
       nodes.push_back(v);

@@ -263,7 +263,8 @@ ObtuseTriangles obtuse_triangles(const mesh::Mesh& m, double threshold_deg) {
     o.max_angle_deg = std::max(o.max_angle_deg, big);
     if (!(big > threshold_deg)) continue;
     ++o.count;
-    for (const NodeId v : t) o.from_lattice_lat_deg = std::min(o.from_lattice_lat_deg, std::abs(m.rlat_deg[static_cast<std::size_t>(v)]));
+    for (const NodeId v : t)
+      o.from_lattice_lat_deg = std::min(o.from_lattice_lat_deg, std::abs(m.rlat_deg[static_cast<std::size_t>(v)]));
   }
   return o;
 }
@@ -329,11 +330,11 @@ Json SphereQuality::json() const {
 std::string SphereQuality::describe() const {
   return fmt::format(
       "{} triangles on the sphere: min angle p0/p1/p5/median {:.1f}°/{:.1f}°/{:.1f}°/{:.1f}°, {:.1f}% < 20°, "
-      "{:.1f}% < 30°; max angle median/p99/max {:.1f}°/{:.1f}°/{:.1f}°, {} triangles > 120°; edge ratio p50/p99/max {:.2f}/{:.2f}/{:.3g}; neighbour area ratio p99/max {:.2f}/{:.3g}",
+      "{:.1f}% < 30°; max angle median/p99/max {:.1f}°/{:.1f}°/{:.1f}°, {} triangles > 120°; edge ratio p50/p99/max "
+      "{:.2f}/{:.2f}/{:.3g}; neighbour area ratio p99/max {:.2f}/{:.3g}",
       triangles, min_angle_p0_deg, min_angle_p1_deg, min_angle_p5_deg, min_angle_p50_deg, below_20_deg_percent,
       below_30_deg_percent, max_angle_p50_deg, max_angle_p99_deg, max_angle_max_deg, max_angle_above_120_deg,
-      edge_ratio_p50, edge_ratio_p99, edge_ratio_max, neighbour_area_ratio_p99,
-      neighbour_area_ratio_max);
+      edge_ratio_p50, edge_ratio_p99, edge_ratio_max, neighbour_area_ratio_p99, neighbour_area_ratio_max);
 }
 
 }  // namespace aq::io

@@ -50,7 +50,8 @@ void partition_case(const std::string& config, const std::string& name) {
   const aq::testing::TempDir dir;
   const std::string prefix = make_mesh(dir, config, name);
   ASSERT_FALSE(::testing::Test::HasFailure());
-  const auto part = run_command("bash " + script.string() + " part " + prefix + " --workdir " + (dir / "part").string());
+  const auto part =
+      run_command("bash " + script.string() + " part " + prefix + " --workdir " + (dir / "part").string());
   ASSERT_EQ(part.exit_code, 0) << part.err;
   std::cout << "fesom_meshpart on " << name << ":\n" << part.out;
   const auto kv = aq::test::key_values(part.out);

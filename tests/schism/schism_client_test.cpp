@@ -33,8 +33,8 @@ void run_case(const std::string& config, const std::string& name) {
   ASSERT_EQ(mesh.exit_code, 0) << mesh.err;
   const fs::path gr3 = dir / (name + ".gr3");
   ASSERT_TRUE(fs::exists(gr3));
-  const auto run = run_command("bash " + script.string() + " run " + gr3.string() + " 24 --workdir " +
-                               (dir / "run").string());
+  const auto run =
+      run_command("bash " + script.string() + " run " + gr3.string() + " 24 --workdir " + (dir / "run").string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   std::cout << "SCHISM on " << name << ".gr3, 24 h, advection off:\n" << run.out;
   const auto kv = aq::test::key_values(run.out);
