@@ -120,6 +120,14 @@ void check_run(const std::string& config, const std::string& name) {
                              " --set 'output.formats=[\"fort14\",\"schism\",\"fesom\"]'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("mesh cleaning: "), std::string::npos) << r.err;
+  // What each model needs to know: FESOM's &geometry for every mesh (FESOM's standard frame
+  // without rotation), SCHISM's time steps.
+  const std::string fesom_line = config.empty() ? "FESOM namelist.config &geometry: force_rotation = .true., "
+                                                  "alphaEuler = 50, betaEuler = 15, gammaEuler = -90"
+                                                : "FESOM namelist.config &geometry: force_rotation = .true., "
+                                                  "alphaEuler = 45.141667, betaEuler = 11.858333, gammaEuler = -90";
+  EXPECT_NE(r.err.find(fesom_line), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("SCHISM time step: advection off (nadv = 0) "), std::string::npos) << r.err;
   const auto report = nlohmann::json::parse(std::ifstream(dir / (name + "_report.json")));
   const auto& cleaning = report.at("cleaning");
   EXPECT_GT(cleaning.at("one_neighbour_triangles_removed").get<long>(), 0);  // there were some to remove
