@@ -29,7 +29,7 @@
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "curvilinear/spline_contour.hpp"
+#include "curvilinear/common/spline_contour.hpp"
 #include "handoff/block_contour.hpp"
 #include "handoff/block_files.hpp"
 #include "handoff/coastal_blocks.hpp"

@@ -18,7 +18,7 @@
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/timer.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/common/grid_checks.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 #include "pictures/grid_quality_png.hpp"
 

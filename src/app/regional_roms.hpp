@@ -14,7 +14,7 @@
 #include "core/log.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "curvilinear/regional.hpp"
 
 namespace aq::app {

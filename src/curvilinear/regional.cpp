@@ -7,8 +7,8 @@
 
 #include "core/error.hpp"
 #include "core/timer.hpp"
-#include "curvilinear/boundary_equidistribution.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/elliptic/boundary_equidistribution.hpp"
+#include "curvilinear/common/grid_checks.hpp"
 
 namespace aq::curvilinear {
 
