@@ -112,6 +112,8 @@ DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::u
   }
   r.rx0_before = max_r_factor(r.h, mask, ni, nj);
   r.rx0_after = r.rx0_before;
+  r.rx1_before = max_rx1(r.h, mask, ni, nj);
+  r.rx1_after = r.rx1_before;
   if (o.rmax == 0.0 || r.rx0_before <= o.rmax) return r;
 
   const std::vector<double> before = r.h;
@@ -129,7 +131,43 @@ DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::u
   }
   r.volume_added_rel = sum_before > 0.0 ? sum_added / sum_before : 0.0;
   r.rx0_after = max_r_factor(r.h, mask, ni, nj);
+  r.rx1_after = max_rx1(r.h, mask, ni, nj);
   return r;
+}
+
+double max_rx1(const std::vector<double>& h, const std::vector<std::uint8_t>& mask, int ni, int nj,
+               const VerticalGrid& v) {
+  check_sizes(h, mask, ni, nj, "max_rx1");
+  const int n = std::max(v.n, 1);
+  // Stretching C(s) at the w levels s = (k − N)/N, k = 0..N (Vstretching = 4).
+  std::vector<double> s(static_cast<std::size_t>(n) + 1), cs(s.size());
+  for (int k = 0; k <= n; ++k) {
+    const double sk = static_cast<double>(k - n) / n;
+    double c = v.theta_s > 0.0 ? (1.0 - std::cosh(v.theta_s * sk)) / (std::cosh(v.theta_s) - 1.0) : -sk * sk;
+    if (v.theta_b > 0.0) c = (std::exp(v.theta_b * c) - 1.0) / (1.0 - std::exp(-v.theta_b));
+    s[static_cast<std::size_t>(k)] = sk;
+    cs[static_cast<std::size_t>(k)] = c;
+  }
+  const auto z = [&](double depth, int k) {  // Vtransform = 2, ζ = 0
+    const auto q = static_cast<std::size_t>(k);
+    return depth * (v.hc_m * s[q] + depth * cs[q]) / (v.hc_m + depth);
+  };
+  double worst = 0.0;
+  const auto face = [&](std::size_t a, std::size_t b) {
+    if (mask[a] == 0 || mask[b] == 0) return;
+    for (int k = 1; k <= n; ++k) {
+      const double num = std::fabs(z(h[a], k) - z(h[b], k) + z(h[a], k - 1) - z(h[b], k - 1));
+      const double den = std::fabs(z(h[a], k) + z(h[b], k) - z(h[a], k - 1) - z(h[b], k - 1));
+      if (den > 0.0) worst = std::max(worst, num / den);
+    }
+  };
+  const auto at = [ni](int i, int j) { return static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i); };
+  for (int j = 0; j < nj; ++j)
+    for (int i = 0; i < ni; ++i) {
+      if (i + 1 < ni) face(at(i, j), at(i + 1, j));
+      if (j + 1 < nj) face(at(i, j), at(i, j + 1));
+    }
+  return worst;
 }
 
 }  // namespace aq::curvilinear

@@ -19,6 +19,21 @@
 
 namespace aq::curvilinear {
 
+/// The vertical grid rx1 is measured on: ROMS's Vtransform = 2, Vstretching = 4 s-coordinate
+/// (Shchepetkin & McWilliams 2009; WikiROMS "Vertical S-coordinate") with N levels. A grid file has
+/// no vertical grid, so rx1 is reported for this reference one (a common ROMS set-up).
+struct VerticalGrid {
+  int n = 30;
+  double theta_s = 7.0, theta_b = 2.0;
+  double hc_m = 50.0;
+};
+
+/// Haney's hydrostatic inconsistency number rx1 = max over wet faces and levels k of
+/// |z_a(k) − z_b(k) + z_a(k−1) − z_b(k−1)| / |z_a(k) + z_b(k) − z_a(k−1) − z_b(k−1)| on the w levels
+/// z(k) of `v` (ζ = 0); 0 without a wet face.
+double max_rx1(const std::vector<double>& h, const std::vector<std::uint8_t>& mask_rho, int ni, int nj,
+               const VerticalGrid& v = {});
+
 struct DepthOptions {
   /// Minimum depth, metres, > 0 (ROMS's hmin clip).
   double hmin_m = 10.0;
@@ -36,6 +51,8 @@ struct DepthResult {
   double max_deepening_m = 0.0;   ///< largest change by the smoothing
   double volume_added_rel = 0.0;  ///< Σ(h_after − h_before)/Σh_before over wet points
   int sweeps = 0;                 ///< Gauss–Seidel sweeps until no change (0 when rmax = 0)
+  double rx1_before = 0.0;        ///< max_rx1 (reference VerticalGrid) after clipping, before smoothing
+  double rx1_after = 0.0;         ///< the same after smoothing
 };
 
 /// Clips and optionally smooths `hraw` (finite values; ni, nj ≥ 1; mask values 0/1).

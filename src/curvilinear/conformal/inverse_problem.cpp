@@ -177,6 +177,7 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
     throw ConfigError(
         fmt::format("inverse problem: max outer iterations = {} must be >= 1", options.max_outer_iterations));
   const Timer timer;
+  const ProgressFn progress = log.progress("regional inverse problem");
   InverseResult res;
   BoundaryNodes nodes = initial;
   std::vector<double> x, y;
@@ -235,6 +236,12 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
         "{:.2e}{})",
         m, meas.residual, meas.aspect_ratio, nodes.nx_pts, nodes.ny_pts, passes, res.iz89_angle.back(),
         iz.converged ? "" : ", not converged");
+    if (progress && m >= 1) {  // a fraction of the way from the first residual down to the tolerance, in log
+      const double r0 = std::max(res.residual_history.front(), tol * 1.0001);
+      const double f = std::log(r0 / std::max(meas.residual, tol)) / std::log(r0 / tol);
+      progress(std::clamp(f, 0.0, 0.99), fmt::format("iteration {}: residual {:.2e} (tolerance {:.1e}), {} x {} nodes", m,
+                                                     meas.residual, tol, nodes.nx_pts, nodes.ny_pts));
+    }
     // The round-off floor: three fully converged iterates that no longer halve the residual.
     bool floor = false;
     if (full) {

@@ -283,6 +283,10 @@ EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const Ellipt
       }
     res.iterations = it;
     res.last_move = o.relaxation * std::sqrt(move2) / diam;
+    if (o.progress)
+      o.progress(static_cast<double>(it) / o.max_iterations,
+                 fmt::format("iteration {} of at most {}, last move {:.2e} (stops below {:.1e})", it, o.max_iterations,
+                             res.last_move, o.tolerance));
     if (it % o.check_every == 0 || it == o.max_iterations) {
       const Criteria c = grid_criteria(g, w);
       const bool settled = !changed(c, res.history.back(), true);

@@ -34,6 +34,7 @@
 #include <array>
 #include <vector>
 
+#include "core/log.hpp"
 #include "curvilinear/common/grid2d.hpp"
 #include "grid_params/control_function.hpp"
 
@@ -61,6 +62,8 @@ struct EllipticOptions {
   int inner_iterations = 6;
   /// Also stop when the averages f(k)_o have settled (see the rules above).
   bool stop_when_averages_settle = true;
+  /// Progress of the iterations (fraction of max_iterations, with the last move); may be empty.
+  ProgressFn progress;
 };
 
 enum class EllipticStop { kIterationCap, kNodesSettled, kAveragesSettled };

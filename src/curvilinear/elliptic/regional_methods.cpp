@@ -202,7 +202,9 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
   run.boundary_crossings = boundary_crossings(run.grid);
   if (elliptic == GridMethod::kEd2 || elliptic == GridMethod::kRl) {
     Grid2D initial = run.grid;
-    run.elliptic = elliptic_smooth(run.grid, w, elliptic_options(p, elliptic));
+    EllipticOptions eo = elliptic_options(p, elliptic);
+    eo.progress = log.progress("regional elliptic");
+    run.elliptic = elliptic_smooth(run.grid, w, eo);
     if (!run.elliptic->converged)
       log.warn("regional {}: not settled after {} iterations (last node move {:.2e} of the diameter)",
                grid_method_name(elliptic), run.elliptic->iterations, run.elliptic->last_move);
