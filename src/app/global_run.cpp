@@ -179,10 +179,9 @@ static void warn_threshold_depth_nodes(const mesh::Mesh& m, double h, const Logg
   // "Over large areas": at least 100 nodes and 0.1 % of the mesh.
   if (at < 100 || static_cast<double>(at) < 1e-3 * static_cast<double>(n)) return;
   log.warn("{} of {} mesh nodes ({:.2g} %) sit at exactly the threshold depth {} m (wet only by d <= -h), {} of them "
-           "south of 77°S (ice shelves have 0 m in ETOPO-class rasters); they span {:.1f}..{:.1f}°E, {:.1f}..{:.1f}°N. "
-           "mask.min_depth_m > {} leaves them dry",
-           at, n, 100.0 * static_cast<double>(at) / static_cast<double>(n), -h == 0.0 ? 0.0 : -h, south, lon_min,
-           lon_max, lat_min, lat_max, h);
+           "south of 77°S{}; they span {:.1f}..{:.1f}°E, {:.1f}..{:.1f}°N. mask.min_depth_m > {} leaves them dry",
+           at, n, 100.0 * static_cast<double>(at) / static_cast<double>(n), h, south,
+           h == 0.0 ? " (ice shelves have 0 m in ETOPO-class rasters)" : "", lon_min, lon_max, lat_min, lat_max, h);
 }
 
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,

@@ -63,7 +63,7 @@ struct EllipticOptions {
   /// Also stop when the averages f(k)_o have settled (see the rules above).
   bool stop_when_averages_settle = true;
   /// Progress of the iterations (fraction of max_iterations, with the last move); may be empty.
-  ProgressFn progress;
+  ProgressFn progress = {};
 };
 
 enum class EllipticStop { kIterationCap, kNodesSettled, kAveragesSettled };
