@@ -11,6 +11,9 @@
 //   blocks.png             the global mesh with every written block outlined and numbered
 //   blocks.json            the ranked list, parameters and the run report
 //
+// block_NNN.toml records global.toml's checksum (roms.global_config_checksum), and the block files
+// of an earlier run numbered above this run's count are removed, so no stale block survives.
+//
 // The ranked table goes to stdout; stage lines to stderr.
 #include <fmt/format.h>
 
@@ -29,7 +32,7 @@
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "curvilinear/spline_contour.hpp"
+#include "curvilinear/common/spline_contour.hpp"
 #include "handoff/block_contour.hpp"
 #include "handoff/block_files.hpp"
 #include "handoff/coastal_blocks.hpp"
@@ -90,6 +93,35 @@ std::string box_text(const handoff::BlockBox& b) {
                      b.lat_max_deg, b.lattice_system ? "" : " (geographic)");
 }
 
+// Files block_NNN.{toml,izogrid,png} in `dir` with NNN > count (the earlier run's blocks this run did
+// not write again): removed; their names, sorted.
+std::vector<std::string> remove_stale_blocks(const fs::path& dir, std::size_t count) {
+  std::vector<std::string> removed;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n.size() < 10 || n.rfind("block_", 0) != 0) continue;
+    const std::string num = n.substr(6, 3), ext = n.substr(9);
+    if (num.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (ext != ".toml" && ext != ".izogrid" && ext != ".png") continue;
+    if (static_cast<std::size_t>(std::stoi(num)) <= count) continue;
+    removed.push_back(n);
+  }
+  std::sort(removed.begin(), removed.end());
+  for (const auto& n : removed) {
+    fs::remove(dir / n, ec);
+    if (ec) throw OutputError(fmt::format("{}: cannot remove this stale block file: {}", (dir / n).string(), ec.message()));
+  }
+  return removed;
+}
+
+std::size_t stale_block_count(const std::vector<std::string>& names) {
+  std::vector<std::string> stems;
+  for (const auto& n : names) stems.push_back(n.substr(0, 9));
+  std::sort(stems.begin(), stems.end());
+  return static_cast<std::size_t>(std::unique(stems.begin(), stems.end()) - stems.begin());
+}
+
 int run_blocks(const BlocksArgs& a, const Logger& log) {
   Timer total;
   auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
@@ -140,6 +172,8 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(global_name).string()));
   }
   const std::string global_path = out.final_path(global_name).string();
+  // Each block config records what global.toml held, so a block outliving this run is refused.
+  const std::string global_checksum = file_checksum(out.pending_path(global_name));
   const auto keys = config::regional_keys();
   const bool has_global_key = std::find(keys.begin(), keys.end(), "roms.global_config") != keys.end();
 
@@ -196,6 +230,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     info.output_dir = dir.string();
     info.global_config = global_path;
     info.write_global_config = has_global_key;
+    info.global_config_checksum = global_checksum;
     {
       std::ofstream f(out.temp_path(name + ".toml"));
       f << handoff::regional_config_text(info);
@@ -269,6 +304,12 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path("blocks.json").string()));
   }
   out.commit();
+  // No block of an earlier run survives beside this run's: its config would name this global.toml.
+  const std::vector<std::string> removed = remove_stale_blocks(dir, count);
+  if (!removed.empty())
+    log.info("blocks: removed {} file{} of {} block{} of an earlier run ({}{})", removed.size(),
+             removed.size() == 1 ? "" : "s", stale_block_count(removed), stale_block_count(removed) == 1 ? "" : "s",
+             removed.front(), removed.size() > 1 ? " … " + removed.back() : std::string());
 
   for (const auto& line : table) fmt::print("{}\n", line);
   std::fflush(stdout);

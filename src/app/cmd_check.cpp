@@ -1,5 +1,6 @@
 // `aquatoria check GRID.nc [-o OUT.nc] [--png FILE] [--json FILE]`: the izogrid `checkort`
-// (seed 000 Sec. 2.6, eqs. (46)–(52)) plus the seed-004 cell criteria f1–f4 on a planar grid file.
+// (seed 000 Sec. 2.6, eqs. (46)–(52)) plus the seed-004 cell criteria f1–f4 on a planar grid file,
+// a ROMS grid or a MOM6 supergrid (grid_files/any_grid.hpp).
 // Prints a table (worst, average, RMS, where the worst is) to stdout and writes the per-cell and
 // per-node fields as netCDF (default GRID_check.nc next to the input) and a PNG heat map of the
 // orthogonality error (50) (default GRID_check.png). All outputs appear together or not at all.
@@ -18,7 +19,8 @@
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/timer.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "grid_files/any_grid.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 #include "pictures/grid_quality_png.hpp"
 
@@ -109,7 +111,12 @@ nlohmann::ordered_json to_json(const std::string& path, const curvilinear::GridQ
 int run_check(const CheckArgs& a, const Logger& log) {
   const Timer timer;
   const fs::path input(a.grid);
-  const io::XyGrid xy = io::read_xygrid(input);
+  const io::AnyGrid any = io::read_any_grid(input);
+  const io::XyGrid& xy = any.xy;
+  if (any.kind != "xygrid")
+    log.info("{}: a {} grid file: its {} x {} supergrid on a stereographic plane centred on the grid (conformal: the "
+             "angles are those on the sphere)",
+             input.string(), any.kind == "roms" ? "ROMS" : "MOM6", xy.grid.nx_pts, xy.grid.ny_pts);
   curvilinear::CheckOptions options;
   options.dxi_over_deta = xy.has_steps ? xy.dxi / xy.deta : 0.0;
   options.five_point = a.five_point;
@@ -158,7 +165,10 @@ void add_check_command(CLI::App& app, Context& ctx) {
   auto args = std::make_shared<CheckArgs>();
   CLI::App* cmd = app.add_subcommand(
       "check", "Orthogonality, isotropy, Laplace residual and seed-004 cell criteria of a planar grid file");
-  cmd->add_option("grid", args->grid, "Planar grid netCDF (xygrid: variables x, y)")->required();
+  cmd->add_option("grid", args->grid,
+                  "A grid file aquatoria writes: planar grid netCDF (_xygrid.nc: x, y), ROMS grid (_grd.nc) or MOM6 "
+                  "supergrid (_ocean_hgrid.nc)")
+      ->required();
   cmd->add_option("-o,--output", args->out_nc, "Per-cell/per-node quality netCDF (default GRID_check.nc)");
   CLI::Option* png =
       cmd->add_option("--png", args->png, "Heat map of the orthogonality error (default GRID_check.png)");

@@ -3,6 +3,8 @@
 // depths → statistics → mesh files, pictures and the run report. With no -c it runs the seed's
 // reference configuration (Δ0 = 4°, L = 3, K = 2, h = 0) on the installed ETOPO5.
 #include <fmt/format.h>
+
+#include <filesystem>
 #include <fmt/ranges.h>
 
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
 #include "app/mesh_outputs.hpp"
+#include "app/provenance.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/lattice.hpp"
@@ -68,6 +71,21 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
       if (!rn.changed.empty())
         log.info("name: {} (no -c and no output.name; differs from the seed's reference run in {})", rn.name,
                  fmt::join(rn.changed, ", "));
+      // Keys the automatic name follows (config::default_run_name); the others are not in it.
+      static const char* const kNamed[] = {"quadtree.step_deg", "quadtree.levels", "mask.min_depth_m", "mask.cursor",
+                                           "rotation.enabled",  "input.path",      "quadtree.balance",
+                                           "quadtree.coast_band", "quadtree.lattice", "quadtree.size_km",
+                                           "mesh.elements"};
+      std::vector<std::string> unnamed;
+      for (const auto& k : rn.changed) {
+        bool named = false;
+        for (const char* n : kNamed) named = named || k.rfind(std::string(n) + " =", 0) == 0;
+        if (!named) unnamed.push_back(k);
+      }
+      if (!unnamed.empty())
+        log.warn("name: {} does not show {}: a run differing only there writes the same files; set output.name to "
+                 "keep both",
+                 rn.name, fmt::join(unnamed, ", "));
     }
   }
   if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
@@ -79,6 +97,8 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   report["config"] = loaded.echo;
   report["config"]["output"]["name"] = c.output.name;
   report["config"]["output"]["dir"] = c.output.dir;
+  warn_if_overwriting(c.output.dir, c.output.name + "_report.json", report["config"], Json::object(),
+                      "set output.name (or -o DIR) to keep both", log);
 
   const GlobalSetup setup = prepare_global_run(c);
   const Lattice& lat = setup.lattice;
@@ -168,8 +188,9 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   log.info("wet area {:.4g} million km² (WGS84); filled {} of {} wet pixels ({} left out: lakes, cut-off seas)",
            st.triangle_area_km2 / 1e6, area.filled_pixels, area.classes.wet, area.fill.wet_left_out);
   if (seed) {
-    log.info("seed ({}, ETOPO2): {} triangles / {} nodes; ours on ETOPO5: {} / {} ({:+.1f}% / {:+.1f}%)", seed->figure,
-             seed->triangles, seed->nodes, m.triangle_count(), m.node_count(),
+    log.info("seed ({}, ETOPO2): {} triangles / {} nodes; ours on {}: {} / {} ({:+.1f}% / {:+.1f}%)", seed->figure,
+             seed->triangles, seed->nodes, std::filesystem::path(c.input.path).filename().string(), m.triangle_count(),
+             m.node_count(),
              100.0 * (static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles) - 1.0),
              100.0 * (static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes) - 1.0));
   }

@@ -13,16 +13,19 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/provenance.hpp"
 #include "app/regional_nesting.hpp"
 #include "app/regional_refine.hpp"
 #include "app/regional_roms.hpp"
 #include "config/regional.hpp"
+#include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "curvilinear/cgrid.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/common/cgrid.hpp"
+#include "curvilinear/common/grid_checks.hpp"
 #include "curvilinear/regional.hpp"
+#include "grid_files/contact_netcdf.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 #include "pictures/regional_pictures.hpp"
 #include "raster/bathymetry.hpp"
@@ -38,7 +41,77 @@ struct RegionalArgs {
   std::vector<std::string> sets;
   std::string out_dir;
   bool no_coastline = false;
+  bool force = false;  // --force: build although an input changed since the earlier outputs
 };
+
+// The files this run reads that another aquatoria run may have written, with their checksums and
+// (for aquatoria's own files) the configuration that made them: the report's "inputs".
+Json regional_inputs(const config::RegionalConfig& c) {
+  Json in = Json::object();
+  if (!c.roms.global_config.empty() && std::filesystem::exists(c.roms.global_config)) {
+    Json echo;
+    try {
+      echo = config::load_global(c.roms.global_config, {}).echo;
+    } catch (const Error&) {
+      // the run itself reports an unusable global config
+    }
+    in["roms.global_config"] = input_record(c.roms.global_config, echo);
+  }
+  if (!c.contour_file.empty() && std::filesystem::exists(c.contour_file))
+    in["regional.contour_file"] = input_record(c.contour_file);
+  if (c.nesting.refinement() && std::filesystem::exists(c.nesting.parent)) {
+    Json made_with;
+    try {
+      const auto f = io::read_roms_grid_fields(c.nesting.parent);
+      const Json j = Json::parse(f.aquatoria_config, nullptr, false);
+      if (!j.is_discarded()) made_with = j;
+    } catch (const Error&) {
+      // build_refinement names an unreadable parent
+    }
+    in["nesting.parent"] = input_record(c.nesting.parent, made_with);
+  }
+  return in;
+}
+
+// A block config names the global run it was ranked on by checksum (roms.global_config_checksum):
+// refuse when that file has changed since.
+void check_global_config_checksum(const config::RegionalConfig& c, const std::string& source) {
+  if (c.roms.global_config_checksum.empty() || c.roms.global_config.empty()) return;
+  if (!std::filesystem::exists(c.roms.global_config))
+    throw InputError(fmt::format("{}: roms.global_config {} does not exist", source, c.roms.global_config));
+  const std::string now = file_checksum(c.roms.global_config);
+  if (now == c.roms.global_config_checksum) return;
+  throw InputError(fmt::format(
+      "{}: the global run {} has changed since this config was written from it: roms.global_config_checksum = "
+      "\"{}\" but the file's checksum is now {} (a later `aquatoria blocks` rewrote it for another global run; "
+      "this block was ranked and cut for the earlier one). Run `aquatoria blocks` again for blocks of the current "
+      "global run, or set roms.global_config_checksum = \"\" to use this block with it anyway",
+      source, c.roms.global_config, c.roms.global_config_checksum, now));
+}
+
+// A refinement grid cut from nesting.parent: refuse when the parent has changed since the earlier
+// outputs of this grid were cut from it (unless --force), naming both files and what differs.
+void check_parent_unchanged(const config::RegionalConfig& c, const Json& inputs, const Json* old_report, bool force,
+                            const std::string& source, const Logger& log) {
+  if (!c.nesting.refinement() || old_report == nullptr || !inputs.contains("nesting.parent")) return;
+  if (!old_report->contains("inputs") || !(*old_report)["inputs"].contains("nesting.parent")) return;
+  const Json& was = (*old_report)["inputs"]["nesting.parent"];
+  const Json& now = inputs["nesting.parent"];
+  if (was.value("file", "") != now.value("file", "") || was.value(kChecksumKey, "") == now.value(kChecksumKey, ""))
+    return;
+  std::string what;
+  if (was.contains("config") && now.contains("config")) {
+    const auto d = config_differences(was["config"], now["config"]);
+    if (!d.empty()) what = "; the parent is now made with " + join_some(d, 4);
+  }
+  const std::string grd = (std::filesystem::path(c.output_dir) / (c.name + "_grd.nc")).string();
+  const std::string msg = fmt::format(
+      "{}: the parent {} has changed since {} was cut from it (checksum {} -> {}){}", source, now.value("file", ""),
+      grd, was.value(kChecksumKey, ""), now.value(kChecksumKey, ""), what);
+  if (!force)
+    throw InputError(msg + ". Make the parent again as it was, or pass --force to cut this grid from the new parent");
+  log.warn("{}; --force: cutting this grid from the new parent", msg);
+}
 
 // Longitude/latitude box of the picture: the edges given, else the contour's extent padded.
 // Raster options reading only the rows of [lat_min, lat_max] with a 0.5° margin.
@@ -80,6 +153,22 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   auto loaded = config::load_regional(path, a.sets);
   auto& c = loaded.options;
   if (!a.out_dir.empty()) c.output_dir = a.out_dir;
+  check_global_config_checksum(c, loaded.source);
+  const Json inputs = regional_inputs(c);
+  {
+    const auto old = read_report(std::filesystem::path(c.output_dir) / (c.name + "_report.json"));
+    check_parent_unchanged(c, inputs, old ? &*old : nullptr, a.force, loaded.source, log);
+    warn_if_overwriting(c.output_dir, c.name + "_report.json", loaded.echo, inputs,
+                        "set regional.name (or -o DIR) to keep both", log);
+  }
+  if (!a.sets.empty()) {
+    bool named = false;
+    for (const auto& s : a.sets) named = named || s.rfind("regional.name=", 0) == 0;
+    if (!named)
+      log.info("outputs named {} (regional.name of {}); the --set overrides are not in the name: set regional.name to "
+               "keep the runs apart",
+               c.name, loaded.source);
+  }
 
   std::string stop = !a.stop_after.empty() ? a.stop_after : c.stop_after;
   const curvilinear::Stage stage =
@@ -93,6 +182,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   report["command"] = "regional";
   report["config_source"] = loaded.source;
   report["config"] = loaded.echo;
+  report["inputs"] = inputs;
   OutputSet out(c.output_dir);
 
   // A refinement grid is cut from its parent (app/regional_refine.hpp); any other from its contour.
@@ -237,10 +327,13 @@ void add_regional_command(CLI::App& app, Context& ctx) {
       "refine_factor, parent_box)");
   cmd->add_option("file", args->file, "A seed-format .izogrid file (or a .toml config)");
   cmd->add_option("-c,--config", args->config, "Configuration file (TOML); see configs/example_regional.toml");
-  cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or 0..4)");
+  cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or the seed's mode 0..5; 4 and 5 are grid)");
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
   cmd->add_flag("--no-coastline", args->no_coastline, "Do not draw the bathymetry's coastline on the pictures");
+  cmd->add_flag("--force", args->force,
+                "Cut a refinement grid from nesting.parent although the parent changed since this grid's earlier "
+                "outputs were cut from it");
   cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_regional_cmd(*args, ctx.log); }; });
 }
 

@@ -140,6 +140,50 @@ std::filesystem::path global_run_file_path(const config::GlobalConfig& c) {
   return std::filesystem::path(c.output.dir) / (c.output.name + ".tif");
 }
 
+static void warn_lattice_finer_than_data(const Lattice& lat, double dlon, double dlat, const config::GlobalConfig& c,
+                                  const Logger& log, Report* report) {
+  const double pixel = lat.pixel_deg(), cell = std::min(dlon, dlat);
+  if (!(pixel < cell * (1.0 - 1e-9))) return;
+  // The lattice's rows: on the Mercator lattice a pixel spans less latitude towards the poles, so
+  // it is the longitude side that is compared (the longer one everywhere).
+  const auto pixels = static_cast<double>(lat.nx) * static_cast<double>(lat.ny);
+  log.warn("lattice finer than its data: {:.4g}' pixels on a {:.4g}' raster ({:.3g} pixels per raster cell side; all "
+           "{:.4g} million pixels of the {} lattice, everywhere the raster covers): the finest quadtree levels "
+           "resolve interpolation, not bathymetry. quadtree.levels = {} or quadtree.step_deg = {} set the pixel; "
+           "input.path a finer raster",
+           pixel * 60.0, cell * 60.0, cell / pixel, pixels / 1e6, lat.kind_name(), c.quadtree.levels,
+           c.quadtree.step_deg);
+  if (report != nullptr)
+    (*report)["warnings"]["lattice_finer_than_data"] =
+        Json{{"pixel_deg", pixel}, {"raster_deg", cell}, {"pixels_per_raster_cell", cell / pixel}, {"pixels", pixels}};
+}
+
+static void warn_threshold_depth_nodes(const mesh::Mesh& m, double h, const Logger& log, Report* report) {
+  // Nodes whose elevation is exactly the threshold −h: "wet" only by the rule d ≤ −h. ETOPO-class
+  // rasters give 0 m over ice shelves (Ross, Filchner–Ronne) and some flats: at h = 0 those are
+  // meshed as ocean.
+  std::int64_t at = 0, south = 0;
+  double lon_min = 1e9, lon_max = -1e9, lat_min = 1e9, lat_max = -1e9;
+  for (std::size_t k = 0; k < m.depth_m.size(); ++k) {
+    if (m.depth_m[k] != -h) continue;
+    ++at;
+    if (m.lat_deg[k] < -77.0) ++south;
+    lon_min = std::min(lon_min, m.lon_deg[k]);
+    lon_max = std::max(lon_max, m.lon_deg[k]);
+    lat_min = std::min(lat_min, m.lat_deg[k]);
+    lat_max = std::max(lat_max, m.lat_deg[k]);
+  }
+  const auto n = static_cast<std::int64_t>(m.depth_m.size());
+  if (report != nullptr)
+    (*report)["warnings"]["nodes_at_threshold_depth"] = Json{{"h_m", h}, {"nodes", at}, {"south_of_77S", south}};
+  // "Over large areas": at least 100 nodes and 0.1 % of the mesh.
+  if (at < 100 || static_cast<double>(at) < 1e-3 * static_cast<double>(n)) return;
+  log.warn("{} of {} mesh nodes ({:.2g} %) sit at exactly the threshold depth {} m (wet only by d <= -h), {} of them "
+           "south of 77°S{}; they span {:.1f}..{:.1f}°E, {:.1f}..{:.1f}°N. mask.min_depth_m > {} leaves them dry",
+           at, n, 100.0 * static_cast<double>(at) / static_cast<double>(n), h, south,
+           h == 0.0 ? " (ice shelves have 0 m in ETOPO-class rasters)" : "", lon_min, lon_max, lat_min, lat_max, h);
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics, bool reuse) {
   GlobalRun run;
@@ -159,6 +203,7 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                                             ri.ncols, ri.nrows, ri.dlon * 60.0, ri.band_rows, ri.memory_bytes >> 20)
                               : fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
                                             ri.memory_bytes >> 20));
+  warn_lattice_finer_than_data(lat, ri.dlon, ri.dlat, c, log, report);
   if (report != nullptr) {
     (*report)["lattice"] = Json{{"kind", lat.kind_name()},
                                 {"lat_max_deg", lat.lat_max_deg()},
@@ -202,6 +247,7 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   }
   run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
   run.mesh = mesh::build_mesh(run.leaves, lat, rot, bathy, c.mesh, log, report);
+  warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (!statistics) return run;
 
   StageScope stat_stage("statistics", report, log);

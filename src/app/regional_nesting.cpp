@@ -8,7 +8,7 @@
 #include "app/global_run.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "grid_files/nesting_netcdf.hpp"
 #include "handoff/nesting.hpp"
 

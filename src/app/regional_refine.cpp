@@ -9,7 +9,7 @@
 
 #include "app/regional_roms.hpp"
 #include "core/error.hpp"
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "grid_files/roms_grid.hpp"
 #include "handoff/contact_points.hpp"
 #include "handoff/nested_bathymetry.hpp"

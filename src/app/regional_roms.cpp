@@ -13,8 +13,9 @@
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
-#include "curvilinear/cgrid.hpp"
-#include "curvilinear/roms_depth.hpp"
+#include "curvilinear/common/cgrid.hpp"
+#include "curvilinear/common/roms_depth.hpp"
+#include "grid_files/mom6_grid.hpp"
 #include "grid_files/roms_grid.hpp"
 #include "io/depth.hpp"
 #include "mask/cell_elevation.hpp"
@@ -28,6 +29,96 @@
 #endif
 
 namespace aq::app {
+
+namespace {
+
+// Thresholds of the metric warnings: ROMS's metrics should vary smoothly and its cells be nearly
+// square (WikiROMS "Grid generation"); beyond these the grid is legal but a model will suffer.
+constexpr double kIsotropyWarn = 0.5;   // max |pm/pn − 1| over interior ρ points
+constexpr double kAreaJumpWarn = 2.0;   // largest area ratio of two neighbouring interior ρ cells
+
+// Warns about extreme metrics with their values and places; returns them for the report.
+MetricWarnings warn_extreme_metrics(const curvilinear::CGrid& cg, const curvilinear::CGridStats& st,
+                                    const std::string& name, const Logger& log) {
+  MetricWarnings w;
+  const int ni = cg.L + 1, nj = cg.M + 1;
+  const auto area = [&](int i, int j) {
+    const std::size_t k = cg.rho.at(i, j);
+    return 1.0 / (cg.pm[k] * cg.pn[k]);
+  };
+  for (int j = 1; j < nj - 1; ++j)
+    for (int i = 1; i < ni - 1; ++i) {
+      const auto jump = [&](int i2, int j2) {
+        if (i2 < 1 || j2 < 1 || i2 > ni - 2 || j2 > nj - 2) return;
+        const double a = area(i, j), b = area(i2, j2);
+        const double r = std::max(a, b) / std::min(a, b);
+        if (r > w.area_jump) {
+          w.area_jump = r;
+          w.area_jump_i = i;
+          w.area_jump_j = j;
+        }
+      };
+      jump(i + 1, j);
+      jump(i, j + 1);
+    }
+  if (st.isotropy_max_interior > kIsotropyWarn) {
+    const std::size_t k = cg.rho.at(st.isotropy_worst_i, st.isotropy_worst_j);
+    log.warn("{}: extreme cell shapes: max |pm/pn - 1| = {:.3g} inside the grid ({:.3g} with the boundary; worst at "
+             "rho ({}, {}), {:.4f}°E {:.4f}°N; > {} makes cells far from square: a model's time step and mixing suffer)",
+             name, st.isotropy_max_interior, st.isotropy_max, st.isotropy_worst_i, st.isotropy_worst_j,
+             cg.rho.lon_deg[k], cg.rho.lat_deg[k], kIsotropyWarn);
+    w.isotropy = true;
+  }
+  if (w.area_jump > kAreaJumpWarn) {
+    const std::size_t k = cg.rho.at(w.area_jump_i, w.area_jump_j);
+    log.warn("{}: cell-area jump: neighbouring rho cells differ in area by a factor {:.3g} at rho ({}, {}), {:.4f}°E "
+             "{:.4f}°N (> {}: the metrics should vary smoothly)",
+             name, w.area_jump, w.area_jump_i, w.area_jump_j, cg.rho.lon_deg[k], cg.rho.lat_deg[k], kAreaJumpWarn);
+  }
+  return w;
+}
+
+// ρ cells smaller than the raster spacing under them in both directions: their depths are
+// interpolated between raster points, not measured. Warns with the count and the finest place.
+Json warn_finer_than_raster(const curvilinear::CGrid& cg, double dlon, double dlat, double radius_m,
+                            const std::string& name, const std::string& raster, const Logger& log) {
+  constexpr double kRad = 3.14159265358979323846 / 180.0;
+  const int ni = cg.L + 1, nj = cg.M + 1;
+  std::int64_t finer = 0, total = 0;
+  double worst = 0.0;
+  std::size_t worst_k = 0;
+  for (int j = 1; j < nj - 1; ++j)
+    for (int i = 1; i < ni - 1; ++i) {
+      const std::size_t k = cg.rho.at(i, j);
+      ++total;
+      const double rx = dlon * kRad * radius_m * std::cos(cg.rho.lat_deg[k] * kRad), ry = dlat * kRad * radius_m;
+      const double dx = 1.0 / cg.pm[k], dy = 1.0 / cg.pn[k];
+      const double ratio = std::min(rx / dx, ry / dy);  // > 1: the cell is finer than the raster both ways
+      if (ratio > 1.0) {
+        ++finer;
+        if (ratio > worst) {
+          worst = ratio;
+          worst_k = k;
+        }
+      }
+    }
+  if (finer > 0)
+    log.warn("{}: {} of {} interior rho cells ({:.3g} %) are finer than the raster under them ({} at {:.4g}' x {:.4g}'; "
+             "up to {:.3g} cells per raster spacing, at {:.4f}°E {:.4f}°N): their depths are interpolated, not "
+             "measured. A finer roms.global_config input.path, or fewer cells (regional.ny), match grid and data",
+             name, finer, total, 100.0 * static_cast<double>(finer) / static_cast<double>(std::max<std::int64_t>(total, 1)),
+             raster, dlon * 60.0, dlat * 60.0, worst, cg.rho.lon_deg[worst_k], cg.rho.lat_deg[worst_k]);
+  return Json{{"rho_cells_finer_than_raster", finer}, {"interior_rho_cells", total}, {"max_cells_per_raster_spacing", worst}};
+}
+
+}  // namespace
+
+std::string rx1_grid_text() {
+  const curvilinear::VerticalGrid v;
+  return fmt::format("Vtransform 2, Vstretching 4, N = {}, theta_s = {}, theta_b = {}, hc = {} m (a reference ROMS "
+                     "vertical grid; rx1 depends on the model's own)",
+                     v.n, v.theta_s, v.theta_b, v.hc_m);
+}
 
 curvilinear::CGridOptions roms_cgrid_options(const config::RegionalConfig& c) {
   curvilinear::CGridOptions co;
@@ -148,6 +239,13 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
     nested_line = std::move(nd.line);
   }
   const curvilinear::CGridStats st = curvilinear::cgrid_stats(cg);
+  const Json finer = warn_finer_than_raster(cg, bathy.info().dlon, bathy.info().dlat, c.roms.earth_radius_m, c.name,
+                                            g.input.path, log);
+  const MetricWarnings mw = warn_extreme_metrics(cg, st, c.name, log);
+  if (c.roms.rmax == 0.0 && depth.rx0_after > 0.2)
+    log.warn("{}: roms.rmax = 0 leaves rx0 = {:.3g} (rx1 = {:.3g}); ROMS needs rx0 <= 0.2 or so (roms.rmax = 0.2, the "
+             "default, smooths to it)",
+             c.name, depth.rx0_after, depth.rx1_after);
 
   // The file.
   const auto& p = c.params;
@@ -165,6 +263,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   data.attributes = {
       {"grid_name", c.name},
       {"regional_config", config_source},
+      {"aquatoria_config", report["config"].dump()},
       {"proj", curvilinear::projection_code(p.proj)},
       {"rlat", p.rlat},
       {"rlon", p.rlon},
@@ -218,6 +317,9 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                    "depth only (minimal solution, Sikiric et al. 2009 positive rx0); land keeps max(hraw, hmin)")},
       {"rx0_before", depth.rx0_before},
       {"rx0_after", depth.rx0_after},
+      {"rx1_before", depth.rx1_before},
+      {"rx1_after", depth.rx1_after},
+      {"rx1_vertical_grid", rx1_grid_text()},
   };
   if (c.nesting.refinement()) {  // as ROMS's coarse2fine.m marks a refinement grid
     const auto& b = c.nesting.parent_box;
@@ -248,6 +350,29 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   const std::string nc = c.name + "_grd.nc";
   io::write_roms_grid(out.temp_path(nc), data);
   outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
+
+  // The same grid for MOM6 (grid_files/mom6_grid.hpp): supergrid, topography, mask.
+  {
+    const std::vector<double> mask_d(masks.rho.begin(), masks.rho.end());
+    const io::Mom6Grid m6 = io::mom6_grid(result.grid, *result.projection, depth.h, mask_d, c.roms.earth_radius_m);
+    const std::string hg = c.name + "_ocean_hgrid.nc", tp = c.name + "_ocean_topog.nc", mk = c.name + "_ocean_mask.nc";
+    io::write_mom6_files(m6, out.temp_path(hg), out.temp_path(tp), out.temp_path(mk),
+                         fmt::format("aquatoria regional {} (the grid of {})", config_source, nc));
+    for (const auto& f : {hg, tp, mk}) outputs.push_back(Json{{"file", f}, {kChecksumKey, file_checksum(out.pending_path(f))}});
+    double m6_area = 0.0;
+    for (const double a : m6.area) m6_area += a;
+    report["mom6"] = Json{{"hgrid", hg},
+                          {"topog", tp},
+                          {"mask", mk},
+                          {"nx", m6.nx},
+                          {"ny", m6.ny},
+                          {"supergrid", {m6.nxp(), m6.nyp()}},
+                          {"area_m2", m6_area},
+                          {"cells", "MOM6 cell (i, j) = ROMS rho (i+1, j+1); supergrid = the izogrid supergrid without its "
+                                    "outer ring"}};
+    log.info("mom6: {}, {}, {} ({} x {} cells, supergrid {} x {}, grid area {:.6g} km²)", hg, tp, mk, m6.nx, m6.ny,
+             m6.nxp(), m6.nyp(), m6_area * 1e-6);
+  }
 
   // The picture, with the coastline of the global bathymetry.
   io::RomsPictureOptions po;
@@ -306,6 +431,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                          {"isotropy_max_abs_pm_over_pn_minus_1", st.isotropy_max},
                                          {"isotropy_worst_rho", {st.isotropy_worst_i, st.isotropy_worst_j}},
                                          {"isotropy_max_interior", st.isotropy_max_interior},
+                                         {"area_jump_max", mw.area_jump},
+                                         {"area_jump_rho", {mw.area_jump_i, mw.area_jump_j}},
+                                         {"warn_isotropy_above", kIsotropyWarn},
+                                         {"warn_area_jump_above", kAreaJumpWarn},
+                                         {"finer_than_raster", finer},
                                          {"angle_min_rad", st.angle_min},
                                          {"angle_max_rad", st.angle_max},
                                          {"xl_m", cg.xl_m},
@@ -320,6 +450,9 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                        {"clipped_wet", depth.clipped_wet},
                                        {"rx0_before", depth.rx0_before},
                                        {"rx0_after", depth.rx0_after},
+                                       {"rx1_before", depth.rx1_before},
+                                       {"rx1_after", depth.rx1_after},
+                                       {"rx1_vertical_grid", rx1_grid_text()},
                                        {"parent_blend_cells", blend},
                                        {"parent_blend_max_change_m", blend_change},
                                        {"smoothed_points", depth.smoothed},
@@ -332,9 +465,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   rs.done(fmt::format(
       "{} ({} x {} ρ points, {} wet; land although deeper than h: {} in unconnected water, {} in "
       "coastal pixels); dx {:.4g}..{:.4g} km, max |pm/pn-1| "
-      "{:.3g} (interior {:.3g}); rx0 {:.3g} -> {:.3g} ({} points deepened); {}{}",
+      "{:.3g} (interior {:.3g}), area jump {:.3g}; rx0 {:.3g} -> {:.3g}, rx1 {:.3g} -> {:.3g} (roms.rmax = {:g}, {} "
+      "points deepened); {}{}",
       nc, ni, nj, ms.wet_rho, ms.lake_points, ms.coastal_points, st.dx_min_m / 1000.0, st.dx_max_m / 1000.0,
-      st.isotropy_max, st.isotropy_max_interior, depth.rx0_before, depth.rx0_after, depth.smoothed, png, nested_line));
+      st.isotropy_max, st.isotropy_max_interior, mw.area_jump, depth.rx0_before, depth.rx0_after, depth.rx1_before,
+      depth.rx1_after, c.roms.rmax, depth.smoothed, png, nested_line));
 }
 
 }  // namespace aq::app

@@ -14,7 +14,7 @@
 #include "core/log.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "curvilinear/regional.hpp"
 
 namespace aq::app {
@@ -49,6 +49,16 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
 /// averages, both r-factor bounds kept; hraw in the file stays the bathymetry's), a "nested"
 /// report section is added, and the updated parent and this grid's values are stored in
 /// `refined` for write_refinement_contact.
+/// Extreme metrics found by write_regional_roms (warned about in the log).
+struct MetricWarnings {
+  bool isotropy = false;
+  double area_jump = 1.0;  ///< largest area ratio of neighbouring interior ρ cells
+  int area_jump_i = 0, area_jump_j = 0;
+};
+
+/// The reference vertical grid rx1 is measured on, as one line for the log and report.
+std::string rx1_grid_text();
+
 void write_regional_roms(const config::RegionalConfig& c, const std::string& config_source,
                          const curvilinear::RegionalResult& result, const curvilinear::CGrid& cg,
                          const RegionalGlobal& global, OutputSet& out, Json& outputs, Report& report, const Logger& log,

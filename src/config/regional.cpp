@@ -162,6 +162,14 @@ const S& schema() {
           c.roms.global_config = x.empty() ? x : path.lexically_normal().string();
         },
         [](const RegionalConfig& c) { return Json(c.roms.global_config); }, "");
+    t.add<std::string>(
+        "roms", "global_config_checksum", [](RegionalConfig& c) -> std::string& { return c.roms.global_config_checksum; },
+        [](const std::string& v) {
+          if (v.empty()) return std::string();
+          const bool hex = v.size() == 16 && v.find_first_not_of("0123456789abcdef") == std::string::npos;
+          return hex ? std::string() : std::string("must be \"\" or 16 lower-case hex digits (an XXH64 checksum)");
+        },
+        "");
     t.add<double>(
         "roms", "hmin_m", [](RegionalConfig& c) -> double& { return c.roms.hmin_m; },
         [](const double& v) {

@@ -23,8 +23,13 @@ struct RomsOptions {
   /// bathymetry, the lattice, the threshold h and the K-fill Ω_L; "" = the built-in defaults (the
   /// seed's reference run on ETOPO5).
   std::string global_config;
+  /// XXH64 (file_checksum) of global_config as `aquatoria blocks` wrote it beside this block's
+  /// config; a run refuses when the file now differs. "" = not checked (hand-written configs).
+  std::string global_config_checksum;
   double hmin_m = 10.0;               ///< minimum depth h is clipped to (m, > 0)
-  double rmax = 0.0;                  ///< r-factor bound of the depth smoothing, [0, 1); 0 = none
+  /// r-factor bound of the depth smoothing, [0, 1); 0 = none. The default 0.2 gives the rx0 ≤ 0.2
+  /// ROMS users expect of a model-ready grid.
+  double rmax = 0.2;
   std::string distances = "sphere";   ///< pm, pn from "sphere" great circles or "wgs84" geodesics
   double earth_radius_m = 6371000.0;  ///< sphere radius of the ROMS metrics and x/y (m, > 0)
   /// Elevation of a ρ cell from the raster (mask/cell_elevation.hpp): "auto" (mean when the raster

@@ -7,8 +7,8 @@
 
 #include "core/error.hpp"
 #include "core/timer.hpp"
-#include "curvilinear/boundary_equidistribution.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/elliptic/boundary_equidistribution.hpp"
+#include "curvilinear/common/grid_checks.hpp"
 
 namespace aq::curvilinear {
 
@@ -385,8 +385,9 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
     }
     r.stage_seconds[0] = t.wall_s();
     r.completed = Stage::kMap;
-    scope.done(fmt::format("{} projection at ({}, {}), rota {}, {} control points", projection_code(p.proj), p.rlat,
-                           p.rlon, p.rota, r.control_x.size()));
+    // (lon, lat) as in the blocks table: longitude first.
+    scope.done(fmt::format("{} projection centred at lon {}, lat {}, rota {}, {} control points", projection_code(p.proj),
+                           p.rlon, p.rlat, p.rota, r.control_x.size()));
   }
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kMap) return r;

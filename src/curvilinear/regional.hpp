@@ -14,14 +14,14 @@
 
 #include "core/log.hpp"
 #include "core/report.hpp"
-#include "curvilinear/boundary_nodes.hpp"
-#include "curvilinear/grid2d.hpp"
-#include "curvilinear/inverse_problem.hpp"
-#include "curvilinear/laplace_fill.hpp"
-#include "curvilinear/projection.hpp"
-#include "curvilinear/regional_bvp.hpp"
-#include "curvilinear/regional_methods.hpp"
-#include "curvilinear/spline_contour.hpp"
+#include "curvilinear/common/boundary_nodes.hpp"
+#include "curvilinear/common/grid2d.hpp"
+#include "curvilinear/conformal/inverse_problem.hpp"
+#include "curvilinear/conformal/laplace_fill.hpp"
+#include "curvilinear/common/projection.hpp"
+#include "curvilinear/bvp/regional_bvp.hpp"
+#include "curvilinear/elliptic/regional_methods.hpp"
+#include "curvilinear/common/spline_contour.hpp"
 #include "grid_params/regional_params.hpp"
 
 namespace aq::curvilinear {

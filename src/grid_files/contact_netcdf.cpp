@@ -166,6 +166,8 @@ RomsGridFields read_roms_grid_fields(const fs::path& path) {
   const double nx = global_number(id, "izogrid_nx"), ny = global_number(id, "izogrid_ny");
   g.izogrid_nx = std::isfinite(nx) ? static_cast<int>(nx) : 0;
   g.izogrid_ny = std::isfinite(ny) ? static_cast<int>(ny) : 0;
+  g.aquatoria_config = global_text(id, "aquatoria_config");
+  g.regional_config = global_text(id, "regional_config");
   return g;
 }
 

@@ -51,6 +51,9 @@ struct RomsGridFields {
   double rlat = kNaN, rlon = kNaN, rota = kNaN, uscale = kNaN, lat1 = kNaN, lat2 = kNaN, radius = kNaN,
          aspect_ratio = kNaN;
   int izogrid_nx = 0, izogrid_ny = 0;
+  /// What made the file (aquatoria's global attributes; "" when absent): the effective regional
+  /// configuration as JSON text, and the configuration's source (file name).
+  std::string aquatoria_config, regional_config;
 
   [[nodiscard]] std::size_t rho_at(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(L + 1) + static_cast<std::size_t>(i);

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 
 namespace aq::io {

@@ -23,8 +23,8 @@
 #include <variant>
 #include <vector>
 
-#include "curvilinear/grid2d.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/common/grid2d.hpp"
+#include "curvilinear/common/grid_checks.hpp"
 
 namespace aq::io {
 

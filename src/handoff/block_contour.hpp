@@ -54,7 +54,7 @@
 #include "core/bitmap.hpp"
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
-#include "curvilinear/projection.hpp"
+#include "curvilinear/common/projection.hpp"
 #include "handoff/coastal_blocks.hpp"
 
 namespace aq::handoff {

@@ -118,6 +118,10 @@ std::string regional_config_text(const BlockConfigInfo& i) {
       s += "\n[roms]\n";
       s += fmt::format("global_config = {}  # the global run this block came from (lattice, mask, nesting)\n",
                        toml_string(i.global_config));
+      if (!i.global_config_checksum.empty())
+        s += fmt::format(
+            "global_config_checksum = {}  # XXH64 of that file as written: a run refuses when it has changed\n",
+            toml_string(i.global_config_checksum));
     } else {
       s += fmt::format("\n# global run this block came from: {}\n", i.global_config);
     }

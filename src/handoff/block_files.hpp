@@ -26,6 +26,8 @@ struct BlockConfigInfo {
   std::string output_dir;           ///< where the regional outputs go (absolute)
   std::string global_config;        ///< absolute path of the global config; written as [roms] global_config
   bool write_global_config = true;  ///< false when the regional schema has no such key (a comment then)
+  /// XXH64 of the global config file as written (roms.global_config_checksum); "" = none.
+  std::string global_config_checksum;
 };
 
 /// TOML basic string (quoted, with \, " and control characters escaped).

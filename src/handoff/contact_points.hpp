@@ -38,8 +38,8 @@
 
 #include <string>
 
-#include "curvilinear/cgrid.hpp"
-#include "curvilinear/refine.hpp"
+#include "curvilinear/common/cgrid.hpp"
+#include "curvilinear/common/refine.hpp"
 #include "grid_files/contact_netcdf.hpp"
 
 namespace aq::handoff {

@@ -45,8 +45,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "curvilinear/refine.hpp"
-#include "curvilinear/roms_depth.hpp"
+#include "curvilinear/common/refine.hpp"
+#include "curvilinear/common/roms_depth.hpp"
 
 namespace aq::handoff {
 

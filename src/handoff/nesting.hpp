@@ -24,8 +24,8 @@
 
 #include <cstdint>
 
-#include "curvilinear/cgrid.hpp"
-#include "curvilinear/grid2d.hpp"
+#include "curvilinear/common/cgrid.hpp"
+#include "curvilinear/common/grid2d.hpp"
 #include "grid_files/nesting_netcdf.hpp"
 #include "handoff/mesh_locator.hpp"
 #include "mesh/mesh.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "curvilinear/grid2d.hpp"
+#include "curvilinear/common/grid2d.hpp"
 
 namespace aq::io {
 

@@ -242,7 +242,10 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
     paint.line(box.x0, 0.0, box.x1, 0.0);
     paint.line(0.0, box.y0, 0.0, box.y1);
   } else {
-    const double minor = nice_step((box.x1 - box.x0) / 40.0);
+    // Graph paper in kilometres from the projection's centre, at the map's scale there (the plane
+    // is conformal: the scale varies slowly away from it).
+    const double km_per_unit = proj.metres_per_unit(0.0, 0.0) / 1000.0;
+    const double minor = nice_step((box.x1 - box.x0) * km_per_unit / 40.0) / km_per_unit;
     for (int pass = 0; pass < 2; ++pass) {
       const double step = pass == 0 ? minor : 5.0 * minor;
       if (pass == 0) {
@@ -254,10 +257,12 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
       for (double y = std::ceil(box.y0 / step) * step; y <= box.y1; y += step) paint.line(box.x0, y, box.x1, y);
     }
     paint.style(0.3, 0.5, 0.3, 0.8);
+    const auto km = [&](double u) { return fmt::format("{:g} km", std::round(u * km_per_unit * 1000.0) / 1000.0 + 0.0); };
     for (double x = std::ceil(box.x0 / (5 * minor)) * 5 * minor; x <= box.x1; x += 5 * minor)
-      paint.text(v.px(x) + 2, v.height - 4.0, fmt::format("{:g}", x), 10);
+      paint.text(v.px(x) + 2, v.height - 4.0, km(x), 10);
     for (double y = std::ceil(box.y0 / (5 * minor)) * 5 * minor; y <= box.y1; y += 5 * minor)
-      paint.text(2.0, v.py(y) - 2, fmt::format("{:g}", y), 10);
+      paint.text(2.0, v.py(y) - 2, km(y), 10);
+    paint.text(v.width / 2.0 - 150.0, v.height - 18.0, "x, y: km from the projection centre (its scale there)", 10);
     paint.style(0.2, 0.2, 0.6, 1.0, {8.0, 3.0, 2.0, 3.0});
     paint.line(box.x0, 0.0, box.x1, 0.0);
     paint.line(0.0, box.y0, 0.0, box.y1);

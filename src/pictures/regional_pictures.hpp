@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "curvilinear/projection.hpp"
+#include "curvilinear/common/projection.hpp"
 #include "curvilinear/regional.hpp"
 
 namespace aq::io {

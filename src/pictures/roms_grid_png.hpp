@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "curvilinear/grid2d.hpp"
-#include "curvilinear/plane_point.hpp"
+#include "curvilinear/common/grid2d.hpp"
+#include "curvilinear/common/plane_point.hpp"
 
 namespace aq::io {
 

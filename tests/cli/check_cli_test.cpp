@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/types.hpp"
-#include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/conformal/laplace_fill.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"

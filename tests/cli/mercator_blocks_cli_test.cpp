@@ -26,7 +26,7 @@
 
 #include "config/regional.hpp"
 #include "core/rotation.hpp"
-#include "curvilinear/projection.hpp"
+#include "curvilinear/common/projection.hpp"
 #include "curvilinear/regional.hpp"
 #include "grid_files/nesting_netcdf.hpp"
 #include "support/cli_outputs.hpp"

@@ -17,7 +17,7 @@
 #include <sstream>
 #include <string>
 
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "grid_files/contact_netcdf.hpp"
 #include "support/nest_invariant.hpp"
 #include "support/run_command.hpp"

@@ -1,5 +1,5 @@
 // Tests of 1-D equidistribution of boundary nodes (seed 004, digest B.2).
-#include "curvilinear/boundary_equidistribution.hpp"
+#include "curvilinear/elliptic/boundary_equidistribution.hpp"
 
 #include <gtest/gtest.h>
 

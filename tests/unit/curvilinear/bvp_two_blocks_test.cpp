@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "curvilinear/bvp_two_blocks.hpp"
-#include "curvilinear/transfinite_interpolation.hpp"
+#include "curvilinear/bvp/bvp_two_blocks.hpp"
+#include "curvilinear/bvp/transfinite_interpolation.hpp"
 
 namespace aq::curvilinear {
 namespace {

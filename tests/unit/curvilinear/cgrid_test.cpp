@@ -1,7 +1,7 @@
 // The ROMS C-grid on the sphere: metrics against great circles computed here independently
 // (haversine), angles against the bearings of ξ lines and against the projection's rotation,
 // f = 2Ω sin φ, the ρ/u/v/ψ index convention, and bad input.
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 
 #include <gtest/gtest.h>
 

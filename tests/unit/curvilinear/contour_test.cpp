@@ -12,9 +12,9 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "curvilinear/boundary_nodes.hpp"
-#include "curvilinear/periodic_spline.hpp"
-#include "curvilinear/spline_contour.hpp"
+#include "curvilinear/common/boundary_nodes.hpp"
+#include "curvilinear/common/periodic_spline.hpp"
+#include "curvilinear/common/spline_contour.hpp"
 
 namespace aq::curvilinear {
 namespace {

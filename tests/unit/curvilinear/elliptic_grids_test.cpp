@@ -1,5 +1,5 @@
 // Tests of seed 004's ED2 and Ryskin–Leal grids (digest B.4, B.8).
-#include "curvilinear/elliptic_grids.hpp"
+#include "curvilinear/elliptic/elliptic_grids.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <cstring>
 #include <numbers>
 
-#include "curvilinear/grid_checks.hpp"
-#include "curvilinear/initial_grids.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "curvilinear/elliptic/initial_grids.hpp"
 #include "unit/curvilinear/seed004_domains.hpp"
 
 namespace aq::curvilinear {

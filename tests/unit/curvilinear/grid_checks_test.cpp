@@ -16,8 +16,8 @@
 
 #include "core/error.hpp"
 #include "core/types.hpp"
-#include "curvilinear/grid_checks.hpp"
-#include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "curvilinear/conformal/laplace_fill.hpp"
 
 namespace aq::curvilinear {
 namespace {

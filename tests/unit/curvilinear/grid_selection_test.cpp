@@ -1,6 +1,6 @@
 // Tests of seed 004's automatic best-grid choice (digest B.6) on constructed candidate sets whose
 // answer follows from the procedure by hand.
-#include "curvilinear/grid_selection.hpp"
+#include "curvilinear/elliptic/grid_selection.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Tests of seed 004's initial grids (digest B.3): normalised blending, TFI with sections on the swan,
 // STAR and the kernel, the boundary-crossing test.
-#include "curvilinear/initial_grids.hpp"
+#include "curvilinear/elliptic/initial_grids.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "core/error.hpp"
-#include "curvilinear/grid_checks.hpp"
+#include "curvilinear/common/grid_checks.hpp"
 #include "unit/curvilinear/seed004_domains.hpp"
 
 namespace aq::curvilinear {

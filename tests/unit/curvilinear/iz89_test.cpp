@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "curvilinear/inverse_problem.hpp"
-#include "curvilinear/iz89.hpp"
+#include "curvilinear/conformal/inverse_problem.hpp"
+#include "curvilinear/conformal/iz89.hpp"
 
 namespace aq::curvilinear {
 namespace {

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "curvilinear/grid_checks.hpp"
-#include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "curvilinear/conformal/laplace_fill.hpp"
 
 namespace aq::curvilinear {
 namespace {

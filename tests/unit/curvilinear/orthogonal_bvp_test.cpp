@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "curvilinear/grid_checks.hpp"
-#include "curvilinear/orthogonal_bvp.hpp"
-#include "curvilinear/transfinite_interpolation.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "curvilinear/bvp/orthogonal_bvp.hpp"
+#include "curvilinear/bvp/transfinite_interpolation.hpp"
 
 namespace aq::curvilinear {
 namespace {

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "core/error.hpp"
-#include "curvilinear/projection.hpp"
+#include "curvilinear/common/projection.hpp"
 
 namespace aq::curvilinear {
 namespace {

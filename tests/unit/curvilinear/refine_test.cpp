@@ -8,8 +8,8 @@
 #include <complex>
 
 #include "core/error.hpp"
-#include "curvilinear/grid_checks.hpp"
-#include "curvilinear/refine.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "curvilinear/common/refine.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>

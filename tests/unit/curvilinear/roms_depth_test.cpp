@@ -1,6 +1,6 @@
 // ROMS depth: clip to hmin, r-factor smoothing on wet faces that only deepens, is minimal (every
 // raised point is held by a tight neighbour), independent of sweep order, and leaves land alone.
-#include "curvilinear/roms_depth.hpp"
+#include "curvilinear/common/roms_depth.hpp"
 
 #include <gtest/gtest.h>
 

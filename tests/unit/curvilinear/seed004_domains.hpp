@@ -8,8 +8,8 @@
 #include <numbers>
 #include <vector>
 
-#include "curvilinear/boundary_equidistribution.hpp"
-#include "curvilinear/grid2d.hpp"
+#include "curvilinear/elliptic/boundary_equidistribution.hpp"
+#include "curvilinear/common/grid2d.hpp"
 
 namespace aq::curvilinear::test {
 

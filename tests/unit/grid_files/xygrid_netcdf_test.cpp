@@ -11,8 +11,8 @@
 
 #include "core/error.hpp"
 #include "core/output_files.hpp"
-#include "curvilinear/grid_checks.hpp"
-#include "curvilinear/laplace_fill.hpp"
+#include "curvilinear/common/grid_checks.hpp"
+#include "curvilinear/conformal/laplace_fill.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 #include "support/temp_dir.hpp"
 

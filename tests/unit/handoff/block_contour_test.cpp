@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "core/types.hpp"
 #include "curvilinear/regional.hpp"
-#include "curvilinear/spline_contour.hpp"
+#include "curvilinear/common/spline_contour.hpp"
 #include "handoff/block_contour.hpp"
 #include "handoff/block_files.hpp"
 #include "mask/lattice_coords.hpp"

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "curvilinear/cgrid.hpp"
-#include "curvilinear/refine.hpp"
+#include "curvilinear/common/cgrid.hpp"
+#include "curvilinear/common/refine.hpp"
 #include "grid_files/contact_netcdf.hpp"
 #include "grid_files/roms_grid.hpp"
 #include "handoff/contact_points.hpp"

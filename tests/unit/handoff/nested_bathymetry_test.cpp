@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "curvilinear/roms_depth.hpp"
+#include "curvilinear/common/roms_depth.hpp"
 #include "handoff/contact_points.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 #include <variant>
 
 #include "core/types.hpp"
-#include "curvilinear/cgrid.hpp"
+#include "curvilinear/common/cgrid.hpp"
 #include "grid_files/nesting_netcdf.hpp"
 #include "handoff/nesting.hpp"
 #include "support/temp_dir.hpp"

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "curvilinear/cgrid.hpp"
-#include "curvilinear/projection.hpp"
+#include "curvilinear/common/cgrid.hpp"
+#include "curvilinear/common/projection.hpp"
 #include "support/temp_dir.hpp"
 
 namespace aq::io {
