@@ -116,7 +116,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
       c.blocks.top,
       c.blocks.boxes.empty() ? " of the level-0 squares" : fmt::format(" of {} user boxes", c.blocks.boxes.size()));
   const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
-  OutputSet out(dir);
+  OutputSet out(dir, log);
 
   const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, true);
 

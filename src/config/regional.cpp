@@ -138,6 +138,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (!x.empty() && path.is_relative()) path = o.base_dir / path;
           c.input.path = x.empty() ? x : path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.input.path); !x.empty() && !bad.empty())
+            p.add(o, "input.path", bad);
         },
         [](const RegionalConfig& c) { return Json(c.input.path); }, "");
     t.add<std::string>(
@@ -149,7 +151,7 @@ const S& schema() {
         [](const double& v) { return std::isfinite(v) ? std::string() : std::string("must be finite"); }, "");
     t.add<std::string>(
         "output", "dir", [](RegionalConfig& c) -> std::string& { return c.output_dir; },
-        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "");
+        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : output_dir_problem(v); }, "");
     t.add<bool>(
         "roms", "enabled", [](RegionalConfig& c) -> bool& { return c.roms.enabled; }, {}, "");
     t.add_custom(
@@ -160,6 +162,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (!x.empty() && path.is_relative()) path = o.base_dir / path;
           c.roms.global_config = x.empty() ? x : path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.roms.global_config); !x.empty() && !bad.empty())
+            p.add(o, "roms.global_config", bad);
         },
         [](const RegionalConfig& c) { return Json(c.roms.global_config); }, "");
     t.add<double>(
@@ -203,6 +207,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (!x.empty() && path.is_relative()) path = o.base_dir / path;
           c.nesting.parent = x.empty() ? x : path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.nesting.parent); !x.empty() && !bad.empty())
+            p.add(o, "nesting.parent", bad);
         },
         [](const RegionalConfig& c) { return Json(c.nesting.parent); }, "");
     t.add<int>(
@@ -328,6 +334,8 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
         !doc.at("regional").at("contour_file").as_string().str.empty()) {
       std::filesystem::path cf(doc.at("regional").at("contour_file").as_string().str);
       if (cf.is_relative()) cf = base / cf;
+      if (const std::string bad = input_file_problem(cf, kMaxTextFileBytes); !bad.empty())
+        throw ConfigError(fmt::format("{}: regional.contour_file = {}: {}", file.string(), cf.string(), bad));
       c.params = curvilinear::read_izogrid_file(cf);
       c.contour_file = cf.lexically_normal().string();
     }

@@ -13,12 +13,17 @@
 // Big-endian. Counts are 4 bytes (8 in CDF-5); begin is 4 bytes in CDF-1, else 8.
 #include <fmt/format.h>
 
+#include <sys/statvfs.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdint>
 #include <fstream>
 #include <limits>
 #include <vector>
 
+#include "core/input_files.hpp"
 #include "io/netcdf_file.hpp"
 
 namespace aq::io {
@@ -179,6 +184,9 @@ class HeaderWalk {
 }  // namespace
 
 void check_netcdf_header(const std::filesystem::path& path) {
+  // Opening a FIFO blocks; a device never ends: only regular files are read.
+  if (const std::string bad = input_file_problem(path); !bad.empty())
+    throw InputError(fmt::format("{}: {}", path.string(), bad));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open", path.string()));
   char magic[4] = {};
@@ -191,6 +199,17 @@ void check_netcdf_header(const std::filesystem::path& path) {
   if (ec) throw InputError(fmt::format("{}: cannot read its size: {}", path.string(), ec.message()));
   in.clear();
   HeaderWalk(path, in, size).run();
+}
+
+std::string write_failure_note(const std::filesystem::path& path) {
+  const int err = errno;
+  if (err == ENOSPC || err == EDQUOT || err == EFBIG || err == EIO)
+    return fmt::format(" ({}{})", std::strerror(err), err == ENOSPC ? ": ENOSPC" : "");
+  struct statvfs fs {};
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (::statvfs(dir.c_str(), &fs) == 0 && static_cast<std::uint64_t>(fs.f_bavail) * fs.f_frsize < (64u << 10))
+    return fmt::format(" ({}: ENOSPC, the file system of {} is full)", std::strerror(ENOSPC), dir.string());
+  return {};
 }
 
 void open_for_reading(const std::filesystem::path& path, NcFile& nc) {

@@ -17,6 +17,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/row_progress.hpp"
 #include "core/timer.hpp"
 #include "raster/spline1d.hpp"
@@ -54,10 +55,9 @@ struct DatasetCloser {
 using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(o.path, ec)) throw InputError(fmt::format("{}: no such file", o.path));
-  if (fs::is_directory(o.path, ec)) throw InputError(fmt::format("{}: is a directory, not a raster", o.path));
+  // A FIFO would block GDAL forever, a device never ends, a directory is not a raster.
+  if (const std::string bad = input_file_problem(o.path); !bad.empty())
+    throw InputError(fmt::format("{}: {}", o.path, bad));
   DatasetPtr ds(static_cast<GDALDataset*>(
       GDALOpenEx(o.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
