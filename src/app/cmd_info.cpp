@@ -2,6 +2,7 @@
 // sampled elevations at given points.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -33,7 +34,10 @@ int run_info(const InfoArgs& a, const Logger& log) {
   o.positive_down = a.positive_down;
   if (!(a.max_memory_gb >= 0.0) || !std::isfinite(a.max_memory_gb))
     throw ConfigError(fmt::format("--max-memory-gb = {}: must be a finite number >= 0", a.max_memory_gb));
-  o.max_memory_bytes = static_cast<std::int64_t>(a.max_memory_gb * 1e9);
+  // A tiny limit is a limit (at least 1 byte), not 0 = "80% of RAM".
+  o.max_memory_bytes = a.max_memory_gb > 0.0 ? std::max<std::int64_t>(1, static_cast<std::int64_t>(
+                                                                             std::min(a.max_memory_gb, 1e9) * 1e9))
+                                             : 0;
   if (a.interpolation == "bicubic") {
     o.interpolation = raster::Interpolation::kBicubic;
   } else if (a.interpolation != "bilinear") {

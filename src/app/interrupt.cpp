@@ -76,7 +76,13 @@ void install_interrupt_handlers() {
   sa.sa_flags = SA_RESTART;
   // SIGPIPE too (stderr piped into `grep -m1` that has quit): the message line then fails with
   // EPIPE, which is ignored; the temporaries are removed all the same.
-  for (const int sig : kSignals) sigaction(sig, &sa, nullptr);
+  // A signal ignored when aquatoria started stays ignored (`nohup aquatoria ...` must survive the
+  // hangup, a parent that ignores SIGPIPE wants EPIPE errors instead).
+  for (const int sig : kSignals) {
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sig, &sa, nullptr);
+  }
 }
 
 }  // namespace aq::app

@@ -185,6 +185,9 @@ const S& schema() {
     t.add<double>(
         "input", "max_memory_gb", [](GlobalConfig& c) -> double& { return c.input.max_memory_gb; },
         [](const double& v) { return in_range(v, 0.0, 1e6); }, "");
+    t.add<double>(
+        "input", "max_abs_elevation_m", [](GlobalConfig& c) -> double& { return c.input.max_abs_elevation_m; },
+        [](const double& v) { return in_range(v, 100.0, 1e6); }, "");
     // [mask]
     t.add<double>(
         "mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },

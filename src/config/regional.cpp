@@ -105,6 +105,13 @@ const S& schema() {
             if (idx.empty()) return;
             if (idx.size() != 4 || idx[0] != 1)
               return p.add(o, ckey, "expected the 4 corner point numbers, SW first: [1, SE, NE, NW]");
+            // The points go counter-clockwise from the SW corner, so SE < NE < NW; another order
+            // was once sorted silently, which made other points the corners.
+            if (!(idx[0] < idx[1] && idx[1] < idx[2] && idx[2] < idx[3]))
+              return p.add(o, ckey,
+                           fmt::format("[{}, {}, {}, {}]: the corner numbers must increase, [1, SE, NE, NW] with the "
+                                       "points counter-clockwise from the SW corner",
+                                       idx[0], idx[1], idx[2], idx[3]));
             c.*k.numbers = idx;  // applied to the points once all keys are read
           },
           [k](const RegionalConfig& c) {
@@ -146,6 +153,12 @@ const S& schema() {
         "input", "variable", [](RegionalConfig& c) -> std::string& { return c.input.variable; }, {}, "");
     t.add<bool>(
         "input", "positive_down", [](RegionalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
+    t.add<double>(
+        "input", "max_abs_elevation_m", [](RegionalConfig& c) -> double& { return c.input.max_abs_elevation_m; },
+        [](const double& v) {
+          return (v >= 100.0 && v <= 1e6) ? std::string() : fmt::format("{} must be within [100, 1e6] (m)", v);
+        },
+        "");
     t.add<double>(
         "input", "coast_level_m", [](RegionalConfig& c) -> double& { return c.coast_level_m; },
         [](const double& v) { return std::isfinite(v) ? std::string() : std::string("must be finite"); }, "");

@@ -90,6 +90,11 @@ class NcFile {
 /// InputError naming the path and what is damaged.
 void check_netcdf_header(const std::filesystem::path& path);
 
+/// Refuses (InputError naming the path) a file whose declared dimensions would need more than
+/// 80 % of this machine's memory to hold `values` doubles: a netCDF-4 file can declare
+/// 100000 x 100000 nodes in a few bytes. Computed in floating point (no overflow).
+void check_declared_size(const std::filesystem::path& path, double values, const std::string& what);
+
 /// check_netcdf_header() then nc_open for reading into `nc`; InputError naming the path.
 void open_for_reading(const std::filesystem::path& path, NcFile& nc);
 

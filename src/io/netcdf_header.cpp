@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/input_files.hpp"
+#include "core/timer.hpp"
 #include "io/netcdf_file.hpp"
 
 namespace aq::io {
@@ -72,7 +73,7 @@ class HeaderWalk {
       const std::uint64_t begin = version_ == 1 ? word() : u64();
       const std::uint64_t bytes = mul(mul(elems, size), record ? nrecs : 1);
       if (begin > file_size_ || bytes > file_size_ - begin)
-        fail(fmt::format("a variable of {} bytes at offset {}", bytes, begin));
+        fail(fmt::format("a variable of {} bytes at offset {} (the file is cut short?)", bytes, begin));
     }
   }
 
@@ -199,6 +200,14 @@ void check_netcdf_header(const std::filesystem::path& path) {
   if (ec) throw InputError(fmt::format("{}: cannot read its size: {}", path.string(), ec.message()));
   in.clear();
   HeaderWalk(path, in, size).run();
+}
+
+void check_declared_size(const std::filesystem::path& path, double values, const std::string& what) {
+  const double bytes = values * 8.0, limit = 0.8 * static_cast<double>(physical_memory_bytes());
+  if (!(bytes <= limit))
+    throw InputError(fmt::format("{}: declares {} ({:.3g} values, {:.1f} GB to hold), more than the {:.1f} GB of 80% "
+                                 "of this machine's memory",
+                                 path.string(), what, values, bytes / 1e9, limit / 1e9));
 }
 
 std::string write_failure_note(const std::filesystem::path& path) {

@@ -473,6 +473,10 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   nc.text(depth, "location", "node");
   nc.text(depth, "coordinates", all_node_coords);
   nc.text(depth, "grid_mapping", grid_mapping);
+  // A node without data (a pole-cap node over a raster's no-data) holds NaN: declared then, and
+  // only then, so files of meshes without one keep their bytes.
+  if (std::any_of(mesh.depth_m.begin(), mesh.depth_m.end(), [](double d) { return std::isnan(d); }))
+    nc.number(depth, "_FillValue", std::numeric_limits<double>::quiet_NaN());
 
   const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
   nc.text(flags, "long_name", "Node flags");
