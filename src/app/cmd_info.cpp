@@ -78,6 +78,7 @@ int run_info(const InfoArgs& a, const Logger& log) {
   if (i.scale != 1.0 || i.offset != 0.0) std::printf("scale/offset:  %g / %g\n", i.scale, i.offset);
   std::printf("elevation:     min %.1f m, max %.1f m, mean %.1f m (%lld valid values)\n", i.min_m, i.max_m, i.mean_m,
               static_cast<long long>(i.valid_count));
+  if (const std::string note = raster::implausible_note(i); !note.empty()) std::printf("implausible:   %s\n", note.c_str());
   std::printf("memory:        %.1f MB held (float32%s)\n", static_cast<double>(i.memory_bytes) / 1048576.0,
               i.streamed ? fmt::format(", streamed in bands of {} rows", i.band_rows).c_str() : "");
   for (const auto& [lon, lat] : pts) {

@@ -40,10 +40,12 @@ constexpr std::int64_t kBaseBytes = 64LL << 20;  // program, GDAL cache, small t
 // at L = 12 overflowed the old integer product into a negative estimate.
 std::int64_t saturate(double x) { return x < 4.6e18 ? static_cast<std::int64_t>(x) : std::int64_t{1} << 62; }
 
-std::int64_t estimate_lattice_bytes(const Lattice& l) {
+double estimate_lattice_bytes_f(const Lattice& l) {
   const double words = std::ceil(static_cast<double>(l.nx) / 64.0) * (static_cast<double>(l.ny) + 1.0);
-  return saturate(kLatticeBitsPerPixel * words * 8.0);
+  return kLatticeBitsPerPixel * words * 8.0;
 }
+
+std::int64_t estimate_lattice_bytes(const Lattice& l) { return saturate(estimate_lattice_bytes_f(l)); }
 
 std::int64_t estimate_triangles(const Lattice& l) {
   return saturate(kTrianglesPerSqrtPixel * std::sqrt(static_cast<double>(l.nx) * static_cast<double>(l.ny)));
@@ -82,8 +84,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   if (s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
     throw ConfigError(fmt::format(
         "quadtree.levels = {} with quadtree.step_deg = {}: the {} x {} pixel lattice needs about {:.1f} GB of "
-        "bitmaps, more than the {:.1f} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
-        lat.levels, lat.step0_deg, lat.nx, lat.ny, static_cast<double>(s.lattice_bytes) / 1e9,
+        "bitmaps, more than the {:.3g} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
+        lat.levels, lat.step0_deg, lat.nx, lat.ny, estimate_lattice_bytes_f(lat) / 1e9,
         static_cast<double>(s.memory_limit_bytes) / 1e9));
   }
   // The raster: its header only (nothing is read), whole or streamed, and the whole estimate.

@@ -17,7 +17,7 @@ namespace {
 // Checks coordinate vector `c` (n values) against centres first + k·step (k = 0..n-1), in
 // either order: a tolerance of 1 % of a step allows float32 coordinates.
 void check_axis(const std::string& path, const std::string& name, const std::vector<double>& c, double first,
-                double step) {
+                double step, bool longitude) {
   const auto n = static_cast<std::int64_t>(c.size());
   if (n < 2) return;
   const bool ascending = c[1] > c[0];
@@ -32,9 +32,9 @@ void check_axis(const std::string& path, const std::string& name, const std::vec
   for (std::int64_t k = 0; k < n; ++k) {
     const double want = ascending ? first + static_cast<double>(k) * step : first + static_cast<double>(n - 1 - k) * step;
     const double got = c[static_cast<std::size_t>(k)];
-    // Longitudes may differ from the geotransform by whole turns.
+    // Longitudes (the x axis) may differ from the geotransform by whole turns.
     double diff = got - want;
-    if (name.find("lon") != std::string::npos || name == "x") diff -= 360.0 * std::round(diff / 360.0);
+    if (longitude) diff -= 360.0 * std::round(diff / 360.0);
     if (std::abs(diff) > tol)
       throw InputError(fmt::format(
           "{}: coordinate variable {} is not evenly spaced: value {} is {}, the regular grid puts {} there", path, name,
@@ -71,7 +71,7 @@ void check_netcdf_coordinates(const std::string& path, const std::string& variab
     const double first = axis == 0 ? gt[0] + 0.5 * gt[1]
                                    : (gt[5] < 0.0 ? gt[3] + (static_cast<double>(height) - 0.5) * gt[5]
                                                   : gt[3] + 0.5 * gt[5]);
-    check_axis(path, name, c, first, step);
+    check_axis(path, name, c, first, step, axis == 0);
   }
 }
 
