@@ -134,7 +134,7 @@ TEST(RasterValidation, ANonFiniteGeotransformIsRefused) {
   aq::testing::TempDir dir;
   const double gt[6] = {0.0, 1.0, 0.0, std::nan(""), 0.0, -1.0};
   EXPECT_THAT(open_error(write_tif(dir / "nan.tif", GDT_Float32, -1000.0, 0.0, 30, 20, 1.0, nullptr, gt)),
-              HasSubstr("geotransform"));
+              HasSubstr("geotransform (0, 1, 0, nan, 0, -1) is not finite"));
 }
 
 // Values beyond ±max_abs_elevation_m (12 km by default) are no-data, counted.
