@@ -140,10 +140,12 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   echo["blocks"]["top"] = c.blocks.top;
   const std::string global_name = "global.toml";
   {
-    write_text(out, global_name, handoff::config_text_from_echo(
-        echo, fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
-                          "included).\nEvery block_NNN.toml names it as roms.global_config.",
-                          loaded.source)));
+    write_text(
+        out, global_name,
+        handoff::config_text_from_echo(
+            echo, fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
+                              "included).\nEvery block_NNN.toml names it as roms.global_config.",
+                              loaded.source)));
   }
   const std::string global_path = out.final_path(global_name).string();
   const auto keys = config::regional_keys();
@@ -201,9 +203,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     info.output_dir = dir.string();
     info.global_config = global_path;
     info.write_global_config = has_global_key;
-    {
-      write_text(out, name + ".toml", handoff::regional_config_text(info));
-    }
+    write_text(out, name + ".toml", handoff::regional_config_text(info));
 
     io::PreviewOutline outline{map_outline(b.box, rot), fmt::format("{}", k + 1)};
     overview.outlines.push_back(outline);
@@ -266,9 +266,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
                           {"list", list}};
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
-  {
-    write_text(out, "blocks.json", report.dump() + "\n");
-  }
+  { write_text(out, "blocks.json", report.dump() + "\n"); }
   out.commit();
 
   for (const auto& line : table) fmt::print("{}\n", line);

@@ -5,9 +5,9 @@
 
 namespace aq::app {
 
-/// Installs the handlers for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE. Call once from main() on the main thread: the
-/// handler forwards a signal that lands on another thread (an OpenMP worker) to it, because
-/// output files are created and renamed on the main thread only.
+/// Installs the handlers for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE. Call once from main() on the main thread:
+/// the handler forwards a signal that lands on another thread (an OpenMP worker) to it, because output files are
+/// created and renamed on the main thread only.
 void install_interrupt_handlers();
 
 }  // namespace aq::app

@@ -334,9 +334,9 @@ class Schema {
 inline toml::value parse_file(const std::filesystem::path& path) {
   // A FIFO would block the parser forever, /dev/zero never ends, a directory is not a file.
   if (const std::string problem = input_file_problem(path, kMaxTextFileBytes); !problem.empty())
-    throw ConfigError(fmt::format("{}: {}", path.string(),
-                                  problem == "no such file" ? std::string("no such configuration file")
-                                                            : "configuration file " + problem));
+    throw ConfigError(fmt::format(
+        "{}: {}", path.string(),
+        problem == "no such file" ? std::string("no such configuration file") : "configuration file " + problem));
   try {
     return toml::parse(path.string());
   } catch (const toml::syntax_error& e) {

@@ -17,8 +17,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <vector>
@@ -205,9 +205,10 @@ void check_netcdf_header(const std::filesystem::path& path) {
 void check_declared_size(const std::filesystem::path& path, double values, const std::string& what) {
   const double bytes = values * 8.0, limit = 0.8 * static_cast<double>(physical_memory_bytes());
   if (!(bytes <= limit))
-    throw InputError(fmt::format("{}: declares {} ({:.3g} values, {:.1f} GB to hold), more than the {:.1f} GB of 80% "
-                                 "of this machine's memory",
-                                 path.string(), what, values, bytes / 1e9, limit / 1e9));
+    throw InputError(
+        fmt::format("{}: declares {} ({:.3g} values, {:.1f} GB to hold), more than the {:.1f} GB of 80% "
+                    "of this machine's memory",
+                    path.string(), what, values, bytes / 1e9, limit / 1e9));
 }
 
 std::string write_failure_note(const std::filesystem::path& path) {

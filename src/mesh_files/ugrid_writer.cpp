@@ -233,8 +233,8 @@ struct TopologyVars {
 };
 
 // Defines one topology's variables (the nodes and boundary are shared, defined by the caller).
-TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count, int two,
-                             nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
+TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count,
+                             int two, nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
   TopologyVars v;
   const int face_dim = nc.dim(n.face_dim, faces.count());
   const int edge_dim = nc.dim(n.edge_dim, edge_count);

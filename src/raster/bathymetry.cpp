@@ -186,7 +186,7 @@ struct Bathymetry::Impl {
   DatasetPtr ds;
   GDALRasterBand* band = nullptr;
   double sgn = 1.0;
-  bool signed_byte = false;  // a Byte band marked PIXELTYPE=SIGNEDBYTE
+  bool signed_byte = false;                                  // a Byte band marked PIXELTYPE=SIGNEDBYTE
   float max_abs_m = std::numeric_limits<float>::infinity();  // OpenOptions::max_abs_elevation_m
   int band_number = 1;
   mutable std::mutex io;
@@ -784,13 +784,13 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   info.units = unit != nullptr ? unit : "";
   info.data_type = GDALGetDataTypeName(band->GetRasterDataType());
   if (GDALDataTypeIsComplex(band->GetRasterDataType()) != 0)
-    throw InputError(fmt::format("{}: band {} ({}) holds complex numbers ({}); elevations must be real numbers",
-                                 o.path, o.band, info.variable, info.data_type));
+    throw InputError(fmt::format("{}: band {} ({}) holds complex numbers ({}); elevations must be real numbers", o.path,
+                                 o.band, info.variable, info.data_type));
   // GDAL 3.6 reads a signed-byte band as Byte with PIXELTYPE=SIGNEDBYTE: values 128..255 are
   // -128..-1 (normalise() maps them).
   const char* pixel_type = band->GetMetadataItem("PIXELTYPE", "IMAGE_STRUCTURE");
-  im->signed_byte = band->GetRasterDataType() == GDT_Byte && pixel_type != nullptr &&
-                    std::string_view(pixel_type) == "SIGNEDBYTE";
+  im->signed_byte =
+      band->GetRasterDataType() == GDT_Byte && pixel_type != nullptr && std::string_view(pixel_type) == "SIGNEDBYTE";
   if (im->signed_byte) info.data_type = "Int8 (signed byte)";
 
   // Coordinate reference system: geographic only.

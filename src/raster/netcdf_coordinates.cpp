@@ -25,20 +25,20 @@ void check_axis(const std::string& path, const std::string& name, const std::vec
   for (std::int64_t k = 1; k < n; ++k) {
     const double d = c[static_cast<std::size_t>(k)] - c[static_cast<std::size_t>(k - 1)];
     if (!std::isfinite(c[static_cast<std::size_t>(k)]) || !(ascending ? d > 0.0 : d < 0.0))
-      throw InputError(fmt::format(
-          "{}: coordinate variable {} is not strictly monotonic: value {} is {} after {} (index {})", path, name, k,
-          c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>(k - 1)], k));
+      throw InputError(fmt::format("{}: coordinate variable {} is not strictly monotonic: value {} is {}, after {}",
+                                   path, name, k, c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>(k - 1)]));
   }
   for (std::int64_t k = 0; k < n; ++k) {
-    const double want = ascending ? first + static_cast<double>(k) * step : first + static_cast<double>(n - 1 - k) * step;
+    const double want =
+        ascending ? first + static_cast<double>(k) * step : first + static_cast<double>(n - 1 - k) * step;
     const double got = c[static_cast<std::size_t>(k)];
     // Longitudes (the x axis) may differ from the geotransform by whole turns.
     double diff = got - want;
     if (longitude) diff -= 360.0 * std::round(diff / 360.0);
     if (std::abs(diff) > tol)
-      throw InputError(fmt::format(
-          "{}: coordinate variable {} is not evenly spaced: value {} is {}, the regular grid puts {} there", path, name,
-          k, got, want));
+      throw InputError(
+          fmt::format("{}: coordinate variable {} is not evenly spaced: value {} is {}, the regular grid puts {} there",
+                      path, name, k, got, want));
   }
 }
 
@@ -68,9 +68,9 @@ void check_netcdf_coordinates(const std::string& path, const std::string& variab
     if (len == 0 || nc_get_var_double(nc.id(), cv, c.data()) != NC_NOERR) continue;
     // Centres of the geotransform's columns (ascending) or rows (ascending from the bottom).
     const double step = axis == 0 ? gt[1] : std::abs(gt[5]);
-    const double first = axis == 0 ? gt[0] + 0.5 * gt[1]
-                                   : (gt[5] < 0.0 ? gt[3] + (static_cast<double>(height) - 0.5) * gt[5]
-                                                  : gt[3] + 0.5 * gt[5]);
+    const double first =
+        axis == 0 ? gt[0] + 0.5 * gt[1]
+                  : (gt[5] < 0.0 ? gt[3] + (static_cast<double>(height) - 0.5) * gt[5] : gt[3] + 0.5 * gt[5]);
     check_axis(path, name, c, first, step, axis == 0);
   }
 }

@@ -1,7 +1,7 @@
-// Clean interruption (issue 11; SIGHUP, SIGQUIT and SIGPIPE since issue 23): a signal during the writing stage of a real run removes
-// every temporary file, leaves no output at all (no partial set), prints one line on stderr and
-// exits with 130 / 143. The run (the seed's reference run, every format, an 8000-pixel-wide
-// preview) writes for about a second after 0.3 s of work; the test waits until the first temporary
+// Clean interruption (issue 11; SIGHUP, SIGQUIT and SIGPIPE since issue 23): a signal during the writing stage of a
+// real run removes every temporary file, leaves no output at all (no partial set), prints one line on stderr and exits
+// with 130 / 143. The run (the seed's reference run, every format, an 8000-pixel-wide preview) writes for about a
+// second after 0.3 s of work; the test waits until the first temporary
 // `.NAME.ext.tmpPID` appears and then sends the signal.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -54,7 +54,8 @@ void expect_refused(const CommandResult& r, int code, const std::string& path, c
 
 TEST(RobustPaths, ConfigFileMustBeARegularFile) {
   SpecialFiles s;
-  expect_refused(aq_run("mesh -c " + s.fifo.string()), 2, s.fifo.string(), "is a FIFO (named pipe), not a regular file");
+  expect_refused(aq_run("mesh -c " + s.fifo.string()), 2, s.fifo.string(),
+                 "is a FIFO (named pipe), not a regular file");
   expect_refused(aq_run("mesh -c /dev/zero"), 2, "/dev/zero", "is a character device, not a regular file");
   expect_refused(aq_run("mesh -c " + s.folder.string()), 2, s.folder.string(), "is a directory, not a regular file");
   expect_refused(aq_run("regional -c " + s.fifo.string()), 2, s.fifo.string(), "is a FIFO");
@@ -130,8 +131,8 @@ TEST(RobustMessages, RegionalSizesAndScalesNameTheirKeyAtOnce) {
 // max_memory_gb = 1e-10 meant "no limit".
 TEST(RobustSizes, HugeLatticesAndTinyLimitsAreRefusedBeforeAnyWork) {
   aq::testing::TempDir dir;
-  CommandResult r =
-      aq_run("mesh -o " + dir.path().string() + " --set quadtree.step_deg=0.0002777777777777778 --set quadtree.levels=12");
+  CommandResult r = aq_run("mesh -o " + dir.path().string() +
+                           " --set quadtree.step_deg=0.0002777777777777778 --set quadtree.levels=12");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_THAT(r.err, HasSubstr("quadtree.levels = 12"));
   EXPECT_THAT(r.err, Not(HasSubstr("estimate -")));
@@ -165,8 +166,8 @@ TEST(RobustSizes, GridFilesDeclaringHugeSizesAreRefused) {
 TEST(RobustOutputs, LongOutputNamesWork) {
   aq::testing::TempDir dir;
   const std::string name(240, 'n');
-  const CommandResult r = aq_run("mesh -q -o " + dir.path().string() + " --set output.name=" + name +
-                                 " --set 'output.formats=[\"text\"]'");
+  const CommandResult r =
+      aq_run("mesh -q -o " + dir.path().string() + " --set output.name=" + name + " --set 'output.formats=[\"text\"]'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / (name + ".txt")));
   EXPECT_TRUE(fs::exists(dir / (name + "_report.json")));
@@ -200,9 +201,9 @@ TEST(RobustOutputs, AFullDiskIsAClearErrorNeverACrash) {
     SCOPED_TRACE(format);
     const std::string d = (dir / format).string();
     fs::create_directories(d);
-    const CommandResult r = run_command(
-        "timeout -k 5 120 unshare -rm sh -c 'mount -t tmpfs -o size=256k tmpfs " + d + " && " + AQ_BINARY +
-        " mesh -q -o " + d + " --set output.formats=[\\\"" + format + "\\\"]; rc=$?; ls -A " + d + "; exit $rc'");
+    const CommandResult r = run_command("timeout -k 5 120 unshare -rm sh -c 'mount -t tmpfs -o size=256k tmpfs " + d +
+                                        " && " + AQ_BINARY + " mesh -q -o " + d + " --set output.formats=[\\\"" +
+                                        format + "\\\"]; rc=$?; ls -A " + d + "; exit $rc'");
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_THAT(r.err, HasSubstr("No space left on device"));
     EXPECT_THAT(r.err, HasSubstr(format == "ugrid" ? ".nc" : ".msh"));

@@ -110,14 +110,18 @@ TEST(RasterValidation, NonMonotonicOrRepeatedLatitudesAreRefused) {
   std::swap(swapped[7], swapped[8]);
   repeated[7] = repeated[8];
   uneven[7] += 0.3;
-  EXPECT_THAT(open_error(write_nc(dir / "swap.nc", swapped)), HasSubstr("coordinate variable lat is not strictly monotonic"));
-  EXPECT_THAT(open_error(write_nc(dir / "rep.nc", repeated)), HasSubstr("coordinate variable lat is not strictly monotonic"));
-  EXPECT_THAT(open_error(write_nc(dir / "uneven.nc", uneven)), HasSubstr("coordinate variable lat is not evenly spaced"));
+  EXPECT_THAT(open_error(write_nc(dir / "swap.nc", swapped)),
+              HasSubstr("coordinate variable lat is not strictly monotonic"));
+  EXPECT_THAT(open_error(write_nc(dir / "rep.nc", repeated)),
+              HasSubstr("coordinate variable lat is not strictly monotonic"));
+  EXPECT_THAT(open_error(write_nc(dir / "uneven.nc", uneven)),
+              HasSubstr("coordinate variable lat is not evenly spaced"));
 }
 
 TEST(RasterValidation, ComplexBandsAreRefused) {
   aq::testing::TempDir dir;
-  EXPECT_THAT(open_error(write_tif(dir / "c.tif", GDT_CFloat32, -1000.0)), HasSubstr("holds complex numbers (CFloat32)"));
+  EXPECT_THAT(open_error(write_tif(dir / "c.tif", GDT_CFloat32, -1000.0)),
+              HasSubstr("holds complex numbers (CFloat32)"));
 }
 
 TEST(RasterValidation, SignedBytesAreHonoured) {
@@ -164,7 +168,8 @@ TEST(RasterValidation, ImplausibleValuesAreCounted) {
   EXPECT_DOUBLE_EQ(b.info().min_m, -3000.0);
   EXPECT_DOUBLE_EQ(b.info().max_m, -3000.0);
   bool said = false;
-  for (const auto& l : lines) said = said || l.find("beyond ±12000 m treated as no-data (input.max_abs_elevation_m)") != std::string::npos;
+  for (const auto& l : lines)
+    said = said || l.find("beyond ±12000 m treated as no-data (input.max_abs_elevation_m)") != std::string::npos;
   EXPECT_TRUE(said);
 }
 
