@@ -266,7 +266,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
                           {"list", list}};
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
-  { write_text(out, "blocks.json", report.dump() + "\n"); }
+  write_text(out, "blocks.json", report.dump() + "\n");
   out.commit();
 
   for (const auto& line : table) fmt::print("{}\n", line);
