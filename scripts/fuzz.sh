@@ -9,7 +9,7 @@
 # suite replays it. It prints libFuzzer's last status line (executions, cov, ft, findings).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-targets="config_global config_regional izogrid set roms_grid nesting xygrid"
+targets="config_global config_regional izogrid set roms_grid nesting xygrid raster"
 if [ "${1:-}" = list ]; then echo "$targets"; exit 0; fi
 if [ $# -ne 2 ] || ! [[ " $targets " == *" $1 "* ]] || ! [[ "$2" =~ ^[0-9]+$ ]]; then
   echo "usage: scripts/fuzz.sh TARGET SECONDS   (TARGET: $targets)" >&2
@@ -87,6 +87,21 @@ make = {"roms_grid": lambda p, f: grd(p, 4, 3, f), "nesting": lambda p, f: nesti
 for f in ["NETCDF3_64BIT_DATA"] if target == "nesting" else ["NETCDF3_CLASSIC", "NETCDF3_64BIT_OFFSET", "NETCDF3_64BIT_DATA"]:
     make(f"{out}/{target}_{f.lower()}.nc", f)
 PY
+    ;;
+  raster)  # tiny rasters: netCDF-3 (classic, 64-bit offset), netCDF-4 with lat/lon coordinates, GeoTIFF
+    "$py" - "$seeds" <<'PY'
+import sys, numpy as np, netCDF4
+out = sys.argv[1]
+for fmt in ["NETCDF3_CLASSIC", "NETCDF3_64BIT_OFFSET", "NETCDF4"]:
+    d = netCDF4.Dataset(f"{out}/raster_{fmt.lower()}.nc", "w", format=fmt)
+    d.createDimension("lat", 6); d.createDimension("lon", 8)
+    la = d.createVariable("lat", "f8", ("lat",)); la[:] = np.arange(6) - 2.5; la.units = "degrees_north"
+    lo = d.createVariable("lon", "f8", ("lon",)); lo[:] = np.arange(8) + 0.5; lo.units = "degrees_east"
+    z = d.createVariable("z", "i2", ("lat", "lon"), fill_value=-32768); z[:] = np.arange(48).reshape(6, 8) * 10 - 200
+    z.scale_factor = 0.5
+    d.close()
+PY
+    gdal_translate -q -of GTiff -ot Int16 "$seeds/raster_netcdf3_classic.nc" "$seeds/raster.tif" 2>/dev/null || true
     ;;
 esac
 

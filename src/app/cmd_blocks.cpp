@@ -36,12 +36,20 @@
 #include "handoff/block_contour.hpp"
 #include "handoff/block_files.hpp"
 #include "handoff/coastal_blocks.hpp"
+#include "io/file_writer.hpp"
 #include "mesh_files/element_kinds.hpp"
 #include "pictures/preview_png.hpp"
 
 namespace aq::app {
 
 namespace {
+
+// A text output through FileWriter: a full disk is an error naming the file and errno.
+void write_text(OutputSet& out, const std::string& name, const std::string& text) {
+  io::FileWriter f(out.temp_path(name));
+  f.text(text);
+  f.close();
+}
 
 namespace fs = std::filesystem;
 
@@ -148,7 +156,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
       c.blocks.top,
       c.blocks.boxes.empty() ? " of the level-0 squares" : fmt::format(" of {} user boxes", c.blocks.boxes.size()));
   const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
-  OutputSet out(dir);
+  OutputSet out(dir, log);
 
   const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, true);
 
@@ -164,12 +172,12 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   echo["blocks"]["top"] = c.blocks.top;
   const std::string global_name = "global.toml";
   {
-    std::ofstream f(out.temp_path(global_name));
-    f << handoff::config_text_from_echo(
-        echo, fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
-                          "included).\nEvery block_NNN.toml names it as roms.global_config.",
-                          loaded.source));
-    if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(global_name).string()));
+    write_text(
+        out, global_name,
+        handoff::config_text_from_echo(
+            echo, fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
+                              "included).\nEvery block_NNN.toml names it as roms.global_config.",
+                              loaded.source)));
   }
   const std::string global_path = out.final_path(global_name).string();
   // Each block config records what global.toml held, so a block outliving this run is refused.
@@ -214,9 +222,8 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
         "pixels\n({} coastal pixels, wet fraction {:.3f}) of the global run from {}",
         name, b.describe(), box_text(b.box), k + 1, ranked.size(), b.coastal_pixels, b.wet_fraction, loaded.source);
     {
-      std::ofstream f(out.temp_path(name + ".izogrid"));
-      f << handoff::izogrid_text(contour, b.suggested_ny, latlongrid_for(frame.box()), description);
-      if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(name + ".izogrid").string()));
+      write_text(out, name + ".izogrid",
+                 handoff::izogrid_text(contour, b.suggested_ny, latlongrid_for(frame.box()), description));
     }
     handoff::BlockConfigInfo info;
     info.name = name;
@@ -231,11 +238,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     info.global_config = global_path;
     info.write_global_config = has_global_key;
     info.global_config_checksum = global_checksum;
-    {
-      std::ofstream f(out.temp_path(name + ".toml"));
-      f << handoff::regional_config_text(info);
-      if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path(name + ".toml").string()));
-    }
+    write_text(out, name + ".toml", handoff::regional_config_text(info));
 
     io::PreviewOutline outline{map_outline(b.box, rot), fmt::format("{}", k + 1)};
     overview.outlines.push_back(outline);
@@ -298,11 +301,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
                           {"list", list}};
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
-  {
-    std::ofstream f(out.temp_path("blocks.json"));
-    f << report.dump() << '\n';
-    if (!f) throw OutputError(fmt::format("{}: cannot write", out.final_path("blocks.json").string()));
-  }
+  write_text(out, "blocks.json", report.dump() + "\n");
   out.commit();
   // No block of an earlier run survives beside this run's: its config would name this global.toml.
   const std::vector<std::string> removed = remove_stale_blocks(dir, count);

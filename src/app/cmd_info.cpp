@@ -2,6 +2,7 @@
 // sampled elevations at given points.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -33,7 +34,10 @@ int run_info(const InfoArgs& a, const Logger& log) {
   o.positive_down = a.positive_down;
   if (!(a.max_memory_gb >= 0.0) || !std::isfinite(a.max_memory_gb))
     throw ConfigError(fmt::format("--max-memory-gb = {}: must be a finite number >= 0", a.max_memory_gb));
-  o.max_memory_bytes = static_cast<std::int64_t>(a.max_memory_gb * 1e9);
+  // A tiny limit is a limit (at least 1 byte), not 0 = "80% of RAM".
+  o.max_memory_bytes = a.max_memory_gb > 0.0
+                           ? std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(a.max_memory_gb, 1e9) * 1e9))
+                           : 0;
   if (a.interpolation == "bicubic") {
     o.interpolation = raster::Interpolation::kBicubic;
   } else if (a.interpolation != "bilinear") {
@@ -74,6 +78,8 @@ int run_info(const InfoArgs& a, const Logger& log) {
   if (i.scale != 1.0 || i.offset != 0.0) std::printf("scale/offset:  %g / %g\n", i.scale, i.offset);
   std::printf("elevation:     min %.1f m, max %.1f m, mean %.1f m (%lld valid values)\n", i.min_m, i.max_m, i.mean_m,
               static_cast<long long>(i.valid_count));
+  if (const std::string note = raster::implausible_note(i); !note.empty())
+    std::printf("implausible:   %s\n", note.c_str());
   std::printf("memory:        %.1f MB held (float32%s)\n", static_cast<double>(i.memory_bytes) / 1048576.0,
               i.streamed ? fmt::format(", streamed in bands of {} rows", i.band_rows).c_str() : "");
   for (const auto& [lon, lat] : pts) {

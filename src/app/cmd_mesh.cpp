@@ -23,6 +23,7 @@
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
+#include "io/file_writer.hpp"
 #include "mask/global_run_file.hpp"
 #include "mesh/statistics.hpp"
 #include "quadtree/leaf_levels.hpp"
@@ -111,7 +112,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   log_memory_estimate(setup, log);
 
   // Fail on an unwritable output folder before the work, not after.
-  OutputSet out(c.output.dir);
+  OutputSet out(c.output.dir, log);
 
   const GlobalRun run = run_global_pipeline(c, setup, log, &report);
   const raster::Bathymetry& bathy = *run.bathy;
@@ -168,9 +169,11 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
   const std::string report_name = c.output.name + "_report.json";
   {
-    std::ofstream rf(out.temp_path(report_name));
-    rf << report.dump() << '\n';
-    if (!rf) throw OutputError(fmt::format("{}: cannot write the report", out.final_path(report_name).string()));
+    // Through FileWriter: a full disk is an error naming the file and errno, not a short report.
+    io::FileWriter rf(out.temp_path(report_name));
+    rf.text(report.dump());
+    rf.text("\n");
+    rf.close();
   }
   out.commit();
 

@@ -27,6 +27,7 @@
 #include "curvilinear/regional.hpp"
 #include "grid_files/contact_netcdf.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
+#include "io/file_writer.hpp"
 #include "pictures/regional_pictures.hpp"
 #include "raster/bathymetry.hpp"
 
@@ -183,7 +184,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   report["config_source"] = loaded.source;
   report["config"] = loaded.echo;
   report["inputs"] = inputs;
-  OutputSet out(c.output_dir);
+  OutputSet out(c.output_dir, log);
 
   // A refinement grid is cut from its parent (app/regional_refine.hpp); any other from its contour.
   std::optional<RefinedGrid> refined;
@@ -306,9 +307,11 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
   const std::string report_name = c.name + "_report.json";
   {
-    std::ofstream rf(out.temp_path(report_name));
-    rf << report.dump() << '\n';
-    if (!rf) throw OutputError(fmt::format("{}: cannot write the report", out.final_path(report_name).string()));
+    // Through FileWriter: a full disk is an error naming the file and errno, not a short report.
+    io::FileWriter rf(out.temp_path(report_name));
+    rf.text(report.dump());
+    rf.text("\n");
+    rf.close();
   }
   out.commit();
   log.info("regional {}: stopped after {}; {} files + {} in {}/ ({:.2f} s)", c.name,

@@ -36,14 +36,19 @@ constexpr double kMeshBytesPerTriangle = 140.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 64LL << 20;  // program, GDAL cache, small tables
 
-std::int64_t estimate_lattice_bytes(const Lattice& l) {
-  const double words = static_cast<double>((l.nx + 63) / 64) * static_cast<double>(l.ny + 1);
-  return static_cast<std::int64_t>(kLatticeBitsPerPixel * words * 8.0);
+// Estimates are computed in floating point and saturate at 2^62 bytes (4.6 EB): a 1" lattice
+// at L = 12 overflowed the old integer product into a negative estimate.
+std::int64_t saturate(double x) { return x < 4.6e18 ? static_cast<std::int64_t>(x) : std::int64_t{1} << 62; }
+
+double estimate_lattice_bytes_f(const Lattice& l) {
+  const double words = std::ceil(static_cast<double>(l.nx) / 64.0) * (static_cast<double>(l.ny) + 1.0);
+  return kLatticeBitsPerPixel * words * 8.0;
 }
 
+std::int64_t estimate_lattice_bytes(const Lattice& l) { return saturate(estimate_lattice_bytes_f(l)); }
+
 std::int64_t estimate_triangles(const Lattice& l) {
-  return static_cast<std::int64_t>(kTrianglesPerSqrtPixel *
-                                   std::sqrt(static_cast<double>(l.nx) * static_cast<double>(l.ny)));
+  return saturate(kTrianglesPerSqrtPixel * std::sqrt(static_cast<double>(l.nx) * static_cast<double>(l.ny)));
 }
 
 double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
@@ -68,18 +73,19 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
                                            c.quadtree.mercator_lat_max_deg)
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   s.rotation = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
+  // A tiny limit is a limit (at least 1 byte), not 0 = "80% of RAM".
   s.memory_limit_bytes = c.input.max_memory_gb > 0
-                             ? static_cast<std::int64_t>(c.input.max_memory_gb * 1e9)
+                             ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))
                              : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
   s.lattice_bytes = estimate_lattice_bytes(s.lattice);
   s.triangles_guess = estimate_triangles(s.lattice);
-  s.mesh_bytes = static_cast<std::int64_t>(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
+  s.mesh_bytes = saturate(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
   const Lattice& lat = s.lattice;
   if (s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
     throw ConfigError(fmt::format(
         "quadtree.levels = {} with quadtree.step_deg = {}: the {} x {} pixel lattice needs about {:.1f} GB of "
-        "bitmaps, more than the {:.1f} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
-        lat.levels, lat.step0_deg, lat.nx, lat.ny, static_cast<double>(s.lattice_bytes) / 1e9,
+        "bitmaps, more than the {:.3g} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
+        lat.levels, lat.step0_deg, lat.nx, lat.ny, estimate_lattice_bytes_f(lat) / 1e9,
         static_cast<double>(s.memory_limit_bytes) / 1e9));
   }
   // The raster: its header only (nothing is read), whole or streamed, and the whole estimate.
@@ -88,7 +94,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   apply_test_knobs(ro);
   s.raster = raster::plan_raster(ro);
   s.raster_options = ro;
-  s.estimate_bytes = kBaseBytes + s.raster.bytes + s.lattice_bytes + s.mesh_bytes;
+  s.estimate_bytes = saturate(static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
+                              static_cast<double>(s.lattice_bytes) + static_cast<double>(s.mesh_bytes));
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
     std::string why;
     if (!s.raster.streamed && s.raster.bytes > raster::kStreamAboveBytes) {
@@ -130,6 +137,7 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
   ro.variable = input.variable;
   ro.band = input.band;
   ro.positive_down = input.positive_down;
+  ro.max_abs_elevation_m = input.max_abs_elevation_m;
   ro.interpolation =
       input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
   ro.max_memory_bytes = max_memory_bytes;
@@ -234,6 +242,10 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     }
   }
   if (run.area_file.empty()) run.area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, report);
+  // A streamed raster counts its implausible values in the classification's pass (one held whole
+  // said so when it was read).
+  if (ri.streamed && run.area_file.empty())
+    if (const std::string note = raster::implausible_note(ri); !note.empty()) log.warn("{}: {}", ri.path, note);
   if (report != nullptr) {  // after the classification: a streamed raster's statistics come from that pass
     (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
                               {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},

@@ -1,4 +1,4 @@
-// SIGINT/SIGTERM handler: async-signal-safe throughout (gettid/tgkill/unlink/write/_exit, no
+// SIGINT/SIGTERM/SIGHUP/SIGQUIT/SIGPIPE handler: async-signal-safe throughout (gettid/tgkill/unlink/write/_exit, no
 // allocation, no stdio).
 #include "app/interrupt.hpp"
 
@@ -14,6 +14,25 @@ namespace {
 
 volatile pid_t g_main_tid = 0;
 
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
+
+const char* signal_name(int sig) {
+  switch (sig) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    case SIGQUIT:
+      return "SIGQUIT";
+    case SIGPIPE:
+      return "SIGPIPE";
+    default:
+      return "a signal";
+  }
+}
+
 // Writes "aquatoria: interrupted by SIG...; N temporary file(s) removed\n" with write(2).
 void say(int sig, int removed) {
   char line[128];
@@ -22,7 +41,7 @@ void say(int sig, int removed) {
     while (*s != '\0' && n < sizeof line) line[n++] = *s++;
   };
   put("aquatoria: interrupted by ");
-  put(sig == SIGINT ? "SIGINT" : "SIGTERM");
+  put(signal_name(sig));
   put("; ");
   char digits[12];
   int k = 0;
@@ -53,11 +72,17 @@ void install_interrupt_handlers() {
   struct sigaction sa {};
   sa.sa_handler = on_interrupt;
   sigemptyset(&sa.sa_mask);
-  sigaddset(&sa.sa_mask, SIGINT);  // no second handler while the first removes files
-  sigaddset(&sa.sa_mask, SIGTERM);
+  for (const int sig : kSignals) sigaddset(&sa.sa_mask, sig);  // no second handler while the first removes files
   sa.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  // SIGPIPE too (stderr piped into `grep -m1` that has quit): the message line then fails with
+  // EPIPE, which is ignored; the temporaries are removed all the same.
+  // A signal ignored when aquatoria started stays ignored (`nohup aquatoria ...` must survive the
+  // hangup, a parent that ignores SIGPIPE wants EPIPE errors instead).
+  for (const int sig : kSignals) {
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sig, &sa, nullptr);
+  }
 }
 
 }  // namespace aq::app

@@ -1,13 +1,13 @@
-// Clean interruption (ARCHITECTURE §9): SIGINT and SIGTERM remove the run's temporary files
-// (and the renamed files of an unfinished commit; core/temp_registry.hpp), print one line on
-// stderr and exit with 128 + the signal number (130, 143).
+// Clean interruption (ARCHITECTURE §9): SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE remove the
+// run's temporary files (and undo an unfinished commit; core/temp_registry.hpp), print one line
+// on stderr and exit with 128 + the signal number (130, 143, 129, 131, 141).
 #pragma once
 
 namespace aq::app {
 
-/// Installs the handlers for SIGINT and SIGTERM. Call once from main() on the main thread: the
-/// handler forwards a signal that lands on another thread (an OpenMP worker) to it, because
-/// output files are created and renamed on the main thread only.
+/// Installs the handlers for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE. Call once from main() on the main thread:
+/// the handler forwards a signal that lands on another thread (an OpenMP worker) to it, because output files are
+/// created and renamed on the main thread only.
 void install_interrupt_handlers();
 
 }  // namespace aq::app

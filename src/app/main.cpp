@@ -5,6 +5,7 @@
 #include <malloc.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include "app/commands.hpp"
@@ -47,13 +48,21 @@ int main(int argc, char** argv) {
   }
   if (verbose) ctx.log.set_level(aq::LogLevel::kDebug);
   if (quiet) ctx.log.set_level(aq::LogLevel::kWarning);
+  // After a failure the process ends with _Exit, past the atexit handlers: HDF5's closes every
+  // file it still knows, and a netCDF-4 file whose writing failed on a full disk (already aborted
+  // and removed) made it crash with SIGSEGV after the message. Every output was closed or removed
+  // while the exception unwound; stdio is flushed here.
+  const auto fail = [](int code) {
+    std::fflush(nullptr);
+    std::_Exit(code);
+  };
   try {
     return ctx.run ? ctx.run() : 2;
   } catch (const aq::Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
-    return e.exit_code();
+    fail(e.exit_code());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: internal: %s\n", e.what());
-    return 1;
+    fail(1);
   }
 }

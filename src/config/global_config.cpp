@@ -165,6 +165,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (path.is_relative()) path = o.base_dir / path;
           c.input.path = path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.input.path); !bad.empty())
+            p.add(o, "input.path", bad);
         },
         [](const GlobalConfig& c) { return Json(c.input.path); }, "bathymetry raster");
     t.add<std::string>(
@@ -183,6 +185,9 @@ const S& schema() {
     t.add<double>(
         "input", "max_memory_gb", [](GlobalConfig& c) -> double& { return c.input.max_memory_gb; },
         [](const double& v) { return in_range(v, 0.0, 1e6); }, "");
+    t.add<double>(
+        "input", "max_abs_elevation_m", [](GlobalConfig& c) -> double& { return c.input.max_abs_elevation_m; },
+        [](const double& v) { return in_range(v, 100.0, 1e6); }, "");
     // [mask]
     t.add<double>(
         "mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },
@@ -277,7 +282,7 @@ const S& schema() {
     // [output]
     t.add<std::string>(
         "output", "dir", [](GlobalConfig& c) -> std::string& { return c.output.dir; },
-        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "");
+        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : output_dir_problem(v); }, "");
     t.add<std::string>(
         "output", "name", [](GlobalConfig& c) -> std::string& { return c.output.name; },
         [](const std::string& v) {

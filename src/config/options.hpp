@@ -16,6 +16,7 @@ struct InputOptions {
   bool positive_down = false;                                  ///< file stores depth as positive numbers
   std::string interpolation = "bilinear";                      ///< "bilinear" (seed rule) or "bicubic" (C2 spline)
   double max_memory_gb = 0.0;                                  ///< refuse runs estimated above this; 0 = 80% of RAM
+  double max_abs_elevation_m = 12000.0;  ///< raster values beyond ±this (m) are no-data (sentinels, bad scales)
 };
 
 struct MaskOptions {

@@ -105,6 +105,13 @@ const S& schema() {
             if (idx.empty()) return;
             if (idx.size() != 4 || idx[0] != 1)
               return p.add(o, ckey, "expected the 4 corner point numbers, SW first: [1, SE, NE, NW]");
+            // The points go counter-clockwise from the SW corner, so SE < NE < NW; another order
+            // was once sorted silently, which made other points the corners.
+            if (!(idx[0] < idx[1] && idx[1] < idx[2] && idx[2] < idx[3]))
+              return p.add(o, ckey,
+                           fmt::format("[{}, {}, {}, {}]: the corner numbers must increase, [1, SE, NE, NW] with the "
+                                       "points counter-clockwise from the SW corner",
+                                       idx[0], idx[1], idx[2], idx[3]));
             c.*k.numbers = idx;  // applied to the points once all keys are read
           },
           [k](const RegionalConfig& c) {
@@ -138,6 +145,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (!x.empty() && path.is_relative()) path = o.base_dir / path;
           c.input.path = x.empty() ? x : path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.input.path); !x.empty() && !bad.empty())
+            p.add(o, "input.path", bad);
         },
         [](const RegionalConfig& c) { return Json(c.input.path); }, "");
     t.add<std::string>(
@@ -145,11 +154,17 @@ const S& schema() {
     t.add<bool>(
         "input", "positive_down", [](RegionalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
     t.add<double>(
+        "input", "max_abs_elevation_m", [](RegionalConfig& c) -> double& { return c.input.max_abs_elevation_m; },
+        [](const double& v) {
+          return (v >= 100.0 && v <= 1e6) ? std::string() : fmt::format("{} must be within [100, 1e6] (m)", v);
+        },
+        "");
+    t.add<double>(
         "input", "coast_level_m", [](RegionalConfig& c) -> double& { return c.coast_level_m; },
         [](const double& v) { return std::isfinite(v) ? std::string() : std::string("must be finite"); }, "");
     t.add<std::string>(
         "output", "dir", [](RegionalConfig& c) -> std::string& { return c.output_dir; },
-        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : std::string(); }, "");
+        [](const std::string& v) { return v.empty() ? std::string("must not be empty") : output_dir_problem(v); }, "");
     t.add<bool>(
         "roms", "enabled", [](RegionalConfig& c) -> bool& { return c.roms.enabled; }, {}, "");
     t.add_custom(
@@ -160,6 +175,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (!x.empty() && path.is_relative()) path = o.base_dir / path;
           c.roms.global_config = x.empty() ? x : path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.roms.global_config); !x.empty() && !bad.empty())
+            p.add(o, "roms.global_config", bad);
         },
         [](const RegionalConfig& c) { return Json(c.roms.global_config); }, "");
     t.add<std::string>(
@@ -211,6 +228,8 @@ const S& schema() {
           std::filesystem::path path(x);
           if (!x.empty() && path.is_relative()) path = o.base_dir / path;
           c.nesting.parent = x.empty() ? x : path.lexically_normal().string();
+          if (const std::string bad = detail::input_path_problem(c.nesting.parent); !x.empty() && !bad.empty())
+            p.add(o, "nesting.parent", bad);
         },
         [](const RegionalConfig& c) { return Json(c.nesting.parent); }, "");
     t.add<int>(
@@ -336,6 +355,8 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
         !doc.at("regional").at("contour_file").as_string().str.empty()) {
       std::filesystem::path cf(doc.at("regional").at("contour_file").as_string().str);
       if (cf.is_relative()) cf = base / cf;
+      if (const std::string bad = input_file_problem(cf, kMaxTextFileBytes); !bad.empty())
+        throw ConfigError(fmt::format("{}: regional.contour_file = {}: {}", file.string(), cf.string(), bad));
       c.params = curvilinear::read_izogrid_file(cf);
       c.contour_file = cf.lexically_normal().string();
     }

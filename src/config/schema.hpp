@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/report.hpp"
 
 namespace aq::config::detail {
@@ -128,8 +129,17 @@ inline std::optional<std::string> convert(const toml::value& v, bool& out) {
 }
 inline std::optional<std::string> convert(const toml::value& v, std::string& out) {
   if (!v.is_string()) return "expected a string in quotes";
+  // A NUL (TOML's \u0000) would cut a path or name at the system call: another file, silently.
+  if (v.as_string().str.find('\0') != std::string::npos) return "contains a NUL byte (\\u0000)";
   out = v.as_string().str;
   return std::nullopt;
+}
+
+/// The problem of a path key's value that names an existing file which is not a regular file
+/// (a FIFO, a device, a directory: refused before anything opens it), or "".
+inline std::string input_path_problem(const std::filesystem::path& path) {
+  const std::string problem = special_file_problem(path);
+  return problem.empty() ? problem : fmt::format("{} {}", path.string(), problem);
 }
 template <std::size_t N>
 std::optional<std::string> convert(const toml::value& v, std::array<double, N>& out) {
@@ -322,9 +332,11 @@ class Schema {
 
 /// Parses a TOML file; a syntax error becomes a ConfigError with toml11's file:line:column text.
 inline toml::value parse_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw ConfigError(fmt::format("{}: no such configuration file", path.string()));
+  // A FIFO would block the parser forever, /dev/zero never ends, a directory is not a file.
+  if (const std::string problem = input_file_problem(path, kMaxTextFileBytes); !problem.empty())
+    throw ConfigError(fmt::format(
+        "{}: {}", path.string(),
+        problem == "no such file" ? std::string("no such configuration file") : "configuration file " + problem));
   try {
     return toml::parse(path.string());
   } catch (const toml::syntax_error& e) {

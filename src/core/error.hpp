@@ -10,9 +10,18 @@ namespace aq {
 /// Base of every error aquatoria throws. The message names the file, key or value at fault.
 class Error : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// NUL bytes of `what` (from a file name or value) become the two characters "\\0", so the
+  /// message is printed whole rather than cut at the first one.
+  explicit Error(const std::string& what) : std::runtime_error(printable(what)) {}
+  explicit Error(const char* what) : Error(std::string(what)) {}
   /// Process exit code the command line maps this error to.
   [[nodiscard]] virtual int exit_code() const noexcept { return 1; }
+
+ private:
+  static std::string printable(std::string s) {
+    for (std::size_t k = s.find('\0'); k != std::string::npos; k = s.find('\0', k + 2)) s.replace(k, 1, "\\0");
+    return s;
+  }
 };
 
 /// A bad configuration key or value, or a bad command-line argument (exit 2).

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cstdio>
+
 #include <array>
 #include <atomic>
 #include <cstring>
@@ -20,8 +22,10 @@ enum State : int { kFree = 0, kFilling = 1, kTemp = 2, kRenaming = 3, kRenamed =
 
 struct Slot {
   std::atomic<int> state{kFree};
+  std::atomic<int> backup{0};  // 0 none, 1 a hard link, 2 the old file moved to bak
   char tmp[TempRegistry::kPathMax];
   char fin[TempRegistry::kPathMax];
+  char bak[TempRegistry::kPathMax];
 };
 
 struct Chunk {
@@ -68,8 +72,9 @@ void copy_path(char* dst, const std::filesystem::path& p) {
 
 }  // namespace
 
-int TempRegistry::add(const std::filesystem::path& tmp, const std::filesystem::path& fin) {
-  for (const auto* p : {&tmp, &fin})
+int TempRegistry::add(const std::filesystem::path& tmp, const std::filesystem::path& fin,
+                      const std::filesystem::path& bak) {
+  for (const auto* p : {&tmp, &fin, &bak})
     if (p->native().size() >= kPathMax)
       throw OutputError(fmt::format("{}: path longer than {} bytes", p->string(), kPathMax - 1));
   const int id = claim();
@@ -77,10 +82,15 @@ int TempRegistry::add(const std::filesystem::path& tmp, const std::filesystem::p
   Slot& s = slot_of(id);
   copy_path(s.tmp, tmp);
   copy_path(s.fin, fin);
+  copy_path(s.bak, bak);
+  s.backup.store(0, std::memory_order_relaxed);
   s.state.store(kTemp, std::memory_order_release);
   return id;
 }
 
+void TempRegistry::backed_up(int slot, bool moved) noexcept {
+  slot_of(slot).backup.store(moved ? 2 : 1, std::memory_order_seq_cst);
+}
 void TempRegistry::renaming(int slot) noexcept { slot_of(slot).state.store(kRenaming, std::memory_order_seq_cst); }
 void TempRegistry::renamed(int slot) noexcept { slot_of(slot).state.store(kRenamed, std::memory_order_seq_cst); }
 void TempRegistry::release(int slot) noexcept { slot_of(slot).state.store(kFree, std::memory_order_release); }
@@ -92,8 +102,15 @@ int TempRegistry::remove_registered_temporaries() noexcept {
     if (chunk == nullptr) break;  // chunks are allocated in order
     for (Slot& s : chunk->slots) {
       const int st = s.state.load(std::memory_order_acquire);
+      if (st == kFree || st == kFilling) continue;
+      const int backup = s.backup.load(std::memory_order_acquire);
       if ((st == kTemp || st == kRenaming) && ::unlink(s.tmp) == 0) ++removed;
-      if ((st == kRenaming || st == kRenamed) && ::unlink(s.fin) == 0) ++removed;
+      if (st == kRenaming || st == kRenamed || backup == 2) {
+        // The old file back under its name (the new one goes), or no file where none was.
+        if (backup != 0 ? ::rename(s.bak, s.fin) == 0 : ::unlink(s.fin) == 0) ++removed;
+      } else if (backup == 1 && ::unlink(s.bak) == 0) {
+        ++removed;
+      }
     }
   }
   return removed;

@@ -13,7 +13,10 @@
 //
 //   remove_registered_temporaries() unlinks: kTemp -> the temporary; kRenaming -> the temporary
 //   and the final name (the rename may have happened); kRenamed -> the final name (its output set
-//   was not completely renamed yet, so the run's outputs would be partial).
+//   was not completely renamed yet, so the run's outputs would be partial). A final name that
+//   held an older file when the commit began has a backup (a hard link made before the renames,
+//   `backed_up`): instead of being unlinked, the final name gets the backup back (rename(2)),
+//   so an interrupted commit leaves the old files as they were.
 //
 // Files are created and renamed by the thread that reserved them; the handler must run on that
 // thread (src/app forwards the signal to the main thread) so no file can appear after the
@@ -30,7 +33,11 @@ class TempRegistry {
   /// Registers a temporary `tmp` that will be renamed to `fin`; returns its slot. Throws
   /// OutputError naming the path when a path is longer than kPathMax - 1 bytes or every slot is
   /// in use (kMaxSlots).
-  static int add(const std::filesystem::path& tmp, const std::filesystem::path& fin);
+  static int add(const std::filesystem::path& tmp, const std::filesystem::path& fin,
+                 const std::filesystem::path& bak = {});
+  /// The old final file of `slot` is now also at its backup name (given to add()): a hard link
+  /// (`moved` false) or moved there (`moved` true, where hard links fail).
+  static void backed_up(int slot, bool moved) noexcept;
   /// The temporary of `slot` is about to be renamed to its final name.
   static void renaming(int slot) noexcept;
   /// The rename of `slot` is done (its output set may still be partial).

@@ -131,6 +131,8 @@ RomsGridFields read_roms_grid_fields(const fs::path& path) {
   const int id = nc.id();
   const std::size_t xr = dim_len(id, "xi_rho", path), er = dim_len(id, "eta_rho", path);
   if (xr < 3 || er < 3) throw InputError(fmt::format("{}: a ROMS grid needs xi_rho, eta_rho >= 3", path.string()));
+  check_declared_size(path, 22.0 * static_cast<double>(xr) * static_cast<double>(er),
+                      fmt::format("a ROMS grid of {} x {} rho points", xr, er));
   RomsGridFields g;
   g.L = static_cast<int>(xr) - 1;
   g.M = static_cast<int>(er) - 1;

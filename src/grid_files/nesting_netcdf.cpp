@@ -79,6 +79,16 @@ void write_nesting(const fs::path& path, const NestingFile& d) {
     const signed char bv[4] = {1, 2, 3, 4};
     nc_check<OutputError>(nc_put_att_schar(id, vars[1], "flag_values", NC_BYTE, 4, bv), path, "flag_values");
     put_text(id, vars[1], "flag_meanings", "west south east north", path);
+    // The points outside the wet global mesh hold -1 and NaN: declared fill values, so CF readers
+    // (xarray, CDO, ncview) mask them instead of taking them for data.
+    const long long no_element = -1;
+    for (const int v : {vars[8], vars[9]})
+      nc_check<OutputError>(nc_put_att_longlong(id, v, "_FillValue", NC_INT64, 1, &no_element), path, "_FillValue");
+    const signed char no_level = -1;
+    nc_check<OutputError>(nc_put_att_schar(id, vars[11], "_FillValue", NC_BYTE, 1, &no_level), path, "_FillValue");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const int v : {vars[12], vars[14]})
+      nc_check<OutputError>(nc_put_att_double(id, v, "_FillValue", NC_DOUBLE, 1, &nan), path, "_FillValue");
     put_text(id, vars[4], "standard_name", "longitude", path);
     put_text(id, vars[5], "standard_name", "latitude", path);
   }
@@ -133,6 +143,7 @@ NestingFile read_nesting(const fs::path& path) {
   std::size_t n = 0;
   nc_check<InputError>(nc_inq_dimid(id, "point", &dim_p), path, "dimension point");
   nc_check<InputError>(nc_inq_dimlen(id, dim_p, &n), path, "dimension point");
+  check_declared_size(path, 20.0 * static_cast<double>(n), fmt::format("{} nesting points", n));
   // A per-point variable: (point) or (point, 3) as write_nesting makes it; any other shape would
   // make nc_get_var write past the buffers sized for n points.
   const auto var = [&](const char* name) {

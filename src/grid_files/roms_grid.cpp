@@ -29,14 +29,15 @@ class File {
   File(const File&) = delete;
   File& operator=(const File&) = delete;
   ~File() {
-    if (id_ >= 0) nc_close(id_);
+    if (id_ >= 0) nc_abort(id_);  // an error is propagating: release the file without flushing it
   }
   [[nodiscard]] int id() const { return id_; }
   [[nodiscard]] const fs::path& path() const { return path_; }
   void close() {
     const int status = nc_close(id_);
+    if (status != NC_NOERR) nc_abort(id_);
     id_ = -1;
-    check(status, path_, "close (disk full?)");
+    check(status, path_, "close");
   }
 
   int dim(const char* name, std::size_t len) {
@@ -319,7 +320,7 @@ void write_updated_roms_grid(const fs::path& source, const fs::path& path, const
   check(nc_enddef(id), path, "end of definitions");
   for (const Target& t : targets)
     if (t.var >= 0) check(nc_put_var_double(id, t.var, t.data->data()), path, fmt::format("write {}", t.name));
-  check(nc.close(), path, "close (disk full?)");
+  check(nc.close(), path, "close");
 }
 
 }  // namespace aq::io

@@ -223,6 +223,8 @@ XyGrid read_xygrid(const fs::path& path) {
       len[1] > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw InputError(fmt::format("{}: grid of {}x{} nodes: need at least 2x2", path.string(), len[1], len[0]));
   }
+  check_declared_size(path, 2.0 * static_cast<double>(len[0]) * static_cast<double>(len[1]),
+                      fmt::format("a grid of {} x {} nodes", len[1], len[0]));
   out.grid = curvilinear::Grid2D(static_cast<int>(len[1]), static_cast<int>(len[0]));
   nc_check<InputError>(nc_get_var_double(id, var[0], out.grid.x.data()), path, "read x");
   nc_check<InputError>(nc_get_var_double(id, var[1], out.grid.y.data()), path, "read y");

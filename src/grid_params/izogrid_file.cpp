@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "grid_params/control_function.hpp"
 
 namespace aq::curvilinear {
@@ -427,6 +428,8 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
 }
 
 RegionalParams read_izogrid_file(const std::filesystem::path& path) {
+  if (const std::string bad = input_file_problem(path, kMaxTextFileBytes); !bad.empty())
+    throw InputError(fmt::format("{}: izogrid file: {}", path.string(), bad));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open the izogrid file", path.string()));
   std::ostringstream ss;

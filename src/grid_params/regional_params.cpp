@@ -3,12 +3,20 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
 #include "core/error.hpp"
+#include "core/timer.hpp"
 
 namespace aq::curvilinear {
+
+namespace {
+// Bytes per supergrid point held by a regional run at its peak (grids, metrics, the quality maps
+// and the solvers' work arrays; a generous bound, used only to refuse absurd sizes early).
+constexpr double kSupergridBytes = 400.0;
+}  // namespace
 
 std::vector<std::pair<std::string, std::string>> regional_params_problems(const RegionalParams& p) {
   std::vector<std::pair<std::string, std::string>> bad;
@@ -21,7 +29,10 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
   check(std::isfinite(p.rlat) && std::fabs(p.rlat) <= 90.0, "rlat", num(p.rlat), "must be within [-90, 90]");
   check(std::isfinite(p.rlon), "rlon", num(p.rlon), "must be a finite longitude");
   check(std::isfinite(p.rota), "rota", num(p.rota), "must be a finite angle");
-  check(p.uscale > 0.0 && std::isfinite(p.uscale), "uscale", num(p.uscale), "must be positive");
+  // Plane units are unit-sphere radians / uscale: outside 1e-9..1e3 the plane coordinates of any
+  // region under- or overflow in the metrics (1e-300 failed in the C-grid stage).
+  check(p.uscale >= 1e-9 && p.uscale <= 1e3, "uscale", num(p.uscale),
+        "must be within [1e-9, 1e3] (plane units = unit-sphere radians / uscale; the seed's 0.001)");
   check(p.radius > 0.0 && std::isfinite(p.radius), "radius", num(p.radius), "must be positive (metres)");
   check(p.latlongrid > 0.0 && std::isfinite(p.latlongrid), "latlongrid", num(p.latlongrid), "must be positive");
   check(p.lwidth > 0.0 && std::isfinite(p.lwidth), "lwidth", num(p.lwidth), "must be positive");
@@ -29,6 +40,20 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
         "must be 3 (cubic), 4 (both, quintic used) or 5 (quintic)");
   check(p.nx >= 0, "nx", std::to_string(p.nx), "must be >= 0 (0 = guess)");
   check(p.ny >= 1, "ny", std::to_string(p.ny), "must be >= 1");
+  {
+    // The supergrid is (2nx+1) x (2ny+1) points (nx = ny when guessed), about kSupergridBytes
+    // each over the stages; sized in floating point, so no int overflow reaches the stages (ny =
+    // 200000 failed after 15 s inside the boundary-node stage).
+    // With auto_nx, nx is re-chosen from the aspect ratio: taken as at least ny here.
+    const double nx = p.auto_nx ? std::max(p.nx, p.ny) : (p.nx > 0 ? p.nx : p.ny);
+    const double sx = 2.0 * std::max(nx, 1.0) + 1.0, sy = 2.0 * std::max(p.ny, 1) + 1.0;
+    const double need = sx * sy * kSupergridBytes, limit = 0.8 * static_cast<double>(physical_memory_bytes());
+    if (p.ny >= 1 && p.nx >= 0 && need > limit)
+      bad.emplace_back(p.nx > p.ny ? "nx" : "ny",
+                       fmt::format("nx = {}, ny = {}: a supergrid of about {:.0f} x {:.0f} points needs about {:.1f} "
+                                   "GB, more than the {:.1f} GB of 80% of this machine's memory",
+                                   p.nx, p.ny, sx, sy, need / 1e9, limit / 1e9));
+  }
   check(p.tolerance > 0.0 && p.tolerance < 1.0, "tolerance", num(p.tolerance), "must be within (0, 1)");
   check(p.max_outer >= 1, "max_outer", std::to_string(p.max_outer), "must be >= 1");
   check(p.max_inner >= 1, "max_inner", std::to_string(p.max_inner), "must be >= 1");

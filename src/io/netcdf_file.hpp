@@ -8,15 +8,26 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "core/error.hpp"
 
 namespace aq::io {
 
-/// Throws E("<path>: netCDF <what>: <nc_strerror>") unless status is NC_NOERR.
+/// What a failed write to `path` most likely ran into, for a message: ": No space left on device
+/// (ENOSPC)" when errno says so or the file system of `path` has (almost) no free block left,
+/// the errno text for EFBIG/EDQUOT/EIO, else "". libnetcdf and HDF5 report a full disk only as
+/// "HDF error" or "I/O failure"; this names it.
+std::string write_failure_note(const std::filesystem::path& path);
+
+/// Throws E("<path>: netCDF <what>: <nc_strerror>") unless status is NC_NOERR; an OutputError
+/// also gets write_failure_note().
 template <typename E>
 void nc_check(int status, const std::filesystem::path& path, const std::string& what) {
-  if (status != NC_NOERR) throw E(fmt::format("{}: netCDF {}: {}", path.string(), what, nc_strerror(status)));
+  if (status == NC_NOERR) return;
+  std::string note;
+  if constexpr (std::is_same_v<E, OutputError>) note = write_failure_note(path);
+  throw E(fmt::format("{}: netCDF {}: {}{}", path.string(), what, nc_strerror(status), note));
 }
 
 /// Writes a text attribute; OutputError naming the path and attribute on failure.
@@ -47,22 +58,25 @@ inline double global_number(int nc, const char* name) {
   return v;
 }
 
-/// An open netCDF file id, closed on scope exit (errors of that close are ignored: it only runs
-/// when another error is already propagating, or after an explicit close()).
+/// An open netCDF file id, aborted on scope exit (only when another error is already propagating:
+/// nc_abort releases the file in libnetcdf and HDF5 without flushing, so a file left behind by a
+/// failed write, a full disk, is not flushed again by HDF5's exit handler, which crashed).
 class NcFile {
  public:
   NcFile() = default;
   NcFile(const NcFile&) = delete;
   NcFile& operator=(const NcFile&) = delete;
   ~NcFile() {
-    if (id_ >= 0) nc_close(id_);
+    if (id_ >= 0) nc_abort(id_);
   }
   /// Where nc_create/nc_open store the id.
   int* out() { return &id_; }
   [[nodiscard]] int id() const { return id_; }
-  /// Closes and returns nc_close's status (data are flushed here).
+  /// Closes and returns nc_close's status (data are flushed here); aborts the file when the
+  /// close fails, so nothing of it stays open.
   int close() {
     const int status = nc_close(id_);
+    if (status != NC_NOERR) nc_abort(id_);
     id_ = -1;
     return status;
   }
@@ -75,6 +89,11 @@ class NcFile {
 /// the file and every variable's data inside it. Other files (netCDF-4) pass unchecked. Throws
 /// InputError naming the path and what is damaged.
 void check_netcdf_header(const std::filesystem::path& path);
+
+/// Refuses (InputError naming the path) a file whose declared dimensions would need more than
+/// 80 % of this machine's memory to hold `values` doubles: a netCDF-4 file can declare
+/// 100000 x 100000 nodes in a few bytes. Computed in floating point (no overflow).
+void check_declared_size(const std::filesystem::path& path, double values, const std::string& what);
 
 /// check_netcdf_header() then nc_open for reading into `nc`; InputError naming the path.
 void open_for_reading(const std::filesystem::path& path, NcFile& nc);

@@ -13,12 +13,18 @@
 // Big-endian. Counts are 4 bytes (8 in CDF-5); begin is 4 bytes in CDF-1, else 8.
 #include <fmt/format.h>
 
+#include <sys/statvfs.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <vector>
 
+#include "core/input_files.hpp"
+#include "core/timer.hpp"
 #include "io/netcdf_file.hpp"
 
 namespace aq::io {
@@ -67,7 +73,7 @@ class HeaderWalk {
       const std::uint64_t begin = version_ == 1 ? word() : u64();
       const std::uint64_t bytes = mul(mul(elems, size), record ? nrecs : 1);
       if (begin > file_size_ || bytes > file_size_ - begin)
-        fail(fmt::format("a variable of {} bytes at offset {}", bytes, begin));
+        fail(fmt::format("a variable of {} bytes at offset {} (the file is cut short?)", bytes, begin));
     }
   }
 
@@ -179,6 +185,9 @@ class HeaderWalk {
 }  // namespace
 
 void check_netcdf_header(const std::filesystem::path& path) {
+  // Opening a FIFO blocks; a device never ends: only regular files are read.
+  if (const std::string bad = input_file_problem(path); !bad.empty())
+    throw InputError(fmt::format("{}: {}", path.string(), bad));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open", path.string()));
   char magic[4] = {};
@@ -191,6 +200,26 @@ void check_netcdf_header(const std::filesystem::path& path) {
   if (ec) throw InputError(fmt::format("{}: cannot read its size: {}", path.string(), ec.message()));
   in.clear();
   HeaderWalk(path, in, size).run();
+}
+
+void check_declared_size(const std::filesystem::path& path, double values, const std::string& what) {
+  const double bytes = values * 8.0, limit = 0.8 * static_cast<double>(physical_memory_bytes());
+  if (!(bytes <= limit))
+    throw InputError(
+        fmt::format("{}: declares {} ({:.3g} values, {:.1f} GB to hold), more than the {:.1f} GB of 80% "
+                    "of this machine's memory",
+                    path.string(), what, values, bytes / 1e9, limit / 1e9));
+}
+
+std::string write_failure_note(const std::filesystem::path& path) {
+  const int err = errno;
+  if (err == ENOSPC || err == EDQUOT || err == EFBIG || err == EIO)
+    return fmt::format(" ({}{})", std::strerror(err), err == ENOSPC ? ": ENOSPC" : "");
+  struct statvfs fs {};
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (::statvfs(dir.c_str(), &fs) == 0 && static_cast<std::uint64_t>(fs.f_bavail) * fs.f_frsize < (64u << 10))
+    return fmt::format(" ({}: ENOSPC, the file system of {} is full)", std::strerror(ENOSPC), dir.string());
+  return {};
 }
 
 void open_for_reading(const std::filesystem::path& path, NcFile& nc) {

@@ -88,6 +88,9 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       {"mask.remove_pinches", c.mask.remove_pinches ? "true" : "false"},
   };
   if (!sources.empty()) items.insert(items.begin() + 3, {"input.source_files", sources});
+  // Listed only when not the default (12000 m), so files written before the key existed still match.
+  if (c.input.max_abs_elevation_m != config::InputOptions{}.max_abs_elevation_m)
+    items.insert(items.begin() + 7, {"input.max_abs_elevation_m", number(c.input.max_abs_elevation_m)});
   return items;
 }
 

@@ -17,6 +17,7 @@
 #include "core/rotation.hpp"
 #include "core/types.hpp"
 #include "io/depth.hpp"
+#include "io/netcdf_file.hpp"
 #include "mesh_files/geographic_mesh.hpp"
 
 namespace aq::io {
@@ -30,10 +31,10 @@ constexpr char kWgs84Wkt[] =
 
 // A netCDF file being created; every call is checked and a failure throws OutputError naming the
 // file. The destructor aborts (and so deletes) a file that was not closed.
-class NcFile {
+class NcWriter {
  public:
   // deflate 1..9: netCDF-4 with every array chunked and compressed at that level; 0: no compression.
-  NcFile(std::filesystem::path path, bool netcdf4, int deflate) : path_(std::move(path)), deflate_(deflate) {
+  NcWriter(std::filesystem::path path, bool netcdf4, int deflate) : path_(std::move(path)), deflate_(deflate) {
     if (deflate_ < 0 || deflate_ > 9)
       throw ConfigError(fmt::format("output.ugrid_deflate = {}: must be 0 (classic, uncompressed) .. 9", deflate_));
     const int mode = NC_CLOBBER | (netcdf4 || deflate_ > 0 ? NC_NETCDF4 : NC_64BIT_OFFSET);
@@ -41,15 +42,16 @@ class NcFile {
     int old = 0;
     check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
   }
-  ~NcFile() {
+  ~NcWriter() {
     if (id_ >= 0) nc_abort(id_);
   }
-  NcFile(const NcFile&) = delete;
-  NcFile& operator=(const NcFile&) = delete;
+  NcWriter(const NcWriter&) = delete;
+  NcWriter& operator=(const NcWriter&) = delete;
 
   void check(int status, std::string_view what) const {
     if (status != NC_NOERR) {
-      throw OutputError(fmt::format("{}: netCDF {}: {}", path_.string(), what, nc_strerror(status)));
+      throw OutputError(
+          fmt::format("{}: netCDF {}: {}{}", path_.string(), what, nc_strerror(status), io::write_failure_note(path_)));
     }
   }
   [[nodiscard]] int id() const { return id_; }
@@ -124,7 +126,9 @@ class NcFile {
   void close() {
     const int id = id_;
     id_ = -1;
-    check(nc_close(id), "close");
+    const int status = nc_close(id);
+    if (status != NC_NOERR) nc_abort(id);  // nothing of the file stays open for HDF5's exit handler
+    check(status, "close");
   }
 
  private:
@@ -229,8 +233,8 @@ struct TopologyVars {
 };
 
 // Defines one topology's variables (the nodes and boundary are shared, defined by the caller).
-TopologyVars define_topology(NcFile& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count, int two,
-                             nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
+TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count,
+                             int two, nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
   TopologyVars v;
   const int face_dim = nc.dim(n.face_dim, faces.count());
   const int edge_dim = nc.dim(n.edge_dim, edge_count);
@@ -288,7 +292,7 @@ TopologyVars define_topology(NcFile& nc, const TopologyNames& n, const FaceSet& 
   return v;
 }
 
-void write_topology(NcFile& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
+void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
                     const std::vector<std::array<NodeId, 2>>& edges) {
   const int w = faces.max_nodes();
   const std::int64_t nx = mesh.lattice.nx;
@@ -394,7 +398,7 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   const auto nb = static_cast<std::int64_t>(mesh.boundary_edges.size());
   const bool rotated = mesh.rotation.enabled;
 
-  NcFile nc(path, big, options.deflate);
+  NcWriter nc(path, big, options.deflate);
   const int g = NC_GLOBAL;
   nc.text(g, "Conventions", "CF-1.8 UGRID-1.0");
   nc.text(g, "title", options.title);
@@ -469,6 +473,10 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   nc.text(depth, "location", "node");
   nc.text(depth, "coordinates", all_node_coords);
   nc.text(depth, "grid_mapping", grid_mapping);
+  // A node without data (a pole-cap node over a raster's no-data) holds NaN: declared then, and
+  // only then, so files of meshes without one keep their bytes.
+  if (std::any_of(mesh.depth_m.begin(), mesh.depth_m.end(), [](double d) { return std::isnan(d); }))
+    nc.number(depth, "_FillValue", std::numeric_limits<double>::quiet_NaN());
 
   const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
   nc.text(flags, "long_name", "Node flags");

@@ -17,8 +17,10 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 #include "core/row_progress.hpp"
 #include "core/timer.hpp"
+#include "raster/netcdf_coordinates.hpp"
 #include "raster/spline1d.hpp"
 
 namespace aq::raster {
@@ -54,10 +56,9 @@ struct DatasetCloser {
 using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(o.path, ec)) throw InputError(fmt::format("{}: no such file", o.path));
-  if (fs::is_directory(o.path, ec)) throw InputError(fmt::format("{}: is a directory, not a raster", o.path));
+  // A FIFO would block GDAL forever, a device never ends, a directory is not a raster.
+  if (const std::string bad = input_file_problem(o.path); !bad.empty())
+    throw InputError(fmt::format("{}: {}", o.path, bad));
   DatasetPtr ds(static_cast<GDALDataset*>(
       GDALOpenEx(o.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
@@ -124,6 +125,7 @@ inline double bilinear4(double a, double b, double c, double d, double t, double
 struct RowStats {
   double mn = std::numeric_limits<double>::infinity(), mx = -std::numeric_limits<double>::infinity(), sum = 0.0;
   std::int64_t count = 0;
+  std::int64_t implausible = 0;  // values beyond ±max_abs_elevation_m, made no-data
 };
 
 RowStats row_stats(const float* row, std::int64_t n) {
@@ -184,6 +186,8 @@ struct Bathymetry::Impl {
   DatasetPtr ds;
   GDALRasterBand* band = nullptr;
   double sgn = 1.0;
+  bool signed_byte = false;                                  // a Byte band marked PIXELTYPE=SIGNEDBYTE
+  float max_abs_m = std::numeric_limits<float>::infinity();  // OpenOptions::max_abs_elevation_m
   int band_number = 1;
   mutable std::mutex io;
   mutable std::vector<RowStats> stats_rows;  // streamed: per normalised row, filled by the first pass
@@ -227,8 +231,12 @@ struct Bathymetry::Impl {
       const std::int64_t r = north_up ? h - 1 - y : y;
       const float* src = raw + yy * w;
       float* out = dst + (r - lo) * nc;
-      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c]);
-      if (stats != nullptr) stats[r] = row_stats(out, nc);
+      std::int64_t implausible = 0;
+      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c], implausible);
+      if (stats != nullptr) {
+        stats[r] = row_stats(out, nc);
+        stats[r].implausible = implausible;
+      }
     }
   }
 
@@ -301,6 +309,11 @@ struct Bathymetry::Impl {
         x = std::fmod(x, nd);
       }
       if (x < 0.0) x += nd;
+    } else if (x < -0.5 || x > static_cast<double>(n) - 0.5) {
+      // Any longitude origin, also for a regional raster: the same meridian a whole turn away
+      // (a raster over 280..350°E answers at -40°E). Points inside keep the formula above.
+      const double turn = 360.0 / info.dlon;
+      x -= turn * std::floor((x + 0.5) / turn);
     }
     const double xr = std::round(x);
     if (std::abs(x - xr) < 1e-9) x = xr;  // a point on a grid line takes the grid value exactly
@@ -380,14 +393,23 @@ struct Bathymetry::Impl {
         CE_None) {
       throw InputError(fmt::format("{}: read error at row {}{}", info.path, y, gdal_message()));
     }
-    return normalise(x);
+    std::int64_t implausible = 0;
+    return normalise(x, implausible);
   }
 
-  // A stored value -> metres, elevation up; NaN for no-data.
-  [[nodiscard]] float normalise(float x) const {
+  // A stored value -> metres, elevation up; NaN for no-data, and for values beyond
+  // ±max_abs_m (counted in `implausible`: a sentinel such as -1e29 or a wrong scale is not a depth).
+  [[nodiscard]] float normalise(float x, std::int64_t& implausible) const {
+    if (signed_byte && x >= 128.0f) x -= 256.0f;
     const bool missing =
         std::isnan(x) || (info.has_nodata && x == static_cast<float>(info.nodata)) || std::abs(x) > 1e30f;
-    return missing ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(sgn * (x * info.scale + info.offset));
+    if (missing) return std::numeric_limits<float>::quiet_NaN();
+    const auto v = static_cast<float>(sgn * (x * info.scale + info.offset));
+    if (!(std::abs(v) <= max_abs_m)) {
+      ++implausible;
+      return std::numeric_limits<float>::quiet_NaN();
+    }
+    return v;
   }
 
   void compute_stats() {
@@ -410,8 +432,10 @@ struct Bathymetry::Impl {
       t.mx = std::max(t.mx, r.mx);
       t.sum += r.sum;
       t.count += r.count;
+      t.implausible += r.implausible;
     }
     info.valid_count = t.count;
+    info.implausible_count = t.implausible;
     info.min_m = t.count > 0 ? t.mn : kNaN;
     info.max_m = t.count > 0 ? t.mx : kNaN;
     info.mean_m = t.count > 0 ? t.sum / static_cast<double>(t.count) : kNaN;
@@ -723,6 +747,11 @@ Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, 
 
 namespace {
 
+// The values made no-data for lying beyond ±max_abs_elevation_m, if any.
+void log_implausible(const RasterInfo& i, const Logger& log) {
+  if (const std::string note = implausible_note(i); !note.empty()) log.warn("{}: {}", i.path, note);
+}
+
 // 80% of the machine's memory when `bytes` is 0.
 std::int64_t memory_limit(std::int64_t bytes) {
   return bytes > 0 ? bytes : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
@@ -754,6 +783,15 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   const char* unit = band->GetUnitType();
   info.units = unit != nullptr ? unit : "";
   info.data_type = GDALGetDataTypeName(band->GetRasterDataType());
+  if (GDALDataTypeIsComplex(band->GetRasterDataType()) != 0)
+    throw InputError(fmt::format("{}: band {} ({}) holds complex numbers ({}); elevations must be real numbers", o.path,
+                                 o.band, info.variable, info.data_type));
+  // GDAL 3.6 reads a signed-byte band as Byte with PIXELTYPE=SIGNEDBYTE: values 128..255 are
+  // -128..-1 (normalise() maps them).
+  const char* pixel_type = band->GetMetadataItem("PIXELTYPE", "IMAGE_STRUCTURE");
+  im->signed_byte =
+      band->GetRasterDataType() == GDT_Byte && pixel_type != nullptr && std::string_view(pixel_type) == "SIGNEDBYTE";
+  if (im->signed_byte) info.data_type = "Int8 (signed byte)";
 
   // Coordinate reference system: geographic only.
   const OGRSpatialReference* srs = ds->GetSpatialRef();
@@ -774,7 +812,17 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   if (ds->GetGeoTransform(gt) != CE_None) {
     throw InputError(fmt::format("{}: no georeferencing (geotransform) found{}", o.path, gdal_message()));
   }
+  for (const double x : gt)
+    if (!std::isfinite(x))
+      throw InputError(fmt::format("{}: the geotransform ({}, {}, {}, {}, {}, {}) is not finite", o.path, gt[0], gt[1],
+                                   gt[2], gt[3], gt[4], gt[5]));
   if (gt[2] != 0.0 || gt[4] != 0.0) throw InputError(fmt::format("{}: rotated rasters are not supported", o.path));
+  if (info.driver == "netCDF") {
+    // A classic file cut short reads as zeros past the cut: its header must fit its size. And
+    // every coordinate value must be where the geotransform says (GDAL looks at a few only).
+    check_netcdf_coordinates(o.path, info.variable, {gt[0], gt[1], gt[2], gt[3], gt[4], gt[5]}, info.width,
+                             info.height);
+  }
   const double rx = gt[1];
   const double ry = std::abs(gt[5]);
   if (!(rx > 0.0) || !(ry > 0.0)) throw InputError(fmt::format("{}: invalid pixel size {} × {}", o.path, gt[1], gt[5]));
@@ -832,6 +880,8 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   if (has_scale == 0) info.scale = 1.0;
   if (has_offset == 0) info.offset = 0.0;
   im->sgn = o.positive_down ? -1.0 : 1.0;
+  im->max_abs_m = static_cast<float>(o.max_abs_elevation_m);
+  info.max_abs_elevation_m = o.max_abs_elevation_m;
   int bx = 0, by = 0;
   band->GetBlockSize(&bx, &by);
   info.block_rows = std::max(1, by);
@@ -861,6 +911,12 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   im->band_number = o.band;
   im->ds = std::move(ds);
   return im;
+}
+
+std::string implausible_note(const RasterInfo& info) {
+  if (info.implausible_count <= 0) return {};
+  return fmt::format("{} value(s) beyond ±{:g} m treated as no-data (input.max_abs_elevation_m)",
+                     info.implausible_count, info.max_abs_elevation_m);
 }
 
 RasterPlan plan_raster(const OpenOptions& options) {
@@ -944,6 +1000,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     throw InputError(
         fmt::format("{}: band {} ({}) holds no data: every value is no-data", o.path, o.band, info.variable));
   }
+  log_implausible(im->info, log);
   if (o.interpolation == Interpolation::kBicubic) {
     im->build_spline();
     im->compute_stats();

@@ -27,6 +27,9 @@ struct OpenOptions {
   std::string variable;        ///< netCDF variable / subdataset; empty = the first / the file itself
   int band = 1;                ///< 1-based band
   bool positive_down = false;  ///< file stores depth positive down: values are negated
+  /// Values (after scale, offset and sign) beyond ±this many metres are no-data: a sentinel
+  /// such as -1e29 or a wrong scale is not an elevation (Earth: -10 994 m .. 8 849 m).
+  double max_abs_elevation_m = 12000.0;
   Interpolation interpolation = Interpolation::kBilinear;
   std::int64_t max_memory_bytes = 0;  ///< refuse if the raster would not fit; 0 = 80% of RAM
   /// The caller can use a streamed raster (unrotated vertex-rule lattice, bilinear): see
@@ -67,6 +70,8 @@ struct RasterInfo {
   double nodata = 0.0;
   double min_m = 0.0, max_m = 0.0, mean_m = 0.0;  ///< over valid values (after normalisation)
   std::int64_t valid_count = 0;
+  std::int64_t implausible_count = 0;  ///< values beyond ±max_abs_elevation_m made no-data
+  double max_abs_elevation_m = 12000.0;
   std::int64_t memory_bytes = 0;  ///< bytes held for the values (streamed: the band buffers)
   bool streamed = false;          ///< values are read in bands of rows on each pass, never held whole
   std::int64_t block_rows = 0;    ///< the file's block height (rows)
@@ -81,6 +86,10 @@ struct RasterPlan {
   std::int64_t block_rows = 0, band_rows = 0;
   std::int64_t bytes = 0;  ///< held values (whole) or band buffers (streamed)
 };
+/// "N value(s) beyond ±M m treated as no-data (input.max_abs_elevation_m)" when a pass found
+/// any, else "" (streamed rasters: after their first pass).
+std::string implausible_note(const RasterInfo& info);
+
 /// Opens the header of `options.path` and decides whole or streamed with the rule of `open`;
 /// throws what `open` throws for a missing or unusable file (not the memory refusal).
 RasterPlan plan_raster(const OpenOptions& options);

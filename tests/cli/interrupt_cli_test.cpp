@@ -1,7 +1,7 @@
-// Clean interruption (issue 11): SIGINT or SIGTERM during the writing stage of a real run removes
-// every temporary file, leaves no output at all (no partial set), prints one line on stderr and
-// exits with 130 / 143. The run (the seed's reference run, every format, an 8000-pixel-wide
-// preview) writes for about a second after 0.3 s of work; the test waits until the first temporary
+// Clean interruption (issue 11; SIGHUP, SIGQUIT and SIGPIPE since issue 23): a signal during the writing stage of a
+// real run removes every temporary file, leaves no output at all (no partial set), prints one line on stderr and exits
+// with 130 / 143. The run (the seed's reference run, every format, an 8000-pixel-wide preview) writes for about a
+// second after 0.3 s of work; the test waits until the first temporary
 // `.NAME.ext.tmpPID` appears and then sends the signal.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -38,6 +39,8 @@ Interrupted interrupt_run(int sig) {
   if (pid == 0) {
     if (std::freopen(err.c_str(), "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
       ::_exit(99);
+    // aquatoria keeps a signal that was ignored when it started (nohup): start it with defaults.
+    for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}) std::signal(s, SIG_DFL);
     ::execl(AQ_BINARY, AQ_BINARY, "mesh", "--set", "output.png_width=8000", "-o", out.c_str(),
             static_cast<char*>(nullptr));
     ::_exit(98);
@@ -82,5 +85,15 @@ TEST(CliInterrupt, SigtermWhileWritingLeavesNothingAndExits143) {
 }
 
 TEST(CliInterrupt, SigintWhileWritingLeavesNothingAndExits130) { expect_clean(interrupt_run(SIGINT), 130, "SIGINT"); }
+
+// Issue 23: a closed terminal (SIGHUP), Ctrl-\ (SIGQUIT) and a reader of stderr that has quit
+// (SIGPIPE, e.g. `2>&1 | grep -m1`) left the temporaries behind: they are handled the same way.
+TEST(CliInterrupt, SighupWhileWritingLeavesNothingAndExits129) { expect_clean(interrupt_run(SIGHUP), 129, "SIGHUP"); }
+TEST(CliInterrupt, SigquitWhileWritingLeavesNothingAndExits131) {
+  expect_clean(interrupt_run(SIGQUIT), 131, "SIGQUIT");
+}
+TEST(CliInterrupt, SigpipeWhileWritingLeavesNothingAndExits141) {
+  expect_clean(interrupt_run(SIGPIPE), 141, "SIGPIPE");
+}
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "grid_files/nesting_netcdf.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 #include "grid_params/izogrid_file.hpp"
+#include "raster/bathymetry.hpp"
 
 #ifndef AQ_SOURCE_DIR
 #define AQ_SOURCE_DIR "."
@@ -130,6 +131,22 @@ std::string nesting(const std::uint8_t* data, std::size_t size) {
   return expect_clear_error([&] { (void)io::read_nesting(p); });
 }
 
+// A raster's header and first read, as `aquatoria mesh` opens input.path: GDAL picks the driver
+// from the bytes (netCDF-3/4, GeoTIFF, ...); the header is checked (netCDF size, coordinate
+// variables, geotransform, band type) before any value is trusted, and a declared size beyond the
+// memory limit is refused before anything is allocated.
+std::string raster_file(const std::uint8_t* data, std::size_t size) {
+  const fs::path p = scratch().put("fuzz_raster", data, size);
+  return expect_clear_error([&] {
+    raster::OpenOptions o;
+    o.path = p.string();
+    o.max_memory_bytes = std::int64_t{256} << 20;
+    (void)raster::plan_raster(o);
+    const raster::Bathymetry b = raster::Bathymetry::open(o);
+    (void)b.sample(0.0, 0.0);
+  });
+}
+
 std::string xygrid(const std::uint8_t* data, std::size_t size) {
   const fs::path p = scratch().put("fuzz_xygrid.nc", data, size);
   return expect_clear_error([&] { (void)io::read_xygrid(p); });
@@ -144,7 +161,8 @@ const std::vector<Target>& targets() {
                                      {"set", set},
                                      {"roms_grid", roms_grid},
                                      {"nesting", nesting},
-                                     {"xygrid", xygrid}};
+                                     {"xygrid", xygrid},
+                                     {"raster", raster_file}};
   return t;
 }
 

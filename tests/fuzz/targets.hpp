@@ -30,6 +30,8 @@ struct Target {
 ///   roms_grid        a parent ROMS grid _grd.nc (io::read_roms_grid_fields)
 ///   nesting          a nesting/contact-point file _nesting.nc (io::read_nesting)
 ///   xygrid           an xygrid netCDF for `aquatoria check` (io::read_xygrid)
+///   raster           a bathymetry raster's header and first read (raster::plan_raster and
+///                    Bathymetry::open with a 256 MB limit): netCDF-3/4, GeoTIFF, any GDAL format
 const std::vector<Target>& targets();
 
 /// The target called `name`, or nullptr.
