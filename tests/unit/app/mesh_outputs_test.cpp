@@ -88,12 +88,18 @@ TEST(MeshOutputs, WritingUgridBesideTheOthersChangesNothingButTheThread) {
   }
   EXPECT_EQ(con.lines, seq.lines);
   // The held-back lines (geographic meshes, quality, FESOM namelist) stay where they were.
-  ASSERT_EQ(seq.lines.size(), 16u);
+  std::string all;
+  for (const auto& l : seq.lines) all += l + "\n";
+  ASSERT_EQ(seq.lines.size(), 18u) << all;
   EXPECT_EQ(seq.lines[0].rfind("geographic mesh: ", 0), 0u) << seq.lines[0];
   EXPECT_EQ(seq.lines[2].rfind("output: tiny.msh", 0), 0u) << seq.lines[2];
   EXPECT_EQ(seq.lines[3].rfind("geographic mesh: ", 0), 0u) << seq.lines[3];
   EXPECT_EQ(seq.lines[4].rfind("output: tiny.nc", 0), 0u) << seq.lines[4];
-  EXPECT_EQ(seq.lines[13].rfind("FESOM namelist.config: force_rotation = .true.", 0), 0u) << seq.lines[13];
+  EXPECT_EQ(seq.lines[6].rfind("mesh cleaning: 7 triangles with one neighbour removed in 2 rounds, 0 pinches", 0), 0u)
+      << seq.lines[6];
+  EXPECT_EQ(seq.lines[7].rfind("output: tiny.14", 0), 0u) << seq.lines[7];
+  EXPECT_EQ(seq.lines[14].rfind("FESOM namelist.config &geometry: force_rotation = .true.", 0), 0u) << seq.lines[14];
+  EXPECT_EQ(seq.lines[15].rfind("SCHISM time step: ", 0), 0u) << seq.lines[15];
 }
 
 // A streamed raster is read through GDAL while the preview samples it: nothing beside.
@@ -151,7 +157,9 @@ TEST(MeshOutputs, EveryFormatWithItsFileNameAndOneLogLine) {
   // One line per file, one for the geographic mesh and one for its shape quality on the sphere,
   // both before the first file: the tiny mesh's pole row is not all ocean, so it is merged (3
   // nodes into 1, 2 triangles dropped).
-  ASSERT_EQ(log.lines.size(), 9u);
+  std::string all;
+  for (const auto& l : log.lines) all += l + "\n";
+  ASSERT_EQ(log.lines.size(), 10u) << all;
   EXPECT_NE(log.lines[0].find("geographic mesh: North pole: pole row merged into one node (2 nodes merged, 2 "
                               "degenerate triangles dropped)"),
             std::string::npos)
@@ -159,8 +167,14 @@ TEST(MeshOutputs, EveryFormatWithItsFileNameAndOneLogLine) {
   EXPECT_EQ(log.lines[1].rfind("quality: 15 triangles on the sphere: min angle", 0), 0u) << log.lines[1];
   EXPECT_NE(log.lines[4].find("tiny.vtu"), std::string::npos);
   EXPECT_NE(log.lines[4].find("19 points, 15 cells"), std::string::npos) << log.lines[4];
-  // UGRID, VTU, fort.14 and text write the same geographic mesh; MSH (λ–φ plane) the lattice one.
-  for (const std::size_t k : {1, 2, 3, 4}) EXPECT_EQ(w[k].stats.nodes, 19) << w[k].name;
+  // UGRID, VTU and text write the same geographic mesh; MSH (λ–φ plane) the lattice one; fort.14
+  // the geographic mesh cleaned for the models: the seam strip C+D, the merged pole pair and B1's
+  // corner triangle have (or come to have) one neighbour; A's fan and 3 of B's triangles stay.
+  for (const std::size_t k : {1, 2, 4}) EXPECT_EQ(w[k].stats.nodes, 19) << w[k].name;
+  EXPECT_EQ(log.lines[5].rfind("mesh cleaning: 7 triangles with one neighbour removed in 2 rounds", 0), 0u)
+      << log.lines[5];
+  EXPECT_EQ(w[3].stats.nodes, 8);
+  EXPECT_EQ(w[3].stats.elements, 8);
   EXPECT_EQ(w[0].stats.nodes, 21 + 2);
   EXPECT_EQ(w[0].stats.seam_duplicates, 2);
 }
