@@ -88,7 +88,7 @@ struct SizeOptions {
   double h_max_km = 0.0;     ///< upper clamp (km), also a term everywhere; 0 = none
   double gradation = 0.0;    ///< g: |∇h| <= g (dimensionless); 0 = no gradient limit
   double min_depth_m = 10.0; ///< H is at least this in √(gH) (wavelength, slope, CFL, the time step report)
-  int grid_level = -1;       ///< the field's grid: level-c squares; -1 = finest level with <= 2^22 cells
+  int grid_level = -1;       ///< the field's grid: level-c squares; -1 = finest level with <= 2^20 cells
   std::string raster;        ///< a GDAL raster of sizes in km (lon/lat), combined by minimum; "" = none
   SizeCoastOptions coast;
   SizeFeatureOptions feature;

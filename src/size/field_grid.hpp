@@ -61,7 +61,7 @@ class FieldGrid {
 
 /// The level the field is computed on: `requested` when >= 0 (at most L), else the finest level
 /// whose grid has at most `max_cells` cells (at least level 0).
-[[nodiscard]] int choose_grid_level(const Lattice& lat, int requested, std::int64_t max_cells = std::int64_t{1} << 22);
+[[nodiscard]] int choose_grid_level(const Lattice& lat, int requested, std::int64_t max_cells = std::int64_t{1} << 20);
 
 /// Angle (radians) subtended by a chord of length c (0 <= c <= 2) of the unit sphere:
 /// 2·asin(c/2), by its series below c = 0.25 (relative error < 1e-9) and asin above.

@@ -9,7 +9,8 @@
 // parallel, then left-to-right and right-to-left round the periodic row), repeated until nothing
 // changes. Each value is h(s) + g·dist(s, x) for a real source with the exact distance, so
 // h′ >= the exact minimum, and it equals it except where a weighted Voronoi region is thinner
-// than a cell (tested against the brute-force minimum on the plane, across the seam and in the
+// than a cell, where a cell may keep a neighbour's source: measured within 1% of g × the cell size
+// (tests against the brute-force minimum on the plane, across the seam, over the pole and in the
 // rotated frame). On the lon-lat lattice the first and last rows also see the cell across the
 // pole. Deterministic for any thread count.
 #pragma once

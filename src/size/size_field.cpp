@@ -122,16 +122,23 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
     std::fill(h.begin(), h.end(), c.quadtree.size_km);
     st.terms["size_km"] = summary(h, water);
   }
+  std::vector<double> coast_d;  // distance to the coast and the nearest coast cell, shared by both terms
+  std::vector<std::int32_t> nearest;
+  if (s.coast.h0_km > 0.0 || s.feature.r > 0.0) {
+    Timer t;
+    coast_d = distance_to(grid, coast, &nearest);
+    timings["coast_distance"] = round3(t.wall_s());
+  }
   if (s.coast.h0_km > 0.0) {
     Timer t;
-    const std::vector<double> term = coast_term(grid, coast, s.coast.h0_km, s.coast.alpha);
+    const std::vector<double> term = coast_term(coast_d, s.coast.h0_km, s.coast.alpha);
     st.terms["coast"] = summary(term, water);
     take_min(h, term);
     timings["coast"] = round3(t.wall_s());
   }
   if (s.feature.r > 0.0) {
     Timer t;
-    const std::vector<double> term = feature_term(grid, coast, water, s.feature.r);
+    const std::vector<double> term = feature_term(grid, coast_d, nearest, water, s.feature.r);
     st.terms["feature"] = summary(term, water);
     take_min(h, term);
     timings["feature"] = round3(t.wall_s());

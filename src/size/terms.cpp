@@ -25,7 +25,10 @@ std::vector<std::uint8_t> coast_cells(const FieldGrid& grid, const std::vector<s
 
 std::vector<double> coast_term(const FieldGrid& grid, const std::vector<std::uint8_t>& coast, double h0_km,
                                double alpha) {
-  std::vector<double> d = distance_to(grid, coast);
+  return coast_term(distance_to(grid, coast), h0_km, alpha);
+}
+
+std::vector<double> coast_term(std::vector<double> d, double h0_km, double alpha) {
   for (double& x : d) x = h0_km + alpha * x;
   return d;
 }
@@ -62,6 +65,12 @@ std::vector<double> feature_term(const FieldGrid& grid, const std::vector<std::u
                                  const std::vector<std::uint8_t>& water, double r) {
   std::vector<std::int32_t> nearest;
   const std::vector<double> d = distance_to(grid, coast, &nearest);
+  return feature_term(grid, d, nearest, water, r);
+}
+
+std::vector<double> feature_term(const FieldGrid& grid, const std::vector<double>& d,
+                                 const std::vector<std::int32_t>& nearest, const std::vector<std::uint8_t>& water,
+                                 double r) {
   const std::vector<std::uint8_t> ma = medial_axis(grid, d, nearest, water);
   const std::vector<double> dma = distance_to(grid, ma);
   std::vector<double> h(d.size(), kInf);

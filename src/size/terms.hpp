@@ -27,6 +27,9 @@ std::vector<std::uint8_t> coast_cells(const FieldGrid& grid, const std::vector<s
 std::vector<double> coast_term(const FieldGrid& grid, const std::vector<std::uint8_t>& coast, double h0_km,
                                double alpha);
 
+/// The same from the distances d (km) to the coast (distance_to), shared with the feature term.
+std::vector<double> coast_term(std::vector<double> d, double h0_km, double alpha);
+
 /// Medial-axis cells of the water: neighbours (row or column) whose nearest coast cells lie
 /// farther apart than max(2 cells, 0.8·(d_a + d_b)), i.e. on opposite banks.
 std::vector<std::uint8_t> medial_axis(const FieldGrid& grid, const std::vector<double>& d,
@@ -36,6 +39,11 @@ std::vector<std::uint8_t> medial_axis(const FieldGrid& grid, const std::vector<d
 /// +inf where there is no medial axis or no coast.
 std::vector<double> feature_term(const FieldGrid& grid, const std::vector<std::uint8_t>& coast,
                                  const std::vector<std::uint8_t>& water, double r);
+
+/// The same from the distances d (km) to the coast and each cell's nearest coast cell (distance_to).
+std::vector<double> feature_term(const FieldGrid& grid, const std::vector<double>& d,
+                                 const std::vector<std::int32_t>& nearest, const std::vector<std::uint8_t>& water,
+                                 double r);
 
 /// T·√(g·H)/wl (km), T in hours, H (m) per cell (NaN/<= 0: +inf).
 std::vector<double> wavelength_term(const std::vector<double>& depth_m, double period_h, double wl);
