@@ -226,7 +226,9 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   if (s.cfl.dt_s > 0.0) {
     const std::vector<double> bound = cfl_bound(depth, s.cfl.dt_s, s.cfl.courant_max, s.cfl.velocity_ms);
     st.terms["cfl_bound"] = summary(bound, water);
-    for (std::size_t k = 0; k < n; ++k) h[k] = std::max(h[k], bound[k]);
+    // The bound is on edges; h is a square's size, whose triangles have legs down to a/√2 with
+    // a > h/√2 where the field decides: twice the edge bound keeps those legs above it.
+    for (std::size_t k = 0; k < n; ++k) h[k] = std::max(h[k], 2.0 * bound[k]);
   }
   Json final_summary = summary(h, water, &st.min_km, &st.median_km, &st.max_km);
   std::vector<float> hf(n);
