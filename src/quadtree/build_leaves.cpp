@@ -160,8 +160,8 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
     log.info("quadtree: leaf size km (min/median/max) by |φ′| band:{}", size_line);
   Json grading_json;
   if (field != nullptr && field->has_grid()) {
-    // On a map as fine as 2^22 cells allow (the field's own grid may be level 0 on fine lattices).
-    const Grading gr = achieved_grading(leaves, lat, size::choose_grid_level(lat, -1, std::int64_t{1} << 22));
+    // On a map as fine as 2^25 cells (bytes) allow: the field's own grid may be level 0 on fine lattices.
+    const Grading gr = achieved_grading(leaves, lat, size::choose_grid_level(lat, -1, std::int64_t{1} << 25));
     grading_json = Json{{"map_level", gr.map_level},
                         {"runs", gr.runs},
                         {"median", round3(gr.median)},

@@ -3,7 +3,8 @@
 // between a finer and a coarser neighbour level spans a distance D = n·(side of a level-c square);
 // a size field with |∇h| = g keeps level v (sizes within √2 of h) over D = a/(√2·g), a the level-v
 // square's size, so the run's grading is a/(√2·D). The 2:1 balance alone gives runs of one square
-// (D = a): 0.71. Runs of levels >= c are below the map's resolution and not measured.
+// (D = a): 0.71. Runs of levels >= c are below the map's resolution and not measured; the quadtree
+// stage uses the finest map of at most 2^25 cells.
 #pragma once
 
 #include <cstdint>
