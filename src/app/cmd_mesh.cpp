@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -136,6 +138,34 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
     s.elements = area.filled_pixels;
     return s;
   };
+  if (run.size_field.has_grid()) {  // the field's range, and its value per triangle for "target"
+    const size::SizeField& field = run.size_field;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (const quadtree::Leaf& f : run.leaves) {
+      const double v = field.grid_min_over_square(f.level, f.a, f.b);
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    }
+    if (hi > 0.0) oinfo.size_scale_km = {std::max(lo, 1e-3), hi};
+    if (c.output.png_color == "target") {
+      oinfo.target_km.resize(m.triangles.size());
+      for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        // The centroid's pixel from the lattice coordinates (I unwrapped against the first node).
+        std::int64_t si = 0, sj = 0;
+        const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.triangles[t][0])];
+        for (const NodeId n : m.triangles[t]) {
+          std::int64_t i = m.node_i[static_cast<std::size_t>(n)];
+          if (i - i0 > lat.nx / 2) i -= lat.nx;
+          if (i0 - i > lat.nx / 2) i += lat.nx;
+          si += i;
+          sj += m.node_j[static_cast<std::size_t>(n)];
+        }
+        oinfo.target_km[t] = static_cast<float>(field.at_pixel(si / 3, std::min(sj / 3, lat.ny - 1)));
+      }
+    }
+  }
   const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo, &report);
   Json outputs = Json::array();
   for (const auto& f : files) {

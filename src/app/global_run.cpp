@@ -11,7 +11,9 @@
 #include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
 #include "mesh/build_mesh.hpp"
+#include "mesh/time_step.hpp"
 #include "quadtree/build_leaves.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::app {
 
@@ -257,10 +259,26 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     log.info("critical passages (open = the filled ocean connects both sides):");
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
-  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
+  run.size_field = size::build_size_field(area.filled, lat, c, rot, &bathy, log, report);
+  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report, &run.size_field);
   run.mesh = mesh::build_mesh(run.leaves, lat, rot, bathy, c.mesh, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (!statistics) return run;
+
+  {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)
+    StageScope dt_stage("time_step", report, log);
+    const mesh::TimeStep ts = mesh::time_step(run.mesh, c.size.min_depth_m, c.size.cfl.dt_s, c.size.cfl.courant_max);
+    if (report != nullptr) (*report)["time_step"] = mesh::time_step_json(ts);
+    std::string courant;
+    if (ts.dt_s > 0.0 && ts.courant_percentiles.size() == 5)
+      courant = fmt::format("; at dt = {} s Courant min/median/p99/max {:.3f}/{:.3f}/{:.3f}/{:.3f}, {} triangles above {}",
+                            ts.dt_s, ts.courant_percentiles[0], ts.courant_percentiles[1], ts.courant_percentiles[3],
+                            ts.courant_percentiles[4], ts.above_courant_max, ts.courant_max);
+    dt_stage.done(fmt::format("largest stable explicit barotropic dt {:.2f} s (edge {:.0f} m, H {:.0f} m at {:.3f}, {:.3f}; "
+                              "min over triangles of edge/sqrt(gH), H >= {} m){}",
+                              ts.max_stable_dt_s, ts.limiting_edge_m, ts.limiting_depth_m, ts.limiting_lon_deg,
+                              ts.limiting_lat_deg, ts.min_depth_m, courant));
+  }
 
   StageScope stat_stage("statistics", report, log);
   run.statistics = mesh::compute_statistics(run.mesh);

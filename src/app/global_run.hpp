@@ -19,6 +19,7 @@
 #include "mesh/mesh.hpp"
 #include "mesh/statistics.hpp"
 #include "quadtree/leaves.hpp"
+#include "size/size_field.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -53,6 +54,7 @@ struct GlobalRun {
   mask::WetArea area;
   std::string area_file;          ///< the global run file `area` was read from; "" = computed by the mask stage
   std::string area_file_differs;  ///< when a global run file was present but not reused: why
+  size::SizeField size_field;  ///< the target size field (inactive without size terms)
   std::vector<quadtree::Leaf> leaves;
   mesh::Mesh mesh;
   mesh::MeshStatistics statistics;

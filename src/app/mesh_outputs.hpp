@@ -55,6 +55,12 @@ struct MeshOutputInfo {
   /// Write the UGRID file on a thread of its own while the other files are written (see
   /// write_mesh_outputs); false: one file after another.
   bool concurrent = true;
+  /// output.png_color = "target": the target size field (km) at each triangle's centre (lattice
+  /// mesh order); empty without a size field ("target" then leaves the triangles unfilled).
+  std::vector<float> target_km;
+  /// [lo, hi] (km) the "size" and "target" colour classes span (the field's range over water), so
+  /// both pictures of a run share one scale; empty = each picture's own values.
+  std::vector<double> size_scale_km;
 };
 
 /// The formats write_mesh_outputs knows, in its order.

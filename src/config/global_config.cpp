@@ -257,6 +257,42 @@ const S& schema() {
         "quadtree", "coast_size_km", [](GlobalConfig& c) -> double& { return c.quadtree.coast_size_km; },
         [](const double& v) { return in_range(v, 0.0, 1e5); }, "");
     add_rules(t);
+    // [size] and its sub-tables
+    const auto size_num = [&t](const char* sec, const char* name, double& (*f)(GlobalConfig&), double lo, double hi) {
+      t.add<double>(sec, name, F(f), [lo, hi](const double& v) { return in_range(v, lo, hi); }, "");
+    };
+    size_num("size", "h_min_km", [](GlobalConfig& c) -> double& { return c.size.h_min_km; }, 0.0, 1e5);
+    size_num("size", "h_max_km", [](GlobalConfig& c) -> double& { return c.size.h_max_km; }, 0.0, 1e5);
+    size_num("size", "gradation", [](GlobalConfig& c) -> double& { return c.size.gradation; }, 0.0, 10.0);
+    size_num("size", "min_depth_m", [](GlobalConfig& c) -> double& { return c.size.min_depth_m; }, 0.01, 1e4);
+    t.add<int>(
+        "size", "grid_level", [](GlobalConfig& c) -> int& { return c.size.grid_level; },
+        [](const int& v) { return in_range(v, -1, 20); }, "");
+    t.add_custom(
+        "size", "raster",
+        [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::string text;
+          if (auto err = detail::convert(v, text)) return p.add(o, "size.raster", *err);
+          std::filesystem::path path(text);
+          if (!text.empty() && path.is_relative()) path = o.base_dir / path;
+          c.size.raster = text.empty() ? text : path.lexically_normal().string();
+        },
+        [](const GlobalConfig& c) { return Json(c.size.raster); }, "");
+    size_num("size.coast", "h0_km", [](GlobalConfig& c) -> double& { return c.size.coast.h0_km; }, 0.0, 1e5);
+    size_num("size.coast", "alpha", [](GlobalConfig& c) -> double& { return c.size.coast.alpha; }, 0.0, 10.0);
+    size_num("size.feature", "r", [](GlobalConfig& c) -> double& { return c.size.feature.r; }, 0.0, 1e3);
+    size_num("size.wavelength", "wl", [](GlobalConfig& c) -> double& { return c.size.wavelength.wl; }, 0.0, 1e4);
+    size_num("size.wavelength", "period_h", [](GlobalConfig& c) -> double& { return c.size.wavelength.period_h; },
+             0.01, 1e4);
+    size_num("size.slope", "slp", [](GlobalConfig& c) -> double& { return c.size.slope.slp; }, 0.0, 1e4);
+    size_num("size.slope", "filter", [](GlobalConfig& c) -> double& { return c.size.slope.filter; }, 0.0, 100.0);
+    size_num("size.slope", "filter_max_km", [](GlobalConfig& c) -> double& { return c.size.slope.filter_max_km; },
+             0.0, 1e4);
+    size_num("size.cfl", "dt_s", [](GlobalConfig& c) -> double& { return c.size.cfl.dt_s; }, 0.0, 1e6);
+    size_num("size.cfl", "courant_max", [](GlobalConfig& c) -> double& { return c.size.cfl.courant_max; }, 1e-3,
+             100.0);
+    size_num("size.cfl", "velocity_ms", [](GlobalConfig& c) -> double& { return c.size.cfl.velocity_ms; }, 0.0,
+             100.0);
     // [rotation]
     t.add<bool>(
         "rotation", "enabled", [](GlobalConfig& c) -> bool& { return c.rotation.enabled; }, {}, "");
@@ -327,7 +363,7 @@ const S& schema() {
     t.add<std::string>(
         "output", "png_color", [](GlobalConfig& c) -> std::string& { return c.output.png_color; },
         [](const std::string& v) {
-          return one_of(v, {"level", "angle", "size"});
+          return one_of(v, {"level", "angle", "size", "target"});
         },
         "");
     t.add<std::vector<double>>(

@@ -59,6 +59,45 @@ struct QuadtreeOptions {
   std::vector<BoxRule> box_rules;
 };
 
+// The target size field h(x) in km (ARCHITECTURE §4.10, src/size): terms combined by minimum,
+// clamped to [h_min_km, h_max_km], gradient-limited to |∇h| <= gradation, CFL-bounded last. Every
+// term is off at its default (0 or ""), so without a [size] section the quadtree's level rules
+// (the seed's D_l rule and coastal band) and quadtree.size_km / coast_size_km decide alone.
+struct SizeCoastOptions {
+  double h0_km = 0.0;  ///< h = h0 + alpha·d at distance d (km) from the coast; 0 = off
+  double alpha = 0.15;  ///< growth of the coast term (km per km)
+};
+struct SizeFeatureOptions {
+  double r = 0.0;  ///< h = 2(d_MA + d)/R: R elements across a channel at its axis; 0 = off
+};
+struct SizeWavelengthOptions {
+  double wl = 0.0;          ///< h = T·√(gH)/wl: elements per tidal wavelength; 0 = off
+  double period_h = 12.42;  ///< T (hours), M2 by default
+};
+struct SizeSlopeOptions {
+  double slp = 0.0;       ///< h = (2π/slp)·H/|∇H|: elements per topographic length scale; 0 = off
+  double filter = 0.25;   ///< low-pass box half-width as a fraction of the Rossby radius √(gH)/|f|; 0 = none
+  double filter_max_km = 500.0;  ///< the box half-width's upper bound (km; the Rossby radius grows without bound at the equator)
+};
+struct SizeCflOptions {
+  double dt_s = 0.0;          ///< time step (s) the sizes must keep stable: h >= (√(gH)+u)·Δt/Cr_max; 0 = off
+  double courant_max = 0.5;   ///< Cr_max
+  double velocity_ms = 0.0;   ///< u (m/s) added to the gravity-wave speed
+};
+struct SizeOptions {
+  double h_min_km = 0.0;     ///< lower clamp of the field (km); 0 = none
+  double h_max_km = 0.0;     ///< upper clamp (km), also a term everywhere; 0 = none
+  double gradation = 0.0;    ///< g: |∇h| <= g (dimensionless); 0 = no gradient limit
+  double min_depth_m = 10.0; ///< H is at least this in √(gH) (wavelength, slope, CFL, the time step report)
+  int grid_level = -1;       ///< the field's grid: level-c squares; -1 = finest level with <= 2^20 cells
+  std::string raster;        ///< a GDAL raster of sizes in km (lon/lat), combined by minimum; "" = none
+  SizeCoastOptions coast;
+  SizeFeatureOptions feature;
+  SizeWavelengthOptions wavelength;
+  SizeSlopeOptions slope;
+  SizeCflOptions cfl;
+};
+
 struct RotationOptions {
   bool enabled = false;
   double pole_lon_deg = -44.858333;  ///< the seed's Greenland pole, 44°51'30"W
@@ -106,6 +145,7 @@ struct GlobalConfig {
   InputOptions input;
   MaskOptions mask;
   QuadtreeOptions quadtree;
+  SizeOptions size;
   RotationOptions rotation;
   MeshOptions mesh;
   OutputOptions output;

@@ -227,15 +227,26 @@ class Schema {
         p.add(so, sec, "expected a table [" + sec + "]");
         continue;
       }
-      for (const auto& [name, value] : table.as_table()) {
-        const Origin o = origin_of(value, file, base);
-        const Key* k = find(sec, name);
-        if (k == nullptr) {
-          p.add(o, sec + "." + name, fmt::format("unknown key{}", suggest_key(sec, name)));
-          continue;
-        }
-        k->set(t, value, o, p);
+      apply_section(t, sec, table, file, base, p);
+    }
+  }
+
+  /// The keys of one table; a sub-table whose dotted name is a known section ([size.wavelength],
+  /// or `wavelength.wl = 30` inside [size]) is applied as that section.
+  void apply_section(T& t, const std::string& sec, const toml::value& table, const std::string& file,
+                     const std::filesystem::path& base, Problems& p) const {
+    for (const auto& [name, value] : table.as_table()) {
+      const Origin o = origin_of(value, file, base);
+      const Key* k = find(sec, name);
+      if (k == nullptr && value.is_table() && has_section(sec + "." + name)) {
+        apply_section(t, sec + "." + name, value, file, base, p);
+        continue;
       }
+      if (k == nullptr) {
+        p.add(o, sec + "." + name, fmt::format("unknown key{}", suggest_key(sec, name)));
+        continue;
+      }
+      k->set(t, value, o, p);
     }
   }
 
@@ -248,7 +259,7 @@ class Schema {
     o.base_dir = std::filesystem::current_path();
     const auto eq = text.find('=');
     const std::string path = eq == std::string::npos ? text : text.substr(0, eq);
-    const auto dot = path.find('.');
+    const auto dot = path.rfind('.');  // the key is after the last dot: size.wavelength.wl
     if (eq == std::string::npos || dot == std::string::npos) {
       p.add(o, printable(path), "expected --set section.key=value");
       return;

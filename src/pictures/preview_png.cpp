@@ -81,13 +81,17 @@ FillClasses angle_classes() {
 
 // 1-2-5 steps (km) from the largest at or below the smallest value to the smallest at or above
 // the largest, at most 8 classes (every other step dropped until they fit).
-FillClasses size_classes(const std::vector<float>& values) {
+FillClasses size_classes(const std::vector<float>& values, const std::vector<double>& range, const char* what) {
   double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
   for (const float v : values)
     if (std::isfinite(v) && v > 0.0f) {
       lo = std::min(lo, static_cast<double>(v));
       hi = std::max(hi, static_cast<double>(v));
     }
+  if (range.size() == 2 && range[0] > 0.0 && range[1] >= range[0]) {  // a scale shared by several pictures
+    lo = range[0];
+    hi = range[1];
+  }
   if (!std::isfinite(lo)) lo = hi = 1.0;
   std::vector<double> steps;
   for (double decade = std::pow(10.0, std::floor(std::log10(lo))); steps.empty() || steps.back() < hi; decade *= 10.0)
@@ -107,7 +111,7 @@ FillClasses size_classes(const std::vector<float>& values) {
     const auto& v = kLevelColours[static_cast<std::size_t>(7 - (n > 1 ? 7 * k / (n - 1) : 0))];
     c.rgb.push_back({static_cast<int>(std::lround(255 * v[0])), static_cast<int>(std::lround(255 * v[1])),
                      static_cast<int>(std::lround(255 * v[2]))});
-    c.labels.push_back(fmt::format("{}{:g}-{:g} km", k == 0 ? "size " : "", steps[k],
+    c.labels.push_back(fmt::format("{}{:g}-{:g} km", k == 0 ? what : "", steps[k],
                                    steps.size() > 1 ? steps[std::min(k + 1, steps.size() - 1)] : steps[k]));
   }
   return c;
@@ -482,7 +486,8 @@ void fit_font(cairo_t* cr, double size, double width, double room) {
 }
 
 FillClasses fill_classes(const PreviewOptions& o) {
-  return o.colour == PreviewColour::kAngle ? angle_classes() : size_classes(o.triangle_values);
+  if (o.colour == PreviewColour::kAngle) return angle_classes();
+  return size_classes(o.triangle_values, o.value_range_km, o.colour == PreviewColour::kTarget ? "target " : "size ");
 }
 
 void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOptions& o, const std::string& title) {
@@ -668,7 +673,9 @@ PreviewColour parse_preview_colour(std::string_view value) {
   if (value == "level") return PreviewColour::kLevel;
   if (value == "angle") return PreviewColour::kAngle;
   if (value == "size") return PreviewColour::kSize;
-  throw ConfigError(fmt::format("output.png_color = \"{}\": expected \"level\", \"angle\" or \"size\"", value));
+  if (value == "target") return PreviewColour::kTarget;
+  throw ConfigError(
+      fmt::format("output.png_color = \"{}\": expected \"level\", \"angle\", \"size\" or \"target\"", value));
 }
 
 void check_preview_options(const PreviewOptions& o) {

@@ -48,8 +48,10 @@ struct PreviewOutline {
 /// What fills the elements (output.png_color): the quadtree level, translucent over the
 /// bathymetry ("level"), or opaque per triangle in classes with counts in the legend: its smallest
 /// angle on the sphere ("angle": < 10°, 10–20°, …, ≥ 50°, dark red to green) or its size in km
-/// ("size": classes 1–2–5–10… km wide on a log scale, spanning the values, fine = yellow).
-enum class PreviewColour { kLevel, kAngle, kSize };
+/// ("size": classes 1–2–5–10… km wide on a log scale, spanning the values, fine = yellow), or the
+/// target size field at its centre ("target", the same classes). With value_range_km the classes
+/// span that range instead, so "size" and "target" pictures of one run share a scale.
+enum class PreviewColour { kLevel, kAngle, kSize, kTarget };
 
 /// Parses output.png_color; throws ConfigError naming it and the value.
 PreviewColour parse_preview_colour(std::string_view value);
@@ -61,6 +63,7 @@ struct PreviewOptions {
   /// kAngle / kSize: one value per triangle of the mesh drawn (degrees / km); NaN leaves a
   /// triangle unfilled (the pole cap rows, which the geographic files hold instead).
   std::vector<float> triangle_values;
+  std::vector<double> value_range_km;  ///< kSize / kTarget: [lo, hi] the classes span; empty = the values'
   std::vector<double> zoom;  ///< empty, or [lon_min, lon_max, lat_min, lat_max] in map degrees
   std::string title = "aquatoria mesh";
   std::vector<PreviewOutline> outlines;  ///< drawn in magenta over the mesh, labels in black on white

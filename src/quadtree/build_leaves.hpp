@@ -12,6 +12,7 @@
 #include "core/report.hpp"
 #include "core/rotation.hpp"
 #include "quadtree/leaves.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::raster {
 class Bathymetry;
@@ -23,7 +24,8 @@ namespace aq::quadtree {
 ///
 /// `filled` is Ω_L on the lattice (lat.nx × lat.ny pixels). `rotation` maps lattice coordinates
 /// to geographic ones (identity without pole rotation); `bathy` is needed only for depth rules
-/// (may be null otherwise). Logs one stage line and, when `report` is given, writes the
+/// (may be null otherwise). `field` is the target size field (size/size_field.hpp); null: the
+/// field of quadtree.size_km / coast_size_km alone (size::build_size_field), the level rules only when both are 0. Logs one stage line and, when `report` is given, writes the
 /// "quadtree" section: leaves per level for the bare D_l rule, after the coastal band and rules,
 /// and after smoothing, plus sub-stage timings.
 ///
@@ -32,6 +34,6 @@ namespace aq::quadtree {
 /// violations left).
 std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const config::QuadtreeOptions& options,
                                const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
-                               Report* report);
+                               Report* report, const size::SizeField* field = nullptr);
 
 }  // namespace aq::quadtree

@@ -296,21 +296,19 @@ int level_for_size(const Lattice& lat, double target_km, double row) {
   return l;
 }
 
-void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, double coast_size_km, int coast_band) {
-  for (const auto& [key, v] : {std::pair{"size_km", size_km}, std::pair{"coast_size_km", coast_size_km}})
-    if (!std::isfinite(v) || v < 0.0)
-      throw ConfigError(fmt::format("quadtree.{} = {}: must be a finite number >= 0 (0 = off)", key, v));
+void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field) {
   const int levels = masks.levels();
-  if (levels == 0 || (size_km == 0.0 && coast_size_km == 0.0)) return;
-  // The coastal band's pyramid (any band pixel in the square), only when its rule is on.
+  if (levels == 0 || !field.active()) return;
+  const double band_km = field.band_km();
+  // The coastal band's pyramid (any band pixel in the square), only when its term is on.
   std::vector<Bitmap> band;
-  if (coast_size_km > 0.0) {
+  if (band_km > 0.0) {
     band.resize(static_cast<std::size_t>(levels));
-    band[static_cast<std::size_t>(levels - 1)] =
-        bits::reduce(coastal_band(masks.filled(), std::max(coast_band, 1)), true);
+    band[static_cast<std::size_t>(levels - 1)] = bits::reduce(coastal_band(masks.filled(), field.band_radius()), true);
     for (int l = levels - 2; l >= 0; --l)
       band[static_cast<std::size_t>(l)] = bits::reduce(band[static_cast<std::size_t>(l) + 1], true);
   }
+  const bool grid = field.has_grid();
   for (int l = levels - 1; l >= 0; --l) {
     Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
     if (l + 1 < levels) {  // keep omega monotone after the finer level's splits
@@ -318,14 +316,26 @@ void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, dou
       for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
     }
     const std::int64_t words = om.words_per_row();
-    for (std::int64_t b = 0; b < om.ny(); ++b) {
+    const std::int64_t rows = om.ny();
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
+    shared(om, band, field, lat, l, rows, words, band_km, grid) schedule(dynamic, 16)
+    for (std::int64_t b = 0; b < rows; ++b) {
       const double size = square_size_km(lat, l, square_centre_row(lat, l, b));
       std::uint64_t* row = om.row(b);
-      if (size_km > 0.0 && exceeds_size_target(size, size_km)) {
-        std::fill(row, row + words, std::uint64_t{0});
-      } else if (coast_size_km > 0.0 && exceeds_size_target(size, coast_size_km)) {
-        const std::uint64_t* in_band = band[static_cast<std::size_t>(l)].row(b);
-        for (std::int64_t w = 0; w < words; ++w) row[w] &= ~in_band[w];
+      const bool band_splits = band_km > 0.0 && exceeds_size_target(size, band_km);
+      const std::uint64_t* in_band = band_splits ? band[static_cast<std::size_t>(l)].row(b) : nullptr;
+      for (std::int64_t w = 0; w < words; ++w) {
+        std::uint64_t keep = row[w];
+        if (in_band != nullptr) keep &= ~in_band[w];
+        if (grid) {
+          std::uint64_t left = keep;
+          while (left != 0) {
+            const int t = std::countr_zero(left);
+            left &= left - 1;
+            if (exceeds_size_target(size, field.grid_min_over_square(l, 64 * w + t, b))) keep &= ~(1ULL << t);
+          }
+        }
+        row[w] = keep;
       }
     }
   }

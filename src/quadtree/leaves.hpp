@@ -53,6 +53,7 @@
 #include "core/bitmap.hpp"
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::raster {
 class Bathymetry;
@@ -149,15 +150,15 @@ inline constexpr double kEarthRadiusKm = 6371.0088;
 /// pixels do. (The rules test each square at its own centre row; this is for logs and reports.)
 [[nodiscard]] int level_for_size(const Lattice& lat, double target_km, double row);
 
-/// The size rules of issue 12 (quadtree.size_km, quadtree.coast_size_km), applied in place after
-/// the coastal band and the depth/box rules and before smoothing. A level-l square (l < L) whose
-/// square_size_km exceeds √2·target is split, with every coarser square containing it, so each
-/// square ends at the level whose size is nearest the target (within √2) unless the filled set or
-/// the 2:1 balance asks for a finer one, or level 0 is already finer. `size_km` applies to every
-/// square; `coast_size_km` to squares holding a pixel of the coastal band of radius `coast_band`
-/// (radius at least 1; it replaces the band's split to level L). 0 turns a rule off; both 0 is a no-op. Throws
-/// ConfigError naming the key for a negative or non-finite target.
-void apply_size_rules(LevelMasks& masks, const Lattice& lat, double size_km, double coast_size_km, int coast_band);
+/// Applies the target size field (size/size_field.hpp) in place after the coastal band and the
+/// level rules and before smoothing: a level-l square (l < L) is split, with every coarser square
+/// containing it, while its square_size_km exceeds √2 × the field's minimum over it — the grid's
+/// minimum over the square, and the band term (band_km) when the square holds a pixel of the
+/// coastal band of radius field.band_radius(). Each square so ends at the level whose size is
+/// nearest the field (within √2) unless the filled set, a level rule or the 2:1 balance asks for a
+/// finer one, or level 0 is already finer. quadtree.size_km is a constant term of the field and
+/// quadtree.coast_size_km its band term, so those keys keep their meaning. No-op for an inactive field.
+void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field);
 
 /// Leaves of the pyramid in the deterministic order. Parallel over level-0 squares.
 std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat);

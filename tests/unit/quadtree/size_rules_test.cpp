@@ -11,9 +11,19 @@
 #include "core/error.hpp"
 #include "quadtree/balance.hpp"
 #include "quadtree/leaves.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::quadtree {
 namespace {
+
+// quadtree.size_km / coast_size_km / coast_band as the size field carries them (size/size_field.hpp).
+void apply_size_rules(LevelMasks& m, const Lattice& lat, double size_km, double coast_km, int band) {
+  config::GlobalConfig c;
+  c.quadtree.size_km = size_km;
+  c.quadtree.coast_size_km = coast_km;
+  c.quadtree.coast_band = band;
+  apply_size_field(m, lat, size::build_size_field(m.filled(), lat, c, PoleRotation(), nullptr, Logger::null(), nullptr));
+}
 
 Bitmap all_filled(const Lattice& lat) {
   Bitmap b(lat.nx, lat.ny);

@@ -1,0 +1,109 @@
+// The explicit barotropic time step of a mesh (see time_step.hpp).
+#include "mesh/time_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/types.hpp"
+
+namespace aq::mesh {
+
+namespace {
+
+constexpr double kEarthRadiusM = 6371008.8;
+constexpr double kGravity = 9.81;
+// Edges shorter than this are the lattice's pole row (its nodes are one point; the geographic
+// writers replace that row by a pole cap): not an edge a model sees.
+constexpr double kMinEdgeM = 1e-3;
+
+double great_circle_m(double lon1, double lat1, double lon2, double lat2) {
+  const double p1 = lat1 * kDegToRad, p2 = lat2 * kDegToRad;
+  const double dp = p2 - p1, dl = (lon2 - lon1) * kDegToRad;
+  const double a = std::sin(dp / 2) * std::sin(dp / 2) + std::cos(p1) * std::cos(p2) * std::sin(dl / 2) * std::sin(dl / 2);
+  return 2.0 * kEarthRadiusM * std::asin(std::min(1.0, std::sqrt(a)));
+}
+
+double round6(double x) { return std::round(x * 1e6) / 1e6; }
+
+}  // namespace
+
+std::vector<double> triangle_time_steps(const std::vector<double>& lon_deg, const std::vector<double>& lat_deg,
+                                        const std::vector<double>& depth_m,
+                                        const std::vector<std::array<NodeId, 3>>& triangles, double min_depth_m) {
+  const auto n = static_cast<std::int64_t>(triangles.size());
+  std::vector<double> dt(static_cast<std::size_t>(n));
+#pragma omp parallel for default(none) shared(lon_deg, lat_deg, depth_m, triangles, dt, n, min_depth_m) schedule(static)
+  for (std::int64_t t = 0; t < n; ++t) {
+    const auto& tri = triangles[static_cast<std::size_t>(t)];
+    double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
+      const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
+      const double len = great_circle_m(lon_deg[a], lat_deg[a], lon_deg[b], lat_deg[b]);
+      if (len > kMinEdgeM) edge = std::min(edge, len);
+      if (depth_m[a] > h) h = depth_m[a];
+    }
+    dt[static_cast<std::size_t>(t)] = edge / std::sqrt(kGravity * h);
+  }
+  return dt;
+}
+
+TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double courant_max) {
+  TimeStep r;
+  r.min_depth_m = min_depth_m;
+  r.dt_s = dt_s;
+  r.courant_max = courant_max;
+  std::vector<double> depth(mesh.depth_m.size());
+  for (std::size_t k = 0; k < depth.size(); ++k) depth[k] = -mesh.depth_m[k];
+  const std::vector<double> dt = triangle_time_steps(mesh.lon_deg, mesh.lat_deg, depth, mesh.triangles, min_depth_m);
+  r.triangles = static_cast<std::int64_t>(dt.size());
+  if (dt.empty()) return r;
+  const auto it = std::min_element(dt.begin(), dt.end());  // the first minimum: deterministic
+  r.max_stable_dt_s = *it;
+  r.limiting_triangle = it - dt.begin();
+  const auto& tri = mesh.triangles[static_cast<std::size_t>(r.limiting_triangle)];
+  double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
+  for (int k = 0; k < 3; ++k) {
+    const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
+    const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
+    const double len = great_circle_m(mesh.lon_deg[a], mesh.lat_deg[a], mesh.lon_deg[b], mesh.lat_deg[b]);
+    if (len > kMinEdgeM) edge = std::min(edge, len);
+    h = std::max(h, depth[a]);
+  }
+  r.limiting_edge_m = edge;
+  r.limiting_depth_m = h;
+  r.limiting_lon_deg = mesh.lon_deg[static_cast<std::size_t>(tri[0])];
+  r.limiting_lat_deg = mesh.lat_deg[static_cast<std::size_t>(tri[0])];
+  if (dt_s > 0.0) {
+    std::vector<double> cr(dt.size());
+    for (std::size_t k = 0; k < dt.size(); ++k) cr[k] = dt_s / dt[k];
+    r.above_courant_max = std::count_if(cr.begin(), cr.end(), [&](double c) { return c > courant_max; });
+    std::sort(cr.begin(), cr.end());
+    for (const double p : {0.0, 0.5, 0.9, 0.99, 1.0})
+      r.courant_percentiles.push_back(cr[static_cast<std::size_t>(std::llround(p * static_cast<double>(cr.size() - 1)))]);
+  }
+  return r;
+}
+
+Json time_step_json(const TimeStep& t) {
+  Json j{{"max_stable_dt_s", round6(t.max_stable_dt_s)},
+         {"formula", "min over triangles of shortest edge / sqrt(g * H), H = deepest node, at least min_depth_m"},
+         {"gravity_m_s2", kGravity},
+         {"min_depth_m", t.min_depth_m},
+         {"triangles", t.triangles},
+         {"limiting_triangle", t.limiting_triangle},
+         {"limiting_edge_m", round6(t.limiting_edge_m)},
+         {"limiting_depth_m", round6(t.limiting_depth_m)},
+         {"limiting_lon_deg", round6(t.limiting_lon_deg)},
+         {"limiting_lat_deg", round6(t.limiting_lat_deg)}};
+  if (t.dt_s > 0.0) {
+    Json c{{"dt_s", t.dt_s}, {"courant_max", t.courant_max}, {"above_courant_max", t.above_courant_max}};
+    const char* names[] = {"min", "median", "p90", "p99", "max"};
+    for (std::size_t k = 0; k < t.courant_percentiles.size(); ++k) c[names[k]] = round6(t.courant_percentiles[k]);
+    j["courant"] = c;
+  }
+  return j;
+}
+
+}  // namespace aq::mesh

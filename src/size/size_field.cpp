@@ -1,0 +1,265 @@
+// The target size field: terms, combination, clamp, gradient limit, CFL (see size_field.hpp).
+#include "size/size_field.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/timer.hpp"
+#include "core/types.hpp"
+#include "raster/bathymetry.hpp"
+#include "size/limit_gradient.hpp"
+#include "size/terms.hpp"
+
+namespace aq::size {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double round3(double x) { return std::round(x * 1000.0) / 1000.0; }
+
+// min / median / max of the finite values of `v` over water cells (null when none).
+Json summary(const std::vector<double>& v, const std::vector<std::uint8_t>& water, double* lo = nullptr,
+             double* mid = nullptr, double* hi = nullptr) {
+  std::vector<double> x;
+  for (std::size_t k = 0; k < v.size(); ++k)
+    if (water[k] != 0 && std::isfinite(v[k])) x.push_back(v[k]);
+  if (x.empty()) return Json{{"cells", 0}};
+  const auto m = x.begin() + static_cast<std::ptrdiff_t>((x.size() - 1) / 2);
+  std::nth_element(x.begin(), m, x.end());
+  const double med = *m;
+  const auto [a, b] = std::minmax_element(x.begin(), x.end());
+  if (lo != nullptr) *lo = *a;
+  if (mid != nullptr) *mid = med;
+  if (hi != nullptr) *hi = *b;
+  return Json{{"cells", x.size()}, {"min_km", round3(*a)}, {"median_km", round3(med)}, {"max_km", round3(*b)}};
+}
+
+void take_min(std::vector<double>& h, const std::vector<double>& t) {
+  for (std::size_t k = 0; k < h.size(); ++k) h[k] = std::min(h[k], t[k]);
+}
+
+}  // namespace
+
+SizeField::SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, int band_radius)
+    : grid_(std::move(grid)), band_km_(band_km), band_radius_(band_radius) {
+  const FieldGrid& g = *grid_;
+  if (static_cast<std::int64_t>(h_km.size()) != g.cells())
+    throw InternalError(fmt::format("size: {} values for a grid of {} cells", h_km.size(), g.cells()));
+  levels_.resize(static_cast<std::size_t>(g.level()) + 1);
+  levels_.back() = std::move(h_km);
+  for (int l = g.level() - 1; l >= 0; --l) {
+    const std::vector<float>& fine = levels_[static_cast<std::size_t>(l) + 1];
+    const std::int64_t fnx = g.nx() >> (g.level() - l - 1);
+    const std::int64_t nx = fnx / 2, ny = (g.ny() >> (g.level() - l - 1)) / 2;
+    std::vector<float>& out = levels_[static_cast<std::size_t>(l)];
+    out.resize(static_cast<std::size_t>(nx * ny));
+    for (std::int64_t b = 0; b < ny; ++b)
+      for (std::int64_t a = 0; a < nx; ++a) {
+        const auto f = [&](std::int64_t i, std::int64_t j) { return fine[static_cast<std::size_t>(j * fnx + i)]; };
+        out[static_cast<std::size_t>(b * nx + a)] =
+            std::min(std::min(f(2 * a, 2 * b), f(2 * a + 1, 2 * b)), std::min(f(2 * a, 2 * b + 1), f(2 * a + 1, 2 * b + 1)));
+      }
+  }
+}
+
+double SizeField::grid_min_over_square(int l, std::int64_t a, std::int64_t b) const {
+  if (!grid_) return kInf;
+  const int c = grid_->level();
+  if (l > c) {
+    a >>= (l - c);
+    b >>= (l - c);
+    l = c;
+  }
+  const std::int64_t nx = grid_->nx() >> (c - l);
+  return levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(b * nx + a)];
+}
+
+double SizeField::at_pixel(std::int64_t i, std::int64_t j) const {
+  if (!grid_) return kInf;
+  const std::int64_t s = grid_->pixels_per_cell();
+  return levels_.back()[static_cast<std::size_t>((j / s) * grid_->nx() + wrap_index(i, grid_->lattice().nx) / s)];
+}
+
+bool needs_depth(const config::SizeOptions& s) { return s.wavelength.wl > 0.0 || s.slope.slp > 0.0 || s.cfl.dt_s > 0.0; }
+
+bool needs_grid(const config::GlobalConfig& c) {
+  const config::SizeOptions& s = c.size;
+  return c.quadtree.size_km > 0.0 || s.coast.h0_km > 0.0 || s.feature.r > 0.0 || needs_depth(s) ||
+         !s.raster.empty() || s.h_max_km > 0.0 || (s.gradation > 0.0 && c.quadtree.coast_size_km > 0.0);
+}
+
+SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
+                           const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
+                           Report* report) {
+  const config::SizeOptions& s = c.size;
+  const double band_km = c.quadtree.coast_size_km;
+  const int band_radius = std::max(c.quadtree.coast_band, 1);
+  for (const auto& [key, v] : {std::pair{"quadtree.size_km", c.quadtree.size_km}, std::pair{"quadtree.coast_size_km", band_km}})
+    if (!std::isfinite(v) || v < 0.0) throw ConfigError(fmt::format("{} = {}: must be a finite number >= 0 (0 = off)", key, v));
+  if (!needs_grid(c)) return SizeField(band_km, band_radius);
+  if (s.h_min_km > 0.0 && s.h_max_km > 0.0 && s.h_min_km > s.h_max_km)
+    throw ConfigError(fmt::format("size.h_min_km = {} is above size.h_max_km = {}", s.h_min_km, s.h_max_km));
+  if (needs_depth(s) && bathy == nullptr) throw InternalError("size: depth terms need the bathymetry raster");
+
+  StageScope stage("size", report, log);
+  Timer t_total;
+  const FieldGrid grid(lat, choose_grid_level(lat, s.grid_level));
+  const auto n = static_cast<std::size_t>(grid.cells());
+  const std::vector<std::int32_t> counts = grid.filled_counts(filled);
+  std::vector<std::uint8_t> water(n);
+  for (std::size_t k = 0; k < n; ++k) water[k] = counts[k] > 0 ? 1 : 0;
+  const std::vector<std::uint8_t> coast = coast_cells(grid, counts);
+  SizeFieldStats st;
+  std::vector<double> h(n, kInf);
+  Json timings = Json::object();
+
+  if (c.quadtree.size_km > 0.0) {
+    std::fill(h.begin(), h.end(), c.quadtree.size_km);
+    st.terms["size_km"] = summary(h, water);
+  }
+  std::vector<double> coast_d;  // distance to the coast and the nearest coast cell, shared by both terms
+  std::vector<std::int32_t> nearest;
+  if (s.coast.h0_km > 0.0 || s.feature.r > 0.0) {
+    Timer t;
+    coast_d = distance_to(grid, coast, &nearest);
+    timings["coast_distance"] = round3(t.wall_s());
+  }
+  if (s.coast.h0_km > 0.0) {
+    Timer t;
+    const std::vector<double> term = coast_term(coast_d, s.coast.h0_km, s.coast.alpha);
+    st.terms["coast"] = summary(term, water);
+    take_min(h, term);
+    timings["coast"] = round3(t.wall_s());
+  }
+  if (s.feature.r > 0.0) {
+    Timer t;
+    const std::vector<double> term = feature_term(grid, coast_d, nearest, water, s.feature.r);
+    st.terms["feature"] = summary(term, water);
+    take_min(h, term);
+    timings["feature"] = round3(t.wall_s());
+  }
+  std::vector<double> depth;  // H (m, >= min_depth) on water cells, NaN elsewhere
+  std::vector<double> geo_lat(n, 0.0);
+  if (needs_depth(s)) {
+    Timer t;
+    std::vector<double> lon(n), latv(n), elev(n);
+    for (std::int64_t j = 0; j < grid.ny(); ++j)
+      for (std::int64_t i = 0; i < grid.nx(); ++i) {
+        const auto k = static_cast<std::size_t>(grid.index(i, j));
+        rotation.to_geographic(grid.lon_deg(i), grid.lat_deg(j), lon[k], latv[k]);
+        geo_lat[k] = latv[k];
+      }
+    bathy->sample_points(lon.data(), latv.data(), static_cast<std::int64_t>(n), elev.data());
+    depth.assign(n, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = 0; k < n; ++k)
+      if (water[k] != 0) depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
+    timings["depth"] = round3(t.wall_s());
+  }
+  if (s.wavelength.wl > 0.0) {
+    const std::vector<double> term = wavelength_term(depth, s.wavelength.period_h, s.wavelength.wl);
+    st.terms["wavelength"] = summary(term, water);
+    take_min(h, term);
+  }
+  if (s.slope.slp > 0.0) {
+    Timer t;
+    const std::vector<double> smooth = rossby_filter(grid, depth, geo_lat, s.slope.filter, s.slope.filter_max_km);
+    const std::vector<double> term = slope_term(grid, smooth, s.slope.slp);
+    st.terms["slope"] = summary(term, water);
+    take_min(h, term);
+    timings["slope"] = round3(t.wall_s());
+  }
+  if (!s.raster.empty()) {
+    Timer t;
+    raster::OpenOptions ro;
+    ro.path = s.raster;
+    const raster::Bathymetry sizes = raster::Bathymetry::open(ro, log);
+    std::vector<double> lon(n), latv(n), v(n);
+    for (std::int64_t j = 0; j < grid.ny(); ++j)
+      for (std::int64_t i = 0; i < grid.nx(); ++i) {
+        const auto k = static_cast<std::size_t>(grid.index(i, j));
+        rotation.to_geographic(grid.lon_deg(i), grid.lat_deg(j), lon[k], latv[k]);
+      }
+    sizes.sample_points(lon.data(), latv.data(), static_cast<std::int64_t>(n), v.data());
+    for (std::size_t k = 0; k < n; ++k) {
+      if (std::isnan(v[k])) {
+        v[k] = kInf;
+      } else if (!(v[k] > 0.0) || !std::isfinite(v[k])) {
+        throw InputError(fmt::format("size.raster = {}: value {} at lon {:.4f}, lat {:.4f} is not a size > 0 km",
+                                     s.raster, v[k], lon[k], latv[k]));
+      }
+    }
+    st.terms["raster"] = summary(v, water);
+    take_min(h, v);
+    timings["raster"] = round3(t.wall_s());
+  }
+  if (band_km > 0.0 && s.gradation > 0.0) {  // the band's size on the cells at the coast, to grade from
+    for (std::int64_t j = 0; j < grid.ny(); ++j)
+      for (std::int64_t i = 0; i < grid.nx(); ++i) {
+        const auto k = static_cast<std::size_t>(grid.index(i, j));
+        if (water[k] == 0) continue;
+        bool near = false;
+        for (std::int64_t dj = -1; dj <= 1 && !near; ++dj)
+          for (std::int64_t di = -1; di <= 1 && !near; ++di) {
+            const std::int64_t jj = j + dj;
+            if (jj >= 0 && jj < grid.ny()) near = coast[static_cast<std::size_t>(grid.index(wrap_index(i + di, grid.nx()), jj))] != 0;
+          }
+        if (near) h[k] = std::min(h[k], band_km);
+      }
+  }
+  if (s.h_max_km > 0.0)
+    for (double& x : h) x = std::min(x, s.h_max_km);
+  if (s.h_min_km > 0.0)
+    for (double& x : h) x = std::isfinite(x) ? std::max(x, s.h_min_km) : x;
+  summary(h, water, &st.min_km, &st.median_km, &st.max_km);
+  Json combined = summary(h, water);
+  if (s.gradation > 0.0) {
+    Timer t;
+    st.sweeps = limit_gradient(grid, h, s.gradation);
+    timings["gradient_limit"] = round3(t.wall_s());
+  }
+  Json limited = summary(h, water);
+  if (s.cfl.dt_s > 0.0) {
+    const std::vector<double> bound = cfl_bound(depth, s.cfl.dt_s, s.cfl.courant_max, s.cfl.velocity_ms);
+    st.terms["cfl_bound"] = summary(bound, water);
+    // The bound is on edges; h is a square's size, whose triangles have legs down to a/√2 with
+    // a > h/√2 where the field decides: twice the edge bound keeps those legs above it.
+    for (std::size_t k = 0; k < n; ++k) h[k] = std::max(h[k], 2.0 * bound[k]);
+  }
+  Json final_summary = summary(h, water, &st.min_km, &st.median_km, &st.max_km);
+  std::vector<float> hf(n);
+  for (std::size_t k = 0; k < n; ++k) hf[k] = static_cast<float>(h[k]);
+  st.grid_level = grid.level();
+  st.nx = grid.nx();
+  st.ny = grid.ny();
+  st.cell_km_equator = kEarthRadiusKm * lat.step0_deg / static_cast<double>(std::int64_t{1} << grid.level()) * kDegToRad;
+  const double total_s = t_total.wall_s();
+  if (report != nullptr) {
+    Json& r = (*report)["size"];
+    r["grid_level"] = st.grid_level;
+    r["grid_cells"] = Json::array({st.nx, st.ny});
+    r["cell_km_at_equator"] = round3(st.cell_km_equator);
+    r["terms"] = st.terms;
+    r["combined"] = combined;
+    r["gradation"] = s.gradation;
+    r["gradient_limited"] = limited;
+    r["limiter_sweeps"] = st.sweeps;
+    r["field"] = final_summary;
+    r["coast_band_km"] = band_km;
+    timings["total"] = round3(total_s);
+    r["timings_s"] = timings;
+  }
+  std::string names;
+  for (const auto& [k, v] : st.terms.items()) names += (names.empty() ? "" : ", ") + k;
+  stage.done(fmt::format("{} x {} cells of level {} ({:.1f} km at the equator); terms {}; g = {}{}; h {:.1f}/{:.1f}/{:.1f} km (min/median/max over water)",
+                         st.nx, st.ny, st.grid_level, st.cell_km_equator, names.empty() ? "none" : names, s.gradation,
+                         st.sweeps > 0 ? fmt::format(" ({} sweeps)", st.sweeps) : std::string(), st.min_km, st.median_km,
+                         st.max_km));
+  return SizeField(grid, std::move(hf), band_km, band_radius);
+}
+
+}  // namespace aq::size

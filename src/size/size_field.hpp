@@ -1,0 +1,87 @@
+// The target size field h(x) in km (ARCHITECTURE §4.10): the terms of a [size] section
+// (size/terms.hpp), quadtree.size_km and a user raster of sizes combined by minimum on the
+// field grid (size/field_grid.hpp), clamped to [h_min, h_max], gradient-limited (|∇h| <= g on
+// the sphere, size/limit_gradient.hpp), and CFL-bounded last — OceanMesh2D's order. The coastal
+// band's size (quadtree.coast_size_km) is a term at the pixel scale: a square holding a band pixel
+// asks at most that size; with a gradient limit it is also put on the grid cells holding coast so
+// the limit grades away from it.
+//
+// The quadtree reads the field through min_over_square: a square is split while it is larger
+// than √2 × the field's minimum over it (quadtree/leaves.hpp apply_size_field).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "config/options.hpp"
+#include "core/bitmap.hpp"
+#include "core/lattice.hpp"
+#include "core/log.hpp"
+#include "core/report.hpp"
+#include "core/rotation.hpp"
+#include "size/field_grid.hpp"
+
+namespace aq::raster {
+class Bathymetry;
+}
+
+namespace aq::size {
+
+class SizeField {
+ public:
+  SizeField() = default;
+  /// A field of grid values `h_km` (grid.cells() values, +inf = none), plus the coastal band
+  /// term (band_km > 0: squares holding a pixel of the band of radius band_radius ask at most it).
+  SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, int band_radius);
+  /// The band term alone, without a grid (band_km = 0: an inactive field).
+  SizeField(double band_km, int band_radius) : band_km_(band_km), band_radius_(band_radius) {}
+
+  /// Whether the field asks anything (a grid value or the band term).
+  [[nodiscard]] bool active() const { return grid_.has_value() || band_km_ > 0.0; }
+  [[nodiscard]] bool has_grid() const { return grid_.has_value(); }
+  [[nodiscard]] const FieldGrid& grid() const { return *grid_; }
+  [[nodiscard]] const std::vector<float>& values() const { return levels_.back(); }
+  [[nodiscard]] double band_km() const { return band_km_; }
+  [[nodiscard]] int band_radius() const { return band_radius_; }
+
+  /// The grid's minimum (km) over the level-l square (a, b) (+inf without a grid): the min over
+  /// its cells for l <= c, the value of the cell holding it for l > c. The band term is not in it.
+  [[nodiscard]] double grid_min_over_square(int l, std::int64_t a, std::int64_t b) const;
+  /// The grid value (km) at the lattice pixel (i, j) (+inf without a grid).
+  [[nodiscard]] double at_pixel(std::int64_t i, std::int64_t j) const;
+
+ private:
+  std::optional<FieldGrid> grid_;
+  std::vector<std::vector<float>> levels_;  ///< min pyramid: levels_[l] for l = 0..c
+  double band_km_ = 0.0;
+  int band_radius_ = 0;
+};
+
+/// Facts of the built field for the report and the log.
+struct SizeFieldStats {
+  int grid_level = -1;
+  std::int64_t nx = 0, ny = 0;
+  double cell_km_equator = 0.0;
+  int sweeps = 0;
+  double min_km = 0.0, median_km = 0.0, max_km = 0.0;  ///< over water cells, after every step
+  Json terms = Json::object();                          ///< per term: min/median/max over water cells
+};
+
+/// Builds the field of `c.size` and the size rules of `c.quadtree` (size_km, coast_size_km) over
+/// the filled set. An inactive field (no term set) when nothing asks a size. `bathy` is sampled at
+/// the cell centres (mapped through `rotation`) when a depth term is on. Logs a "size" stage line
+/// and writes the report's "size" section when `report` is given. Throws ConfigError for
+/// inconsistent options (h_min > h_max) and InputError for a size raster that cannot be read or
+/// holds a value <= 0.
+SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
+                           const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
+                           Report* report);
+
+/// Whether `c` asks for a field grid (any [size] term or quadtree.size_km); the band term alone needs none.
+[[nodiscard]] bool needs_grid(const config::GlobalConfig& c);
+/// Whether `c` needs depths on the field grid (wavelength, slope, CFL).
+[[nodiscard]] bool needs_depth(const config::SizeOptions& s);
+
+}  // namespace aq::size
