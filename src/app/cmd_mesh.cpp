@@ -7,22 +7,19 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
-#include "app/mesh_outputs.hpp"
+#include "app/mesh_run.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "mask/global_run_file.hpp"
 #include "mesh/statistics.hpp"
-#include "quadtree/leaf_levels.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -102,37 +99,10 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
 
   // Outputs.
   StageScope write_stage("write", &report, log);
-  io::MeshOutputInfo oinfo;
-  oinfo.elements = io::parse_element_kinds(c.mesh.elements);
-  oinfo.source = fmt::format("aquatoria {} from {}", AQ_VERSION, ri.path);
-  oinfo.global_run_file = [&](const std::filesystem::path& p) {
-    const quadtree::LeafLevels levels(run.leaves, lat);
-    mask::write_global_run_file(p, area, lat, c,
-                                [&](std::int64_t j0, std::int64_t rows, std::uint8_t* o) { levels.fill(j0, rows, o); });
-    io::WriteStats s;
-    s.bytes = static_cast<std::int64_t>(std::filesystem::file_size(p));
-    s.nodes = lat.nx * lat.ny;
-    s.elements = area.filled_pixels;
-    return s;
-  };
-  const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo, &report);
-  Json outputs = Json::array();
-  for (const auto& f : files) {
-    outputs.push_back(Json{{"file", f.name},
-                           {"format", f.format},
-                           {"bytes", f.stats.bytes},
-                           {kChecksumKey, file_checksum(out.pending_path(f.name))},
-                           {"seconds", std::round(f.seconds * 1000.0) / 1000.0}});
-  }
-  report["outputs"] = outputs;
+  const auto files = write_global_mesh_files(c, run, out, log, report);
   write_stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
 
-  Json mesh_counts = Json{{"nodes", m.node_count()},
-                          {"triangles", m.triangle_count()},
-                          {"squares", m.square_count()},
-                          {"boundary_loops", m.loops.size()},
-                          {"pinch_nodes", m.pinch_nodes.size()}};
-  report["mesh_counts"] = mesh_counts;
+  report["mesh_counts"] = mesh_counts_json(m);
   const auto seed = seed_figure(c);
   if (seed) {
     report["seed_reference"] =
@@ -146,12 +116,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   report["memory"] = memory_json(setup);
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
-  const std::string report_name = c.output.name + "_report.json";
-  {
-    std::ofstream rf(out.temp_path(report_name));
-    rf << report.dump() << '\n';
-    if (!rf) throw OutputError(fmt::format("{}: cannot write the report", out.final_path(report_name).string()));
-  }
+  const std::string report_name = write_global_report(c, report, out);
   out.commit();
 
   // Summary.

@@ -140,8 +140,8 @@ std::filesystem::path global_run_file_path(const config::GlobalConfig& c) {
   return std::filesystem::path(c.output.dir) / (c.output.name + ".tif");
 }
 
-GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics, bool reuse) {
+GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                            Report* report, bool reuse) {
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -201,7 +201,13 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
   run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report);
-  run.mesh = mesh::build_mesh(run.leaves, lat, rot, bathy, c.mesh, log, report);
+  return run;
+}
+
+GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                              Report* report, bool statistics, bool reuse) {
+  GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
+  run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   if (!statistics) return run;
 
   StageScope stat_stage("statistics", report, log);
