@@ -35,15 +35,16 @@ std::string last_gdal_error() {
 double regular_step(const double* v, std::int64_t n, const char* name) {
   if (n < 2) throw InputError(fmt::format("in-memory raster: {} has {} value(s); at least 2 are needed", name, n));
   for (std::int64_t k = 0; k < n; ++k)
-    if (!std::isfinite(v[k])) throw InputError(fmt::format("in-memory raster: {}[{}] = {} is not finite", name, k, v[k]));
+    if (!std::isfinite(v[k]))
+      throw InputError(fmt::format("in-memory raster: {}[{}] = {} is not finite", name, k, v[k]));
   const double step = (v[n - 1] - v[0]) / static_cast<double>(n - 1);
   if (step == 0.0) throw InputError(fmt::format("in-memory raster: {} is constant ({})", name, v[0]));
   for (std::int64_t k = 1; k < n; ++k) {
     const double d = v[k] - v[k - 1];
     if (std::abs(d - step) > 1e-6 * std::abs(step))
-      throw InputError(fmt::format(
-          "in-memory raster: {} is not equally spaced ({}[{}] - {}[{}] = {}, the mean step is {})", name, name, k,
-          name, k - 1, d, step));
+      throw InputError(
+          fmt::format("in-memory raster: {} is not equally spaced ({}[{}] - {}[{}] = {}, the mean step is {})", name,
+                      name, k, name, k - 1, d, step));
   }
   return step;
 }
@@ -69,16 +70,28 @@ MemoryRaster::MemoryRaster(const void* values, MemoryType type, std::int64_t nx,
   GDALDataType gt = GDT_Float64;
   std::size_t bytes = 8;
   switch (type) {
-    case MemoryType::kInt16: gt = GDT_Int16; bytes = 2; break;
-    case MemoryType::kInt32: gt = GDT_Int32; bytes = 4; break;
-    case MemoryType::kFloat32: gt = GDT_Float32; bytes = 4; break;
-    case MemoryType::kFloat64: gt = GDT_Float64; bytes = 8; break;
+    case MemoryType::kInt16:
+      gt = GDT_Int16;
+      bytes = 2;
+      break;
+    case MemoryType::kInt32:
+      gt = GDT_Int32;
+      bytes = 4;
+      break;
+    case MemoryType::kFloat32:
+      gt = GDT_Float32;
+      bytes = 4;
+      break;
+    case MemoryType::kFloat64:
+      gt = GDT_Float64;
+      bytes = 8;
+      break;
   }
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   if (driver == nullptr) throw InputError("in-memory raster: GDAL has no GTiff driver");
   const char* options[] = {"BIGTIFF=IF_SAFER", nullptr};
-  GDALDataset* ds = driver->Create(path_.c_str(), static_cast<int>(nx), static_cast<int>(ny), 1, gt,
-                                   const_cast<char**>(options));
+  GDALDataset* ds =
+      driver->Create(path_.c_str(), static_cast<int>(nx), static_cast<int>(ny), 1, gt, const_cast<char**>(options));
   if (ds == nullptr) throw InputError(fmt::format("in-memory raster: cannot create {}{}", path_, last_gdal_error()));
   // North-up: row 0 of the file is the northernmost latitude.
   const bool ascending = dlat > 0.0;
