@@ -19,6 +19,9 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace aq::python {
 
@@ -52,7 +55,28 @@ class ThreadScope {
   int saved_ = 1;
 };
 
-// The C++ work of one call: GIL released, the process-wide lock held, the thread count set.
+// Big arrays from the reusable heap during a call, as src/app/main.cpp sets for the command
+// (glibc unmaps an mmapped block when it is freed, so every stage would page-fault its memory
+// afresh: about 0.3 s of the 1' run); afterwards the threshold goes back to glibc's default
+// 128 KiB, so the user's session keeps returning its big numpy arrays to the system.
+class MmapThresholdScope {
+ public:
+  MmapThresholdScope() {
+#ifdef __GLIBC__
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+#endif
+  }
+  ~MmapThresholdScope() {
+#ifdef __GLIBC__
+    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
+  }
+  MmapThresholdScope(const MmapThresholdScope&) = delete;
+  MmapThresholdScope& operator=(const MmapThresholdScope&) = delete;
+};
+
+// The C++ work of one call: GIL released, the process-wide lock held, the thread count and the
+// heap threshold set.
 class WorkScope {
  public:
   explicit WorkScope(int threads) : lock_(run_mutex()), threads_(threads) {}
@@ -61,6 +85,7 @@ class WorkScope {
   py::gil_scoped_release release_;  // declared first: released before the lock is taken
   std::lock_guard<std::mutex> lock_;
   ThreadScope threads_;
+  MmapThresholdScope heap_;
 };
 
 // Log lines of a run: kept (the Python layer turns warnings into Python warnings) and echoed to

@@ -11,7 +11,7 @@ def test_mask_matches_the_mesh_run(seed_run):
     lat = m.lattice
     assert m.classes.shape == (lat["ny"], lat["nx"]) == (360, 720)
     report = seed_run.report["mask"]
-    assert int(m.filled.sum()) == report["filled_pixels"]
+    assert int(m.filled.sum()) == report["fill"]["filled_pixels_final"]
     assert int((m.classes == aq._mask.WET).sum()) == m.report["mask"]["classes"]["wet"]
     assert int((m.classes == aq._mask.COASTAL).sum()) == m.report["mask"]["classes"]["coastal"]
     assert m.report["mask"] == seed_run.report["mask"]
