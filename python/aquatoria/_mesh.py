@@ -167,7 +167,12 @@ class Run:
         try:
             paths = self.write(os.path.join(folder, "mesh"), formats=["ugrid"])
             with xr.open_dataset(paths[0], mask_and_scale=False) as ds:
-                return ds.load()
+                ds = ds.load()
+            for v in ds.variables.values():
+                # no _FillValue where the file has none (xarray would add NaN to floats on writing)
+                if "_FillValue" not in v.attrs:
+                    v.encoding["_FillValue"] = None
+            return ds
         finally:
             shutil.rmtree(folder, ignore_errors=True)
 

@@ -5,6 +5,7 @@
 // longitude on a global raster, natural ends in latitude).
 #include "raster/bathymetry.hpp"
 
+#include <cpl_vsi.h>
 #include <fmt/format.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -56,11 +57,18 @@ using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(o.path, ec)) throw InputError(fmt::format("{}: no such file", o.path));
-  if (fs::is_directory(o.path, ec)) throw InputError(fmt::format("{}: is a directory, not a raster", o.path));
+  // GDAL's virtual file systems (/vsimem/: raster/memory_raster.hpp; /vsizip/, /vsicurl/, ...)
+  // are not on the disk: GDAL itself says whether the name exists.
+  const bool virtual_file = o.path.rfind("/vsi", 0) == 0;
+  VSIStatBufL stat;
+  if (virtual_file ? VSIStatL(o.path.c_str(), &stat) != 0 : !fs::exists(o.path, ec))
+    throw InputError(fmt::format("{}: no such file", o.path));
+  if (!virtual_file && fs::is_directory(o.path, ec))
+    throw InputError(fmt::format("{}: is a directory, not a raster", o.path));
   DatasetPtr ds(static_cast<GDALDataset*>(
       GDALOpenEx(o.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
+    if (virtual_file) throw InputError(fmt::format("{}: not a raster GDAL can read{}", o.path, gdal_message()));
     FILE* f = std::fopen(o.path.c_str(), "rb");
     if (f == nullptr) throw InputError(fmt::format("{}: cannot read the file", o.path));
     std::fclose(f);
