@@ -29,11 +29,20 @@ from ._core import (
     OutputError,
     __version__,
 )
+from ._config import AquatoriaWarning
 from ._mesh import Run, mesh
 from ._mask import Mask, mask
 from ._regional import Grid, regional
 
+Error.__doc__ = "Base of every error aquatoria raises; the message names the file, key or value at fault."
+ConfigError.__doc__ = "A bad configuration key or value (the command line's exit code 2)."
+InputError.__doc__ = "Missing, unreadable or unusable input data: a raster, a contour, an in-memory raster."
+OutputError.__doc__ = "A file could not be written (nothing of the call is left behind)."
+NumericalError.__doc__ = "A numerical method failed (no convergence, degenerate geometry)."
+InternalError.__doc__ = "A broken internal invariant, reported instead of bad output (please report it)."
+
 __all__ = [
+    "AquatoriaWarning",
     "mesh",
     "mask",
     "Run",
