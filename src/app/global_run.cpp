@@ -140,8 +140,8 @@ std::filesystem::path global_run_file_path(const config::GlobalConfig& c) {
   return std::filesystem::path(c.output.dir) / (c.output.name + ".tif");
 }
 
-GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                            Report* report, bool reuse) {
+GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
+                            bool reuse) {
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
