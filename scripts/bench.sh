@@ -7,6 +7,10 @@
 #   scripts/bench.sh global     only the 1', 30" and 15" global lattices (issue 9's table)
 #   scripts/bench.sh mercator   only the two Mercator + rotation runs of issue 12 (ETOPO5 and the
 #                               1' raster), each the fastest of AQ_BENCH_REPEAT runs (default 3)
+#   scripts/bench.sh python     the same two Mercator runs by `aquatoria mesh` and by the Python
+#                               package (a whole `python3 -c "aq.mesh(...).write(...)"` process,
+#                               start-up included), alternately, AQ_BENCH_REPEAT pairs (default 3):
+#                               median wall times and their ratio (issue 24's target <= 1.05)
 # The regional cases also run beside a CPU burner (one busy-loop process, started and killed
 # here) and print the idle and loaded wall times and their ratio; AQ_BENCH_REPEAT=N (default 1)
 # repeats the idle/loaded pair back to back and prints medians.
@@ -102,6 +106,40 @@ mercator_case() {
   done
   table "$name (fastest of ${AQ_BENCH_REPEAT:-3}) (target < $target s)" "$target" "$(ls "$work/$dir"/*_report.json)"
 }
+# The command and the Python package on the same run: python_case NAME DIR CONFIG SETS...
+# (CONFIG "" = none); each pair runs the command, then the same aq.mesh(...).write(...).
+python_case() {
+  local name="$1" dir="$2" config="$3" cli=() py i c p
+  shift 3
+  local sets=("$@") cw=() pw=()
+  [ -n "$config" ] && cli=(-c "$config")
+  for s in "${sets[@]}"; do cli+=(--set "$s"); done
+  for ((i = 0; i < ${AQ_BENCH_REPEAT:-3}; ++i)); do
+    rm -rf "$work/$dir.cli" "$work/$dir.py"
+    c=$(python3 -c 'import sys,time,subprocess; t=time.monotonic(); subprocess.run(sys.argv[1:],check=True,stdout=subprocess.DEVNULL); print(time.monotonic()-t)' \
+      "$bin" mesh -q -o "$work/$dir.cli" "${cli[@]}" --set output.name=run)
+    p=$(python3 -c 'import sys,time,subprocess; t=time.monotonic(); subprocess.run(sys.argv[1:],check=True,stdout=subprocess.DEVNULL); print(time.monotonic()-t)' \
+      env PYTHONPATH=build/python /usr/bin/python3 -c 'import sys, aquatoria as aq
+aq.mesh(sys.argv[1] or None, sys.argv[3:]).write(sys.argv[2] + "/run")' "$config" "$work/$dir.py" "${sets[@]}")
+    cw+=("$c"); pw+=("$p")
+    cmp -s "$work/$dir.cli/run.msh" "$work/$dir.py/run.msh" 2>/dev/null || [ ! -e "$work/$dir.cli/run.msh" ] ||
+      { echo "python: $name: the Python package wrote other bytes than the command" >&2; exit 1; }
+  done
+  python3 - "$name" "${cw[*]}" "${pw[*]}" <<'PY'
+import statistics, sys
+name, cw, pw = sys.argv[1], [float(v) for v in sys.argv[2].split()], [float(v) for v in sys.argv[3].split()]
+c, p = statistics.median(cw), statistics.median(pw)
+print(f"python: {name}: command {c:.2f} s, Python {p:.2f} s, ratio {p / c:.3f} (target <= 1.05; median of {len(cw)})")
+PY
+}
+if [ "$mode" = python ]; then
+  python_case "ETOPO5 Mercator lattice + rotation (configs/global_mercator.toml), all outputs" mercator \
+    configs/global_mercator.toml
+  python_case "1' Mercator lattice 21600×24000 + rotation from a 1' raster, binary MSH" one_minute_mercator "" \
+    input.path="$(bash data_tools/make_resampled.sh 60)" quadtree.step_deg=0.26666666666666666 quadtree.levels=4 \
+    quadtree.lattice=mercator rotation.enabled=true 'output.formats=["msh"]' output.msh_binary=true
+  exit 0
+fi
 if [ "$mode" = mercator ]; then
   mercator_case "ETOPO5 Mercator lattice + rotation (configs/global_mercator.toml), all outputs" 0.5 mercator \
     -c configs/global_mercator.toml

@@ -2,7 +2,7 @@
 # Fails (exit 1) if any C++ file differs from .clang-format; `--fix` rewrites them in place.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-files=$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'data_tools/*.cpp')
+files=$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'data_tools/*.cpp' 'python/*.cpp' 'python/*.hpp')
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i $files
   exit 0

@@ -11,24 +11,20 @@
 #include <cmath>
 #include <limits>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
-#include "app/mesh_outputs.hpp"
+#include "app/mesh_run.hpp"
 #include "app/provenance.hpp"
 #include "config/load.hpp"
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "io/file_writer.hpp"
-#include "mask/global_run_file.hpp"
 #include "mesh/statistics.hpp"
-#include "quadtree/leaf_levels.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::app {
@@ -125,65 +121,10 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
 
   // Outputs.
   StageScope write_stage("write", &report, log);
-  io::MeshOutputInfo oinfo;
-  oinfo.elements = io::parse_element_kinds(c.mesh.elements);
-  oinfo.source = fmt::format("aquatoria {} from {}", AQ_VERSION, ri.path);
-  oinfo.global_run_file = [&](const std::filesystem::path& p) {
-    const quadtree::LeafLevels levels(run.leaves, lat);
-    mask::write_global_run_file(p, area, lat, c,
-                                [&](std::int64_t j0, std::int64_t rows, std::uint8_t* o) { levels.fill(j0, rows, o); });
-    io::WriteStats s;
-    s.bytes = static_cast<std::int64_t>(std::filesystem::file_size(p));
-    s.nodes = lat.nx * lat.ny;
-    s.elements = area.filled_pixels;
-    return s;
-  };
-  if (run.size_field.has_grid()) {  // the field's range, and its value per triangle for "target"
-    const size::SizeField& field = run.size_field;
-    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-    for (const quadtree::Leaf& f : run.leaves) {
-      const double v = field.grid_min_over_square(f.level, f.a, f.b);
-      if (std::isfinite(v)) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    }
-    if (hi > 0.0) oinfo.size_scale_km = {std::max(lo, 1e-3), hi};
-    if (c.output.png_color == "target") {
-      oinfo.target_km.resize(m.triangles.size());
-      for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-        // The centroid's pixel from the lattice coordinates (I unwrapped against the first node).
-        std::int64_t si = 0, sj = 0;
-        const std::int64_t i0 = m.node_i[static_cast<std::size_t>(m.triangles[t][0])];
-        for (const NodeId n : m.triangles[t]) {
-          std::int64_t i = m.node_i[static_cast<std::size_t>(n)];
-          if (i - i0 > lat.nx / 2) i -= lat.nx;
-          if (i0 - i > lat.nx / 2) i += lat.nx;
-          si += i;
-          sj += m.node_j[static_cast<std::size_t>(n)];
-        }
-        oinfo.target_km[t] = static_cast<float>(field.at_pixel(si / 3, std::min(sj / 3, lat.ny - 1)));
-      }
-    }
-  }
-  const auto files = io::write_mesh_outputs(m, bathy, c.output, out, log, oinfo, &report);
-  Json outputs = Json::array();
-  for (const auto& f : files) {
-    outputs.push_back(Json{{"file", f.name},
-                           {"format", f.format},
-                           {"bytes", f.stats.bytes},
-                           {kChecksumKey, file_checksum(out.pending_path(f.name))},
-                           {"seconds", std::round(f.seconds * 1000.0) / 1000.0}});
-  }
-  report["outputs"] = outputs;
+  const auto files = write_global_mesh_files(c, run, out, log, report);
   write_stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
 
-  Json mesh_counts = Json{{"nodes", m.node_count()},
-                          {"triangles", m.triangle_count()},
-                          {"squares", m.square_count()},
-                          {"boundary_loops", m.loops.size()},
-                          {"pinch_nodes", m.pinch_nodes.size()}};
-  report["mesh_counts"] = mesh_counts;
+  report["mesh_counts"] = mesh_counts_json(m);
   const auto seed = seed_figure(c);
   if (seed) {
     report["seed_reference"] =
@@ -197,14 +138,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   report["memory"] = memory_json(setup);
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
-  const std::string report_name = c.output.name + "_report.json";
-  {
-    // Through FileWriter: a full disk is an error naming the file and errno, not a short report.
-    io::FileWriter rf(out.temp_path(report_name));
-    rf.text(report.dump());
-    rf.text("\n");
-    rf.close();
-  }
+  const std::string report_name = write_global_report(c, report, out);
   out.commit();
 
   // Summary.

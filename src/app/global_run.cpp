@@ -194,8 +194,8 @@ static void warn_threshold_depth_nodes(const mesh::Mesh& m, double h, const Logg
            h == 0.0 ? " (ice shelves have 0 m in ETOPO-class rasters)" : "", lon_min, lon_max, lat_min, lat_max, h);
 }
 
-GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics, bool reuse) {
+GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
+                            bool reuse) {
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -261,7 +261,13 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   }
   run.size_field = size::build_size_field(area.filled, lat, c, rot, &bathy, log, report);
   run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report, &run.size_field);
-  run.mesh = mesh::build_mesh(run.leaves, lat, rot, bathy, c.mesh, log, report);
+  return run;
+}
+
+GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                              Report* report, bool statistics, bool reuse) {
+  GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
+  run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (!statistics) return run;
 

@@ -67,6 +67,12 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
 /// output.formats has "tif": <output.dir>/<output.name>.tif.
 std::filesystem::path global_run_file_path(const config::GlobalConfig& c);
 
+/// The first stages of run_global_pipeline (read -> mask -> quadtree leaves) and nothing more:
+/// `mesh` and `statistics` of the result are empty. For callers that look at the mask and the
+/// levels without a mesh (the Python interface's aquatoria.mask). Throws what the stages throw.
+GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
+                            bool reuse = false);
+
 /// Runs read -> mask -> quadtree -> mesh -> statistics for `c` (after prepare_global_run);
 /// `statistics = false` skips the last stage (WGS84 areas and the mesh checks, the slowest part on
 /// fine lattices) for callers that only locate points in a mesh `aquatoria mesh` has checked.

@@ -5,6 +5,7 @@
 // longitude on a global raster, natural ends in latitude).
 #include "raster/bathymetry.hpp"
 
+#include <cpl_vsi.h>
 #include <fmt/format.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -56,12 +57,19 @@ struct DatasetCloser {
 using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
-  // A FIFO would block GDAL forever, a device never ends, a directory is not a raster.
-  if (const std::string bad = input_file_problem(o.path); !bad.empty())
+  // GDAL's virtual file systems (/vsimem/: raster/memory_raster.hpp; /vsizip/, /vsicurl/, ...)
+  // are not on the disk: GDAL itself says whether the name exists.
+  if (o.path.rfind("/vsi", 0) == 0) {
+    VSIStatBufL stat;
+    if (VSIStatL(o.path.c_str(), &stat) != 0) throw InputError(fmt::format("{}: no such file", o.path));
+  } else if (const std::string bad = input_file_problem(o.path); !bad.empty()) {
+    // A FIFO would block GDAL forever, a device never ends, a directory is not a raster.
     throw InputError(fmt::format("{}: {}", o.path, bad));
+  }
   DatasetPtr ds(static_cast<GDALDataset*>(
       GDALOpenEx(o.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
+    if (virtual_file) throw InputError(fmt::format("{}: not a raster GDAL can read{}", o.path, gdal_message()));
     FILE* f = std::fopen(o.path.c_str(), "rb");
     if (f == nullptr) throw InputError(fmt::format("{}: cannot read the file", o.path));
     std::fclose(f);

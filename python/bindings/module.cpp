@@ -1,0 +1,447 @@
+// The compiled part of the Python package `aquatoria` (module aquatoria._core, pybind11): the
+// global pipeline of aq_app run on the caller's configuration, its results handed to numpy as
+// views of the C++ arrays (no copy) where the layout allows, and aq::Error mapped to Python
+// exceptions carrying the command line's messages. The Python layer (python/aquatoria/*.py)
+// turns dicts into --set overrides, builds xarray datasets and documents the public API.
+//
+// Threads: every call that runs C++ work releases the GIL and then takes one process-wide lock,
+// so calls from several Python threads run one after another (GDAL's netCDF driver and the
+// netCDF/HDF5 writers are not thread-safe), each with its own OpenMP team (threads = n sets the
+// team size for that call only; default: OMP_NUM_THREADS, as for the command line).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/global_run.hpp"
+#include "app/mesh_outputs.hpp"
+#include "app/mesh_run.hpp"
+#include "config/load.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/output_files.hpp"
+#include "core/report.hpp"
+#include "io/depth.hpp"
+#include "mesh_files/element_kinds.hpp"
+#include "mesh_files/geographic_mesh.hpp"
+#include "python_common.hpp"
+#include "quadtree/leaf_levels.hpp"
+#include "raster/memory_raster.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#ifndef AQ_VERSION
+#define AQ_VERSION "dev"
+#endif
+
+namespace py = pybind11;
+
+namespace aq::python {
+
+namespace {
+
+config::Loaded<config::GlobalConfig> load(const std::optional<std::string>& path,
+                                          const std::vector<std::string>& overrides) {
+  return config::load_global(path, overrides);
+}
+
+// Unpacks rows of a bitmap into one byte per pixel (value `one` where set, added to out).
+void add_bitmap(const Bitmap& b, std::uint8_t one, std::uint8_t* out) {
+  const std::int64_t nx = b.nx(), ny = b.ny();
+#pragma omp parallel for schedule(static) default(none) shared(b, out) firstprivate(nx, ny, one)
+  for (std::int64_t j = 0; j < ny; ++j) {
+    const std::uint64_t* row = b.row(j);
+    std::uint8_t* o = out + j * nx;
+    for (std::int64_t i = 0; i < nx; ++i)
+      if ((row[i >> 6] >> (i & 63)) & 1ULL) o[i] = static_cast<std::uint8_t>(o[i] + one);
+  }
+}
+
+}  // namespace
+
+/// One global mesh run: the configuration, the pipeline's result, the geographic mesh the files
+/// hold (built when first asked for) and the report.
+class MeshRun {
+ public:
+  MeshRun(const std::optional<std::string>& config_path, const std::vector<std::string>& overrides, bool verbose,
+          int threads)
+      : lines_(std::make_shared<LogLines>()), log_(make_logger(lines_, verbose)) {
+    WorkScope work(threads);
+    loaded_ = load(config_path, overrides);
+    const config::GlobalConfig& c = loaded_.options;
+    report_["command"] = "mesh";
+    report_["interface"] = "python";
+    report_["config_source"] = loaded_.source;
+    report_["config"] = loaded_.echo;
+    const app::GlobalSetup setup = app::prepare_global_run(c);
+    app::log_memory_estimate(setup, log_);
+    run_ = app::run_global_pipeline(c, setup, log_, &report_);
+    report_["mesh_counts"] = app::mesh_counts_json(run_.mesh);
+    report_["memory"] = app::memory_json(setup);
+    kinds_ = io::parse_element_kinds(c.mesh.elements);
+  }
+
+  /// The mesh in geographic coordinates, as the UGRID, fort.14, text, VTU files hold it.
+  const mesh::Mesh& geographic(int threads) {
+    if (!geo_) {
+      WorkScope work(threads);
+      const raster::Bathymetry& bathy = *run_.bathy;
+      const io::ElevationSampler elevation = [&bathy](const std::vector<double>& lon, const std::vector<double>& lat,
+                                                      std::vector<double>& out) {
+        out.resize(lon.size());
+        bathy.sample_points(lon.data(), lat.data(), static_cast<std::int64_t>(lon.size()), out.data());
+      };
+      geo_.emplace(run_.mesh, kinds_, elevation);
+      const mesh::Mesh& g = geo_->mesh();
+      lonlat_.resize(2 * g.lon_deg.size());
+      depth_.resize(g.depth_m.size());
+      for (std::size_t k = 0; k < g.lon_deg.size(); ++k) {
+        lonlat_[2 * k] = g.lon_deg[k];
+        lonlat_[2 * k + 1] = g.lat_deg[k];
+        depth_[k] = io::depth_below_datum_m(g.depth_m[k]);
+      }
+    }
+    return geo_->mesh();
+  }
+
+  py::object report() const {
+    Json r = report_.root();
+    if (geo_) r["geographic_mesh"] = geo_->json();
+    return json_to_python(r);
+  }
+
+  /// Writes the files of `formats` (empty: the configuration's) as <dir>/<name>.* and the report.
+  std::vector<std::string> write(const std::string& dir, const std::string& name,
+                                 const std::optional<std::vector<std::string>>& formats, int threads) {
+    WorkScope work(threads);
+    config::GlobalConfig c = loaded_.options;
+    c.output.dir = dir;
+    c.output.name = name;
+    if (formats) c.output.formats = *formats;
+    io::check_mesh_output_options(c.output, kinds_);
+    Report report = report_;
+    report["config"]["output"]["name"] = c.output.name;
+    report["config"]["output"]["dir"] = c.output.dir;
+    report["config"]["output"]["formats"] = c.output.formats;
+    OutputSet out(c.output.dir);
+    StageScope stage("write", &report, log_);
+    const auto files = app::write_global_mesh_files(c, run_, out, log_, report);
+    stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
+    report.finish();
+    const std::string report_name = app::write_global_report(c, report, out);
+    out.commit();
+    std::vector<std::string> paths;
+    for (const auto& f : files) paths.push_back(f.path.string());
+    paths.push_back((std::filesystem::path(c.output.dir) / report_name).string());
+    return paths;
+  }
+
+  std::vector<std::pair<int, std::string>> take_log() { return lines_->take(); }
+
+  const app::GlobalRun& run() const { return run_; }
+  const std::vector<double>& lonlat() const { return lonlat_; }
+  const std::vector<double>& depth() const { return depth_; }
+  const config::GlobalConfig& options() const { return loaded_.options; }
+
+ private:
+  std::shared_ptr<LogLines> lines_;
+  Logger log_;
+  config::Loaded<config::GlobalConfig> loaded_;
+  Report report_;
+  app::GlobalRun run_;
+  io::ElementKinds kinds_ = io::ElementKinds::kTriangles;
+  std::optional<io::GeographicMesh> geo_;
+  std::vector<double> lonlat_, depth_;
+};
+
+/// The mask stage and the quadtree levels of a run, without a mesh.
+class MaskRun {
+ public:
+  MaskRun(const std::optional<std::string>& config_path, const std::vector<std::string>& overrides, bool verbose,
+          int threads)
+      : lines_(std::make_shared<LogLines>()), log_(make_logger(lines_, verbose)) {
+    WorkScope work(threads);
+    loaded_ = load(config_path, overrides);
+    const config::GlobalConfig& c = loaded_.options;
+    report_["command"] = "mask";
+    report_["interface"] = "python";
+    report_["config_source"] = loaded_.source;
+    report_["config"] = loaded_.echo;
+    const app::GlobalSetup setup = app::prepare_global_run(c);
+    run_ = app::run_global_leaves(c, setup, log_, &report_);
+  }
+
+  const app::GlobalRun& run() const { return run_; }
+  py::object report() const { return json_to_python(report_.root()); }
+  std::vector<std::pair<int, std::string>> take_log() { return lines_->take(); }
+
+ private:
+  std::shared_ptr<LogLines> lines_;
+  Logger log_;
+  config::Loaded<config::GlobalConfig> loaded_;
+  Report report_;
+  app::GlobalRun run_;
+};
+
+namespace {
+
+int default_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+py::array lattice_edges_lon(const Lattice& lat) {
+  py::array_t<double> a(static_cast<py::ssize_t>(lat.nx + 1));
+  auto r = a.mutable_unchecked<1>();
+  for (std::int64_t i = 0; i <= lat.nx; ++i) r(i) = lat.lon_of(i);
+  return a;
+}
+
+py::array lattice_edges_lat(const Lattice& lat) {
+  py::array_t<double> a(static_cast<py::ssize_t>(lat.ny + 1));
+  auto r = a.mutable_unchecked<1>();
+  for (std::int64_t j = 0; j <= lat.ny; ++j) r(j) = lat.lat_of(j);
+  return a;
+}
+
+py::array lattice_centres_lon(const Lattice& lat) {
+  py::array_t<double> a(static_cast<py::ssize_t>(lat.nx));
+  auto r = a.mutable_unchecked<1>();
+  for (std::int64_t i = 0; i < lat.nx; ++i) r(i) = lat.lon0_deg + (static_cast<double>(i) + 0.5) * lat.pixel_deg();
+  return a;
+}
+
+py::array lattice_centres_lat(const Lattice& lat) {
+  py::array_t<double> a(static_cast<py::ssize_t>(lat.ny));
+  auto r = a.mutable_unchecked<1>();
+  for (std::int64_t j = 0; j < lat.ny; ++j) r(j) = lat.lat_of_row(static_cast<double>(j) + 0.5);
+  return a;
+}
+
+py::dict lattice_dict(const Lattice& lat, const config::GlobalConfig& c) {
+  py::dict d;
+  d["kind"] = lat.kind_name();
+  d["nx"] = lat.nx;
+  d["ny"] = lat.ny;
+  d["pixel_deg"] = lat.pixel_deg();
+  d["step0_deg"] = lat.step0_deg;
+  d["levels"] = lat.levels;
+  d["lon0_deg"] = lat.lon0_deg;
+  d["rotated"] = c.rotation.enabled;
+  d["pole_lon_deg"] = c.rotation.pole_lon_deg;
+  d["pole_lat_deg"] = c.rotation.pole_lat_deg;
+  return d;
+}
+
+}  // namespace
+
+}  // namespace aq::python
+
+namespace aq::python {
+void bind_regional(py::module_& m);
+}
+
+PYBIND11_MODULE(_core, m) {
+  using aq::python::MaskRun;
+  using aq::python::MeshRun;
+  using aq::python::view;
+  m.doc() = "aquatoria's compiled core (use the package `aquatoria`, not this module)";
+  m.attr("__version__") = AQ_VERSION;
+
+  static py::exception<aq::Error> error(m, "Error", PyExc_RuntimeError);
+  static py::exception<aq::ConfigError> config_error(m, "ConfigError", error.ptr());
+  static py::exception<aq::InputError> input_error(m, "InputError", error.ptr());
+  static py::exception<aq::OutputError> output_error(m, "OutputError", error.ptr());
+  static py::exception<aq::NumericalError> numerical_error(m, "NumericalError", error.ptr());
+  static py::exception<aq::InternalError> internal_error(m, "InternalError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const aq::ConfigError& e) {
+      config_error(e.what());
+    } catch (const aq::InputError& e) {
+      input_error(e.what());
+    } catch (const aq::OutputError& e) {
+      output_error(e.what());
+    } catch (const aq::NumericalError& e) {
+      numerical_error(e.what());
+    } catch (const aq::InternalError& e) {
+      internal_error(e.what());
+    } catch (const aq::Error& e) {
+      error(e.what());
+    }
+  });
+
+  m.def("default_threads", &aq::python::default_threads, "OpenMP threads a call uses by default");
+
+  py::class_<MeshRun>(m, "MeshRun")
+      .def(py::init<const std::optional<std::string>&, const std::vector<std::string>&, bool, int>(), py::arg("config"),
+           py::arg("overrides"), py::arg("verbose"), py::arg("threads"))
+      .def(
+          "prepare_geographic", [](MeshRun& r, int threads) { r.geographic(threads); }, py::arg("threads"))
+      .def_property_readonly("nodes",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               r.geographic(0);
+                               const auto n = static_cast<py::ssize_t>(r.lonlat().size() / 2);
+                               return view(r.lonlat().data(), {n, 2}, self);
+                             })
+      .def_property_readonly("depth",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               r.geographic(0);
+                               return view(r.depth().data(), {static_cast<py::ssize_t>(r.depth().size())}, self);
+                             })
+      .def_property_readonly("elevation",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               const auto& g = r.geographic(0);
+                               return view(g.depth_m.data(), {static_cast<py::ssize_t>(g.depth_m.size())}, self);
+                             })
+      .def_property_readonly("node_flags",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               const auto& g = r.geographic(0);
+                               return view(g.node_flags.data(), {static_cast<py::ssize_t>(g.node_flags.size())}, self);
+                             })
+      .def_property_readonly("triangles",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               const auto& g = r.geographic(0);
+                               const auto n = static_cast<py::ssize_t>(g.triangles.size());
+                               static_assert(sizeof(g.triangles[0]) == 3 * sizeof(std::int64_t));
+                               return view(reinterpret_cast<const std::int64_t*>(g.triangles.data()), {n, 3}, self);
+                             })
+      .def_property_readonly("level",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               const auto& g = r.geographic(0);
+                               return view(g.triangle_level.data(), {static_cast<py::ssize_t>(g.triangle_level.size())},
+                                           self);
+                             })
+      .def_property_readonly("boundary_loops",
+                             [](py::object self) {
+                               MeshRun& r = self.cast<MeshRun&>();
+                               const auto& g = r.geographic(0);
+                               py::list out;
+                               for (const auto& loop : g.loops) {
+                                 py::dict d;
+                                 d["nodes"] =
+                                     view(loop.nodes.data(), {static_cast<py::ssize_t>(loop.nodes.size())}, self);
+                                 d["outer"] = loop.outer;
+                                 d["pole"] = loop.pole;
+                                 out.append(d);
+                               }
+                               return out;
+                             })
+      .def_property_readonly(
+          "lattice", [](const MeshRun& r) { return aq::python::lattice_dict(r.run().setup.lattice, r.options()); })
+      .def("report", &MeshRun::report)
+      .def("take_log", &MeshRun::take_log)
+      .def("write", &MeshRun::write, py::arg("dir"), py::arg("name"), py::arg("formats"), py::arg("threads"));
+
+  py::class_<MaskRun>(m, "MaskRun")
+      .def(py::init<const std::optional<std::string>&, const std::vector<std::string>&, bool, int>(), py::arg("config"),
+           py::arg("overrides"), py::arg("verbose"), py::arg("threads"))
+      .def("classes",
+           [](const MaskRun& r) {
+             const auto& a = r.run().area;
+             const auto nx = a.wet.nx(), ny = a.wet.ny();
+             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
+             std::uint8_t* o = out.mutable_data();
+             {
+               py::gil_scoped_release release;
+               std::fill(o, o + nx * ny, std::uint8_t{0});
+               aq::python::add_bitmap(a.coastal, 1, o);
+               aq::python::add_bitmap(a.wet, 2, o);
+             }
+             return out;
+           })
+      .def("filled",
+           [](const MaskRun& r) {
+             const auto& a = r.run().area;
+             const auto nx = a.filled.nx(), ny = a.filled.ny();
+             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
+             std::uint8_t* o = out.mutable_data();
+             {
+               py::gil_scoped_release release;
+               std::fill(o, o + nx * ny, std::uint8_t{0});
+               aq::python::add_bitmap(a.filled, 1, o);
+             }
+             return out.attr("view")("bool");
+           })
+      .def("levels",
+           [](const MaskRun& r) {
+             const auto& lat = r.run().setup.lattice;
+             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(lat.ny), static_cast<py::ssize_t>(lat.nx)});
+             std::uint8_t* o = out.mutable_data();
+             {
+               py::gil_scoped_release release;
+               const aq::quadtree::LeafLevels levels(r.run().leaves, lat);
+               levels.fill(0, lat.ny, o);
+             }
+             return out;
+           })
+      .def_property_readonly("lon_edges",
+                             [](const MaskRun& r) { return aq::python::lattice_edges_lon(r.run().setup.lattice); })
+      .def_property_readonly("lat_edges",
+                             [](const MaskRun& r) { return aq::python::lattice_edges_lat(r.run().setup.lattice); })
+      .def_property_readonly("lon",
+                             [](const MaskRun& r) { return aq::python::lattice_centres_lon(r.run().setup.lattice); })
+      .def_property_readonly("lat",
+                             [](const MaskRun& r) { return aq::python::lattice_centres_lat(r.run().setup.lattice); })
+      .def("report", &MaskRun::report)
+      .def("take_log", &MaskRun::take_log);
+
+  aq::python::bind_regional(m);
+
+  py::class_<aq::raster::MemoryRaster>(m, "MemoryRaster")
+      .def(py::init([](py::array values, py::array_t<double, py::array::c_style | py::array::forcecast> lon,
+                       py::array_t<double, py::array::c_style | py::array::forcecast> lat) {
+             if (values.ndim() != 2)
+               throw aq::InputError(fmt::format(
+                   "in-memory raster: the values have {} dimension(s); 2 (lat, lon) are needed", values.ndim()));
+             if (lon.ndim() != 1 || lat.ndim() != 1) throw aq::InputError("in-memory raster: lon and lat must be 1-D");
+             const auto ny = values.shape(0), nx = values.shape(1);
+             if (lon.shape(0) != nx || lat.shape(0) != ny)
+               throw aq::InputError(
+                   fmt::format("in-memory raster: values are {} x {} (lat, lon) but lon has {} and lat {} values", ny,
+                               nx, lon.shape(0), lat.shape(0)));
+             aq::raster::MemoryType type;
+             py::array a;
+             const char kind = values.dtype().kind();
+             const auto size = values.dtype().itemsize();
+             if (kind == 'i' && size == 2)
+               type = aq::raster::MemoryType::kInt16;
+             else if (kind == 'i' && size == 4)
+               type = aq::raster::MemoryType::kInt32;
+             else if (kind == 'f' && size == 4)
+               type = aq::raster::MemoryType::kFloat32;
+             else
+               type = aq::raster::MemoryType::kFloat64;
+             if (type == aq::raster::MemoryType::kFloat64)
+               a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+             else
+               a = py::array::ensure(values, py::array::c_style);
+             if (!a) throw aq::InputError("in-memory raster: the values cannot be read as numbers");
+             py::gil_scoped_release release;
+             return std::make_unique<aq::raster::MemoryRaster>(a.data(), type, nx, ny, nx, lon.data(), lat.data());
+           }),
+           py::arg("values"), py::arg("lon"), py::arg("lat"))
+      .def_property_readonly("path", &aq::raster::MemoryRaster::path);
+}
