@@ -11,6 +11,9 @@
 #                               package (a whole `python3 -c "aq.mesh(...).write(...)"` process,
 #                               start-up included), alternately, AQ_BENCH_REPEAT pairs (default 3):
 #                               median wall times and their ratio (issue 24's target <= 1.05)
+#   scripts/bench.sh tides      configs/global_tides.toml (the size field from physics) on ETOPO5
+#                               and on the 1' raster (Δ0 = 16', L = 4): the stage table and the
+#                               size stage's share of the run (target <= 25 %)
 # The regional cases also run beside a CPU burner (one busy-loop process, started and killed
 # here) and print the idle and loaded wall times and their ratio; AQ_BENCH_REPEAT=N (default 1)
 # repeats the idle/loaded pair back to back and prints medians.
@@ -138,6 +141,35 @@ if [ "$mode" = python ]; then
   python_case "1' Mercator lattice 21600×24000 + rotation from a 1' raster, binary MSH" one_minute_mercator "" \
     input.path="$(bash data_tools/make_resampled.sh 60)" quadtree.step_deg=0.26666666666666666 quadtree.levels=4 \
     quadtree.lattice=mercator rotation.enabled=true 'output.formats=["msh"]' output.msh_binary=true
+  exit 0
+fi
+# The size field's share of a run (ARCHITECTURE §8: <= 25 % of the wall time). tides_case NAME DIR ARGS...
+tides_case() {
+  local name="$1" dir="$2"
+  shift 2
+  /usr/bin/time -f "%M" -o "$work/$dir.rss" $bin mesh -q -o "$work/$dir" -c configs/global_tides.toml "$@" >/dev/null
+  table "$name" 1e9 "$(ls "$work/$dir"/*_report.json)"
+  python3 - "$name" "$(ls "$work/$dir"/*_report.json)" "$work/$dir.rss" <<'PY'
+import json, sys
+name, path, rss = sys.argv[1], sys.argv[2], sys.argv[3]
+r = json.load(open(path))
+st = {s["stage"]: s for s in r.get("stages", [])}
+size = st.get("size", {"wall_s": 0.0, "cpu_s": 0.0})
+tot = r["total"]
+g = r.get("quadtree", {}).get("grading", {})
+dt = r.get("time_step", {}).get("max_stable_dt_s")
+share = size["wall_s"] / tot["wall_s"] if tot["wall_s"] > 0 else 0.0
+print(f"size field: {size['wall_s']:.2f} of {tot['wall_s']:.2f} s wall ({100 * share:.0f} %, target <= 25 %: "
+      f"{'OK' if share <= 0.25 else 'MISSED'}), {size['cpu_s']:.2f} of {tot['cpu_s']:.2f} s CPU; peak "
+      f"{int(open(rss).read().split()[-1]) / 1e6:.2f} GB; {r['mesh_counts']['nodes']} nodes, "
+      f"{r['mesh_counts']['triangles']} triangles; largest stable dt {dt} s; grading {g}")
+PY
+}
+if [ "$mode" = tides ]; then
+  tides_case "configs/global_tides.toml on ETOPO5" tides
+  tides_case "configs/global_tides.toml on the 1' raster (Δ0=16', L=4)" tides_1m \
+    --set input.path="$(bash data_tools/make_resampled.sh 60)" --set quadtree.step_deg=0.26666666666666666 \
+    --set quadtree.levels=4 --set 'output.formats=["msh"]' --set output.msh_binary=true
   exit 0
 fi
 if [ "$mode" = mercator ]; then

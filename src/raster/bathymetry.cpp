@@ -59,7 +59,8 @@ using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
   // GDAL's virtual file systems (/vsimem/: raster/memory_raster.hpp; /vsizip/, /vsicurl/, ...)
   // are not on the disk: GDAL itself says whether the name exists.
-  if (o.path.rfind("/vsi", 0) == 0) {
+  const bool virtual_file = o.path.rfind("/vsi", 0) == 0;
+  if (virtual_file) {
     VSIStatBufL stat;
     if (VSIStatL(o.path.c_str(), &stat) != 0) throw InputError(fmt::format("{}: no such file", o.path));
   } else if (const std::string bad = input_file_problem(o.path); !bad.empty()) {
@@ -412,12 +413,12 @@ struct Bathymetry::Impl {
     const bool missing =
         std::isnan(x) || (info.has_nodata && x == static_cast<float>(info.nodata)) || std::abs(x) > 1e30f;
     if (missing) return std::numeric_limits<float>::quiet_NaN();
-    const auto v = static_cast<float>(sgn * (x * info.scale + info.offset));
-    if (!(std::abs(v) <= max_abs_m)) {
+    const auto elevation = static_cast<float>(sgn * (x * info.scale + info.offset));
+    if (!(std::abs(elevation) <= max_abs_m)) {
       ++implausible;
       return std::numeric_limits<float>::quiet_NaN();
     }
-    return v;
+    return elevation;
   }
 
   void compute_stats() {
