@@ -34,7 +34,8 @@
 //      `max_inset` (so opposite sides never meet); likewise E (from s = 1 leftward), N (from
 //      t = 1 downward), W (from s = 0 rightward). At every station the strip between the old and
 //      the raw side holds no wet cell (the guarantee is at the stations' resolution, half a
-//      lattice pixel; the spline through the control points may cut across less than a station).
+//      lattice pixel; step 4 carries it to the lines between control points, and the spline
+//      through them may still bulge across less than a station).
 //   2. Smooth by lowering only: e = min(d, ·) through the lower Lipschitz envelope
 //      e_k = min_j (d_j + ½·|s_k − s_j|) (two sweeps), so a side turns at most atan ½ ≈ 26.6°
 //      against the box edge and e <= d keeps the strip dry;
