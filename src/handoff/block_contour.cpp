@@ -104,6 +104,18 @@ double SideInsets::at(int side, double x) const {
   return v[k] + f * (v[k + 1] - v[k]);
 }
 
+double SideInsets::min_over(int side, double a, double b) const {
+  if (n <= 0) return 0.0;
+  if (b < a) std::swap(a, b);
+  double m = std::min(at(side, a), at(side, b));
+  const auto& v = e[static_cast<std::size_t>(side)];
+  for (int k = 0; k < n; ++k) {
+    const double x = (k + 0.5) / n;
+    if (x > a && x < b) m = std::min(m, v[static_cast<std::size_t>(k)]);
+  }
+  return m;
+}
+
 double SideInsets::max(int side) const {
   const auto& v = e[static_cast<std::size_t>(side)];
   return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
@@ -116,6 +128,7 @@ SideInsets shrink_to_wet(const BoxFrame& frame, const Bitmap& filled, const Latt
   const BlockBox& b = frame.box();
   const std::array<double, 2> extent_px = box_extent_px(b, lat, rotation);
   SideInsets out;
+  out.max_inset = cap;
   out.n = static_cast<int>(std::clamp(2.0 * std::ceil(std::max(extent_px[0], extent_px[1])), 32.0, 1024.0));
   const int n = out.n;
   const auto wet = [&](double s, double t) {
@@ -204,23 +217,33 @@ BlockContour block_contour(const BoxFrame& frame, const SideInsets& insets, int 
   c.insets = insets;
   c.trimmed = frame.trimmed();
   const curvilinear::Projection proj(c.projection);
-  // Corners (s, t) from the insets at the ends of the sides.
-  const std::array<std::array<double, 2>, 4> corner{{{insets.at(3, 0.0), insets.at(0, 0.0)},
-                                                     {1.0 - insets.at(1, 0.0), insets.at(0, 1.0)},
-                                                     {1.0 - insets.at(1, 1.0), 1.0 - insets.at(2, 1.0)},
-                                                     {insets.at(3, 1.0), 1.0 - insets.at(2, 0.0)}}};
   const int P = points_per_side;
+  // Corners (s, t) from the insets at the ends of the sides: the minimum over the end's reach
+  // (max_inset + 1/P covers the first control interval whatever the neighbouring side's inset).
+  const double reach = insets.max_inset + 1.0 / P;
+  const auto end = [&](int side, int at_end) {
+    return at_end == 0 ? insets.min_over(side, 0.0, reach) : insets.min_over(side, 1.0 - reach, 1.0);
+  };
+  const std::array<std::array<double, 2>, 4> corner{{{end(3, 0), end(0, 0)},
+                                                     {1.0 - end(1, 0), end(0, 1)},
+                                                     {1.0 - end(1, 1), 1.0 - end(2, 1)},
+                                                     {end(3, 1), 1.0 - end(2, 0)}}};
   for (int side = 0; side < 4; ++side) {
     const auto& a = corner[static_cast<std::size_t>(side)];
     const auto& b = corner[static_cast<std::size_t>((side + 1) % 4)];
     c.corners[static_cast<std::size_t>(side)] = side * P;
     // The coordinate running along the side: s for S/N, t for E/W.
     const int along = (side == 0 || side == 2) ? 0 : 1;
+    const double x0 = a[static_cast<std::size_t>(along)], x1 = b[static_cast<std::size_t>(along)];
+    const double h = (x1 - x0) / P;
     for (int k = 0; k < P; ++k) {
-      const double f = static_cast<double>(k) / P;
-      const double x = a[static_cast<std::size_t>(along)] +
-                       f * (b[static_cast<std::size_t>(along)] - a[static_cast<std::size_t>(along)]);
-      const auto st = side_point(side, x, insets.at(side, x));
+      const double x = x0 + (static_cast<double>(k) / P) * (x1 - x0);
+      // The corner keeps its inset; the others the profile's minimum over both neighbouring
+      // intervals (step 4 of the file comment).
+      const std::array<double, 4> corner_inset{a[1], 1.0 - a[0], 1.0 - a[1], a[0]};
+      const double inset =
+          k == 0 ? corner_inset[static_cast<std::size_t>(side)] : insets.min_over(side, x - h, x + h);
+      const auto st = side_point(side, x, inset);
       const auto g = frame.geographic(st[0], st[1]);
       const auto q = proj.forward(g.lon_deg, g.lat_deg);
       if (!std::isfinite(q.x) || !std::isfinite(q.y)) {

@@ -34,7 +34,8 @@
 //      `max_inset` (so opposite sides never meet); likewise E (from s = 1 leftward), N (from
 //      t = 1 downward), W (from s = 0 rightward). At every station the strip between the old and
 //      the raw side holds no wet cell (the guarantee is at the stations' resolution, half a
-//      lattice pixel; the spline through the control points may cut across less than a station).
+//      lattice pixel; step 4 carries it to the lines between control points, and the spline
+//      through them may still bulge across less than a station).
 //   2. Smooth by lowering only: e = min(d, ·) through the lower Lipschitz envelope
 //      e_k = min_j (d_j + ½·|s_k − s_j|) (two sweeps), so a side turns at most atan ½ ≈ 26.6°
 //      against the box edge and e <= d keeps the strip dry;
@@ -43,8 +44,14 @@
 //      is then straight (a coordinate line) near both its corners, and the corner where S
 //      (inset b) meets W (inset a) is the point (a, b), where the straight pieces cross at a
 //      right angle.
-//   4. Control points: `points_per_side` per side, evenly spaced in s (or t) between the new
-//      corners, on the profile (linear between stations).
+//   4. Control points: `points_per_side` (P) per side, evenly spaced in s (or t) between the new
+//      corners. The contour interpolates between control points, not along the profile, so a
+//      control point takes the profile's minimum over its two neighbouring intervals: the line
+//      between two control points then lies on or outside the profile, and the strip a side
+//      leaves behind stays dry between control points too (a control point on the profile itself
+//      would let the side cut straight across a bay or estuary narrower than the spacing). The
+//      corners take the minimum over the first and last `max_inset` + 1/P of the side (the
+//      corner zone when P is large enough, so usually the zone's value).
 // Without shrink the insets are 0 and the contour is the block's outline.
 #pragma once
 
@@ -86,10 +93,13 @@ class BoxFrame {
 /// west to east, E and W south to north), fractions of the block's width (E, W) or height (S, N).
 struct SideInsets {
   int n = 0;
+  double max_inset = 0.0;  ///< the cap the insets were made with (width of the corner zones)
   std::array<std::vector<double>, 4> e;
   /// Inset of `side` (0 S, 1 E, 2 N, 3 W) at fraction x ∈ [0, 1] along it (linear between
   /// stations, constant beyond the first and last); 0 when n = 0.
   [[nodiscard]] double at(int side, double x) const;
+  /// Smallest inset of `side` over the fractions [a, b] along it (the profile of `at`).
+  [[nodiscard]] double min_over(int side, double a, double b) const;
   /// Largest inset of a side.
   [[nodiscard]] double max(int side) const;
 };

@@ -345,3 +345,39 @@ TEST(MercatorBlock, ShrinkToWetStopsAtTheCoastRow) {
   const auto sw = proj.inverse(c.x[0], c.y[0]);
   EXPECT_NEAR(mercator_row(lat, sw.lat_deg), static_cast<double>(b * 8 + 3), 1e-7);
 }
+
+// A one-pixel inlet reaching the box's east edge between two control points (P = 4, spaced 1°):
+// the station profile dips to 0 there, but with control points on the profile the side ran
+// straight from 42°N to 43°N, 0.2° into the inlet. The contour itself (the spline, sampled
+// densely) must leave only land behind.
+TEST(ShrinkToWet, ControlPointsDoNotCutAcrossANarrowInlet) {
+  const Lattice lat = Lattice::make(4.0, 4, -180.0);  // 0.25° pixels: n = 32
+  Bitmap f = all_filled(lat);
+  draw_land(f, lat, [](double lon, double la) {
+    const bool inlet = la > 42.25 && la < 42.5;
+    return lon > 3.0 && lon < 6.0 && la > 37.0 && la < 47.0 && !inlet;
+  });
+  const BoxFrame fr(BlockBox{0.0, 4.0, 40.0, 44.0, true}, PoleRotation());
+  const SideInsets in = aq::handoff::shrink_to_wet(fr, f, lat, PoleRotation(), 0.3);
+  expect_strips_dry(fr, in, f, lat);
+  EXPECT_DOUBLE_EQ(in.at(1, 0.59), 0.0);  // the profile opens at the inlet
+  EXPECT_GT(in.max(1), 0.1);              // and moves over the land elsewhere
+  const BlockContour c = aq::handoff::block_contour(fr, in, 4);
+  const auto spline = spline_of(c);
+  expect_right_angles(spline);
+  const aq::curvilinear::Projection proj(c.projection);
+  using aq::curvilinear::Side;
+  const double s0 = spline.side_begin(Side::kEast), s1 = spline.side_end(Side::kEast);
+  int wet_behind = 0;
+  for (int k = 0; k <= 2000; ++k) {
+    const auto p = spline.point(s0 + (s1 - s0) * k / 2000.0);
+    const auto g = proj.inverse(p.x, p.y);
+    // Half a station (0.0625°) east of the side up to the box's edge.
+    for (double lon = g.lon_deg + 0.0625; lon < 4.0; lon += 0.03125)
+      if (filled_at(f, lat, {lon, g.lat_deg})) {
+        ++wet_behind;
+        break;
+      }
+  }
+  EXPECT_EQ(wet_behind, 0);
+}
