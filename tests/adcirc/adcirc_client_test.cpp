@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/client_summary.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
@@ -22,20 +23,7 @@ using aq::test::run_command;
 
 namespace {
 
-fs::path adcirc_script() {
-  return fs::path(AQ_SOURCE_DIR).parent_path() / "shared" / "clients" / "adcirc" / "adcirc.sh";
-}
-
-std::map<std::string, std::string> key_values(const std::string& text) {
-  std::map<std::string, std::string> kv;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    const auto colon = line.find(": ");
-    if (colon != std::string::npos) kv[line.substr(0, colon)] = line.substr(colon + 2);
-  }
-  return kv;
-}
+fs::path adcirc_script() { return aq::test::client_script("adcirc", "adcirc.sh"); }
 
 // Makes the mesh (`config` empty: the built-in default run), runs ADCIRC for 6 hours on its
 // fort.14 and checks the summary.
@@ -63,7 +51,7 @@ void run_case(const std::string& config, const std::string& name, int ics) {
   }
   const auto run = run_command("bash " + script.string() + args);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const auto kv = key_values(run.out);
+  const auto kv = aq::test::key_values(run.out);
   std::cout << "ADCIRC on " << name << ".14 (ICS " << ics << "):\n" << run.out;
   ASSERT_TRUE(kv.count("adcirc_status")) << run.out << run.err;
   EXPECT_EQ(kv.at("adcirc_status"), "normal");
