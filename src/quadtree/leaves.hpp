@@ -35,13 +35,9 @@
 //    box crosses the antimeridian). Centres are taken in the lattice (rotated) system and mapped
 //    to geographic (λ, φ) through the PoleRotation. Where several rules apply the finest level
 //    wins; level 0 asks nothing.
-//  * a depth or box rule may ask a size instead of a level (`size_km` > 0, issue 12): then every
-//    square of every level whose centre is in the rule's range and whose square_size_km exceeds
-//    √2·size_km is split, with every coarser square containing it — the open-ocean size rule
-//    (apply_size_rules) restricted to the range. So each square there takes the level whose size
-//    at its latitude is nearest the target (within √2), bounded by level L, unless the filled set,
-//    another rule or the 2:1 balance asks for a finer one; on the Mercator lattice that level
-//    grows toward the rotated poles as the squares shrink as cos φ′.
+//  * a depth or box rule may ask a size instead of a level (`size_km` > 0, issue 12): that form is
+//    a term of the target size field (size/size_field.hpp, issue 19), applied by apply_size_field
+//    with every other size; apply_refinement_rules applies the level form only.
 #pragma once
 
 #include <compare>
