@@ -386,9 +386,15 @@ GradeStats grade_levels(LevelMasks& masks, const Lattice& lat, const size::SizeF
     std::vector<std::int64_t> rx(static_cast<std::size_t>(rows)), ry(static_cast<std::size_t>(rows));
     const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << v) * kDegToRad;
     for (std::int64_t b = 0; b < rows; ++b) {
-      const double centre = square_centre_row(lat, v, b);
-      const double a_km = square_size_km(lat, v, centre);
-      const double dx = kEarthRadiusKm * side_rad * std::cos(lat.lat_of_row(centre) * kDegToRad);
+      // Conservative over the square's rows: its size at the equatorward edge, its sides at the
+      // poleward one (the runs are measured at the rows they cross).
+      const double p0 = lat.lat_of_row(static_cast<double>(b * lat.pixels_per_square(v)));
+      const double p1 = lat.lat_of_row(static_cast<double>((b + 1) * lat.pixels_per_square(v)));
+      const double eq = (p0 < 0.0) != (p1 < 0.0) ? 0.0 : std::min(std::fabs(p0), std::fabs(p1));
+      const double pole = std::max(std::fabs(p0), std::fabs(p1));
+      const double c_eq = std::cos(eq * kDegToRad);
+      const double a_km = kEarthRadiusKm * side_rad * (lat.mercator() ? c_eq : std::sqrt(c_eq));
+      const double dx = kEarthRadiusKm * side_rad * std::cos(pole * kDegToRad);
       const double dy = lat.mercator() ? dx : kEarthRadiusKm * side_rad;
       const auto radius = [&](double d, std::int64_t cap) {
         const double r = std::ceil(a_km / (std::sqrt(2.0) * g * std::max(d, 1e-9)) - 1e-9);

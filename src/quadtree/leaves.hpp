@@ -169,8 +169,8 @@ struct GradeStats {
 /// squares of one level long enough for the grading: for v = L-1 .. 1, every level-v square
 /// within r squares of a split level-v square (one holding finer leaves) is kept out of a coarser
 /// leaf (its level-(v-1) parent is split), r = ⌈a/(√2·g·d)⌉ per direction (a: the level-v
-/// square's size, d: its side along the row or column; on the Mercator lattice ⌈1/(√2·g)⌉, 4 for
-/// g = 0.2). So every run of level v between a finer and a coarser level spans at least r squares
+/// square's size at its equatorward edge, d: its side along the row or column at its poleward
+/// edge; on the Mercator lattice ⌈1/(√2·g)⌉ = 4 for g = 0.2 except on coarse squares near the poles). So every run of level v between a finer and a coarser level spans at least r squares
 /// and its grading a/(√2·D) is at most g, whatever asked the finer level (the D_l rule at the
 /// coast, a level rule, the field). It implies the corner 2:1 balance. Only splits; one pass,
 /// fine to coarse. A split the field's CFL edge bound refuses is not made (CFL last).
