@@ -284,6 +284,17 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                               "min over triangles of edge/sqrt(gH), H >= {} m){}",
                               ts.max_stable_dt_s, ts.limiting_edge_m, ts.limiting_depth_m, ts.limiting_lon_deg,
                               ts.limiting_lat_deg, ts.min_depth_m, courant));
+    if (ts.dt_s > 0.0 && ts.above_courant_max > 0) {
+      std::string levels;
+      for (std::size_t l = 0; l < ts.above_by_level.size(); ++l)
+        if (ts.above_by_level[l] > 0) levels += fmt::format("{}{}: {}", levels.empty() ? "" : ", ", l, ts.above_by_level[l]);
+      log.warn("time_step: {} of {} triangles exceed Courant {} at dt = {} s (by level {}; {} touch the coast): the "
+               "quadtree refuses every split the size field or the grading asks below the CFL bound, but the D_l rule "
+               "keeps the squares on the coast at level {} and the 2:1 balance steps one level per square away from "
+               "them, whatever the depth; dt <= {:.2f} s keeps every triangle at Courant <= {}",
+               ts.above_courant_max, ts.triangles, ts.courant_max, ts.dt_s, levels, ts.above_touching_coast,
+               setup.lattice.levels, ts.max_stable_dt_s * ts.courant_max, ts.courant_max);
+    }
   }
 
   StageScope stat_stage("statistics", report, log);

@@ -79,6 +79,19 @@ TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double cou
     std::vector<double> cr(dt.size());
     for (std::size_t k = 0; k < dt.size(); ++k) cr[k] = dt_s / dt[k];
     r.above_courant_max = std::count_if(cr.begin(), cr.end(), [&](double c) { return c > courant_max; });
+    for (std::size_t k = 0; k < cr.size(); ++k) {
+      if (!(cr[k] > courant_max)) continue;
+      if (k < mesh.triangle_level.size()) {
+        const std::size_t l = mesh.triangle_level[k];
+        if (r.above_by_level.size() <= l) r.above_by_level.resize(l + 1, 0);
+        ++r.above_by_level[l];
+      }
+      bool coast = false;
+      for (const NodeId v : mesh.triangles[k])
+        coast = coast || (static_cast<std::size_t>(v) < mesh.node_flags.size() &&
+                          (mesh.node_flags[static_cast<std::size_t>(v)] & kNodeBoundary) != 0);
+      if (coast) ++r.above_touching_coast;
+    }
     std::sort(cr.begin(), cr.end());
     for (const double p : {0.0, 0.5, 0.9, 0.99, 1.0})
       r.courant_percentiles.push_back(cr[static_cast<std::size_t>(std::llround(p * static_cast<double>(cr.size() - 1)))]);
@@ -88,6 +101,7 @@ TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double cou
 
 Json time_step_json(const TimeStep& t) {
   Json j{{"max_stable_dt_s", round6(t.max_stable_dt_s)},
+         {"dt_at_courant_max_s", round6(t.max_stable_dt_s * t.courant_max)},
          {"formula", "min over triangles of shortest edge / sqrt(g * H), H = deepest node, at least min_depth_m"},
          {"gravity_m_s2", kGravity},
          {"min_depth_m", t.min_depth_m},
@@ -98,7 +112,11 @@ Json time_step_json(const TimeStep& t) {
          {"limiting_lon_deg", round6(t.limiting_lon_deg)},
          {"limiting_lat_deg", round6(t.limiting_lat_deg)}};
   if (t.dt_s > 0.0) {
-    Json c{{"dt_s", t.dt_s}, {"courant_max", t.courant_max}, {"above_courant_max", t.above_courant_max}};
+    Json c{{"dt_s", t.dt_s},
+           {"courant_max", t.courant_max},
+           {"above_courant_max", t.above_courant_max},
+           {"above_by_level", t.above_by_level},
+           {"above_touching_coast", t.above_touching_coast}};
     const char* names[] = {"min", "median", "p90", "p99", "max"};
     for (std::size_t k = 0; k < t.courant_percentiles.size(); ++k) c[names[k]] = round6(t.courant_percentiles[k]);
     j["courant"] = c;

@@ -23,6 +23,8 @@ struct TimeStep {
   double courant_max = 0.0;                             ///< Cr_max the counts below compare with
   std::vector<double> courant_percentiles;              ///< Cr at 0, 50, 90, 99, 100 %
   std::int64_t above_courant_max = 0;                   ///< triangles with Cr > Cr_max
+  std::vector<std::int64_t> above_by_level;             ///< of those, per quadtree level of their square
+  std::int64_t above_touching_coast = 0;                ///< of those, with a node on a boundary edge
   std::int64_t triangles = 0;
 };
 

@@ -117,11 +117,14 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   apply_refinement_rules(masks, lat, options, rotation, bathy);
   if (field != nullptr) {
     apply_size_field(masks, lat, *field);
-  } else if (options.size_km != 0.0 || options.coast_size_km != 0.0) {  // the size keys of [quadtree] alone
+  } else if (options.size_km != 0.0 || options.coast_size_km != 0.0 ||
+             size::has_size_rules(options)) {  // the size keys of [quadtree] alone
     config::GlobalConfig only;
     only.quadtree = options;
     apply_size_field(masks, lat, size::build_size_field(filled, lat, only, rotation, bathy, Logger::null(), nullptr));
   }
+  GradeStats grade;
+  if (field != nullptr) grade = grade_levels(masks, lat, *field);
   const std::vector<std::int64_t> refined = count_leaves_per_level(masks);
   const double rules_s = t_rules.wall_s();
 
@@ -163,15 +166,19 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
     // On a map as fine as 2^25 cells (bytes) allow: the field's own grid may be level 0 on fine lattices.
     const Grading gr = achieved_grading(leaves, lat, size::choose_grid_level(lat, -1, std::int64_t{1} << 25));
     grading_json = Json{{"map_level", gr.map_level},
+                        {"gradation", field->gradation()},
+                        {"grading_splits", grade.splits},
+                        {"cfl_refused_splits", grade.cfl_refused},
                         {"runs", gr.runs},
                         {"median", round3(gr.median)},
                         {"p90", round3(gr.p90)},
                         {"max", round3(gr.max)},
                         {"definition", "a/(sqrt2 * D) over runs of one level between a finer and a coarser one "
                                        "(a: the level's square size, D: the run's length); 2:1 balance alone: 0.71"}};
-    log.info("quadtree: achieved grading {:.3f} median, {:.3f} p90, {:.3f} max over {} level runs (size.gradation = "
-             "the field's limit)",
-             gr.median, gr.p90, gr.max, gr.runs);
+    log.info("quadtree: achieved grading {:.3f} median, {:.3f} p90, {:.3f} max over {} level runs (size.gradation = {}; "
+             "{} squares split to keep it{})",
+             gr.median, gr.p90, gr.max, gr.runs, field->gradation(), grade.splits,
+             grade.cfl_refused > 0 ? fmt::format(", {} splits refused by the CFL bound", grade.cfl_refused) : std::string());
   }
   if (report != nullptr) {
     Json& q = (*report)["quadtree"];

@@ -106,14 +106,10 @@ void validate_rules(const config::QuadtreeOptions& o, int levels) {
 
 // Whether rule `r` asks to split a level-l square of size `size_km` whose centre is in its range:
 // the level form on the level-(level-1) grid only, the size form wherever the square is too large.
+// The size form (size_km > 0) is a term of the size field (size/size_field.hpp), not a rule here.
 template <typename Rule>
-bool asks_split(const Rule& r, int l, double size_km) {
-  return r.size_km > 0.0 ? exceeds_size_target(size_km, r.size_km) : r.level == l + 1;
-}
-
-template <typename Rule>
-bool has_size_rule(const std::vector<Rule>& rules) {
-  return std::any_of(rules.begin(), rules.end(), [](const Rule& r) { return r.size_km > 0.0; });
+bool asks_split(const Rule& r, int l, double /*size_km*/) {
+  return !(r.size_km > 0.0) && r.level == l + 1;
 }
 
 void collect_leaves(const LevelMasks& m, int levels, int l, std::int64_t a, std::int64_t b, std::vector<Leaf>& out) {
@@ -225,14 +221,15 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
   if (options.depth_rules.empty() && options.box_rules.empty()) return;
   const int levels = lat.levels;
   validate_rules(options, levels);
-  if (!options.depth_rules.empty() && bathy == nullptr) {
+  const bool level_depth_rules = std::any_of(options.depth_rules.begin(), options.depth_rules.end(),
+                                             [](const config::DepthRule& r) { return !(r.size_km > 0.0); });
+  if (level_depth_rules && bathy == nullptr) {
     throw InternalError("quadtree: depth rules need the bathymetry raster");
   }
-  // The finest level a rule may split: below its level for the level form, L-1 for the size form.
+  // The finest level a rule may split: below its level (the size form asks none here).
   int max_level = 0;
   for (const config::DepthRule& r : options.depth_rules) max_level = std::max(max_level, r.level);
   for (const config::BoxRule& r : options.box_rules) max_level = std::max(max_level, r.level);
-  if (has_size_rule(options.depth_rules) || has_size_rule(options.box_rules)) max_level = levels;
   const int top = std::min(levels, max_level) - 1;
 
   const std::vector<config::DepthRule>& depth_rules = options.depth_rules;
@@ -296,6 +293,31 @@ int level_for_size(const Lattice& lat, double target_km, double row) {
   return l;
 }
 
+namespace {
+
+// The shortest edge (km) a triangle of a level-(l+1) child of a level-l square of row b may have:
+// the child's shortest side at the parent's poleward edge (along the row: Δλ·cos φ′ there; along
+// the column: the Mercator side or Δφ), halved when the child can hold hanging nodes (l+1 < L).
+double child_min_edge_km(const Lattice& lat, int l, std::int64_t b) {
+  const std::int64_t s = lat.pixels_per_square(l);
+  const double y0 = static_cast<double>(b * s), y1 = static_cast<double>((b + 1) * s);
+  const double pole = std::max(std::fabs(lat.lat_of_row(y0)), std::fabs(lat.lat_of_row(y1)));
+  const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << (l + 1)) * kDegToRad;
+  const double along_row = kEarthRadiusKm * side_rad * std::cos(pole * kDegToRad);
+  const double along_col =
+      lat.mercator() ? along_row : kEarthRadiusKm * (lat.lat_of_row(y1) - lat.lat_of_row(y0)) / 2.0 * kDegToRad;
+  const double side = std::min(along_row, along_col);
+  return l + 1 < lat.levels ? side / 2.0 : side;
+}
+
+// Whether the CFL edge bound of `field` lets the level-l square (a, b) be split (its children's
+// shortest possible edge, child_edge_km, is not below the bound anywhere over the square).
+bool cfl_allows_split(const size::SizeField& field, int l, std::int64_t a, std::int64_t b, double child_edge_km) {
+  return !field.has_cfl() || child_edge_km * (1.0 + 1e-9) >= field.cfl_edge_over_square(l, a, b);
+}
+
+}  // namespace
+
 void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field) {
   const int levels = masks.levels();
   if (levels == 0 || !field.active()) return;
@@ -321,24 +343,118 @@ void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeFie
     shared(om, band, field, lat, l, rows, words, band_km, grid) schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
       const double size = square_size_km(lat, l, square_centre_row(lat, l, b));
+      const double child_edge = child_min_edge_km(lat, l, b);
       std::uint64_t* row = om.row(b);
       const bool band_splits = band_km > 0.0 && exceeds_size_target(size, band_km);
       const std::uint64_t* in_band = band_splits ? band[static_cast<std::size_t>(l)].row(b) : nullptr;
       for (std::int64_t w = 0; w < words; ++w) {
         std::uint64_t keep = row[w];
-        if (in_band != nullptr) keep &= ~in_band[w];
+        std::uint64_t split = in_band != nullptr ? keep & in_band[w] : 0;
         if (grid) {
-          std::uint64_t left = keep;
+          std::uint64_t left = keep & ~split;
           while (left != 0) {
             const int t = std::countr_zero(left);
             left &= left - 1;
-            if (exceeds_size_target(size, field.grid_min_over_square(l, 64 * w + t, b))) keep &= ~(1ULL << t);
+            if (exceeds_size_target(size, field.grid_min_over_square(l, 64 * w + t, b))) split |= 1ULL << t;
           }
         }
-        row[w] = keep;
+        if (field.has_cfl()) {  // the CFL bound is applied last: it refuses splits, never asks one
+          std::uint64_t left = split;
+          while (left != 0) {
+            const int t = std::countr_zero(left);
+            left &= left - 1;
+            if (!cfl_allows_split(field, l, 64 * w + t, b, child_edge)) split &= ~(1ULL << t);
+          }
+        }
+        row[w] = keep & ~split;
       }
     }
   }
+}
+
+GradeStats grade_levels(LevelMasks& masks, const Lattice& lat, const size::SizeField& field) {
+  GradeStats st;
+  const int levels = masks.levels();
+  const double g = field.gradation();
+  if (levels < 2 || !field.has_grid() || !(g > 0.0)) return st;
+  for (int v = levels - 1; v >= 1; --v) {
+    const Bitmap& om = masks.omega[static_cast<std::size_t>(v)];
+    const Bitmap& any = masks.any_at(v);
+    const std::int64_t n = om.nx(), rows = om.ny(), words = om.words_per_row();
+    // Radii (in level-v squares) per row: a run of n squares of side a spans n·dx along the row
+    // and n·dy along the column; it keeps the grading when a/(√2·n·d) <= g.
+    std::vector<std::int64_t> rx(static_cast<std::size_t>(rows)), ry(static_cast<std::size_t>(rows));
+    const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << v) * kDegToRad;
+    for (std::int64_t b = 0; b < rows; ++b) {
+      // Conservative over the square's rows: its size at the equatorward edge, its sides at the
+      // poleward one (the runs are measured at the rows they cross).
+      const double p0 = lat.lat_of_row(static_cast<double>(b * lat.pixels_per_square(v)));
+      const double p1 = lat.lat_of_row(static_cast<double>((b + 1) * lat.pixels_per_square(v)));
+      const double eq = (p0 < 0.0) != (p1 < 0.0) ? 0.0 : std::min(std::fabs(p0), std::fabs(p1));
+      const double pole = std::max(std::fabs(p0), std::fabs(p1));
+      const double c_eq = std::cos(eq * kDegToRad);
+      const double a_km = kEarthRadiusKm * side_rad * (lat.mercator() ? c_eq : std::sqrt(c_eq));
+      const double dx = kEarthRadiusKm * side_rad * std::cos(pole * kDegToRad);
+      const double dy = lat.mercator() ? dx : kEarthRadiusKm * side_rad;
+      const auto radius = [&](double d, std::int64_t cap) {
+        const double r = std::ceil(a_km / (std::sqrt(2.0) * g * std::max(d, 1e-9)) - 1e-9);
+        return std::min<std::int64_t>(cap, std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(r, 1e12))));
+      };
+      rx[static_cast<std::size_t>(b)] = radius(dx, n);
+      ry[static_cast<std::size_t>(b)] = radius(dy, rows);
+    }
+    if (v == levels - 1) st.radius_at_equator = rx[static_cast<std::size_t>(rows / 2)];
+    // Split squares of level v (holding finer leaves), row by row.
+    Bitmap split(n, rows);
+    for (std::int64_t b = 0; b < rows; ++b)
+      for (std::int64_t w = 0; w < words; ++w) split.row(b)[w] = any.row(b)[w] & ~om.row(b)[w];
+    // T: the split squares dilated by (rx, ry) of the target row.
+    Bitmap near(n, rows);
+#pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * 16)) shared(split, near, rx, ry, n, rows, words)
+    {
+      Words acc(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
+#pragma omp for schedule(static)
+      for (std::int64_t b = 0; b < rows; ++b) {
+        std::fill(acc.begin(), acc.end(), 0ULL);
+        const std::int64_t r = ry[static_cast<std::size_t>(b)];
+        for (std::int64_t q = std::max<std::int64_t>(0, b - r); q <= std::min(rows - 1, b + r); ++q)
+          for (std::int64_t w = 0; w < words; ++w) acc[static_cast<std::size_t>(w)] |= split.row(q)[w];
+        bits::dilate_row(acc.data(), near.row(b), tmp.data(), n, rx[static_cast<std::size_t>(b)]);
+      }
+    }
+    // Their parents (level v-1) are split, unless the CFL bound refuses it.
+    const Bitmap parents = bits::reduce(near, true);
+    Bitmap& up = masks.omega[static_cast<std::size_t>(v) - 1];
+    const std::int64_t prow = up.ny(), pwords = up.words_per_row();
+    std::int64_t splits = 0, refused = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(prow * pwords * 16))     shared(up, parents, field, lat, v, prow, pwords) reduction(+ : splits, refused) schedule(static)
+    for (std::int64_t b = 0; b < prow; ++b) {
+      const double child_edge = child_min_edge_km(lat, v - 1, b);
+      std::uint64_t* row = up.row(b);
+      for (std::int64_t w = 0; w < pwords; ++w) {
+        std::uint64_t hit = row[w] & parents.row(b)[w];
+        std::uint64_t left = hit;
+        while (left != 0) {
+          const int t = std::countr_zero(left);
+          left &= left - 1;
+          if (!cfl_allows_split(field, v - 1, 64 * w + t, b, child_edge)) {
+            hit &= ~(1ULL << t);
+            ++refused;
+          }
+        }
+        splits += bits::popcount64(hit);
+        row[w] &= ~hit;
+      }
+    }
+    st.splits += splits;
+    st.cfl_refused += refused;
+    for (int l = v - 2; l >= 0; --l) {  // keep omega monotone
+      Bitmap& o = masks.omega[static_cast<std::size_t>(l)];
+      const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
+      for (std::size_t k = 0; k < o.words().size(); ++k) o.words()[k] &= fine.words()[k];
+    }
+  }
+  return st;
 }
 
 std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat) {

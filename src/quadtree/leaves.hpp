@@ -35,13 +35,9 @@
 //    box crosses the antimeridian). Centres are taken in the lattice (rotated) system and mapped
 //    to geographic (λ, φ) through the PoleRotation. Where several rules apply the finest level
 //    wins; level 0 asks nothing.
-//  * a depth or box rule may ask a size instead of a level (`size_km` > 0, issue 12): then every
-//    square of every level whose centre is in the rule's range and whose square_size_km exceeds
-//    √2·size_km is split, with every coarser square containing it — the open-ocean size rule
-//    (apply_size_rules) restricted to the range. So each square there takes the level whose size
-//    at its latitude is nearest the target (within √2), bounded by level L, unless the filled set,
-//    another rule or the 2:1 balance asks for a finer one; on the Mercator lattice that level
-//    grows toward the rotated poles as the squares shrink as cos φ′.
+//  * a depth or box rule may ask a size instead of a level (`size_km` > 0, issue 12): that form is
+//    a term of the target size field (size/size_field.hpp, issue 19), applied by apply_size_field
+//    with every other size; apply_refinement_rules applies the level form only.
 #pragma once
 
 #include <compare>
@@ -159,6 +155,26 @@ inline constexpr double kEarthRadiusKm = 6371.0088;
 /// finer one, or level 0 is already finer. quadtree.size_km is a constant term of the field and
 /// quadtree.coast_size_km its band term, so those keys keep their meaning. No-op for an inactive field.
 void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field);
+
+/// What grade_levels did.
+struct GradeStats {
+  std::int64_t splits = 0;             ///< squares split to keep the grading
+  std::int64_t cfl_refused = 0;        ///< splits the CFL edge bound refused (the grading yields there)
+  std::int64_t radius_at_equator = 0;  ///< run length (squares) at level L-1 mid-lattice
+};
+
+/// Quantisation that keeps the field's grading g = field.gradation() (ARCHITECTURE §4.10), after
+/// apply_size_field and before the 2:1 balance, when the field has a grid and g > 0 (a no-op
+/// otherwise, so the seed's level-only mode is untouched). A level steps only after a run of
+/// squares of one level long enough for the grading: for v = L-1 .. 1, every level-v square
+/// within r squares of a split level-v square (one holding finer leaves) is kept out of a coarser
+/// leaf (its level-(v-1) parent is split), r = ⌈a/(√2·g·d)⌉ per direction (a: the level-v
+/// square's size at its equatorward edge, d: its side along the row or column at its poleward
+/// edge; on the Mercator lattice ⌈1/(√2·g)⌉ = 4 for g = 0.2 except on coarse squares near the poles). So every run of level v between a finer and a coarser level spans at least r squares
+/// and its grading a/(√2·D) is at most g, whatever asked the finer level (the D_l rule at the
+/// coast, a level rule, the field). It implies the corner 2:1 balance. Only splits; one pass,
+/// fine to coarse. A split the field's CFL edge bound refuses is not made (CFL last).
+GradeStats grade_levels(LevelMasks& masks, const Lattice& lat, const size::SizeField& field);
 
 /// Leaves of the pyramid in the deterministic order. Parallel over level-0 squares.
 std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat);

@@ -43,6 +43,50 @@ void take_min(std::vector<double>& h, const std::vector<double>& t) {
   for (std::size_t k = 0; k < h.size(); ++k) h[k] = std::min(h[k], t[k]);
 }
 
+// Per water cell the deepest H (m, >= min_depth) of the raster at the cell's pixel corners
+// (stride max(1, s/8) pixels), NaN elsewhere; sampled in bands of cell rows.
+std::vector<double> max_corner_depth(const FieldGrid& grid, const raster::Bathymetry& bathy, const PoleRotation& rotation,
+                                     const std::vector<std::uint8_t>& water, double min_depth) {
+  const Lattice& lat = grid.lattice();
+  const std::int64_t s = grid.pixels_per_cell();
+  const std::int64_t stride = std::max<std::int64_t>(1, s / 8);
+  const std::int64_t per = s / stride;  // samples per cell side (corners: per + 1)
+  const std::int64_t cols = grid.nx() * per;  // corner columns (periodic)
+  const auto n = static_cast<std::size_t>(grid.cells());
+  std::vector<double> out(n, std::numeric_limits<double>::quiet_NaN());
+  const std::int64_t band = std::max<std::int64_t>(1, 256 / per);
+  std::vector<double> lon, la, elev;
+  for (std::int64_t j0 = 0; j0 < grid.ny(); j0 += band) {
+    const std::int64_t j1 = std::min(grid.ny(), j0 + band);
+    const std::int64_t r0 = j0 * per, r1 = j1 * per;  // corner rows r0..r1
+    const auto pts = static_cast<std::size_t>((r1 - r0 + 1) * cols);
+    lon.resize(pts);
+    la.resize(pts);
+    elev.resize(pts);
+    for (std::int64_t r = r0; r <= r1; ++r) {
+      const double plat = lat.lat_of_row(static_cast<double>(r * stride));
+      for (std::int64_t q = 0; q < cols; ++q) {
+        const auto k = static_cast<std::size_t>((r - r0) * cols + q);
+        rotation.to_geographic(lat.lon_of(q * stride), plat, lon[k], la[k]);
+      }
+    }
+    bathy.sample_points(lon.data(), la.data(), static_cast<std::int64_t>(pts), elev.data());
+    for (std::int64_t j = j0; j < j1; ++j)
+      for (std::int64_t i = 0; i < grid.nx(); ++i) {
+        const auto k = static_cast<std::size_t>(grid.index(i, j));
+        if (water[k] == 0) continue;
+        double hm = min_depth;
+        for (std::int64_t r = j * per; r <= (j + 1) * per; ++r)
+          for (std::int64_t q = i * per; q <= (i + 1) * per; ++q) {
+            const double e = elev[static_cast<std::size_t>((r - r0) * cols + wrap_index(q, cols))];
+            if (std::isfinite(e)) hm = std::max(hm, -e);
+          }
+        out[k] = hm;
+      }
+  }
+  return out;
+}
+
 }  // namespace
 
 SizeField::SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, int band_radius)
@@ -79,6 +123,41 @@ double SizeField::grid_min_over_square(int l, std::int64_t a, std::int64_t b) co
   return levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(b * nx + a)];
 }
 
+void SizeField::set_cfl_edges(std::vector<float> edge_km) {
+  cfl_levels_.clear();
+  if (edge_km.empty()) return;
+  const FieldGrid& g = *grid_;
+  if (static_cast<std::int64_t>(edge_km.size()) != g.cells())
+    throw InternalError(fmt::format("size: {} CFL values for a grid of {} cells", edge_km.size(), g.cells()));
+  cfl_levels_.resize(static_cast<std::size_t>(g.level()) + 1);
+  cfl_levels_.back() = std::move(edge_km);
+  for (int l = g.level() - 1; l >= 0; --l) {
+    const std::vector<float>& fine = cfl_levels_[static_cast<std::size_t>(l) + 1];
+    const std::int64_t fnx = g.nx() >> (g.level() - l - 1);
+    const std::int64_t nx = fnx / 2, ny = (g.ny() >> (g.level() - l - 1)) / 2;
+    std::vector<float>& out = cfl_levels_[static_cast<std::size_t>(l)];
+    out.resize(static_cast<std::size_t>(nx * ny));
+    for (std::int64_t b = 0; b < ny; ++b)
+      for (std::int64_t a = 0; a < nx; ++a) {
+        const auto f = [&](std::int64_t i, std::int64_t j) { return fine[static_cast<std::size_t>(j * fnx + i)]; };
+        out[static_cast<std::size_t>(b * nx + a)] =
+            std::max(std::max(f(2 * a, 2 * b), f(2 * a + 1, 2 * b)), std::max(f(2 * a, 2 * b + 1), f(2 * a + 1, 2 * b + 1)));
+      }
+  }
+}
+
+double SizeField::cfl_edge_over_square(int l, std::int64_t a, std::int64_t b) const {
+  if (cfl_levels_.empty()) return 0.0;
+  const int c = grid_->level();
+  if (l > c) {
+    a >>= (l - c);
+    b >>= (l - c);
+    l = c;
+  }
+  const std::int64_t nx = grid_->nx() >> (c - l);
+  return cfl_levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(b * nx + a)];
+}
+
 double SizeField::at_pixel(std::int64_t i, std::int64_t j) const {
   if (!grid_) return kInf;
   const std::int64_t s = grid_->pixels_per_cell();
@@ -87,9 +166,25 @@ double SizeField::at_pixel(std::int64_t i, std::int64_t j) const {
 
 bool needs_depth(const config::SizeOptions& s) { return s.wavelength.wl > 0.0 || s.slope.slp > 0.0 || s.cfl.dt_s > 0.0; }
 
+namespace {
+template <typename Rule>
+bool any_size_rule(const std::vector<Rule>& rules) {
+  return std::any_of(rules.begin(), rules.end(), [](const Rule& r) { return r.size_km > 0.0; });
+}
+bool in_box(const config::BoxRule& r, double lon, double lat) {
+  if (lat < r.lat_min_deg || lat > r.lat_max_deg) return false;
+  const double hi = r.lon_max_deg < r.lon_min_deg ? r.lon_max_deg + 360.0 : r.lon_max_deg;
+  return wrap_lon_deg(lon, r.lon_min_deg) <= hi;
+}
+}  // namespace
+
+bool has_size_rules(const config::QuadtreeOptions& q) {
+  return any_size_rule(q.depth_rules) || any_size_rule(q.box_rules);
+}
+
 bool needs_grid(const config::GlobalConfig& c) {
   const config::SizeOptions& s = c.size;
-  return c.quadtree.size_km > 0.0 || s.coast.h0_km > 0.0 || s.feature.r > 0.0 || needs_depth(s) ||
+  return c.quadtree.size_km > 0.0 || has_size_rules(c.quadtree) || s.coast.h0_km > 0.0 || s.feature.r > 0.0 || needs_depth(s) ||
          !s.raster.empty() || s.h_max_km > 0.0 || (s.gradation > 0.0 && c.quadtree.coast_size_km > 0.0);
 }
 
@@ -104,7 +199,19 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   if (!needs_grid(c)) return SizeField(band_km, band_radius);
   if (s.h_min_km > 0.0 && s.h_max_km > 0.0 && s.h_min_km > s.h_max_km)
     throw ConfigError(fmt::format("size.h_min_km = {} is above size.h_max_km = {}", s.h_min_km, s.h_max_km));
-  if (needs_depth(s) && bathy == nullptr) throw InternalError("size: depth terms need the bathymetry raster");
+  const bool depth_size_rules = any_size_rule(c.quadtree.depth_rules);
+  if ((needs_depth(s) || depth_size_rules) && bathy == nullptr)
+    throw InternalError("size: depth terms need the bathymetry raster");
+  for (std::size_t k = 0; k < c.quadtree.depth_rules.size(); ++k) {
+    const double v = c.quadtree.depth_rules[k].size_km;
+    if (!std::isfinite(v) || v < 0.0)
+      throw ConfigError(fmt::format("quadtree.depth_rules[{}].size_km = {}: must be a finite number > 0 (km)", k, v));
+  }
+  for (std::size_t k = 0; k < c.quadtree.box_rules.size(); ++k) {
+    const double v = c.quadtree.box_rules[k].size_km;
+    if (!std::isfinite(v) || v < 0.0)
+      throw ConfigError(fmt::format("quadtree.box_rules[{}].size_km = {}: must be a finite number > 0 (km)", k, v));
+  }
 
   StageScope stage("size", report, log);
   Timer t_total;
@@ -145,7 +252,8 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   }
   std::vector<double> depth;  // H (m, >= min_depth) on water cells, NaN elsewhere
   std::vector<double> geo_lat(n, 0.0);
-  if (needs_depth(s)) {
+  const bool box_size_rules = any_size_rule(c.quadtree.box_rules);
+  if (needs_depth(s) || depth_size_rules || box_size_rules) {
     Timer t;
     std::vector<double> lon(n), latv(n), elev(n);
     for (std::int64_t j = 0; j < grid.ny(); ++j)
@@ -154,10 +262,36 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
         rotation.to_geographic(grid.lon_deg(i), grid.lat_deg(j), lon[k], latv[k]);
         geo_lat[k] = latv[k];
       }
-    bathy->sample_points(lon.data(), latv.data(), static_cast<std::int64_t>(n), elev.data());
-    depth.assign(n, std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t k = 0; k < n; ++k)
-      if (water[k] != 0) depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
+    if (box_size_rules) {  // quadtree.box_rules with size_km: a constant term inside each box (cell centres)
+      std::vector<double> term(n, kInf);
+      for (const config::BoxRule& r : c.quadtree.box_rules) {
+        if (!(r.size_km > 0.0)) continue;
+        for (std::size_t k = 0; k < n; ++k)
+          if (in_box(r, lon[k], latv[k])) term[k] = std::min(term[k], r.size_km);
+      }
+      st.terms["box_rules"] = summary(term, water);
+      take_min(h, term);
+    }
+    if (needs_depth(s) || depth_size_rules) {
+      bathy->sample_points(lon.data(), latv.data(), static_cast<std::int64_t>(n), elev.data());
+      if (depth_size_rules) {  // quadtree.depth_rules with size_km: a constant term in each depth band
+        std::vector<double> term(n, kInf);
+        for (const config::DepthRule& r : c.quadtree.depth_rules) {
+          if (!(r.size_km > 0.0)) continue;
+          for (std::size_t k = 0; k < n; ++k) {
+            const double d = -elev[k];  // NaN: in no band
+            if (d >= r.min_depth_m && d < r.max_depth_m) term[k] = std::min(term[k], r.size_km);
+          }
+        }
+        st.terms["depth_rules"] = summary(term, water);
+        take_min(h, term);
+      }
+      if (needs_depth(s)) {
+        depth.assign(n, std::numeric_limits<double>::quiet_NaN());
+        for (std::size_t k = 0; k < n; ++k)
+          if (water[k] != 0) depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
+      }
+    }
     timings["depth"] = round3(t.wall_s());
   }
   if (s.wavelength.wl > 0.0) {
@@ -223,12 +357,40 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
     timings["gradient_limit"] = round3(t.wall_s());
   }
   Json limited = summary(h, water);
+  std::vector<float> cfl_edges;
   if (s.cfl.dt_s > 0.0) {
-    const std::vector<double> bound = cfl_bound(depth, s.cfl.dt_s, s.cfl.courant_max, s.cfl.velocity_ms);
+    Timer t;
+    // The bound E is on the edges the mesh will have, whose nodes sit at pixel corners and whose
+    // Courant number takes the deepest node: so H is the deepest raster value at the cell's
+    // pixel corners (all of them up to 8 pixels a cell side, every (s/8)-th beyond), not the
+    // centre's. A bound must also hold next to where it is large, because the 2:1 balance and
+    // the grading only let sizes fall at the field's rate: E is spread as
+    // E′(x) = max over cells s of E(s) − g/(2√2)·dist(s, x), so that the floor 2√2·E′ (the size
+    // of a square whose transition triangles, legs a/4 of its parent, still meet E′ when the
+    // parent is split at √2·h) keeps |∇h| <= g. The quadtree refuses any split whose children
+    // could hold an edge below E′ (quadtree/leaves.hpp).
+    const std::vector<double> hmax = max_corner_depth(grid, *bathy, rotation, water, s.min_depth_m);
+    const std::vector<double> bound = cfl_bound(hmax, s.cfl.dt_s, s.cfl.courant_max, s.cfl.velocity_ms);
     st.terms["cfl_bound"] = summary(bound, water);
-    // The bound is on edges; h is a square's size, whose triangles have legs down to a/√2 with
-    // a > h/√2 where the field decides: twice the edge bound keeps those legs above it.
-    for (std::size_t k = 0; k < n; ++k) h[k] = std::max(h[k], 2.0 * bound[k]);
+    double top = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (water[k] != 0 && std::isfinite(bound[k])) top = std::max(top, bound[k]);
+    std::vector<double> spread(n, kInf);  // top − E, gradient-limited: top − E′
+    for (std::size_t k = 0; k < n; ++k)
+      if (water[k] != 0 && std::isfinite(bound[k])) spread[k] = top - bound[k];
+    if (s.gradation > 0.0) limit_gradient(grid, spread, s.gradation / (2.0 * std::sqrt(2.0)));
+    cfl_edges.assign(n, 0.0F);
+    std::vector<double> graded(n, kInf);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!std::isfinite(spread[k])) continue;
+      const double e = std::max(0.0, top - spread[k]);
+      graded[k] = e;
+      h[k] = std::max(h[k], 2.0 * std::sqrt(2.0) * e);
+      // float rounding up, so that the float bound is never below the double one
+      cfl_edges[k] = std::nextafter(static_cast<float>(e), std::numeric_limits<float>::infinity());
+    }
+    st.terms["cfl_bound_spread"] = summary(graded, water);
+    timings["cfl"] = round3(t.wall_s());
   }
   Json final_summary = summary(h, water, &st.min_km, &st.median_km, &st.max_km);
   std::vector<float> hf(n);
@@ -259,7 +421,10 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
                          st.nx, st.ny, st.grid_level, st.cell_km_equator, names.empty() ? "none" : names, s.gradation,
                          st.sweeps > 0 ? fmt::format(" ({} sweeps)", st.sweeps) : std::string(), st.min_km, st.median_km,
                          st.max_km));
-  return SizeField(grid, std::move(hf), band_km, band_radius);
+  SizeField field(grid, std::move(hf), band_km, band_radius);
+  field.set_gradation(s.gradation);
+  field.set_cfl_edges(std::move(cfl_edges));
+  return field;
 }
 
 }  // namespace aq::size

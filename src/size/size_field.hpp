@@ -1,5 +1,6 @@
 // The target size field h(x) in km (ARCHITECTURE §4.10): the terms of a [size] section
-// (size/terms.hpp), quadtree.size_km and a user raster of sizes combined by minimum on the
+// (size/terms.hpp), quadtree.size_km, the size form of quadtree.depth_rules / box_rules
+// (a constant size on the cells whose centre is in the band or box) and a user raster of sizes combined by minimum on the
 // field grid (size/field_grid.hpp), clamped to [h_min, h_max], gradient-limited (|∇h| <= g on
 // the sphere, size/limit_gradient.hpp), and CFL-bounded last — OceanMesh2D's order. The coastal
 // band's size (quadtree.coast_size_km) is a term at the pixel scale: a square holding a band pixel
@@ -52,11 +53,26 @@ class SizeField {
   /// The grid value (km) at the lattice pixel (i, j) (+inf without a grid).
   [[nodiscard]] double at_pixel(std::int64_t i, std::int64_t j) const;
 
+  /// The gradient limit g of the field (0: none); the quadtree keeps it in its levels
+  /// (quadtree/leaves.hpp grade_levels).
+  [[nodiscard]] double gradation() const { return gradation_; }
+  void set_gradation(double g) { gradation_ = g; }
+  /// The CFL edge bound: per grid cell the shortest edge (km) a triangle there may have at
+  /// size.cfl.dt_s, (√(g·H) + u)·Δt/Cr_max with H the deepest value of the raster at the cell's
+  /// pixel corners (where mesh nodes sit); 0 where there is no water. Empty: no CFL bound.
+  void set_cfl_edges(std::vector<float> edge_km);
+  [[nodiscard]] bool has_cfl() const { return !cfl_levels_.empty(); }
+  /// The largest CFL edge bound (km) over the level-l square (a, b) (0 without a bound): the max
+  /// over its cells for l <= c, the value of the cell holding it for l > c.
+  [[nodiscard]] double cfl_edge_over_square(int l, std::int64_t a, std::int64_t b) const;
+
  private:
   std::optional<FieldGrid> grid_;
   std::vector<std::vector<float>> levels_;  ///< min pyramid: levels_[l] for l = 0..c
   double band_km_ = 0.0;
   int band_radius_ = 0;
+  double gradation_ = 0.0;
+  std::vector<std::vector<float>> cfl_levels_;  ///< max pyramid of the CFL edge bound, like levels_
 };
 
 /// Facts of the built field for the report and the log.
@@ -79,6 +95,8 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report);
 
+/// Whether `q` has depth or box rules in the size form (size_km > 0): terms of the field.
+[[nodiscard]] bool has_size_rules(const config::QuadtreeOptions& q);
 /// Whether `c` asks for a field grid (any [size] term or quadtree.size_km); the band term alone needs none.
 [[nodiscard]] bool needs_grid(const config::GlobalConfig& c);
 /// Whether `c` needs depths on the field grid (wavelength, slope, CFL).

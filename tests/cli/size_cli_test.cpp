@@ -81,8 +81,33 @@ TEST(SizeCli, TimeStepOfTheReportIsTheBruteForceMinimumOverTheUgridFile) {
   EXPECT_NEAR(c["max"].get<double>(), 120.0 / best, 1e-5 * 120.0 / best);
   const auto above = std::count_if(dts.begin(), dts.end(), [](double dt) { return 120.0 / dt > 0.5; });
   EXPECT_EQ(c["above_courant_max"].get<std::int64_t>(), above);
+  std::int64_t by_level = 0;
+  for (const auto& n : c["above_by_level"]) by_level += n.get<std::int64_t>();
+  EXPECT_EQ(by_level, above);
+  EXPECT_LE(c["above_touching_coast"].get<std::int64_t>(), above);
+  // The step the report recommends keeps every triangle of the file at Courant <= 0.5.
+  const double rec = report["time_step"]["dt_at_courant_max_s"].get<double>();
+  EXPECT_NEAR(rec, 0.5 * best, 1e-5 * best);
+  EXPECT_EQ(std::count_if(dts.begin(), dts.end(), [&](double dt) { return rec / dt > 0.5 + 1e-9; }), 0);
   EXPECT_TRUE(report.contains("size"));
   EXPECT_TRUE(report["quadtree"].contains("grading"));
+  // The levels keep the field's grading (g = 0.2) wherever the CFL bound lets them.
+  if (report["quadtree"]["grading"]["cfl_refused_splits"].get<std::int64_t>() == 0) {
+    EXPECT_LE(report["quadtree"]["grading"]["max"].get<double>(), 0.2 + 1e-3);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(SizeCli, LevelsKeepTheGradationOnEtopo5) {
+  const fs::path dir = aq::test::fresh_dir("size", "grading");
+  const auto r = run(dir, "");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto g = aq::test::read_report(dir, "global_tides")["quadtree"]["grading"];
+  EXPECT_EQ(g["gradation"].get<double>(), 0.2);
+  EXPECT_GT(g["runs"].get<std::int64_t>(), 1000);
+  EXPECT_GT(g["grading_splits"].get<std::int64_t>(), 0);
+  EXPECT_LE(g["max"].get<double>(), 0.2 + 1e-3);
+  EXPECT_LE(g["p90"].get<double>(), 0.2 + 1e-3);
   fs::remove_all(dir);
 }
 

@@ -1,5 +1,6 @@
-// Depth and box rules in kilometres (issue 12): a rule with size_km instead of a level splits
-// every square whose centre is in its range and whose size on the sphere exceeds √2·size_km.
+// Depth and box rules in kilometres (issue 12, issue 19): a rule with size_km instead of a level is
+// a term of the size field — the target on the field cells whose centre is in its range — and a
+// square is split while its size on the sphere exceeds √2 × the field's minimum over it.
 // The expected leaves are computed here per pixel from the lattice's definition written out in
 // the test (Mercator φ = atan(sinh y), sizes Δ_l·cos φ on the Mercator lattice and Δ_l·√cos φ on
 // the lon-lat one), on both lattices, with and without the rotated pole.
@@ -18,6 +19,8 @@
 #include "quadtree/bits.hpp"
 #include "quadtree/leaves.hpp"
 #include "raster/bathymetry.hpp"
+#include "size/size_field.hpp"
+#include "core/log.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
 namespace aq::quadtree {
@@ -59,18 +62,27 @@ struct KmRule {
   double target_km;
 };
 
-// Whether square (l, a, b) or a square inside it is split by one of `rules` (naive recursion).
+// Whether square (l, a, b) is split: the rules are terms of the size field (size/size_field.hpp),
+// a constant target on the field grid's cells (level c) whose centre is in the range, and a
+// square is split while its size exceeds √2 × the field's minimum over it (over the cells inside
+// it, or the cell holding it when l > c).
 bool naive_split(const Lattice& lat, const PoleRotation& rot, const std::vector<KmRule>& rules, int l, std::int64_t a,
                  std::int64_t b) {
   if (l >= lat.levels) return false;
+  const int c = size::choose_grid_level(lat, -1);
   const double row = (static_cast<double>(b) + 0.5) * static_cast<double>(1 << (lat.levels - l));
-  const double rlon = lat.lon0_deg + (static_cast<double>(a) + 0.5) * lat.step0_deg / static_cast<double>(1 << l);
-  double lon = 0.0, la = 0.0;
-  rot.to_geographic(rlon, row_lat(lat, row), lon, la);
-  for (const KmRule& r : rules)
-    if (r.in_range(lon, la) && size_km_at(lat, l, row) > std::sqrt(2.0) * r.target_km) return true;
-  for (int c = 0; c < 4; ++c)
-    if (naive_split(lat, rot, rules, l + 1, 2 * a + (c & 1), 2 * b + (c >> 1))) return true;
+  const double size = size_km_at(lat, l, row);
+  const std::int64_t a0 = l <= c ? a << (c - l) : a >> (l - c), b0 = l <= c ? b << (c - l) : b >> (l - c);
+  const std::int64_t n = l <= c ? std::int64_t{1} << (c - l) : 1;
+  for (std::int64_t cb = b0; cb < b0 + n; ++cb)
+    for (std::int64_t ca = a0; ca < a0 + n; ++ca) {
+      const double crow = (static_cast<double>(cb) + 0.5) * static_cast<double>(1 << (lat.levels - c));
+      const double clon = lat.lon0_deg + (static_cast<double>(ca) + 0.5) * lat.step0_deg / static_cast<double>(1 << c);
+      double lon = 0.0, la = 0.0;
+      rot.to_geographic(clon, row_lat(lat, crow), lon, la);
+      for (const KmRule& r : rules)
+        if (r.in_range(lon, la) && size > std::sqrt(2.0) * r.target_km) return true;
+    }
   return false;
 }
 
@@ -97,6 +109,9 @@ std::vector<Leaf> leaves_with(const Lattice& lat, const config::QuadtreeOptions&
                               const raster::Bathymetry* bathy = nullptr) {
   LevelMasks m = make_level_masks(all_filled(lat), lat, 0);
   apply_refinement_rules(m, lat, o, rot, bathy);
+  config::GlobalConfig c;
+  c.quadtree = o;
+  apply_size_field(m, lat, size::build_size_field(m.filled(), lat, c, rot, bathy, Logger::null(), nullptr));
   return extract_leaves(m, lat);
 }
 
@@ -163,10 +178,11 @@ INSTANTIATE_TEST_SUITE_P(Lattices, KmBoxRule,
                                            Case{"LonLat", false, false}, Case{"LonLatRotated", false, true}),
                          [](const ::testing::TestParamInfo<Case>& i) { return std::string(i.param.name); });
 
-TEST(KmRules, EveryLevelIsSampledSoABoxSmallerThanTheSquaresStillSplitsTheOneAtItsCentre) {
-  // A 1° box around the centre of a level-0 square (15°, 1668 km · cos φ′): the square is split;
-  // the centres of its children lie 3.75° away, outside, so they stay (a level rule samples only
-  // the grid below its level and would leave the square whole).
+TEST(KmRules, ABoxSmallerThanTheSquaresStillRefinesTheSquaresOverIt) {
+  // A 1° box around the centre of a level-0 square (15°, 1668 km · cos φ′): the size form is a
+  // term of the size field, so every square holding a field cell whose centre is in the box is
+  // split while larger than √2 × 150 km (a level rule samples only the grid below its level and
+  // would leave the square whole).
   const Lattice lat = Lattice::make_mercator(15.0, 5, -180.0, 80.0);
   const std::int64_t b0 = (lat.ny >> lat.levels) / 2;
   const double c_lat = row_lat(lat, (static_cast<double>(b0) + 0.5) * 32.0);
@@ -174,10 +190,10 @@ TEST(KmRules, EveryLevelIsSampledSoABoxSmallerThanTheSquaresStillSplitsTheOneAtI
   o.box_rules.push_back(km_box(-173.0, -172.0, c_lat - 0.5, c_lat + 0.5, 150.0));
   const std::vector<Leaf> leaves = leaves_with(lat, o, PoleRotation());
   EXPECT_EQ(testing::level_map(leaves, lat), naive_levels(lat, PoleRotation(), {{box_range(o.box_rules[0]), 150.0}}));
-  ASSERT_EQ(leaves.size(), static_cast<std::size_t>((lat.nx >> lat.levels) * (lat.ny >> lat.levels)) + 3);
-  for (int c = 0; c < 4; ++c) {
-    const Leaf child{1, c & 1, 2 * b0 + (c >> 1)};
-    EXPECT_NE(std::find(leaves.begin(), leaves.end(), child), leaves.end()) << c;
+  ASSERT_GT(leaves.size(), static_cast<std::size_t>((lat.nx >> lat.levels) * (lat.ny >> lat.levels)) + 3);
+  for (int c = 0; c < 4; ++c) {  // the level-0 square is split
+    const Leaf whole{0, 0, b0};
+    EXPECT_EQ(std::find(leaves.begin(), leaves.end(), whole), leaves.end()) << c;
   }
 }
 
