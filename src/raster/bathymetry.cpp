@@ -1017,7 +1017,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   RasterInfo& info = im->info;
   const std::int64_t h = info.height;
   if (info.streamed) {
-    if (!info.global_lon) {
+    if (!info.global_lon && o.warn_partial_coverage) {
       log.warn("{}: the raster covers longitudes {:.4f}..{:.4f} only; the rest of the lattice is dry", o.path,
                info.lon_first, info.lon_first + static_cast<double>(info.ncols - 1) * info.dlon);
     }
@@ -1084,7 +1084,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     im->build_spline();
     im->compute_stats();
   }
-  if (!info.global_lon) {
+  if (!info.global_lon && o.warn_partial_coverage) {
     log.warn("{}: the raster covers longitudes {:.4f}..{:.4f} only; the rest of the lattice is dry", o.path,
              info.lon_first, info.lon_first + static_cast<double>(info.ncols - 1) * info.dlon);
   }

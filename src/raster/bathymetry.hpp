@@ -46,6 +46,9 @@ struct OpenOptions {
   /// above the memory limit; kAlways/kNever force a path (kAlways still needs allow_streaming).
   Streaming streaming = Streaming::kAuto;
   std::int64_t band_rows = 0;  ///< stored rows per band read; 0 = whole blocks, about 64 MB
+  /// Warn that a raster not covering 360° leaves the rest of the lattice dry (off for a source
+  /// above another one, whose uncovered part the sources below fill).
+  bool warn_partial_coverage = true;
 };
 
 /// A raster larger than this (as float32) is streamed when the caller allows it (1 GiB: ETOPO5

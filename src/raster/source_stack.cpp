@@ -307,7 +307,9 @@ Bathymetry Bathymetry::open_sources(const std::vector<OpenOptions>& sources, dou
   if (sources.size() == 1) return open(sources.front(), log);
   std::vector<Bathymetry> open_ones;
   for (std::size_t k = 0; k < sources.size(); ++k) {
-    open_ones.push_back(open(sources[k], log));
+    OpenOptions o = sources[k];
+    o.warn_partial_coverage = o.warn_partial_coverage && k + 1 == sources.size();
+    open_ones.push_back(open(o, log));
     if (blend_km > 0.0 && k + 1 < sources.size() && open_ones.back().info().streamed)
       throw InputError(fmt::format(
           "{}: input.blend_km = {} needs the distance to this raster's data edge, held whole beside it, but the "
