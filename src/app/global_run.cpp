@@ -393,7 +393,7 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
     if (ns > 1)
       log.info("sources: {} supplied {} of {} mesh nodes ({:.3g} %){}", si.path, run.source_nodes[k], n,
                n > 0 ? 100.0 * static_cast<double>(run.source_nodes[k]) / static_cast<double>(n) : 0.0,
-               c.input.blend_km > 0.0 ? fmt::format(", and {} blended with the sources below", run.source_blended_nodes[k])
+               c.input.blend_km > 0.0 && k + 1 < ns ? fmt::format(", and {} blended with the sources below", run.source_blended_nodes[k])
                                       : std::string());
     if (finer[k] > 0) {
       const double cell = std::min(si.dlon, si.dlat);
