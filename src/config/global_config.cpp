@@ -211,7 +211,7 @@ const S& schema() {
           }
           if (good) c.input.paths = std::move(paths);
         },
-        [](const GlobalConfig& c) { return Json(c.input.paths); }, "bathymetry rasters, highest priority first");
+        [](const GlobalConfig& c) { return Json(c.input.sources()); }, "bathymetry rasters, highest priority first");
     t.add<double>(
         "input", "blend_km", [](GlobalConfig& c) -> double& { return c.input.blend_km; },
         [](const double& v) { return in_range(v, 0.0, 1000.0); }, "blend width at source edges (km)");
@@ -475,7 +475,9 @@ void check_rule_levels(const std::vector<R>& rules, const char* key, int levels,
 
 // Checks that involve several keys.
 void cross_check(const GlobalConfig& c, Problems& p) {
-  if (!c.input.paths.empty() && c.input.path_given)
+  // input.paths = [input.path] is one raster said twice (configs/example.toml does so); anything
+  // else with both keys is ambiguous.
+  if (!c.input.paths.empty() && c.input.path_given && c.input.paths != std::vector<std::string>{c.input.path})
     p.add_plain(999999, fmt::format("input.path = \"{}\" and input.paths = [{} raster(s)] are both set: give input.path "
                                     "for one raster or input.paths for several (highest priority first)",
                                     c.input.path, c.input.paths.size()));
