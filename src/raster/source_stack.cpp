@@ -236,15 +236,18 @@ void Bathymetry::Stack::row_from(std::size_t k, const Columns& cols, double lat_
 
 void Bathymetry::Stack::sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
                                     const ProgressFn& progress) const {
-  // In chunks of rows (16 MB of float per source), each source sampled only on the rows that the
-  // sources above leave (partly) open.
+  // In chunks of rows (16 MB of float), each source sampled only on the rows that the sources
+  // above leave (partly) open, straight into the chunk where a source above has nothing in a row.
   const auto nc = static_cast<std::int64_t>(cols.lon.size());
   const std::int64_t chunk = std::max<std::int64_t>(1, (std::int64_t{1} << 22) / std::max<std::int64_t>(1, nc));
   std::vector<float> buf;
+  std::vector<float*> rows;
   for (std::int64_t k0 = 0; k0 < n; k0 += chunk) {
     const std::int64_t m = std::min(chunk, n - k0);
     buf.resize(static_cast<std::size_t>(m * nc));
-    block_from(0, cols, lats + k0, m, buf.data());
+    rows.resize(static_cast<std::size_t>(m));
+    for (std::int64_t q = 0; q < m; ++q) rows[static_cast<std::size_t>(q)] = buf.data() + q * nc;
+    block_from(0, cols, lats + k0, m, rows.data());
     const float* b = buf.data();
 #pragma omp parallel for schedule(static) default(none) shared(sink, b, k0, m, nc) if (m * nc >= (std::int64_t{1} << 16))
     for (std::int64_t q = 0; q < m; ++q) sink(k0 + q, b + q * nc);
@@ -255,45 +258,68 @@ void Bathymetry::Stack::sample_rows(const Columns& cols, const double* lats, std
 }
 
 void Bathymetry::Stack::block_from(std::size_t k, const Columns& cols, const double* lats, std::int64_t n,
-                                   float* out) const {
+                                   float* const* out) const {
   const auto nc = static_cast<std::int64_t>(cols.lon.size());
   sources[k].sample_rows(cols.sources[k], lats, n, [out, nc](std::int64_t q, const float* v) {
-    std::copy(v, v + nc, out + q * nc);
+    std::copy(v, v + nc, out[q]);
   });
   if (k + 1 == sources.size()) return;
+  // Rows where this source has nothing go to the sources below as they are (written in place);
+  // rows where it has something need them where it is NaN or within the blend.
+  std::vector<std::int64_t> empty, partial;
+  for (std::int64_t q = 0; q < n; ++q) {
+    const float* o = out[q];
+    (std::all_of(o, o + nc, [](float x) { return std::isnan(x); }) ? empty : partial).push_back(q);
+  }
+  const auto np = static_cast<std::int64_t>(partial.size());
+  std::vector<double> sub;
+  for (const std::int64_t q : partial) sub.push_back(lats[q]);
   std::vector<float> d;
-  if (blend_km > 0.0) {
-    d.resize(static_cast<std::size_t>(n * nc));
+  if (blend_km > 0.0 && np > 0) {
+    d.resize(static_cast<std::size_t>(np * nc));
     float* dd = d.data();
-    distances[k].sample_rows(cols.distances[k], lats, n, [dd, nc](std::int64_t q, const float* v) {
+    distances[k].sample_rows(cols.distances[k], sub.data(), np, [dd, nc](std::int64_t q, const float* v) {
       std::copy(v, v + nc, dd + q * nc);
     });
   }
   const double cap = blend_km;
-  const auto open = [&](std::int64_t q) {
-    for (std::int64_t i = q * nc; i < (q + 1) * nc; ++i)
-      if (std::isnan(out[i]) || (!d.empty() && blend_weight(d[static_cast<std::size_t>(i)], cap) < 1.0)) return true;
-    return false;
-  };
-  std::vector<std::int64_t> rows;
-  std::vector<double> sub;
-  for (std::int64_t q = 0; q < n; ++q)
-    if (open(q)) {
-      rows.push_back(q);
-      sub.push_back(lats[q]);
-    }
-  if (rows.empty()) return;
-  const auto m = static_cast<std::int64_t>(rows.size());
-  std::vector<float> r(static_cast<std::size_t>(m * nc));
-  block_from(k + 1, cols, sub.data(), m, r.data());
+  std::vector<std::int64_t> open;  // indices into partial
+  for (std::int64_t j = 0; j < np; ++j) {
+    const float* o = out[partial[static_cast<std::size_t>(j)]];
+    bool need = false;
+    for (std::int64_t i = 0; i < nc && !need; ++i)
+      need = std::isnan(o[i]) || (!d.empty() && blend_weight(d[static_cast<std::size_t>(j * nc + i)], cap) < 1.0);
+    if (need) open.push_back(j);
+  }
+  if (empty.empty() && open.empty()) return;
+  const auto no = static_cast<std::int64_t>(open.size());
+  std::vector<float> r(static_cast<std::size_t>(no * nc));
+  std::vector<double> below_lats;
+  std::vector<float*> below_rows;
+  for (const std::int64_t q : empty) {
+    below_lats.push_back(lats[q]);
+    below_rows.push_back(out[q]);
+  }
+  for (std::int64_t j = 0; j < no; ++j) {
+    below_lats.push_back(sub[static_cast<std::size_t>(open[static_cast<std::size_t>(j)])]);
+    below_rows.push_back(r.data() + j * nc);
+  }
+  block_from(k + 1, cols, below_lats.data(), static_cast<std::int64_t>(below_lats.size()), below_rows.data());
   const float* rr = r.data();
   const float* dd = d.empty() ? nullptr : d.data();
-#pragma omp parallel for schedule(static) default(none) shared(rows, rr, dd, out, m, nc, cap) if (m * nc >= (std::int64_t{1} << 16))
-  for (std::int64_t j = 0; j < m; ++j) {
-    const std::int64_t q = rows[static_cast<std::size_t>(j)];
+#pragma omp parallel for schedule(static) default(none) shared(open, partial, rr, dd, out, no, nc, cap) \
+    if (no * nc >= (std::int64_t{1} << 16))
+  for (std::int64_t jj = 0; jj < no; ++jj) {
+    const std::int64_t j = open[static_cast<std::size_t>(jj)];
+    float* o = out[partial[static_cast<std::size_t>(j)]];
+    const float* lower = rr + jj * nc;
     for (std::int64_t i = 0; i < nc; ++i) {
-      const double w = dd == nullptr ? 1.0 : blend_weight(dd[q * nc + i], cap);
-      out[q * nc + i] = static_cast<float>(combine(out[q * nc + i], w, rr[j * nc + i]));
+      if (std::isnan(o[i])) {
+        o[i] = lower[i];
+        continue;
+      }
+      const double w = dd == nullptr ? 1.0 : blend_weight(dd[j * nc + i], cap);
+      o[i] = static_cast<float>(combine(o[i], w, lower[i]));
     }
   }
 }

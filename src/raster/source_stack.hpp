@@ -41,7 +41,7 @@ struct Bathymetry::Stack {
   void points_from(std::size_t k, const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
                    int* code) const;
   void row_from(std::size_t k, const Columns& cols, double lat_deg, float* out) const;
-  void block_from(std::size_t k, const Columns& cols, const double* lats, std::int64_t n, float* out) const;
+  void block_from(std::size_t k, const Columns& cols, const double* lats, std::int64_t n, float* const* out) const;
 };
 
 /// d (km) to the edge of `source`'s data at every one of its grid points, capped at `cap_km`, as
