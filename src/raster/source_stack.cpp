@@ -195,7 +195,8 @@ void Bathymetry::Stack::points_from(std::size_t k, const double* lon_deg, const 
   for (std::size_t j = 0; j < below.size(); ++j) {
     const std::int64_t i = below[j];
     const bool has = !std::isnan(out[i]);
-    if (code != nullptr) code[i] = !has ? rc[j] : std::isnan(r[j]) ? static_cast<int>(k) : kBlended + static_cast<int>(k);
+    if (code != nullptr)
+      code[i] = !has ? rc[j] : std::isnan(r[j]) ? static_cast<int>(k) : kBlended + static_cast<int>(k);
     out[i] = combine(out[i], weight(i), r[j]);
   }
 }
@@ -249,7 +250,8 @@ void Bathymetry::Stack::sample_rows(const Columns& cols, const double* lats, std
     for (std::int64_t q = 0; q < m; ++q) rows[static_cast<std::size_t>(q)] = buf.data() + q * nc;
     block_from(0, cols, lats + k0, m, rows.data());
     const float* b = buf.data();
-#pragma omp parallel for schedule(static) default(none) shared(sink, b, k0, m, nc) if (m * nc >= (std::int64_t{1} << 16))
+#pragma omp parallel for schedule(static) default(none) \
+    shared(sink, b, k0, m, nc) if (m * nc >= (std::int64_t{1} << 16))
     for (std::int64_t q = 0; q < m; ++q) sink(k0 + q, b + q * nc);
     if (progress) progress(static_cast<double>(k0 + m) / static_cast<double>(n), "rows");
   }
@@ -260,9 +262,8 @@ void Bathymetry::Stack::sample_rows(const Columns& cols, const double* lats, std
 void Bathymetry::Stack::block_from(std::size_t k, const Columns& cols, const double* lats, std::int64_t n,
                                    float* const* out) const {
   const auto nc = static_cast<std::int64_t>(cols.lon.size());
-  sources[k].sample_rows(cols.sources[k], lats, n, [out, nc](std::int64_t q, const float* v) {
-    std::copy(v, v + nc, out[q]);
-  });
+  sources[k].sample_rows(cols.sources[k], lats, n,
+                         [out, nc](std::int64_t q, const float* v) { std::copy(v, v + nc, out[q]); });
   if (k + 1 == sources.size()) return;
   // Rows where this source has nothing go to the sources below as they are (written in place);
   // rows where it has something need them where it is NaN or within the blend.
@@ -278,9 +279,8 @@ void Bathymetry::Stack::block_from(std::size_t k, const Columns& cols, const dou
   if (blend_km > 0.0 && np > 0) {
     d.resize(static_cast<std::size_t>(np * nc));
     float* dd = d.data();
-    distances[k].sample_rows(cols.distances[k], sub.data(), np, [dd, nc](std::int64_t q, const float* v) {
-      std::copy(v, v + nc, dd + q * nc);
-    });
+    distances[k].sample_rows(cols.distances[k], sub.data(), np,
+                             [dd, nc](std::int64_t q, const float* v) { std::copy(v, v + nc, dd + q * nc); });
   }
   const double cap = blend_km;
   std::vector<std::int64_t> open;  // indices into partial
@@ -307,8 +307,8 @@ void Bathymetry::Stack::block_from(std::size_t k, const Columns& cols, const dou
   block_from(k + 1, cols, below_lats.data(), static_cast<std::int64_t>(below_lats.size()), below_rows.data());
   const float* rr = r.data();
   const float* dd = d.empty() ? nullptr : d.data();
-#pragma omp parallel for schedule(static) default(none) shared(open, partial, rr, dd, out, no, nc, cap) \
-    if (no * nc >= (std::int64_t{1} << 16))
+#pragma omp parallel for schedule(static) default(none) \
+    shared(open, partial, rr, dd, out, no, nc, cap) if (no * nc >= (std::int64_t{1} << 16))
   for (std::int64_t jj = 0; jj < no; ++jj) {
     const std::int64_t j = open[static_cast<std::size_t>(jj)];
     float* o = out[partial[static_cast<std::size_t>(j)]];

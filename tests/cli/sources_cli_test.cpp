@@ -44,8 +44,8 @@ fs::path write_grid(const fs::path& p, double lon0, double lat0, double step, in
   GDALRasterBand* b = mem->GetRasterBand(1);
   b->SetNoDataValue(-99999.0);
   EXPECT_EQ(b->RasterIO(GF_Write, 0, 0, nc, nr, buf.data(), nc, nr, GDT_Float32, 0, 0, nullptr), CE_None);
-  GDALDataset* out = GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, nullptr,
-                                                                                   nullptr, nullptr);
+  GDALDataset* out =
+      GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, nullptr, nullptr, nullptr);
   GDALClose(out);
   GDALClose(mem);
   return p;
@@ -118,8 +118,8 @@ TEST(SourcesCli, BlendZeroEqualsOnePreMergedRaster) {
 TEST(SourcesCli, ReportCountsNodesPerSourceAndOrderMatters) {
   const Rasters& r = rasters();
   const fs::path dir = fresh_dir("sources", "counts"), swapped = fresh_dir("sources", "swapped");
-  auto a = run_aquatoria("mesh -o " + dir.string() + " " + paths(r.patch, r.coarse) + kFormats +
-                         " --set input.blend_km=60");
+  auto a =
+      run_aquatoria("mesh -o " + dir.string() + " " + paths(r.patch, r.coarse) + kFormats + " --set input.blend_km=60");
   ASSERT_EQ(a.exit_code, 0) << a.err;
   EXPECT_THAT(a.err, HasSubstr("read: source 1 (highest priority) " + r.patch.string()));
   EXPECT_THAT(a.err, HasSubstr("sources: " + r.patch.string() + " supplied "));
@@ -127,7 +127,8 @@ TEST(SourcesCli, ReportCountsNodesPerSourceAndOrderMatters) {
   const auto& in = rep.at("input");
   ASSERT_EQ(in.at("sources").size(), 2u);
   std::int64_t sum = in.at("no_data_nodes").get<std::int64_t>();
-  for (const auto& s : in.at("sources")) sum += s.at("nodes").get<std::int64_t>() + s.at("blended_nodes").get<std::int64_t>();
+  for (const auto& s : in.at("sources"))
+    sum += s.at("nodes").get<std::int64_t>() + s.at("blended_nodes").get<std::int64_t>();
   EXPECT_EQ(sum, rep.at("mesh_counts").at("nodes").get<std::int64_t>());
   EXPECT_GT(in.at("sources")[0].at("nodes").get<std::int64_t>(), 50);
   EXPECT_GT(in.at("sources")[0].at("blended_nodes").get<std::int64_t>(), 10);
@@ -146,9 +147,11 @@ TEST(SourcesCli, OneAndTwoThreadsGiveTheSameFiles) {
   const Rasters& r = rasters();
   const fs::path t1 = fresh_dir("sources", "t1"), t2 = fresh_dir("sources", "t2");
   const std::string args = paths(r.patch, r.coarse) + kFormats + " --set input.blend_km=80";
-  auto a = aq::test::run_command("OMP_NUM_THREADS=1 " + std::string(AQ_BINARY) + " mesh -q -o " + t1.string() + " " + args);
+  auto a =
+      aq::test::run_command("OMP_NUM_THREADS=1 " + std::string(AQ_BINARY) + " mesh -q -o " + t1.string() + " " + args);
   ASSERT_EQ(a.exit_code, 0) << a.err;
-  auto b = aq::test::run_command("OMP_NUM_THREADS=2 " + std::string(AQ_BINARY) + " mesh -q -o " + t2.string() + " " + args);
+  auto b =
+      aq::test::run_command("OMP_NUM_THREADS=2 " + std::string(AQ_BINARY) + " mesh -q -o " + t2.string() + " " + args);
   ASSERT_EQ(b.exit_code, 0) << b.err;
   expect_same_files(t1, t2);
 }

@@ -25,7 +25,8 @@ Bathymetry coarse() {
   const std::int64_t nc = 360, nr = 181;
   std::vector<float> v(static_cast<std::size_t>(nc * nr));
   for (std::int64_t r = 0; r < nr; ++r)
-    for (std::int64_t c = 0; c < nc; ++c) v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(-1000.0 - 180.0 + static_cast<double>(c));
+    for (std::int64_t c = 0; c < nc; ++c)
+      v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(-1000.0 - 180.0 + static_cast<double>(c));
   return Bathymetry::from_grid(std::move(v), nc, nr, -180.0, -90.0, 1.0, 1.0);
 }
 
@@ -131,14 +132,14 @@ TEST(SourceStack, AllSamplingPathsAgreeAndThreadsDoNotMatter) {
   const Bathymetry s = Bathymetry::stack(two(fine(true), coarse()), 40.0);
   const std::int64_t nx = 300, ny = 120;
   std::vector<double> lons(static_cast<std::size_t>(nx)), lats(static_cast<std::size_t>(ny));
-  for (std::int64_t i = 0; i < nx; ++i) lons[static_cast<std::size_t>(i)] = -3.0 + 0.05 * static_cast<double>(i) + 0.013;
+  for (std::int64_t i = 0; i < nx; ++i)
+    lons[static_cast<std::size_t>(i)] = -3.0 + 0.05 * static_cast<double>(i) + 0.013;
   for (std::int64_t j = 0; j < ny; ++j) lats[static_cast<std::size_t>(j)] = -1.0 + 0.1 * static_cast<double>(j) + 0.007;
   const auto cols = s.prepare_columns(lons.data(), nx);
   std::vector<float> rows1(static_cast<std::size_t>(nx * ny)), rows2(rows1.size()), row(static_cast<std::size_t>(nx));
   const auto run = [&](std::vector<float>& out) {
-    s.sample_rows(cols, lats.data(), ny, [&out, nx](std::int64_t k, const float* v) {
-      std::copy(v, v + nx, out.begin() + k * nx);
-    });
+    s.sample_rows(cols, lats.data(), ny,
+                  [&out, nx](std::int64_t k, const float* v) { std::copy(v, v + nx, out.begin() + k * nx); });
   };
   aq::test::set_threads(1);
   run(rows1);
@@ -171,11 +172,13 @@ TEST(SourceStack, AllSamplingPathsAgreeAndThreadsDoNotMatter) {
 }
 
 TEST(SourceStack, OneSourceIsThatSource) {
-  const Bathymetry s = Bathymetry::stack([] {
-    std::vector<Bathymetry> v;
-    v.push_back(fine(false));
-    return v;
-  }(), 10.0);
+  const Bathymetry s = Bathymetry::stack(
+      [] {
+        std::vector<Bathymetry> v;
+        v.push_back(fine(false));
+        return v;
+      }(),
+      10.0);
   EXPECT_EQ(s.source_count(), 1u);
   EXPECT_TRUE(s.samples_bilinear());
   EXPECT_DOUBLE_EQ(s.sample(5.0, 5.0), -55.0);
