@@ -165,7 +165,7 @@ const S& schema() {
           std::filesystem::path path(x);
           if (path.is_relative()) path = o.base_dir / path;
           c.input.path = path.lexically_normal().string();
-          c.input.path_given = true;
+          c.input.path_layer = o.line == detail::kOverrideLine ? 2 : 1;
           if (const std::string bad = detail::input_path_problem(c.input.path); !bad.empty())
             p.add(o, "input.path", bad);
         },
@@ -210,6 +210,7 @@ const S& schema() {
             paths.push_back(x);
           }
           if (good) c.input.paths = std::move(paths);
+          c.input.paths_layer = o.line == detail::kOverrideLine ? 2 : 1;
         },
         [](const GlobalConfig& c) { return Json(c.input.sources()); }, "bathymetry rasters, highest priority first");
     t.add<double>(
@@ -477,7 +478,8 @@ void check_rule_levels(const std::vector<R>& rules, const char* key, int levels,
 void cross_check(const GlobalConfig& c, Problems& p) {
   // input.paths = [input.path] is one raster said twice (configs/example.toml does so); anything
   // else with both keys is ambiguous.
-  if (!c.input.paths.empty() && c.input.path_given && c.input.paths != std::vector<std::string>{c.input.path})
+  if (!c.input.paths.empty() && c.input.path_layer != 0 && c.input.path_layer == c.input.paths_layer &&
+      c.input.paths != std::vector<std::string>{c.input.path})
     p.add_plain(999999, fmt::format("input.path = \"{}\" and input.paths = [{} raster(s)] are both set: give input.path "
                                     "for one raster or input.paths for several (highest priority first)",
                                     c.input.path, c.input.paths.size()));
@@ -513,6 +515,9 @@ Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const s
     out.source = file.string();
   }
   for (const auto& o : overrides) schema().apply_override(out.options, o, p);
+  // --set input.path over a file's input.paths: the one raster replaces the list (the other way
+  // round, a non-empty input.paths is used anyway).
+  if (out.options.input.path_layer == 2 && out.options.input.paths_layer == 1) out.options.input.paths.clear();
   cross_check(out.options, p);
   p.throw_if_any(out.source);
   out.echo = schema().echo(out.options);

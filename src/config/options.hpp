@@ -21,7 +21,9 @@ struct InputOptions {
   /// sample the first one with data wins. Empty = `path` alone. Giving both is a config error.
   std::vector<std::string> paths;
   double blend_km = 0.0;  ///< blend width (km) inside a higher-priority source's edge; 0 = pure priority
-  bool path_given = false;  ///< input.path was set (file or --set): not a key, for the both-set check
+  /// Where input.path / input.paths were set: 0 not, 1 a config file, 2 --set (not keys). Both in
+  /// one place is an error; a --set of one replaces the other from the file.
+  int path_layer = 0, paths_layer = 0;
 
   /// The rasters of the run, highest priority first: `paths`, or `path` alone.
   [[nodiscard]] std::vector<std::string> sources() const { return paths.empty() ? std::vector<std::string>{path} : paths; }

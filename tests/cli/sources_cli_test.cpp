@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -206,4 +207,28 @@ TEST(SourcesCli, StreamedSourcesGiveTheSameFiles) {
                                  streamed.string() + "_blend " + args + " --set input.blend_km=10");
   EXPECT_EQ(c.exit_code, 1) << c.err;
   EXPECT_THAT(c.err, HasSubstr("input.blend_km = 10"));
+}
+
+TEST(SourcesCli, CommandLineReplacesTheFilesChoice) {
+  // input.path in the file, --set input.paths on the command line: the list is used (and the
+  // other way round); both in the file is an error naming both keys.
+  const Rasters& r = rasters();
+  const fs::path dir = fresh_dir("sources", "layers");
+  const fs::path one = dir.string() + "_one.toml", list = dir.string() + "_list.toml",
+                 both = dir.string() + "_both.toml";
+  std::ofstream(one) << "[input]\npath = \"" << r.coarse.string() << "\"\n";
+  std::ofstream(list) << "[input]\npaths = [\"" << r.patch.string() << "\", \"" << r.coarse.string() << "\"]\n";
+  std::ofstream(both) << "[input]\npath = \"" << r.coarse.string() << "\"\npaths = [\"" << r.patch.string() << "\", \""
+                      << r.coarse.string() << "\"]\n";
+  auto a =
+      run_aquatoria("mesh -q -c " + one.string() + " -o " + dir.string() + "/a " + paths(r.patch, r.coarse) + kFormats);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_EQ(aq::test::read_report(dir / "a", "m").at("input").at("sources").size(), 2u);
+  auto b = run_aquatoria("mesh -q -c " + list.string() + " -o " + dir.string() +
+                         "/b --set input.path=" + r.coarse.string() + kFormats);
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(aq::test::read_report(dir / "b", "m").at("input").at("sources").size(), 1u);
+  auto c = run_aquatoria("mesh -q -c " + both.string() + " -o " + dir.string() + "/c" + kFormats);
+  EXPECT_EQ(c.exit_code, 2) << c.err;
+  EXPECT_THAT(c.err, HasSubstr("input.path = \"" + r.coarse.string() + "\" and input.paths"));
 }
