@@ -16,6 +16,7 @@
 //
 // The ranked table goes to stdout; stage lines to stderr.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -152,7 +153,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   const PoleRotation& rot = setup.rotation;
   log.info(
       "aquatoria blocks: {} ({}); {} lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}); top {} blocks{}",
-      loaded.source, c.input.path, lat.kind_name(), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
+      loaded.source, fmt::join(c.input.sources(), " over "), lat.kind_name(), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
       c.blocks.top,
       c.blocks.boxes.empty() ? " of the level-0 squares" : fmt::format(" of {} user boxes", c.blocks.boxes.size()));
   const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
@@ -167,7 +168,16 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
 
   // The effective global configuration, so each block's regional run sees this very global run.
   Json echo = loaded.echo;
-  echo["input"]["path"] = fs::absolute(c.input.path).lexically_normal().string();
+  // One raster: input.path alone (input.paths echoes it); several: input.paths alone, absolute.
+  if (c.input.paths.empty()) {
+    echo["input"]["path"] = fs::absolute(c.input.path).lexically_normal().string();
+    echo["input"].erase("paths");
+  } else {
+    Json paths = Json::array();
+    for (const std::string& p : c.input.paths) paths.push_back(fs::absolute(p).lexically_normal().string());
+    echo["input"]["paths"] = paths;
+    echo["input"].erase("path");
+  }
   echo["output"]["dir"] = fs::absolute(c.output.dir).lexically_normal().string();
   echo["blocks"]["top"] = c.blocks.top;
   const std::string global_name = "global.toml";
@@ -230,7 +240,8 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     info.izogrid_file = name + ".izogrid";
     info.description = description;
     info.ny = b.suggested_ny;
-    info.input_path = fs::absolute(c.input.path).lexically_normal().string();
+    // A regional grid reads one raster: the first source (the highest priority) of several.
+    info.input_path = fs::absolute(c.input.sources().front()).lexically_normal().string();
     info.input_variable = c.input.variable;
     info.positive_down = c.input.positive_down;
     info.coast_level_m = -c.mask.min_depth_m;

@@ -72,7 +72,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
                  fmt::join(rn.changed, ", "));
       // Keys the automatic name follows (config::default_run_name); the others are not in it.
       static const char* const kNamed[] = {"quadtree.step_deg", "quadtree.levels", "mask.min_depth_m", "mask.cursor",
-                                           "rotation.enabled",  "input.path",      "quadtree.balance",
+                                           "rotation.enabled",  "input.path",      "input.paths", "input.blend_km", "quadtree.balance",
                                            "quadtree.coast_band", "quadtree.lattice", "quadtree.size_km",
                                            "mesh.elements"};
       std::vector<std::string> unnamed;
@@ -102,7 +102,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   const GlobalSetup setup = prepare_global_run(c);
   const Lattice& lat = setup.lattice;
   log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
-           loaded.source, c.input.path, lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
+           loaded.source, fmt::join(c.input.sources(), " over "), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
            c.mask.cursor, c.mask.min_depth_m,
            c.rotation.enabled ? fmt::format(", pole at ({}, {})", c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
                               : std::string());

@@ -90,12 +90,38 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
         lat.levels, lat.step0_deg, lat.nx, lat.ny, estimate_lattice_bytes_f(lat) / 1e9,
         static_cast<double>(s.memory_limit_bytes) / 1e9));
   }
-  // The raster: its header only (nothing is read), whole or streamed, and the whole estimate.
-  raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
-  ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty();
-  apply_test_knobs(ro);
-  s.raster = raster::plan_raster(ro);
-  s.raster_options = ro;
+  // The rasters: their headers only (nothing is read), whole or streamed, and the whole estimate.
+  // Several sources (input.paths) add up; a source above another with input.blend_km > 0 also
+  // holds its distance field (4 bytes per cell) and, while it is computed, 9 bytes per cell more.
+  const std::vector<std::string> paths = c.input.sources();
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
+    ro.path = paths[k];
+    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty();
+    apply_test_knobs(ro);
+    raster::RasterPlan plan;
+    try {
+      plan = raster::plan_raster(ro);
+    } catch (const InputError& e) {
+      if (c.input.paths.empty()) throw;
+      throw InputError(fmt::format("input.paths[{}]: {}", k, e.what()));
+    }
+    if (c.input.blend_km > 0.0 && k + 1 < paths.size())
+      plan.bytes += 13 * raster::estimate_raster_bytes(plan.width, plan.height) / 4;
+    if (k == 0) {
+      s.raster = plan;
+      s.raster_options = ro;
+    } else {
+      s.raster.bytes += plan.bytes;
+      if (plan.streamed && !s.raster.streamed) {
+        s.raster.streamed = true;
+        s.raster.block_rows = plan.block_rows;
+        s.raster.band_rows = plan.band_rows;
+      }
+    }
+    s.source_options.push_back(ro);
+    s.source_plans.push_back(plan);
+  }
   s.estimate_bytes = saturate(static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
                               static_cast<double>(s.lattice_bytes) + static_cast<double>(s.mesh_bytes));
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
@@ -194,6 +220,41 @@ static void warn_threshold_depth_nodes(const mesh::Mesh& m, double h, const Logg
            h == 0.0 ? " (ice shelves have 0 m in ETOPO-class rasters)" : "", lon_min, lon_max, lat_min, lat_max, h);
 }
 
+// One source for the log: "source 1 (highest priority) PATH: W x H, 0.5', whole (N MB), lon..lon, lat..lat".
+static std::string source_line(const raster::Bathymetry& b, std::size_t k) {
+  const auto& i = b.info();
+  const double lon1 = i.lon_first + static_cast<double>(i.ncols - 1) * i.dlon;
+  const double lat1 = i.lat_first + static_cast<double>(i.nrows - 1) * i.dlat;
+  return fmt::format("source {}{} {}: {} x {}, {:.4g}' x {:.4g}', {} registration, {} ({} MB); {}, {:.4f}..{:.4f}°N",
+                     k + 1, k == 0 ? " (highest priority)" : "", i.path, i.ncols, i.nrows, i.dlon * 60.0,
+                     i.dlat * 60.0, i.registration, i.streamed ? "streamed" : "held whole", i.memory_bytes >> 20,
+                     i.global_lon ? std::string("all longitudes") : fmt::format("{:.4f}..{:.4f}°E", i.lon_first, lon1),
+                     i.lat_first, lat1);
+}
+
+// One source for the report's input.sources (its node counts are added after the mesh).
+static Json source_json(const raster::Bathymetry& b) {
+  const auto& i = b.info();
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(i.path, ec);
+  return Json{{"path", i.path},
+              {"driver", i.driver},
+              {"variable", i.variable},
+              {"file_bytes", ec ? Json() : Json(static_cast<std::int64_t>(bytes))},
+              {"columns", i.ncols},
+              {"rows", i.nrows},
+              {"resolution_deg", i.dlon},
+              {"resolution_lat_deg", i.dlat},
+              {"registration", i.registration},
+              {"lon_first_deg", i.lon_first},
+              {"lat_first_deg", i.lat_first},
+              {"global_lon", i.global_lon},
+              {"min_m", i.min_m},
+              {"max_m", i.max_m},
+              {"streamed", i.streamed},
+              {"memory_bytes", i.memory_bytes}};
+}
+
 GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
                             bool reuse) {
   GlobalRun run;
@@ -202,18 +263,24 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
   const PoleRotation& rot = setup.rotation;
   const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
 
-  raster::OpenOptions ro = setup.raster_options;
-  ro.max_memory_bytes = limit > need ? limit - need : limit;
+  std::vector<raster::OpenOptions> ros = setup.source_options;
+  for (raster::OpenOptions& ro : ros) ro.max_memory_bytes = limit > need ? limit - need : limit;
   StageScope read_stage("read", report, log);
-  run.bathy.emplace(raster::Bathymetry::open(ro, log));
+  run.bathy.emplace(raster::Bathymetry::open_sources(ros, c.input.blend_km, log));
   const raster::Bathymetry& bathy = *run.bathy;
   const auto& ri = bathy.info();
-  read_stage.done(ri.streamed ? fmt::format("{} x {} raster, {:.4g}', streamed in bands of {} rows ({} MB of "
+  const std::size_t nsources = bathy.source_count();
+  for (std::size_t k = 0; k < nsources && nsources > 1; ++k) log.info("read: {}", source_line(bathy.source(k), k));
+  read_stage.done(nsources > 1 ? fmt::format("{} sources, highest priority first{}", nsources,
+                                             c.input.blend_km > 0.0
+                                                 ? fmt::format(", blended over {} km at their data edges", c.input.blend_km)
+                                                 : std::string(" (the first with data wins)"))
+                  : ri.streamed ? fmt::format("{} x {} raster, {:.4g}', streamed in bands of {} rows ({} MB of "
                                             "buffers; read while classifying)",
                                             ri.ncols, ri.nrows, ri.dlon * 60.0, ri.band_rows, ri.memory_bytes >> 20)
                               : fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
                                             ri.memory_bytes >> 20));
-  warn_lattice_finer_than_data(lat, ri.dlon, ri.dlat, c, log, report);
+  if (nsources == 1) warn_lattice_finer_than_data(lat, ri.dlon, ri.dlat, c, log, report);
   if (report != nullptr) {
     (*report)["lattice"] = Json{{"kind", lat.kind_name()},
                                 {"lat_max_deg", lat.lat_max_deg()},
@@ -246,13 +313,23 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
   if (run.area_file.empty()) run.area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, report);
   // A streamed raster counts its implausible values in the classification's pass (one held whole
   // said so when it was read).
-  if (ri.streamed && run.area_file.empty())
-    if (const std::string note = raster::implausible_note(ri); !note.empty()) log.warn("{}: {}", ri.path, note);
+  for (std::size_t k = 0; k < nsources; ++k) {
+    const auto& si = bathy.source(k).info();
+    if (si.streamed && run.area_file.empty())
+      if (const std::string note = raster::implausible_note(si); !note.empty()) log.warn("{}: {}", si.path, note);
+  }
   if (report != nullptr) {  // after the classification: a streamed raster's statistics come from that pass
-    (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
-                              {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
-                              {"min_m", ri.min_m},         {"max_m", ri.max_m},          {"streamed", ri.streamed},
-                              {"band_rows", ri.band_rows}, {"block_rows", ri.block_rows}};
+    if (nsources == 1) {
+      (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
+                                {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
+                                {"min_m", ri.min_m},         {"max_m", ri.max_m},          {"streamed", ri.streamed},
+                                {"band_rows", ri.band_rows}, {"block_rows", ri.block_rows}};
+    } else {
+      (*report)["input"] = Json{{"path", ri.path}, {"blend_km", c.input.blend_km}, {"streamed", ri.streamed}};
+    }
+    Json sources = Json::array();
+    for (std::size_t k = 0; k < nsources; ++k) sources.push_back(source_json(bathy.source(k)));
+    (*report)["input"]["sources"] = sources;
   }
   const mask::WetArea& area = run.area;
   if (c.mask.passages && !area.passages.empty()) {
@@ -264,10 +341,85 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
   return run;
 }
 
+// Which source supplied each mesh node's depth (the counts of GlobalRun and of the report's
+// input.sources), and, with several sources, the lattice-finer-than-data warning per source: a
+// node on a square (of the finest level around it) smaller than the cells of the source that
+// supplies its depth (alone or as the dominant, higher-priority side of a blend).
+static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report) {
+  const raster::Bathymetry& b = *run.bathy;
+  const mesh::Mesh& m = run.mesh;
+  const std::size_t ns = b.source_count();
+  const auto n = static_cast<std::int64_t>(m.depth_m.size());
+  run.source_nodes.assign(ns, 0);
+  run.source_blended_nodes.assign(ns, 0);
+  run.no_source_nodes = 0;
+  std::vector<int> code(static_cast<std::size_t>(n), 0);
+  if (ns == 1) {
+    for (std::int64_t i = 0; i < n; ++i)
+      if (std::isnan(m.depth_m[static_cast<std::size_t>(i)])) code[static_cast<std::size_t>(i)] = raster::Bathymetry::kNoSource;
+  } else {
+    b.supplying_sources(m.lon_deg.data(), m.lat_deg.data(), n, code.data());
+  }
+  for (const int k : code) {
+    if (k == raster::Bathymetry::kNoSource)
+      ++run.no_source_nodes;
+    else if (k >= raster::Bathymetry::kBlended)
+      ++run.source_blended_nodes[static_cast<std::size_t>(k - raster::Bathymetry::kBlended)];
+    else
+      ++run.source_nodes[static_cast<std::size_t>(k)];
+  }
+  std::vector<std::int64_t> finer(ns, 0);
+  if (ns > 1) {
+    std::vector<int> level(static_cast<std::size_t>(n), -1);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      for (const auto v : m.triangles[t])
+        level[static_cast<std::size_t>(v)] = std::max<int>(level[static_cast<std::size_t>(v)], m.triangle_level[t]);
+    for (std::size_t q = 0; q < m.squares.size(); ++q)
+      for (const auto v : m.squares[q])
+        level[static_cast<std::size_t>(v)] = std::max<int>(level[static_cast<std::size_t>(v)], m.square_level[q]);
+    const double step0 = run.setup.lattice.step0_deg;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const int k = code[static_cast<std::size_t>(i)];
+      const int l = level[static_cast<std::size_t>(i)];
+      if (k == raster::Bathymetry::kNoSource || l < 0) continue;
+      const auto src = static_cast<std::size_t>(k >= raster::Bathymetry::kBlended ? k - raster::Bathymetry::kBlended : k);
+      const auto& si = b.source(src).info();
+      if (step0 / static_cast<double>(1 << l) < std::min(si.dlon, si.dlat) * (1.0 - 1e-9)) ++finer[src];
+    }
+  }
+  Json finer_json = Json::array();
+  for (std::size_t k = 0; k < ns; ++k) {
+    const auto& si = b.source(k).info();
+    if (ns > 1)
+      log.info("sources: {} supplied {} of {} mesh nodes ({:.3g} %){}", si.path, run.source_nodes[k], n,
+               n > 0 ? 100.0 * static_cast<double>(run.source_nodes[k]) / static_cast<double>(n) : 0.0,
+               c.input.blend_km > 0.0 && k + 1 < ns ? fmt::format(", and {} blended with the sources below", run.source_blended_nodes[k])
+                                      : std::string());
+    if (finer[k] > 0) {
+      const double cell = std::min(si.dlon, si.dlat);
+      log.warn("lattice finer than its data where {} supplies the depths: {} mesh nodes on squares smaller than its "
+               "{:.4g}' cells (the finest quadtree levels there resolve interpolation, not bathymetry); a finer source "
+               "above it in input.paths covering them, or fewer quadtree levels there",
+               si.path, finer[k], cell * 60.0);
+      finer_json.push_back(Json{{"path", si.path}, {"raster_deg", cell}, {"nodes", finer[k]}});
+    }
+    if (report != nullptr && (*report)["input"].contains("sources")) {
+      Json& sj = (*report)["input"]["sources"][k];
+      sj["nodes"] = run.source_nodes[k];
+      sj["blended_nodes"] = run.source_blended_nodes[k];
+    }
+  }
+  if (report != nullptr) {
+    (*report)["input"]["no_data_nodes"] = run.no_source_nodes;
+    if (!finer_json.empty()) (*report)["warnings"]["lattice_finer_than_data_sources"] = finer_json;
+  }
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics, bool reuse) {
   GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (!statistics) return run;
 

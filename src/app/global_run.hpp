@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "config/options.hpp"
 #include "core/lattice.hpp"
@@ -32,8 +33,10 @@ struct GlobalSetup {
   std::int64_t lattice_bytes = 0;       ///< estimated bitmaps of the mask and quadtree stages
   std::int64_t triangles_guess = 0;     ///< triangle count guessed before the run (memory model)
   std::int64_t mesh_bytes = 0;          ///< estimated mesh, statistics and writers
-  raster::RasterPlan raster;            ///< whole or streamed, from the raster's header
-  raster::OpenOptions raster_options;   ///< how the pipeline opens it
+  raster::RasterPlan raster;            ///< whole or streamed, from the raster's header (several: summed)
+  raster::OpenOptions raster_options;   ///< how the pipeline opens it (several: the first source)
+  std::vector<raster::OpenOptions> source_options;  ///< every source, highest priority first
+  std::vector<raster::RasterPlan> source_plans;     ///< and its plan (bytes include a blend distance field)
   std::int64_t estimate_bytes = 0;      ///< the whole run (global_run.cpp states the model)
 };
 
@@ -58,6 +61,10 @@ struct GlobalRun {
   std::vector<quadtree::Leaf> leaves;
   mesh::Mesh mesh;
   mesh::MeshStatistics statistics;
+  /// Per source (highest priority first): mesh nodes whose depth it supplied alone, and nodes
+  /// whose depth blends it with the sources below (input.blend_km); nodes without data apart.
+  std::vector<std::int64_t> source_nodes, source_blended_nodes;
+  std::int64_t no_source_nodes = 0;
 };
 
 /// Raster open options from an [input] section (one place for the config -> raster mapping).

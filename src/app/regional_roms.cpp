@@ -182,6 +182,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
     log.warn("roms: regional.radius = {} m but roms.earth_radius_m = {} m; the ROMS file uses roms.earth_radius_m",
              c.params.radius, c.roms.earth_radius_m);
   const raster::Bathymetry& bathy = *global.run.bathy;
+  if (bathy.source_count() > 1)
+    throw ConfigError(fmt::format(
+        "roms.global_config = {}: its input.paths lists {} rasters; a ROMS grid's cell depths are statistics "
+        "over one raster's cells, so the global run it shares must read one raster (input.path)",
+        global.loaded.source, bathy.source_count()));
 
   const int ni = cg.L + 1, nj = cg.M + 1;
   const std::size_t nr = cg.rho.size();

@@ -165,10 +165,57 @@ const S& schema() {
           std::filesystem::path path(x);
           if (path.is_relative()) path = o.base_dir / path;
           c.input.path = path.lexically_normal().string();
+          c.input.path_layer = o.line == detail::kOverrideLine ? 2 : 1;
           if (const std::string bad = detail::input_path_problem(c.input.path); !bad.empty())
             p.add(o, "input.path", bad);
         },
         [](const GlobalConfig& c) { return Json(c.input.path); }, "bathymetry raster");
+    t.add_custom(
+        "input", "paths",
+        [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          const std::string example = R"(expected a list of raster paths, highest priority first, e.g. ["coastal_survey.tif", "gebco.nc"])";
+          if (!v.is_array()) return p.add(o, "input.paths", example);
+          const auto& items = v.as_array();
+          if (items.empty()) return p.add(o, "input.paths", "[] is empty: " + example);
+          std::vector<std::string> paths;
+          bool good = true;
+          for (std::size_t k = 0; k < items.size(); ++k) {
+            const std::string at = fmt::format("input.paths[{}]", k);
+            std::string x;
+            if (auto err = detail::convert(items[k], x)) {
+              p.add(o, at, *err);
+              good = false;
+              continue;
+            }
+            if (x.empty()) {
+              p.add(o, at, "must not be empty");
+              good = false;
+              continue;
+            }
+            const std::string given = x;
+            const char* home = std::getenv("HOME");
+            if (x.rfind("~/", 0) == 0 && home != nullptr && *home != '\0') x = std::string(home) + x.substr(1);
+            std::filesystem::path path(x);
+            if (path.is_relative()) path = o.base_dir / path;
+            x = path.lexically_normal().string();
+            if (const std::string bad = detail::input_path_problem(x); !bad.empty()) {
+              p.add(o, at, bad);
+              good = false;
+            }
+            const auto same = std::find(paths.begin(), paths.end(), x);
+            if (same != paths.end()) {
+              p.add(o, at, fmt::format("\"{}\" repeats input.paths[{}]", given, same - paths.begin()));
+              good = false;
+            }
+            paths.push_back(x);
+          }
+          if (good) c.input.paths = std::move(paths);
+          c.input.paths_layer = o.line == detail::kOverrideLine ? 2 : 1;
+        },
+        [](const GlobalConfig& c) { return Json(c.input.sources()); }, "bathymetry rasters, highest priority first");
+    t.add<double>(
+        "input", "blend_km", [](GlobalConfig& c) -> double& { return c.input.blend_km; },
+        [](const double& v) { return in_range(v, 0.0, 1000.0); }, "blend width at source edges (km)");
     t.add<std::string>(
         "input", "variable", [](GlobalConfig& c) -> std::string& { return c.input.variable; }, {}, "netCDF variable");
     t.add<int>(
@@ -429,6 +476,23 @@ void check_rule_levels(const std::vector<R>& rules, const char* key, int levels,
 
 // Checks that involve several keys.
 void cross_check(const GlobalConfig& c, Problems& p) {
+  // input.paths = [input.path] is one raster said twice (configs/example.toml does so); anything
+  // else with both keys is ambiguous.
+  if (!c.input.paths.empty() && c.input.path_layer != 0 && c.input.path_layer == c.input.paths_layer &&
+      c.input.paths != std::vector<std::string>{c.input.path})
+    p.add_plain(999999, fmt::format("input.path = \"{}\" and input.paths = [{} raster(s)] are both set: give input.path "
+                                    "for one raster or input.paths for several (highest priority first)",
+                                    c.input.path, c.input.paths.size()));
+  if (c.input.blend_km > 0.0 && c.input.paths.size() < 2)
+    p.add_plain(999999, fmt::format("input.blend_km = {} blends between sources: it needs input.paths with two or "
+                                    "more rasters",
+                                    c.input.blend_km));
+  if (c.input.paths.size() > 1 && c.mask.sampling == "area")
+    p.add_plain(999999, "mask.sampling = \"area\" reads the cells of one raster: it is not available with several "
+                        "input.paths (use \"vertex\")");
+  if (c.input.paths.size() > 1 && c.input.interpolation == "bicubic")
+    p.add_plain(999999, "input.interpolation = \"bicubic\" is not available with several input.paths (the spline "
+                        "of one raster); use \"bilinear\"");
   check_rule_levels(c.quadtree.depth_rules, "quadtree.depth_rules", c.quadtree.levels, p);
   check_rule_levels(c.quadtree.box_rules, "quadtree.box_rules", c.quadtree.levels, p);
 }
@@ -451,6 +515,9 @@ Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const s
     out.source = file.string();
   }
   for (const auto& o : overrides) schema().apply_override(out.options, o, p);
+  // --set input.path over a file's input.paths: the one raster replaces the list (the other way
+  // round, a non-empty input.paths is used anyway).
+  if (out.options.input.path_layer == 2 && out.options.input.paths_layer == 1) out.options.input.paths.clear();
   cross_check(out.options, p);
   p.throw_if_any(out.source);
   out.echo = schema().echo(out.options);
@@ -479,12 +546,15 @@ RunName default_run_name(const GlobalConfig& c) {
   if (c.mask.min_depth_m != d.mask.min_depth_m) out.name += fmt::format("_h{:g}", c.mask.min_depth_m);
   if (c.mask.cursor != d.mask.cursor) out.name += fmt::format("_K{}", c.mask.cursor);
   if (c.rotation.enabled) out.name += "_rot";
-  if (c.input.path != d.input.path) {
-    std::string stem = std::filesystem::path(c.input.path).stem().string();
-    for (char& ch : stem)  // a file-name part: keep letters, digits, '-', '.'
-      if (std::isalnum(static_cast<unsigned char>(ch)) == 0 && ch != '-' && ch != '.') ch = '_';
-    if (!stem.empty()) out.name += "_" + stem;
+  if (c.input.sources() != d.input.sources()) {
+    for (const std::string& source : c.input.sources()) {
+      std::string stem = std::filesystem::path(source).stem().string();
+      for (char& ch : stem)  // a file-name part: keep letters, digits, '-', '.'
+        if (std::isalnum(static_cast<unsigned char>(ch)) == 0 && ch != '-' && ch != '.') ch = '_';
+      if (!stem.empty()) out.name += "_" + stem;
+    }
   }
+  if (c.input.blend_km != d.input.blend_km) out.name += fmt::format("_blend{:g}km", c.input.blend_km);
   if (c.quadtree.balance != d.quadtree.balance) out.name += "_" + c.quadtree.balance;
   if (c.quadtree.coast_band != d.quadtree.coast_band) out.name += fmt::format("_cb{}", c.quadtree.coast_band);
   if (c.quadtree.lattice != d.quadtree.lattice) out.name += "_" + c.quadtree.lattice;

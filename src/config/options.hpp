@@ -17,6 +17,16 @@ struct InputOptions {
   std::string interpolation = "bilinear";                      ///< "bilinear" (seed rule) or "bicubic" (C2 spline)
   double max_memory_gb = 0.0;                                  ///< refuse runs estimated above this; 0 = 80% of RAM
   double max_abs_elevation_m = 12000.0;  ///< raster values beyond ±this (m) are no-data (sentinels, bad scales)
+  /// Several rasters, highest priority first (README "Several bathymetry sources"): at every
+  /// sample the first one with data wins. Empty = `path` alone. Giving both is a config error.
+  std::vector<std::string> paths;
+  double blend_km = 0.0;  ///< blend width (km) inside a higher-priority source's edge; 0 = pure priority
+  /// Where input.path / input.paths were set: 0 not, 1 a config file, 2 --set (not keys). Both in
+  /// one place is an error; a --set of one replaces the other from the file.
+  int path_layer = 0, paths_layer = 0;
+
+  /// The rasters of the run, highest priority first: `paths`, or `path` alone.
+  [[nodiscard]] std::vector<std::string> sources() const { return paths.empty() ? std::vector<std::string>{path} : paths; }
 };
 
 struct MaskOptions {

@@ -23,6 +23,9 @@
 
 namespace aq::config::detail {
 
+/// The line number of a --set override's Origin (after every file position).
+inline constexpr std::uint32_t kOverrideLine = 1000000;
+
 /// Where a value came from and how to resolve relative paths in it.
 struct Origin {
   std::string where;               ///< "file:line:col" or "--set section.key=value"
@@ -255,7 +258,7 @@ class Schema {
   void apply_override(T& t, const std::string& text, Problems& p) const {
     Origin o;
     o.where = "--set " + printable(text);
-    o.line = 1000000;  // after every file position
+    o.line = kOverrideLine;  // after every file position
     o.base_dir = std::filesystem::current_path();
     const auto eq = text.find('=');
     const std::string path = eq == std::string::npos ? text : text.substr(0, eq);

@@ -32,7 +32,8 @@ std::string lattice_text(const Lattice& l) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> mask_inputs(const config::GlobalConfig& c) {
-  const fs::path raster = fs::absolute(c.input.path).lexically_normal();
+  const std::vector<std::string> rasters = c.input.sources();
+  const fs::path raster = fs::absolute(rasters.front()).lexically_normal();
   // A GDAL source that is not a plain file (a subdataset string, /vsicurl/...) has no size or
   // time to compare: recorded as kNotAFile, and such a file is never reused.
   std::error_code ec;
@@ -88,6 +89,20 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       {"mask.remove_pinches", c.mask.remove_pinches ? "true" : "false"},
   };
   if (!sources.empty()) items.insert(items.begin() + 3, {"input.source_files", sources});
+  // Several sources (input.paths): the first is input.path above; the others by path, size and time.
+  for (std::size_t k = 1; k < rasters.size(); ++k) {
+    const fs::path p = fs::absolute(rasters[k]).lexically_normal();
+    std::string entry = p.string() + " " + kNotAFile;
+    if (fs::is_regular_file(p, ec)) {
+      const auto bytes = fs::file_size(p, ec);
+      const auto time = fs::last_write_time(p, ec);
+      if (!ec) entry = fmt::format("{} {} bytes, mtime {}", p.string(), bytes, time.time_since_epoch().count());
+    }
+    for (const std::string& f : raster::raster_files(p.string()))
+      if (fs::absolute(f).lexically_normal() != p) entry += "; " + fs::absolute(f).lexically_normal().string();
+    items.push_back({fmt::format("input.paths[{}]", k), entry});
+  }
+  if (rasters.size() > 1) items.push_back({"input.blend_km", number(c.input.blend_km)});
   // Listed only when not the default (12000 m), so files written before the key existed still match.
   if (c.input.max_abs_elevation_m != config::InputOptions{}.max_abs_elevation_m)
     items.insert(items.begin() + 7, {"input.max_abs_elevation_m", number(c.input.max_abs_elevation_m)});

@@ -22,6 +22,7 @@
 #include "core/row_progress.hpp"
 #include "core/timer.hpp"
 #include "raster/netcdf_coordinates.hpp"
+#include "raster/source_stack.hpp"
 #include "raster/spline1d.hpp"
 
 namespace aq::raster {
@@ -494,11 +495,22 @@ Bathymetry::~Bathymetry() = default;
 
 const RasterInfo& Bathymetry::info() const { return impl_->info; }
 bool Bathymetry::samples_bilinear() const {
+  if (stack_) return false;
   return impl_->info.streamed || !(impl_->interp == Interpolation::kBicubic && !impl_->fx.empty());
 }
-double Bathymetry::sample(double lon_deg, double lat_deg) const { return impl_->sample(lon_deg, lat_deg); }
+double Bathymetry::sample(double lon_deg, double lat_deg) const {
+  if (stack_) return stack_->sample(lon_deg, lat_deg);
+  return impl_->sample(lon_deg, lat_deg);
+}
+
+namespace {
+[[noreturn]] void no_single_grid(const char* what) {
+  throw InternalError(fmt::format("Bathymetry::{} of several sources: there is no one raster grid", what));
+}
+}  // namespace
 
 float Bathymetry::value(std::int64_t c, std::int64_t r) const {
+  if (stack_) no_single_grid("value");
   const auto& i = impl_->info;
   if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
   if (c < 0 || c >= i.ncols || r < impl_->row_lo || r >= (i.streamed ? i.nrows : impl_->row_hi))
@@ -507,6 +519,7 @@ float Bathymetry::value(std::int64_t c, std::int64_t r) const {
 }
 
 void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const {
+  if (stack_) no_single_grid("values");
   const Impl& im = *impl_;
   const auto& i = im.info;
   std::fill(out, out + nc * nr, std::numeric_limits<float>::quiet_NaN());
@@ -534,6 +547,7 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
 
 void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
                                const ProgressFn& progress) const {
+  if (stack_) return stack_->sample_points(lon_deg, lat_deg, n, out, nullptr);
   const Impl* im = impl_.get();
   if (!im->info.streamed) {
 #pragma omp parallel for default(none) shared(im, lon_deg, lat_deg, n, out) schedule(static) if (n > 20000)
@@ -588,6 +602,7 @@ void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std
 }
 
 Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n) const {
+  if (stack_) return stack_->prepare_columns(lons, n);
   Columns c;
   c.c0.resize(static_cast<std::size_t>(n));
   c.c1.resize(c.c0.size());
@@ -605,6 +620,7 @@ Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t
 }
 
 void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) const {
+  if (stack_) return stack_->sample_row(cols, lat_deg, out);
   const Impl& im = *impl_;
   std::int64_t r0 = 0, r1 = 0;
   double u = 0.0;
@@ -632,6 +648,7 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
 
 void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
                              const ProgressFn& progress) const {
+  if (stack_) return stack_->sample_rows(cols, lats, n, sink, progress);
   const Impl& im = *impl_;
   const auto nc = static_cast<std::int64_t>(cols.c0.size());
   const bool parallel = n * nc >= (std::int64_t{1} << 16);
@@ -699,6 +716,7 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
 }
 
 void Bathymetry::ensure_statistics(const ProgressFn& progress) const {
+  if (stack_) return stack_->ensure_statistics(progress);
   if (!impl_->info.streamed || impl_->stats_done) return;
   // A pass that samples no row still reads every band for the statistics (sample_rows).
   sample_rows(
@@ -752,6 +770,58 @@ Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, 
   if (interpolation == Interpolation::kBicubic) im->build_spline();
   im->compute_stats();
   return Bathymetry(std::move(im));
+}
+
+Bathymetry Bathymetry::stack(std::vector<Bathymetry> sources, double blend_km) {
+  if (sources.empty()) throw InputError("Bathymetry::stack: no sources");
+  if (sources.size() == 1) return std::move(sources.front());
+  if (!(blend_km >= 0.0) || !std::isfinite(blend_km))
+    throw InputError(fmt::format("input.blend_km = {} is not a finite number >= 0", blend_km));
+  auto st = std::make_unique<Stack>();
+  st->blend_km = blend_km;
+  // The summary: the finest steps, streamed or global when any source is.
+  auto im = std::make_unique<Impl>();
+  RasterInfo& i = im->info;
+  i.driver = "several";
+  i.registration = "several";
+  i.data_type = "several";
+  i.units = "m";
+  i.crs_name = "several";
+  i.variable = "several";
+  i.min_m = std::numeric_limits<double>::infinity();
+  i.max_m = -std::numeric_limits<double>::infinity();
+  i.dlon = i.dlat = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < sources.size(); ++k) {
+    if (sources[k].stack_) throw InputError("Bathymetry::stack: a source is itself several sources");
+    const RasterInfo& s = sources[k].info();
+    if (sources[k].impl_->interp == Interpolation::kBicubic && !sources[k].impl_->fx.empty())
+      throw InputError(fmt::format("{}: bicubic sampling is not available with several sources", s.path));
+    i.path += (k == 0 ? "" : " + ") + s.path;
+    i.dlon = std::min(i.dlon, s.dlon);
+    i.dlat = std::min(i.dlat, s.dlat);
+    i.streamed = i.streamed || s.streamed;
+    i.global_lon = i.global_lon || s.global_lon;
+    i.memory_bytes += s.memory_bytes;
+    i.min_m = std::min(i.min_m, s.min_m);
+    i.max_m = std::max(i.max_m, s.max_m);
+    i.implausible_count += s.implausible_count;
+    i.max_abs_elevation_m = s.max_abs_elevation_m;
+  }
+  if (blend_km > 0.0)
+    for (std::size_t k = 0; k + 1 < sources.size(); ++k) {
+      st->distances.push_back(edge_distance_field(sources[k], blend_km));
+      i.memory_bytes += st->distances.back().info().memory_bytes;
+    }
+  // The summary's grid: the finest steps over the globe (what callers size their loops by).
+  i.lon_first = i.lon_first_found = -180.0;
+  i.lat_first = -90.0;
+  i.ncols = i.width = static_cast<std::int64_t>(std::ceil(360.0 / i.dlon - 1e-9));
+  i.nrows = i.height = static_cast<std::int64_t>(std::ceil(180.0 / i.dlat - 1e-9)) + 1;
+  i.valid_count = -1;
+  st->sources = std::move(sources);
+  Bathymetry b(std::move(im));
+  b.stack_ = std::move(st);
+  return b;
 }
 
 namespace {
@@ -947,7 +1017,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   RasterInfo& info = im->info;
   const std::int64_t h = info.height;
   if (info.streamed) {
-    if (!info.global_lon) {
+    if (!info.global_lon && o.warn_partial_coverage) {
       log.warn("{}: the raster covers longitudes {:.4f}..{:.4f} only; the rest of the lattice is dry", o.path,
                info.lon_first, info.lon_first + static_cast<double>(info.ncols - 1) * info.dlon);
     }
@@ -1014,7 +1084,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     im->build_spline();
     im->compute_stats();
   }
-  if (!info.global_lon) {
+  if (!info.global_lon && o.warn_partial_coverage) {
     log.warn("{}: the raster covers longitudes {:.4f}..{:.4f} only; the rest of the lattice is dry", o.path,
              info.lon_first, info.lon_first + static_cast<double>(info.ncols - 1) * info.dlon);
   }

@@ -46,6 +46,9 @@ struct OpenOptions {
   /// above the memory limit; kAlways/kNever force a path (kAlways still needs allow_streaming).
   Streaming streaming = Streaming::kAuto;
   std::int64_t band_rows = 0;  ///< stored rows per band read; 0 = whole blocks, about 64 MB
+  /// Warn that a raster not covering 360° leaves the rest of the lattice dry (off for a source
+  /// above another one, whose uncovered part the sources below fill).
+  bool warn_partial_coverage = true;
 };
 
 /// A raster larger than this (as float32) is streamed when the caller allows it (1 GiB: ETOPO5
@@ -106,13 +109,43 @@ class Bathymetry {
                               double lat_first, double dlon, double dlat,
                               Interpolation interpolation = Interpolation::kBilinear);
 
+  /// Several rasters, highest priority first (README "Several bathymetry sources"), each opened
+  /// as `open` opens one (`sources[k]` its options; the same validation and normalisation). At
+  /// every point the first source whose sample is not NaN wins; with `blend_km` > 0, within
+  /// blend_km of a source's data edge (its extent or a no-data value) the value is
+  /// w·v_k + (1 − w)·v_rest with w = s²(3 − 2s), s = min(1, d/blend_km), d the distance (km) from
+  /// the point to that edge (see `blend_weight`). One source: the same as `open`. Throws what
+  /// `open` throws, naming the source; InputError when blend_km > 0 and a source other than the
+  /// last would be streamed (its distance field is held whole beside it).
+  static Bathymetry open_sources(const std::vector<OpenOptions>& sources, double blend_km,
+                                 const Logger& log = Logger::null());
+  /// The same over rasters already open (tests and tools; `sources` are moved in).
+  static Bathymetry stack(std::vector<Bathymetry> sources, double blend_km);
+
+  /// Number of sources (1 for a single raster) and source k (the raster itself when there is one).
+  [[nodiscard]] std::size_t source_count() const;
+  [[nodiscard]] const Bathymetry& source(std::size_t k) const;
+  /// The blend weight of the source above at distance d_km inside its data edge: s²(3 − 2s) with
+  /// s = clamp(d_km / blend_km, 0, 1) (1 when blend_km is 0).
+  static double blend_weight(double d_km, double blend_km);
+
+  /// Which source supplies each point's `sample`: k (0-based) when source k alone gives the value,
+  /// kBlended + k when it is a blend of source k with the sources below it, kNoSource when no
+  /// source has data. Thread-safe; the same rule as `sample_points`.
+  static constexpr int kNoSource = -1;
+  static constexpr int kBlended = 1000;
+  void supplying_sources(const double* lon_deg, const double* lat_deg, std::int64_t n, int* out) const;
+
   Bathymetry(Bathymetry&&) noexcept;
   Bathymetry& operator=(Bathymetry&&) noexcept;
   ~Bathymetry();
 
+  /// Several sources: a summary (paths joined by " + ", the finest steps, streamed when any is,
+  /// global when any is, memory and valid counts summed); each source's own is source(k).info().
   [[nodiscard]] const RasterInfo& info() const;
   /// True when `sample` interpolates bilinearly (every value is a convex combination of the four
-  /// surrounding raster values, or NaN); false for the bicubic spline.
+  /// surrounding raster values, or NaN); false for the bicubic spline and for several sources
+  /// (no one raster grid holds the values).
   [[nodiscard]] bool samples_bilinear() const;
 
   /// Elevation (m, negative below sea level) at (lon, lat) in degrees; NaN if no data or outside.
@@ -129,6 +162,8 @@ class Bathymetry {
     std::vector<std::int64_t> c0, c1;  ///< bracketing raster columns
     std::vector<double> t;             ///< weight of c1
     std::vector<double> lon;           ///< the longitudes (for bicubic)
+    /// Several sources: the columns of each source and of each blend-distance field.
+    std::vector<Columns> sources, distances;
   };
   [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n) const;
   void sample_row(const Columns& cols, double lat_deg, float* out) const;
@@ -148,6 +183,7 @@ class Bathymetry {
   void ensure_statistics(const ProgressFn& progress = {}) const;
 
   /// Raster value (c, r) in normalised layout (c wraps for global rasters); NaN if no data.
+  /// Several sources: there is no one grid; `value` and `values` throw InternalError.
   /// Streamed: one small read per call (use `values` for blocks).
   [[nodiscard]] float value(std::int64_t c, std::int64_t r) const;
   /// Values of columns c_lo..c_lo+nc-1 (wrapping on a global raster) and rows r_lo..r_lo+nr-1
@@ -156,10 +192,12 @@ class Bathymetry {
 
  private:
   struct Impl;
+  struct Stack;  // several sources (raster/source_stack.hpp); null for one raster
   explicit Bathymetry(std::unique_ptr<Impl> impl);
   static std::unique_ptr<Impl> open_header(const OpenOptions& o);
   friend RasterPlan plan_raster(const OpenOptions& options);
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Stack> stack_;
 };
 
 /// The files GDAL reads for the raster at `path`: the file itself, a VRT's source tiles, sidecar

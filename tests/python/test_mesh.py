@@ -157,3 +157,18 @@ def test_the_same_run_twice_is_identical(seed_run):
     again = aq.mesh(None, {"output.formats": FORMATS})
     np.testing.assert_array_equal(again.nodes, seed_run.nodes)
     np.testing.assert_array_equal(again.triangles, seed_run.triangles)
+
+
+def test_several_sources_from_an_override_dict():
+    """{"input.paths": [...]} works as an override (a TOML list): ETOPO60 over ETOPO5, both global,
+    so the first has data everywhere, supplies every node, and the mesh is ETOPO60's own."""
+    data = "/usr/share/ferret-vis/data"
+    e5, e60 = os.path.join(data, "etopo5.cdf"), os.path.join(data, "etopo60.cdf")
+    run = aq.mesh(None, {"input.paths": [e60, e5]})
+    sources = run.report["input"]["sources"]
+    assert [s["path"] for s in sources] == [e60, e5]
+    assert sources[0]["nodes"] > 10000 and sources[1]["nodes"] == 0
+    assert sources[0]["blended_nodes"] == 0 and run.report["input"]["no_data_nodes"] == 0
+    alone = aq.mesh(None, {"input.path": e60})
+    np.testing.assert_array_equal(run.depth, alone.depth)
+    np.testing.assert_array_equal(run.triangles, alone.triangles)
