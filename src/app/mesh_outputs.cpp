@@ -312,6 +312,16 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
               return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
             });
       }
+      bool open = false;
+      for (const auto& sg : g.segments) open = open || sg.type == mesh::BoundaryType::kOpen;
+      if (open) {
+        plan(
+            format, name + "_bctides.in",
+            [&g, title = o.title](const auto& p) { return write_schism_bctides(g, p, title); },
+            [](const WriteStats& s) {
+              return Facts{{"open boundaries", s.boundary_edges}, {"open nodes", s.nodes}};
+            });
+      }
     } else if (format == "png") {
       // The colours by angle or size come from the quality step, which runs before this job.
       auto o = std::make_shared<PreviewOptions>(preview_options(options, info.elements));
