@@ -39,7 +39,7 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     co.min_depth_m = options.min_depth_m;
     co.sampling = parse_sampling(options.sampling);
     co.progress = log.progress("classify");
-    check_mercator_caps(bathy, lattice, rot, options.min_depth_m);
+    if (!regional) check_mercator_caps(bathy, lattice, rot, options.min_depth_m);  // a region is inside the rows
     PixelClasses pc = classify_pixels(bathy, lattice, rot, co);
     area.wet_vertices = std::move(pc.wet_vertices);
     area.wet = std::move(pc.wet);

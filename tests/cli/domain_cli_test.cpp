@@ -274,6 +274,27 @@ TEST(DomainCli, NorthSeaAndGulfConfigsGiveOpenBoundaries) {
   }
 }
 
+TEST(DomainCli, MercatorLatticeAndRotatedBoxHaveTheOpenEdge) {
+  // The Mercator lattice (its caps are wet in this raster: a region does not need them dry) and
+  // a rotated lattice (the box is then the pixels whose centre is in it).
+  for (const std::string extra : {"--set quadtree.lattice=mercator", "--set rotation.enabled=true"}) {
+    const fs::path dir = aq::test::fresh_dir("domain", extra.find("mercator") != std::string::npos ? "merc" : "rot");
+    const auto r = mesh_basin(dir, kBox + " " + extra);
+    ASSERT_EQ(r.exit_code, 0) << extra << ": " << r.err;
+    const Fort14 f = read_fort14(dir / "basin.14");
+    ASSERT_TRUE(f.error.empty()) << f.error;
+    EXPECT_GE(f.nope, 1) << extra;
+    for (const Segment& s : f.open)
+      for (const long n : s.nodes) EXPECT_NEAR(f.lon[static_cast<std::size_t>(n)], 20.0, 0.6) << extra;
+    for (const double x : f.lon) EXPECT_LE(x, 20.6) << extra;
+  }
+  // A polygon on a rotated lattice is refused (exit 2) naming the keys.
+  const fs::path dir = aq::test::fresh_dir("domain", "rotpoly");
+  const auto r = mesh_basin(dir, "--set domain.polygon=x.geojson --set rotation.enabled=true");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("domain.polygon"), std::string::npos) << r.err;
+}
+
 TEST(DomainCli, BadDomainKeysAreConfigErrors) {
   const fs::path dir = aq::test::fresh_dir("domain", "bad");
   auto r = mesh_basin(dir, "--set 'domain.box=[0.0, 20.0, 30.0, 20.0]'");
