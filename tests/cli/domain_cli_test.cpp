@@ -10,6 +10,9 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <set>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -68,6 +71,7 @@ struct Segment {
 
 struct Fort14 {
   std::vector<double> lon, lat;
+  std::vector<std::array<long, 3>> triangles;  // 0-based
   long elements = 0;
   long nope = -1, neta = -1, nbou = -1, nvel = -1;
   std::vector<Segment> open, land;
@@ -93,6 +97,7 @@ Fort14 read_fort14(const fs::path& p) {
   for (long k = 0; k < ne; ++k) {
     long id = 0, n = 0, a = 0, b = 0, c = 0;
     in >> id >> n >> a >> b >> c;
+    f.triangles.push_back({a - 1, b - 1, c - 1});
   }
   auto count_line = [&](long& v) {
     in >> v;
@@ -129,6 +134,29 @@ Fort14 read_fort14(const fs::path& p) {
   return f;
 }
 
+// Every boundary edge of the triangles (an edge of one triangle only) joins two consecutive nodes
+// of exactly one open or land segment, and every segment step is a boundary edge: the segments
+// cover the boundary, as SCHISM needs ("Incomplete ball").
+void expect_segments_cover_the_boundary(const Fort14& f) {
+  std::map<std::pair<long, long>, int> count;
+  for (const auto& t : f.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const long a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      ++count[{std::min(a, b), std::max(a, b)}];
+    }
+  std::set<std::pair<long, long>> boundary, listed;
+  for (const auto& [e, c] : count)
+    if (c == 1) boundary.insert(e);
+  for (const auto* list : {&f.open, &f.land})
+    for (const Segment& sg : *list)
+      for (std::size_t k = 0; k + 1 < sg.nodes.size(); ++k) {
+        const std::pair<long, long> e{std::min(sg.nodes[k], sg.nodes[k + 1]), std::max(sg.nodes[k], sg.nodes[k + 1])};
+        EXPECT_TRUE(boundary.count(e)) << "segment step " << e.first + 1 << "-" << e.second + 1 << " is no boundary edge";
+        EXPECT_TRUE(listed.insert(e).second) << "edge " << e.first + 1 << "-" << e.second + 1 << " listed twice";
+      }
+  EXPECT_EQ(listed.size(), boundary.size());
+}
+
 double signed_area(const Fort14& f, const std::vector<long>& ring) {
   double a = 0.0;
   for (std::size_t k = 0; k + 1 < ring.size(); ++k) {
@@ -161,6 +189,7 @@ TEST(DomainCli, BasinOpenEdgeIsExactlyTheWetNodesOnTheDomainEdgeInOrder) {
     ASSERT_TRUE(f.error.empty()) << f.error;
     // One open segment: the east edge 20°E from 2°N to 18°N, going north (water on the left).
     ASSERT_EQ(f.nope, 1) << ext;
+    expect_segments_cover_the_boundary(f);
     ASSERT_EQ(f.open.size(), 1u);
     std::vector<long> on_edge;
     for (std::size_t n = 0; n < f.lon.size(); ++n)
@@ -268,6 +297,7 @@ TEST(DomainCli, NorthSeaAndGulfConfigsGiveOpenBoundaries) {
     const Fort14 f = read_fort14(dir / (std::string(name) + ".14"));
     ASSERT_TRUE(f.error.empty()) << f.error;
     EXPECT_EQ(f.nope, 2) << name;
+    expect_segments_cover_the_boundary(f);
     EXPECT_GT(f.neta, 20) << name;
     EXPECT_LT(f.lon.size(), 5000u) << name;  // small enough for the client runs
     for (const Segment& s : f.land) EXPECT_TRUE(s.type == 20 || s.type == 21) << name;
