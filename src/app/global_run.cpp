@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
+#include "mesh/boundaries.hpp"
 #include "mesh/build_mesh.hpp"
 #include "mesh/time_step.hpp"
 #include "quadtree/build_leaves.hpp"
@@ -97,7 +98,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   for (std::size_t k = 0; k < paths.size(); ++k) {
     raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
     ro.path = paths[k];
-    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty();
+    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty() &&
+                         !c.domain.regional();
     apply_test_knobs(ro);
     raster::RasterPlan plan;
     try {
@@ -292,6 +294,20 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
                                 {"lon0_deg", lat.lon0_deg}};
   }
 
+  run.domain = mask::make_domain(c.domain, lat, rot);
+  if (run.domain.regional()) {
+    reuse = false;  // the global run file holds a global fill
+    log.info("domain: {}: {} pixels of {} ({:.2g} %)", run.domain.description, run.domain.pixels, lat.pixel_count(),
+             100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
+    if (report != nullptr)
+      (*report)["domain"] = Json{{"kind", c.domain.resolved == config::DomainKind::kBox ? "box" : "polygon"},
+                                 {"description", run.domain.description},
+                                 {"pixels", run.domain.pixels},
+                                 {"lon_min_deg", run.domain.lon_min},
+                                 {"lon_max_deg", run.domain.lon_max},
+                                 {"lat_min_deg", run.domain.lat_min},
+                                 {"lat_max_deg", run.domain.lat_max}};
+  }
   const std::filesystem::path file = global_run_file_path(c);
   if (reuse && std::filesystem::exists(file)) {
     StageScope stage("mask", report, log);
@@ -310,7 +326,7 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
       log.warn("mask: {}; running the global fill again", run.area_file_differs);
     }
   }
-  if (run.area_file.empty()) run.area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, report);
+  if (run.area_file.empty()) run.area = mask::compute_wet_area(bathy, lat, rot, c.mask, log, report, &run.domain);
   // A streamed raster counts its implausible values in the classification's pass (one held whole
   // said so when it was read).
   for (std::size_t k = 0; k < nsources; ++k) {
@@ -415,12 +431,45 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
   }
 }
 
+// Open = the pixel on the right of the edge's first lattice step (outside the wet area) is wet
+// and outside the domain; everything else is land (mesh/boundaries.hpp).
+static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* report) {
+  StageScope stage("boundaries", report, log);
+  mesh::Mesh& m = run.mesh;
+  const Lattice& lat = m.lattice;
+  const mask::Domain& d = run.domain;
+  const Bitmap& wet = run.area.wet;
+  const auto is_open = [&](NodeId a, NodeId b) {
+    const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
+    const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
+    std::int64_t di = m.node_i[pb] - ia;
+    const std::int64_t dj = m.node_j[pb] - ja;
+    if (di > lat.nx / 2) di -= lat.nx;
+    if (di < -lat.nx / 2) di += lat.nx;
+    if ((di != 0) == (dj != 0)) return false;  // a diagonal (after cleaning) or a degenerate edge
+    std::int64_t pi = ia, pj = ja;             // the pixel on the right of the first unit step
+    if (di > 0) pj = ja - 1;
+    if (di < 0) pi = ia - 1;
+    if (dj < 0) {
+      pi = ia - 1;
+      pj = ja - 1;
+    }
+    if (pj < 0 || pj >= lat.ny) return false;
+    pi = ((pi % lat.nx) + lat.nx) % lat.nx;
+    return !d.contains(pi, pj) && wet.get(pi, pj);
+  };
+  const mesh::BoundaryCounts counts = mesh::type_boundaries(m, is_open, &log);
+  if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(m, counts);
+  stage.done(mesh::describe(counts));
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics, bool reuse) {
   GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
+  if (run.domain.regional()) type_regional_boundaries(run, log, report);
   if (!statistics) return run;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)

@@ -54,6 +54,7 @@ void log_memory_estimate(const GlobalSetup& s, const Logger& log);
 struct GlobalRun {
   GlobalSetup setup;
   std::optional<raster::Bathymetry> bathy;
+  mask::Domain domain;  ///< the meshed region (global: nothing inside)
   mask::WetArea area;
   std::string area_file;          ///< the global run file `area` was read from; "" = computed by the mask stage
   std::string area_file_differs;  ///< when a global run file was present but not reused: why

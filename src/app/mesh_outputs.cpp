@@ -279,6 +279,15 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
           [&levels](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"levels", static_cast<std::int64_t>(levels.size())}};
           });
+      bool open = false;
+      for (const auto& sg : g.segments) open = open || sg.type == mesh::BoundaryType::kOpen;
+      if (open) {
+        plan(
+            format, name + "_obn.out", [&g](const auto& p) { return write_fesom_open_boundary(g, p); },
+            [](const WriteStats& s) {
+              return Facts{{"open-boundary nodes", s.nodes}};
+            });
+      }
       const FesomRotation r = fesom_rotation(mesh.rotation);
       hold(LogLevel::kInfo,
            fmt::format("FESOM namelist.config &geometry: {} ({})", r.namelist(),
@@ -310,6 +319,16 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             format, name + ext, [&g, o](const auto& p) { return write_schism_hgrid(g, p, o); },
             [](const WriteStats& s) {
               return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
+            });
+      }
+      bool open = false;
+      for (const auto& sg : g.segments) open = open || sg.type == mesh::BoundaryType::kOpen;
+      if (open) {
+        plan(
+            format, name + "_bctides.in",
+            [&g, title = o.title](const auto& p) { return write_schism_bctides(g, p, title); },
+            [](const WriteStats& s) {
+              return Facts{{"open boundaries", s.boundary_edges}, {"open nodes", s.nodes}};
             });
       }
     } else if (format == "png") {

@@ -340,6 +340,47 @@ const S& schema() {
              100.0);
     size_num("size.cfl", "velocity_ms", [](GlobalConfig& c) -> double& { return c.size.cfl.velocity_ms; }, 0.0,
              100.0);
+    // [domain]
+    t.add<std::string>(
+        "domain", "kind", [](GlobalConfig& c) -> std::string& { return c.domain.kind; },
+        [](const std::string& v) {
+          return one_of(v, {"auto", "global", "box", "polygon"});
+        },
+        "");
+    t.add<std::vector<double>>(
+        "domain", "box", [](GlobalConfig& c) -> std::vector<double>& { return c.domain.box; },
+        [](const std::vector<double>& v) {
+          if (v.empty()) return std::string();
+          for (const double x : v)
+            if (!std::isfinite(x)) return std::string("expected 4 finite numbers [lon_min, lon_max, lat_min, lat_max]");
+          if (v.size() != 4 || !(v[2] < v[3]) || v[2] < -90 || v[3] > 90 || v[0] == v[1] ||
+              std::abs(v[0]) > 360.0 || std::abs(v[1]) > 360.0)
+            return std::string(
+                "expected [lon_min, lon_max, lat_min, lat_max] with -90 <= lat_min < lat_max <= 90, lon_min != lon_max "
+                "(lon_max < lon_min: the box crosses the seam), |lon| <= 360");
+          double w = v[1] - v[0];
+          if (w < 0.0) w += 360.0;
+          if (!(w < 360.0)) return std::string("the box spans 360° of longitude or more: use kind = \"global\"");
+          return std::string();
+        },
+        "");
+    t.add_custom(
+        "domain", "polygon",
+        [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::string text;
+          if (auto err = detail::convert(v, text)) return p.add(o, "domain.polygon", *err);
+          std::filesystem::path path(text);
+          if (!text.empty() && path.is_relative()) path = o.base_dir / path;
+          c.domain.polygon = text.empty() ? text : path.lexically_normal().string();
+        },
+        [](const GlobalConfig& c) { return Json(c.domain.polygon); }, "");
+    t.add<std::string>(
+        "domain", "layer", [](GlobalConfig& c) -> std::string& { return c.domain.layer; }, {}, "");
+    t.add<int>(
+        "domain", "feature", [](GlobalConfig& c) -> int& { return c.domain.feature; },
+        [](const int& v) { return in_range(v, -1, 1000000000); }, "");
+    t.add<std::string>(
+        "domain", "where", [](GlobalConfig& c) -> std::string& { return c.domain.where; }, {}, "");
     // [rotation]
     t.add<bool>(
         "rotation", "enabled", [](GlobalConfig& c) -> bool& { return c.rotation.enabled; }, {}, "");
@@ -475,7 +516,25 @@ void check_rule_levels(const std::vector<R>& rules, const char* key, int levels,
 }
 
 // Checks that involve several keys.
-void cross_check(const GlobalConfig& c, Problems& p) {
+void cross_check(GlobalConfig& c, Problems& p) {
+  // [domain]: the kind from the keys given (README "Regional FE meshes").
+  DomainOptions& d = c.domain;
+  const bool has_box = !d.box.empty(), has_polygon = !d.polygon.empty();
+  if (d.kind == "auto") {
+    d.resolved = has_polygon ? DomainKind::kPolygon : has_box ? DomainKind::kBox : DomainKind::kGlobal;
+  } else if (d.kind == "global") {
+    d.resolved = DomainKind::kGlobal;
+    if (has_box || has_polygon)
+      p.add_plain(999999, "domain.kind = \"global\" but domain.box or domain.polygon is set: remove the kind "
+                          "(\"auto\" takes the polygon, else the box) or the region");
+  } else if (d.kind == "box") {
+    d.resolved = DomainKind::kBox;
+    if (!has_box) p.add_plain(999999, "domain.kind = \"box\" needs domain.box = [lon_min, lon_max, lat_min, lat_max]");
+  } else {
+    d.resolved = DomainKind::kPolygon;
+    if (!has_polygon) p.add_plain(999999, "domain.kind = \"polygon\" needs domain.polygon = \"file\" (GeoPackage, "
+                                          "GeoJSON, Shapefile, ...)");
+  }
   // input.paths = [input.path] is one raster said twice (configs/example.toml does so); anything
   // else with both keys is ambiguous.
   if (!c.input.paths.empty() && c.input.path_layer != 0 && c.input.path_layer == c.input.paths_layer &&
@@ -546,6 +605,8 @@ RunName default_run_name(const GlobalConfig& c) {
   if (c.mask.min_depth_m != d.mask.min_depth_m) out.name += fmt::format("_h{:g}", c.mask.min_depth_m);
   if (c.mask.cursor != d.mask.cursor) out.name += fmt::format("_K{}", c.mask.cursor);
   if (c.rotation.enabled) out.name += "_rot";
+  if (c.domain.resolved == DomainKind::kBox) out.name += "_box";
+  if (c.domain.resolved == DomainKind::kPolygon) out.name += "_polygon";
   if (c.input.sources() != d.input.sources()) {
     for (const std::string& source : c.input.sources()) {
       std::string stem = std::filesystem::path(source).stem().string();

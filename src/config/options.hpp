@@ -150,8 +150,26 @@ struct BlocksOptions {
   int points_per_side = 8;     ///< contour control points per side (2..64)
 };
 
+/// What `aquatoria mesh` meshes (README "Regional FE meshes"): the whole connected ocean, or only
+/// the water inside a lon/lat box or a polygon, with open boundaries where the domain cuts the sea.
+enum class DomainKind { kGlobal, kBox, kPolygon };
+
+struct DomainOptions {
+  /// "auto" (the default): "polygon" when `polygon` is set, else "box" when `box` is set, else
+  /// "global". Resolved by the config reader into `resolved`.
+  std::string kind = "auto";
+  DomainKind resolved = DomainKind::kGlobal;
+  std::vector<double> box;  ///< [lon_min, lon_max, lat_min, lat_max]; lon_max < lon_min: across the seam
+  std::string polygon;      ///< GDAL/OGR vector file (GeoPackage, GeoJSON, Shapefile, ...) in lon/lat
+  std::string layer;        ///< layer name; "" = the first layer
+  int feature = -1;         ///< feature index (0-based, in the layer's order after `where`); -1 = all
+  std::string where;        ///< OGR attribute filter, e.g. "name = 'North Sea'"; "" = none
+  [[nodiscard]] bool regional() const { return resolved != DomainKind::kGlobal; }
+};
+
 /// The whole configuration of a global run.
 struct GlobalConfig {
+  DomainOptions domain;
   InputOptions input;
   MaskOptions mask;
   QuadtreeOptions quadtree;

@@ -28,7 +28,9 @@ Json lonlat_json(LonLat p) { return Json::array({p.lon_deg, p.lat_deg}); }
 }  // namespace
 
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
-                         const config::MaskOptions& options, const Logger& log, Report* report) {
+                         const config::MaskOptions& options, const Logger& log, Report* report,
+                         const Domain* domain) {
+  const bool regional = domain != nullptr && domain->regional();
   validate(options);
   WetArea area;
   {
@@ -37,7 +39,7 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     co.min_depth_m = options.min_depth_m;
     co.sampling = parse_sampling(options.sampling);
     co.progress = log.progress("classify");
-    check_mercator_caps(bathy, lattice, rot, options.min_depth_m);
+    if (!regional) check_mercator_caps(bathy, lattice, rot, options.min_depth_m);  // a region is inside the rows
     PixelClasses pc = classify_pixels(bathy, lattice, rot, co);
     area.wet_vertices = std::move(pc.wet_vertices);
     area.wet = std::move(pc.wet);
@@ -49,7 +51,17 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
   }
   {
     StageScope stage("fill", report, log);
-    KFillResult kf = k_cursor_fill(area.wet, lattice, rot, options.cursor, options.seeds, options.seed_radius_deg, log);
+    KFillResult kf;
+    if (regional) {  // water outside the domain is not meshed: the fill sees wet ∩ domain only
+      Bitmap wet_in = area.wet;
+      auto& w = wet_in.words();
+      const auto& d = domain->inside.words();
+      for (std::size_t k = 0; k < w.size(); ++k) w[k] &= d[k];
+      const auto seeds = regional_seeds(*domain, wet_in, lattice, rot, bathy, options.seeds, log);
+      kf = k_cursor_fill(wet_in, lattice, rot, options.cursor, seeds, options.seed_radius_deg, log);
+    } else {
+      kf = k_cursor_fill(area.wet, lattice, rot, options.cursor, options.seeds, options.seed_radius_deg, log);
+    }
     area.filled = std::move(kf.filled);
     area.fill = kf.stats;
     area.seeds = std::move(kf.seeds);
@@ -81,7 +93,7 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
       stage.done(fmt::format("{} pinch vertices (mask.remove_pinches = false)", area.pinches.total));
     }
   }
-  if (options.passages) {
+  if (options.passages && !regional) {
     StageScope stage("passages", report, log);
     area.passages = judge_passages(critical_passages(), area.filled, lattice, rot);
     int open = 0, closed = 0;

@@ -13,6 +13,7 @@
 #include "core/log.hpp"
 #include "core/report.hpp"
 #include "core/rotation.hpp"
+#include "mask/domain.hpp"
 #include "mask/k_cursor_fill.hpp"
 #include "mask/passages.hpp"
 #include "mask/pinches.hpp"
@@ -53,8 +54,12 @@ struct WetArea {
 /// all-wet window is within the radius). Logs "classify: done ...", "fill: done ...",
 /// "pinches: done ...", "passages: done ..." stage lines (and a progress bar on a terminal);
 /// when `report` is given, adds those stages and a "mask" section (see wet_area_json).
+/// With a regional `domain` the fill runs on wet ∩ domain from the seeds regional_seeds gives
+/// (`wet` stays the whole classification: the open boundary is where the outside is wet) and
+/// the passage table is not made.
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
-                         const config::MaskOptions& options, const Logger& log, Report* report);
+                         const config::MaskOptions& options, const Logger& log, Report* report,
+                         const Domain* domain = nullptr);
 
 /// The "mask" report section: parameters, class counts, fill statistics, seeds, pinches (the
 /// first `max_pinches` listed with lattice and geographic positions, and the total), removal

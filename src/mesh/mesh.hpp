@@ -42,6 +42,24 @@ struct BoundaryLoop {
   bool pole = false;   ///< the loop is the lattice edge φ = ±90° (only without rotation)
 };
 
+/// Type of a boundary edge of a regional mesh (README "Regional FE meshes").
+enum class BoundaryType : std::uint8_t {
+  kMainland = 0,  ///< land: on a loop that has open segments, or the outer loop
+  kIsland = 1,    ///< a closed land loop that is not the mainland
+  kOpen = 2,      ///< on the domain edge, in water
+};
+
+/// A typed piece of a boundary loop: an open segment (nodes in loop order, water on the left,
+/// both ends shared with the land pieces around it), a mainland piece between two open
+/// segments (from the last node of one to the first node of the next), or a whole closed loop
+/// (`closed`: mainland or island, first node not repeated).
+struct BoundarySegment {
+  BoundaryType type = BoundaryType::kMainland;
+  std::int32_t loop = 0;
+  bool closed = false;
+  std::vector<NodeId> nodes;
+};
+
 struct RotationInfo {
   bool enabled = false;
   double pole_lon_deg = 0.0;  ///< geographic position of the rotated system's North pole
@@ -74,6 +92,11 @@ struct Mesh {
   std::vector<std::int32_t> boundary_edge_loop;       ///< loop id of each boundary edge
   std::vector<BoundaryLoop> loops;
   std::vector<NodeId> pinch_nodes;  ///< where the wet area touches itself at a corner
+
+  // Boundary types (regional meshes only; empty for the global mesh): mesh/boundaries.hpp.
+  bool typed = false;                              ///< set by mesh::type_boundaries
+  std::vector<BoundaryType> boundary_edge_type;    ///< per boundary edge
+  std::vector<BoundarySegment> segments;           ///< open segments first (loop order), then land
 
   [[nodiscard]] std::int64_t node_count() const { return static_cast<std::int64_t>(node_i.size()); }
   [[nodiscard]] std::int64_t triangle_count() const { return static_cast<std::int64_t>(triangles.size()); }

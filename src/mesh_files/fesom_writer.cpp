@@ -91,6 +91,27 @@ WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path
   return stats;
 }
 
+WriteStats write_fesom_open_boundary(const mesh::Mesh& mesh, const std::filesystem::path& path) {
+  std::vector<NodeId> nodes;
+  std::vector<char> seen(static_cast<std::size_t>(mesh.node_count()), 0);
+  for (const auto& s : mesh.segments) {
+    if (s.type != mesh::BoundaryType::kOpen) continue;
+    for (const NodeId n : s.nodes) {
+      if (seen[static_cast<std::size_t>(n)] != 0) continue;
+      seen[static_cast<std::size_t>(n)] = 1;
+      nodes.push_back(n);
+    }
+  }
+  if (!mesh.typed || nodes.empty()) throw InternalError("FESOM open-boundary file: the mesh has no open boundary");
+  FileWriter f(path);
+  f.print("{}\n", nodes.size());
+  for (const NodeId n : nodes) f.print("{}\n", n + 1);
+  WriteStats stats;
+  stats.bytes = f.close();
+  stats.nodes = static_cast<std::int64_t>(nodes.size());
+  return stats;
+}
+
 WriteStats write_fesom_elem2d(const mesh::Mesh& mesh, const std::filesystem::path& path) {
   check_triangles(mesh, path);
   FileWriter f(path);

@@ -55,6 +55,11 @@ FesomRotation fesom_rotation(const mesh::RotationInfo& rotation);
 /// nod2d.out of the triangles' nodes. WriteStats::boundary_edges counts the nodes flagged 1.
 WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path& path);
 /// elem2d.out.
+/// Regional meshes (Mesh::typed): the open-boundary nodes, "N" then N 1-based node indices of
+/// nod2d.out, in the order of the open segments (each node once). Throws InternalError for a
+/// mesh without open segments.
+WriteStats write_fesom_open_boundary(const mesh::Mesh& mesh, const std::filesystem::path& path);
+
 WriteStats write_fesom_elem2d(const mesh::Mesh& mesh, const std::filesystem::path& path);
 /// aux3d.out with `levels_m` (positive down: at least 5, from 0, strictly increasing, as the
 /// configuration checks output.fesom_levels; InternalError otherwise).

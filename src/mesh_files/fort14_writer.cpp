@@ -38,6 +38,51 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
     f.maybe_flush();
   }
 
+  if (mesh.typed) {
+    std::int64_t nope = 0, neta = 0, nbou = 0, nvel = 0, edges = 0;
+    for (const auto& sg : mesh.segments) {
+      if (sg.type == mesh::BoundaryType::kOpen) {
+        ++nope;
+        neta += static_cast<std::int64_t>(sg.nodes.size());
+      } else {
+        ++nbou;
+        nvel += static_cast<std::int64_t>(sg.nodes.size()) + (sg.closed ? 1 : 0);
+        edges += static_cast<std::int64_t>(sg.nodes.size()) - (sg.closed ? 0 : 1);
+      }
+    }
+    f.print("{} ! NOPE = number of open boundaries\n{} ! NETA = total number of open boundary nodes\n", nope, neta);
+    std::int64_t k = 0;
+    for (const auto& sg : mesh.segments) {
+      if (sg.type != mesh::BoundaryType::kOpen) continue;
+      f.print("{} 0 ! open boundary {}\n", sg.nodes.size(), ++k);
+      for (const NodeId n : sg.nodes) {
+        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
+        f.maybe_flush();
+      }
+    }
+    f.print("{} ! {} = number of land boundaries\n{} ! NVEL = total number of land boundary nodes\n", nbou,
+            options.land_count_name, nvel);
+    k = 0;
+    for (const auto& sg : mesh.segments) {
+      if (sg.type == mesh::BoundaryType::kOpen) continue;
+      const bool island = sg.type == mesh::BoundaryType::kIsland;
+      f.print("{} {} ! land boundary {} ({})\n", sg.nodes.size() + (sg.closed ? 1 : 0),
+              island ? options.island_type : options.mainland_type, ++k,
+              island ? "island" : sg.closed ? "mainland, closed" : "mainland");
+      for (const NodeId n : sg.nodes) {
+        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
+        f.maybe_flush();
+      }
+      if (sg.closed) f.print("{}\n", sg.nodes.front() + 1);
+    }
+    WriteStats stats;
+    stats.bytes = f.close();
+    stats.nodes = np;
+    stats.elements = ne;
+    stats.boundary_edges = edges;
+    return stats;
+  }
+
   std::int64_t nvel = 0, edges = 0;
   for (const auto& loop : mesh.loops) {
     if (loop.nodes.empty()) continue;

@@ -22,6 +22,11 @@
 //   are stored (ADCIRC's global mode, adcirc/adcirc PR #171, corrects the element geometry
 //   across the ±180° overlap; OceanMesh2D global meshes use the same layout). No nodes are
 //   duplicated, so the mesh stays topologically closed across the seam.
+// - Regional meshes (Mesh::typed, README "Regional FE meshes"): NOPE open segments (NETA nodes,
+//   each "NVDLL 0" then its nodes in loop order, water on the left), then the land boundaries:
+//   mainland pieces between open segments (IBTYPE 20, from the last node of one open segment to
+//   the first node of the next: the end nodes are in both lists), closed mainland loops (20) and
+//   islands (21), each closed loop with its first node repeated at the end.
 // - Pole-row nodes are kept (distinct nodes at latitude 90°); only triangles are written.
 #pragma once
 
@@ -38,6 +43,9 @@ struct Fort14Options {
   /// Names in the comments of the boundary header lines (SCHISM's hgrid.gr3 has the same layout
   /// and calls the land boundary count NLAND: mesh_files/schism_writer.hpp).
   std::string land_count_name = "NBOU";
+  /// Regional meshes (Mesh::typed): the land boundary types of mainland pieces and islands
+  /// (ADCIRC IBTYPE 20 / 21; SCHISM's land flag 0 / 1).
+  int mainland_type = 20, island_type = 21;
 };
 
 /// Writes the triangles of `mesh` to `path` (a temporary path of an OutputSet). Throws

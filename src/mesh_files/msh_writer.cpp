@@ -24,8 +24,8 @@ namespace aq::io {
 namespace {
 
 constexpr int kTypeLine = 1, kTypeTriangle = 2, kTypeQuad = 3;
-constexpr int kCurveCoast = 1, kCurveSeam = 2, kCurveSeamCopy = 3;
-constexpr int kPhysCoast = 1, kPhysOcean = 2, kPhysOceanSquares = 3;
+constexpr int kCurveCoast = 1, kCurveSeam = 2, kCurveSeamCopy = 3, kCurveOpen = 4, kCurveIsland = 5;
+constexpr int kPhysCoast = 1, kPhysOcean = 2, kPhysOceanSquares = 3, kPhysOpen = 4, kPhysIsland = 5;
 
 // Writes MSH tokens either as ASCII words separated by spaces or as native binary values.
 class MshOut {
@@ -149,6 +149,8 @@ struct Block {
   BlockKind kind;
   int dim, entity, type, nodes_per_element;
   std::int64_t count = 0;
+  int physical = kPhysCoast;                    ///< kCoast: the curve's physical group
+  const std::vector<std::size_t>* edges = nullptr;  ///< kCoast of a typed mesh: its boundary edges
 };
 
 class Blocks {
@@ -160,7 +162,21 @@ class Blocks {
       add({BlockKind::kQuads, 2, square_entity, kTypeQuad, 4});
       if (!nodes.plane()) add({BlockKind::kCollapsedQuads, 2, square_entity, kTypeTriangle, 3});
     }
-    if (!mesh.boundary_edges.empty()) add({BlockKind::kCoast, 1, kCurveCoast, kTypeLine, 2});
+    const bool typed = mesh.typed && mesh.boundary_edge_type.size() == mesh.boundary_edges.size();
+    if (typed) {  // one curve per boundary type (README "Regional FE meshes")
+      for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e)
+        typed_edges_[static_cast<std::size_t>(mesh.boundary_edge_type[e])].push_back(e);
+      const int curve[3] = {kCurveCoast, kCurveIsland, kCurveOpen}, phys[3] = {kPhysCoast, kPhysIsland, kPhysOpen};
+      for (const std::size_t t : {std::size_t{0}, std::size_t{2}, std::size_t{1}}) {
+        if (typed_edges_[t].empty()) continue;
+        Block b{BlockKind::kCoast, 1, curve[t], kTypeLine, 2};
+        b.physical = phys[t];
+        b.edges = &typed_edges_[t];
+        add(b);
+      }
+    } else if (!mesh.boundary_edges.empty()) {
+      add({BlockKind::kCoast, 1, kCurveCoast, kTypeLine, 2});
+    }
     if (!nodes.plane()) {
       if (has_triangles(kinds)) dropped_ += static_cast<std::int64_t>(mesh.triangles.size());
       if (has_squares(kinds)) dropped_ += static_cast<std::int64_t>(mesh.squares.size());
@@ -194,7 +210,7 @@ class Blocks {
         for (int a = 0; a < 4; ++a) out[a] = seam.plane_node(m, m.squares[u], m.squares[u][a]);
         return;
       case BlockKind::kCoast: {
-        const auto p = seam.plane_edge(m, m.boundary_edges[u]);
+        const auto p = seam.plane_edge(m, m.boundary_edges[b.edges != nullptr ? (*b.edges)[u] : u]);
         out[0] = p[0];
         out[1] = p[1];
         return;
@@ -252,7 +268,8 @@ class Blocks {
         }
         break;
       case BlockKind::kCoast:
-        for (const auto& e : m.boundary_edges) {
+        for (std::size_t q = 0, nq = b.edges != nullptr ? b.edges->size() : m.boundary_edges.size(); q < nq; ++q) {
+          const auto& e = m.boundary_edges[b.edges != nullptr ? (*b.edges)[q] : q];
           if (plane) {
             const auto p = seam->plane_edge(m, e);
             tags[0] = tag(p[0]);
@@ -279,6 +296,7 @@ class Blocks {
     if (nodes_.plane()) {
       b.count = b.kind == BlockKind::kTriangles ? mesh_.triangle_count()
                 : b.kind == BlockKind::kQuads   ? mesh_.square_count()
+                : b.edges != nullptr            ? static_cast<std::int64_t>(b.edges->size())
                                                 : static_cast<std::int64_t>(mesh_.boundary_edges.size());
     } else {
       visit(b, [&](const std::uint64_t*, int) { ++b.count; });
@@ -289,10 +307,11 @@ class Blocks {
   const mesh::Mesh& mesh_;
   const NodeSet& nodes_;
   std::vector<Block> list_;
+  std::array<std::vector<std::size_t>, 3> typed_edges_;  ///< by mesh::BoundaryType
   std::int64_t dropped_ = 0;
 };
 
-void write_header(MshOut& out, ElementKinds kinds) {
+void write_header(MshOut& out, ElementKinds kinds, bool typed) {
   FileWriter& f = out.file();
   f.text("$MeshFormat\n");
   if (out.binary()) {
@@ -305,9 +324,10 @@ void write_header(MshOut& out, ElementKinds kinds) {
   f.text("$EndMeshFormat\n");
   // Physical names are ASCII in both modes.
   const bool both = kinds == ElementKinds::kBoth;
-  f.print("$PhysicalNames\n{}\n", both ? 3 : 2);
-  f.print("1 {} \"coast\"\n2 {} \"ocean\"\n", kPhysCoast, kPhysOcean);
+  f.print("$PhysicalNames\n{}\n", (both ? 3 : 2) + (typed ? 2 : 0));
+  f.print("1 {} \"{}\"\n2 {} \"ocean\"\n", kPhysCoast, typed ? "mainland" : "coast", kPhysOcean);
   if (both) f.print("2 {} \"ocean_squares\"\n", kPhysOceanSquares);
+  if (typed) f.print("1 {} \"open\"\n1 {} \"island\"\n", kPhysOpen, kPhysIsland);
   f.text("$EndPhysicalNames\n");
 }
 
@@ -317,12 +337,18 @@ void write_entities(MshOut& out, const mesh::Mesh& mesh, const NodeSet& nodes, c
   const bool both = kinds == ElementKinds::kBoth;
   Box all, coast, seam, seam_copy;
   for (NodeId o = 0; o < nodes.count(); ++o) all.add(nodes.position(o));
+  // A typed (regional) mesh has one curve per boundary type present, each with its own box.
+  std::vector<std::pair<const Block*, Box>> typed_curves;
   for (const auto& b : blocks.list()) {
     if (b.kind != BlockKind::kCoast) continue;
+    Box box;
     blocks.visit(b, [&](const std::uint64_t* t, int) {
       coast.add(nodes.position(static_cast<NodeId>(t[0]) - 1));
       coast.add(nodes.position(static_cast<NodeId>(t[1]) - 1));
+      box.add(nodes.position(static_cast<NodeId>(t[0]) - 1));
+      box.add(nodes.position(static_cast<NodeId>(t[1]) - 1));
     });
+    if (b.edges != nullptr) typed_curves.emplace_back(&b, box);
   }
   if (seam_curves) {
     const auto& orig = nodes.seam().originals();
@@ -333,19 +359,20 @@ void write_entities(MshOut& out, const mesh::Mesh& mesh, const NodeSet& nodes, c
   }
   out.begin("Entities");
   out.size(0);
-  out.size(seam_curves ? 3 : 1);
+  out.size((seam_curves ? 2 : 0) + (typed_curves.empty() ? 1 : typed_curves.size()));
   out.size(both ? 2 : 1);
   out.size(0);
   out.eol();
-  auto curve = [&](int tag, const Box& box, bool physical) {
+  auto curve = [&](int tag, const Box& box, bool physical, int group = kPhysCoast) {
     out.i32(tag);
     box.write(out);
     out.size(physical ? 1 : 0);
-    if (physical) out.i32(kPhysCoast);
+    if (physical) out.i32(group);
     out.size(0);
     out.eol();
   };
-  curve(kCurveCoast, coast, true);
+  if (typed_curves.empty()) curve(kCurveCoast, coast, true);
+  for (const auto& [b, box] : typed_curves) curve(b->entity, box, true, b->physical);
   if (seam_curves) {
     curve(kCurveSeam, seam, false);
     curve(kCurveSeamCopy, seam_copy, false);
@@ -571,7 +598,7 @@ WriteStats write_msh(const mesh::Mesh& mesh, const std::filesystem::path& path, 
 
   FileWriter file(path);
   MshOut out(file, options.binary);
-  write_header(out, options.elements);
+  write_header(out, options.elements, mesh.typed && mesh.boundary_edge_type.size() == mesh.boundary_edges.size());
   write_entities(out, mesh, nodes, blocks, options.elements);
   write_nodes(out, mesh, nodes);
   write_elements(out, blocks);

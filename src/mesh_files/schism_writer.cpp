@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/error.hpp"
+#include "io/file_writer.hpp"
 #include "mesh_files/fort14_writer.hpp"
 #include "mesh_files/geographic_mesh.hpp"
 
@@ -17,7 +19,37 @@ WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::pat
   Fort14Options o;
   o.title = options.title;
   o.land_count_name = "NLAND";
+  o.mainland_type = 0;  // SCHISM's land flag: 0 land, 1 island
+  o.island_type = 1;
   return write_fort14(mesh, path, o);
+}
+
+WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::path& path, const std::string& title) {
+  std::int64_t nope = 0, neta = 0;
+  for (const auto& s : mesh.segments)
+    if (s.type == mesh::BoundaryType::kOpen) {
+      ++nope;
+      neta += static_cast<std::int64_t>(s.nodes.size());
+    }
+  if (!mesh.typed || nope == 0) throw InternalError("bctides.in: the mesh has no open boundary");
+  FileWriter f(path);
+  f.print("{} (skeleton: M2 on the open boundaries, amplitudes and phases 0)\n", title.substr(0, 80));
+  f.print("0 0. !ntip: # of tidal-potential constituents (none); tip_dp\n");
+  f.print("1 !nbfr: # of tidal boundary forcing frequencies\nM2\n");
+  f.print("1.405189025e-4 1. 0. !frequency [rad/s], nodal factor, equilibrium argument [deg]\n");
+  f.print("{} !nope: # of open boundaries\n", nope);
+  std::int64_t k = 0;
+  for (const auto& s : mesh.segments) {
+    if (s.type != mesh::BoundaryType::kOpen) continue;
+    f.print("{} 3 0 0 0 !open boundary {}: # of nodes, iettype 3 (tidal elevation), ifltype 0, T and S none\nM2\n",
+            s.nodes.size(), ++k);
+    for (std::size_t n = 0; n < s.nodes.size(); ++n) f.print("0. 0. !node {}\n", s.nodes[n] + 1);
+  }
+  WriteStats stats;
+  stats.bytes = f.close();
+  stats.nodes = neta;
+  stats.boundary_edges = nope;
+  return stats;
 }
 
 SchismTimeStep schism_time_step(const mesh::Mesh& m) {

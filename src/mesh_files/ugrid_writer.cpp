@@ -500,6 +500,15 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
       if (mesh.loops[l].outer) outer = static_cast<int>(l);
     nc.integer(bnd_loop, "outer_loop", outer);
   }
+  int bnd_type = -1;  // regional meshes: the type of each boundary edge (README "Regional FE meshes")
+  const bool typed = nb > 0 && mesh.typed && mesh.boundary_edge_type.size() == static_cast<std::size_t>(nb);
+  if (typed) {
+    bnd_type = nc.var("mesh_boundary_type", NC_BYTE, {bnd_dim});
+    nc.text(bnd_type, "long_name", "Type of each boundary edge");
+    const signed char values[3] = {0, 1, 2};
+    nc.check(nc_put_att_schar(nc.id(), bnd_type, "flag_values", NC_BYTE, 3, values), "attribute flag_values");
+    nc.text(bnd_type, "flag_meanings", "mainland island open");
+  }
   nc.enddef();
 
   nc.check(nc_put_var_double(nc.id(), node_x, mesh.lon_deg.data()), "write mesh_node_x");
@@ -526,6 +535,11 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
     }
     nc.put(bnd, 0, nb, 2, be.data());
     nc.check(nc_put_var_int(nc.id(), bnd_loop, loop.data()), "write mesh_boundary_loop");
+  }
+  if (typed) {
+    std::vector<signed char> ty(static_cast<std::size_t>(nb));
+    for (std::size_t e = 0; e < ty.size(); ++e) ty[e] = static_cast<signed char>(mesh.boundary_edge_type[e]);
+    nc.check(nc_put_var_schar(nc.id(), bnd_type, ty.data()), "write mesh_boundary_type");
   }
   WriteStats stats;
   for (std::size_t k = 0; k < sets.size(); ++k) {

@@ -24,6 +24,17 @@ namespace aq::io {
 
 namespace {
 
+// Boundary types of a regional mesh in the preview (index = mesh::BoundaryType).
+constexpr std::array<std::array<double, 3>, 3> kBoundaryRgb{{{0.0, 0.0, 0.0}, {0.0, 0.35, 0.95}, {0.9, 0.05, 0.05}}};
+
+bool typed_boundary(const mesh::Mesh& m) {
+  return m.typed && m.boundary_edge_type.size() == m.boundary_edges.size();
+}
+
+}  // namespace
+
+namespace {
+
 // Picture geometry: map degrees (lattice plane) -> device pixels.
 struct View {
   double lon_min = 0, lon_max = 0, lat_min = 0, lat_max = 0;
@@ -383,9 +394,12 @@ class MeshPainter {
   }
 
   // seg(...) for every boundary edge, unwrapped like the element it bounds.
+  // `type` >= 0 (a typed regional mesh): only the edges of that mesh::BoundaryType.
   template <typename Seg>
-  void coast_edges(Seg&& seg) const {
-    for (const auto& e : m_.boundary_edges) {
+  void coast_edges(Seg&& seg, int type = -1) const {
+    for (std::size_t k = 0; k < m_.boundary_edges.size(); ++k) {
+      const auto& e = m_.boundary_edges[k];
+      if (type >= 0 && static_cast<int>(m_.boundary_edge_type[k]) != type) continue;
       const auto u = SeamNodes::edge_unwrapped(m_, e);
       const double ax = x(u[0] ? m_.lattice.nx : m_.node_i[e[0]]), bx = x(u[1] ? m_.lattice.nx : m_.node_i[e[1]]);
       const double ay = y(m_.node_j[e[0]]), by = y(m_.node_j[e[1]]);
@@ -538,7 +552,13 @@ void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOp
     const std::uint32_t p = shade_exact(e);
     items.push_back({{((p >> 16) & 0xff) / 255.0, ((p >> 8) & 0xff) / 255.0, (p & 0xff) / 255.0}, label});
   }
-  items.push_back({{0.0, 0.0, 0.0}, "coast"});
+  if (typed_boundary(m)) {
+    items.push_back({kBoundaryRgb[0], "mainland"});
+    items.push_back({kBoundaryRgb[1], "island"});
+    items.push_back({kBoundaryRgb[2], "open boundary"});
+  } else {
+    items.push_back({{0.0, 0.0, 0.0}, "coast"});
+  }
   const double sw = v.band * 0.6;
   cairo_set_font_size(cr, font);
   double need = 0.0;
@@ -626,7 +646,15 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
   cairo_surface_mark_dirty(surface);
   cairo_set_line_width(cr, std::clamp(v.width / 1600.0, 1.2, 3.0));
   cairo_set_source_rgb(cr, 0, 0, 0);
-  {
+  if (typed_boundary(mesh)) {  // regional: mainland black, islands blue, open boundary red
+    cairo_set_line_width(cr, std::clamp(v.width / 800.0, 2.0, 4.0));
+    for (int t = 0; t < 3; ++t) {
+      const auto& c = kBoundaryRgb[static_cast<std::size_t>(t)];
+      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      CairoStroker coast(cr);
+      paint.coast_edges(coast, t);
+    }
+  } else {
     CairoStroker coast(cr);
     paint.coast_edges(coast);
   }
@@ -704,6 +732,18 @@ WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& b
                              const PreviewOptions& options) {
   check_preview_options(options);
   const double lon0 = mesh.lattice.lon0_deg;
+  if (typed_boundary(mesh) && mesh.node_count() > 0) {  // a regional mesh: its own extent, 3% margin
+    const auto [i_lo, i_hi] = std::minmax_element(mesh.node_i.begin(), mesh.node_i.end());
+    const auto [j_lo, j_hi] = std::minmax_element(mesh.node_j.begin(), mesh.node_j.end());
+    const Lattice& l = mesh.lattice;
+    if (*i_hi - *i_lo < l.nx / 2) {  // not across the seam (that one gets the whole map)
+      const double x0 = l.lon_of(*i_lo), x1 = l.lon_of(*i_hi), y0 = l.plane_y_of(*j_lo), y1 = l.plane_y_of(*j_hi);
+      const double mx = 0.03 * (x1 - x0) + l.pixel_deg(), my = 0.03 * (y1 - y0) + l.pixel_deg();
+      const View v = make_view(x0 - mx, x1 + mx, std::max(y0 - my, l.plane_y_of(0)),
+                               std::min(y1 + my, l.plane_y_of(l.ny)), options.width_px);
+      return render(mesh, bathy, path, options, v, counts_title(mesh, options), &options.zoom);
+    }
+  }
   const View v = make_view(lon0, lon0 + 360.0, mesh.lattice.plane_y_of(0), mesh.lattice.plane_y_of(mesh.lattice.ny),
                            options.width_px);
   return render(mesh, bathy, path, options, v, counts_title(mesh, options), &options.zoom);

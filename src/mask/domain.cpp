@@ -1,0 +1,275 @@
+// The meshed domain of a regional run (see domain.hpp).
+#include "mask/domain.hpp"
+
+#include <fmt/format.h>
+#include <gdal.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/types.hpp"
+#include "mask/lattice_coords.hpp"
+
+namespace aq::mask {
+
+namespace {
+
+using config::DomainKind;
+
+std::int64_t mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
+
+struct Ring {
+  std::vector<double> lon, lat;
+};
+
+void add_rings(OGRGeometryH g, std::vector<Ring>& rings) {
+  if (g == nullptr) return;
+  const OGRwkbGeometryType t = wkbFlatten(OGR_G_GetGeometryType(g));
+  if (t == wkbPolygon) {
+    for (int r = 0; r < OGR_G_GetGeometryCount(g); ++r) {
+      OGRGeometryH ring = OGR_G_GetGeometryRef(g, r);
+      Ring out;
+      for (int k = 0; k < OGR_G_GetPointCount(ring); ++k) {
+        out.lon.push_back(OGR_G_GetX(ring, k));
+        out.lat.push_back(OGR_G_GetY(ring, k));
+      }
+      if (out.lon.size() >= 3) rings.push_back(std::move(out));
+    }
+  } else if (t == wkbMultiPolygon || t == wkbGeometryCollection) {
+    for (int k = 0; k < OGR_G_GetGeometryCount(g); ++k) add_rings(OGR_G_GetGeometryRef(g, k), rings);
+  }
+}
+
+std::vector<Ring> read_polygon(const config::DomainOptions& o) {
+  GDALAllRegister();
+  const std::string& path = o.polygon;
+  struct Closer {
+    void operator()(void* h) const { GDALClose(h); }
+  };
+  std::unique_ptr<void, Closer> ds(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!ds) {
+    throw InputError(fmt::format("domain.polygon = \"{}\": GDAL/OGR cannot open it as a vector file ({})", path,
+                                 CPLGetLastErrorMsg()));
+  }
+  OGRLayerH layer = o.layer.empty() ? GDALDatasetGetLayer(ds.get(), 0)
+                                    : GDALDatasetGetLayerByName(ds.get(), o.layer.c_str());
+  if (layer == nullptr) {
+    throw InputError(o.layer.empty() ? fmt::format("domain.polygon = \"{}\": the file has no layer", path)
+                                     : fmt::format("domain.layer = \"{}\": no such layer in {}", o.layer, path));
+  }
+  if (OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer); srs != nullptr && OSRIsGeographic(srs) == 0) {
+    throw InputError(fmt::format("domain.polygon = \"{}\": the layer is not in geographic lon/lat coordinates; "
+                                 "reproject it (e.g. ogr2ogr -t_srs EPSG:4326)",
+                                 path));
+  }
+  if (!o.where.empty() && OGR_L_SetAttributeFilter(layer, o.where.c_str()) != OGRERR_NONE) {
+    throw ConfigError(fmt::format("domain.where = \"{}\": OGR refuses the filter on {} ({})", o.where, path,
+                                  CPLGetLastErrorMsg()));
+  }
+  OGR_L_ResetReading(layer);
+  std::vector<Ring> rings;
+  int index = 0, features = 0;
+  for (OGRFeatureH f = OGR_L_GetNextFeature(layer); f != nullptr; f = OGR_L_GetNextFeature(layer), ++index) {
+    if (o.feature < 0 || o.feature == index) {
+      add_rings(OGR_F_GetGeometryRef(f), rings);
+      ++features;
+    }
+    OGR_F_Destroy(f);
+  }
+  if (o.feature >= 0 && features == 0) {
+    throw ConfigError(fmt::format("domain.feature = {}: {} has only {} feature(s){}", o.feature, path, index,
+                                  o.where.empty() ? "" : " matching domain.where"));
+  }
+  if (rings.empty()) {
+    throw InputError(fmt::format("domain.polygon = \"{}\": no polygon in the selected feature(s) (layer \"{}\"{})", path,
+                                 OGR_L_GetName(layer), o.where.empty() ? "" : ", where " + o.where));
+  }
+  for (const Ring& r : rings)
+    for (std::size_t k = 0; k < r.lon.size(); ++k)
+      if (!std::isfinite(r.lon[k]) || !std::isfinite(r.lat[k]) || std::abs(r.lat[k]) > 90.0)
+        throw InputError(fmt::format("domain.polygon = \"{}\": vertex ({}, {}) is not a lon/lat point", path,
+                                     r.lon[k], r.lat[k]));
+  return rings;
+}
+
+void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, const PoleRotation& rot) {
+  const double w = o.box[0];
+  double width = o.box[1] - o.box[0];
+  if (width < 0.0) width += 360.0;
+  if (rot.identity()) {
+    const double pix = lat.pixel_deg();
+    const auto sq = lat.pixels_per_square(0);
+    const double x_w = (w - lat.lon0_deg) / pix, x_e = x_w + width / pix;
+    const auto i0 = static_cast<std::int64_t>(std::floor(x_w / static_cast<double>(sq) + 1e-9)) * sq;
+    const auto i1 = static_cast<std::int64_t>(std::ceil(x_e / static_cast<double>(sq) - 1e-9)) * sq;
+    const double y_s = lat.row_of_lat(std::max(o.box[2], -lat.lat_max_deg()));
+    const double y_n = lat.row_of_lat(std::min(o.box[3], lat.lat_max_deg()));
+    const std::int64_t j0 =
+        std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s / static_cast<double>(sq) + 1e-9)) * sq);
+    const std::int64_t j1 = std::min<std::int64_t>(
+        lat.ny, static_cast<std::int64_t>(std::ceil(y_n / static_cast<double>(sq) - 1e-9)) * sq);
+    if (i1 - i0 >= lat.nx)
+      throw ConfigError(fmt::format("domain.box = [{}, {}, {}, {}]: snapped outward to {}° squares it covers all "
+                                    "longitudes; use the global domain",
+                                    o.box[0], o.box[1], o.box[2], o.box[3], lat.step0_deg));
+    if (j1 <= j0)
+      throw ConfigError(fmt::format("domain.box = [{}, {}, {}, {}]: no lattice row inside", o.box[0], o.box[1],
+                                    o.box[2], o.box[3]));
+    d.i0 = mod(i0, lat.nx);
+    d.j0 = j0;
+    d.ni = i1 - i0;
+    d.nj = j1 - j0;
+    for (std::int64_t j = j0; j < j1; ++j)
+      for (std::int64_t i = i0; i < i1; ++i) d.inside.set(mod(i, lat.nx), j);
+    d.lon_min = lat.lon_of(i0);
+    d.lon_max = lat.lon_of(i1);
+    d.lat_min = lat.lat_of(j0);
+    d.lat_max = lat.lat_of(j1);
+    d.description = fmt::format("box [{}, {}, {}, {}] snapped outward to {}° squares: {:.6g}..{:.6g}°E, "
+                                "{:.6g}..{:.6g}°N ({} x {} pixels{})",
+                                o.box[0], o.box[1], o.box[2], o.box[3], lat.step0_deg, d.lon_min, d.lon_max,
+                                d.lat_min, d.lat_max, d.ni, d.nj,
+                                (i0 < 0 || i1 > lat.nx) ? ", across the seam" : "");
+    return;
+  }
+  // Rotated lattice: pixel centres tested in geographic coordinates.
+  d.lon_min = w;
+  d.lon_max = w + width;
+  d.lat_min = o.box[2];
+  d.lat_max = o.box[3];
+  for (std::int64_t j = 0; j < lat.ny; ++j)
+    for (std::int64_t i = 0; i < lat.nx; ++i) {
+      const LonLat c = pixel_center_lattice_deg(lat, {i, j});
+      double lon = 0.0, la = 0.0;
+      rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
+      double dl = std::fmod(lon - w, 360.0);
+      if (dl < 0.0) dl += 360.0;
+      if (dl < width && la >= o.box[2] && la <= o.box[3]) d.inside.set(i, j);
+    }
+  d.description = fmt::format("box [{}, {}, {}, {}] (rotated lattice: pixels whose centre is in the box)", o.box[0],
+                              o.box[1], o.box[2], o.box[3]);
+}
+
+void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat) {
+  const std::vector<Ring> rings = read_polygon(o);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, so = lo, no = -lo;
+  std::size_t vertices = 0;
+  for (const Ring& r : rings) {
+    vertices += r.lon.size();
+    for (std::size_t k = 0; k < r.lon.size(); ++k) {
+      lo = std::min(lo, r.lon[k]);
+      hi = std::max(hi, r.lon[k]);
+      so = std::min(so, r.lat[k]);
+      no = std::max(no, r.lat[k]);
+    }
+  }
+  if (hi - lo >= 360.0)
+    throw InputError(fmt::format("domain.polygon = \"{}\": the polygon spans {}° of longitude (360° or more)",
+                                 o.polygon, hi - lo));
+  const double pix = lat.pixel_deg();
+  std::vector<double> xs;
+  for (std::int64_t j = 0; j < lat.ny; ++j) {
+    const double la = lat.lat_of_row(static_cast<double>(j) + 0.5);
+    if (la < so || la > no) continue;
+    xs.clear();
+    for (const Ring& r : rings) {
+      const std::size_t n = r.lon.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const double ax = r.lon[k], ay = r.lat[k], bx = r.lon[(k + 1) % n], by = r.lat[(k + 1) % n];
+        if ((ay <= la) == (by <= la)) continue;
+        xs.push_back(ax + (la - ay) * (bx - ax) / (by - ay));
+      }
+    }
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+      const auto a = static_cast<std::int64_t>(std::ceil((xs[k] - lat.lon0_deg) / pix - 0.5));
+      const auto b = static_cast<std::int64_t>(std::ceil((xs[k + 1] - lat.lon0_deg) / pix - 0.5));
+      for (std::int64_t i = a; i < b && i < a + lat.nx; ++i) d.inside.set(mod(i, lat.nx), j);
+    }
+  }
+  d.lon_min = lo;
+  d.lon_max = hi;
+  d.lat_min = so;
+  d.lat_max = no;
+  d.description = fmt::format("polygon {} ({} ring(s), {} vertices; {:.6g}..{:.6g}°E, {:.6g}..{:.6g}°N)", o.polygon,
+                              rings.size(), vertices, lo, hi, so, no);
+}
+
+}  // namespace
+
+bool Domain::contains(std::int64_t i, std::int64_t j) const {
+  if (!regional()) return true;
+  if (j < 0 || j >= inside.ny()) return false;
+  return inside.get(mod(i, inside.nx()), j);
+}
+
+Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot) {
+  Domain d;
+  d.kind = options.resolved;
+  if (!d.regional()) return d;
+  d.inside = Bitmap(lattice.nx, lattice.ny);
+  if (d.kind == DomainKind::kBox) {
+    box_domain(d, options, lattice, rot);
+  } else {
+    if (!rot.identity())
+      throw ConfigError("domain.polygon with rotation.enabled = true is not supported: use a domain.box, or "
+                        "rotation.enabled = false");
+    polygon_domain(d, options, lattice);
+  }
+  d.pixels = d.inside.count();
+  if (d.pixels == 0)
+    throw ConfigError(fmt::format("domain: the {} holds no pixel of the lattice ({}° pixels)", d.description,
+                                  lattice.pixel_deg()));
+  return d;
+}
+
+std::vector<std::array<double, 2>> regional_seeds(const Domain& domain, const Bitmap& wet, const Lattice& lattice,
+                                                  const PoleRotation& rot, const raster::Bathymetry& bathy,
+                                                  const std::vector<std::array<double, 2>>& seeds, const Logger& log) {
+  std::vector<std::array<double, 2>> out;
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    double rl = 0.0, rp = 0.0, x = 0.0, y = 0.0;
+    rot.to_rotated(seeds[k][0], seeds[k][1], rl, rp);
+    deg_to_lattice_xy(lattice, {rl, rp}, x, y);
+    if (!on_lattice_rows(lattice, y)) continue;
+    const auto i = static_cast<std::int64_t>(std::floor(x)), j = static_cast<std::int64_t>(std::floor(y));
+    if (domain.contains(i, std::min(j, lattice.ny - 1))) out.push_back(seeds[k]);
+  }
+  if (!out.empty()) {
+    if (out.size() < seeds.size())
+      log.info("domain: {} of the {} mask.seeds are inside the domain and seed the fill", out.size(), seeds.size());
+    return out;
+  }
+  // The deepest wet pixel inside (pixel centre sampled from the raster).
+  double best = std::numeric_limits<double>::infinity();
+  std::int64_t bi = -1, bj = -1;
+  for (std::int64_t j = 0; j < lattice.ny; ++j)
+    for (std::int64_t i = 0; i < lattice.nx; ++i) {
+      if (!domain.inside.get(i, j) || !wet.get(i, j)) continue;
+      const LonLat c = pixel_center_lattice_deg(lattice, {i, j});
+      double lon = c.lon_deg, la = c.lat_deg;
+      if (!rot.identity()) rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
+      const double z = bathy.sample(lon, la);
+      if (std::isfinite(z) && z < best) {
+        best = z;
+        bi = i;
+        bj = j;
+      }
+    }
+  if (bi < 0) throw InputError(fmt::format("domain: no wet pixel inside the {}", domain.description));
+  const LonLat c = pixel_center_lattice_deg(lattice, {bi, bj});
+  double lon = c.lon_deg, la = c.lat_deg;
+  if (!rot.identity()) rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
+  log.info("domain: no mask.seeds point is inside the domain; the fill starts at the deepest wet pixel inside, "
+           "{:.4f}°E {:.4f}°N ({:.0f} m)",
+           lon, la, best);
+  return {{lon, la}};
+}
+
+}  // namespace aq::mask

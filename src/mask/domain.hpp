@@ -1,0 +1,52 @@
+// The meshed domain of a regional run (README "Regional FE meshes"): the pixels of the lattice
+// inside a lon/lat box or a polygon. The K-cursor fill runs on wet ∩ domain, so water outside
+// the domain is not meshed; a boundary edge of the mesh whose outside pixel is wet and outside
+// the domain is an open boundary (mesh/boundaries.hpp).
+//
+// Box, no rotation: the box is snapped outward to whole level-0 squares of the lattice (its
+// sides are lattice lines, so the open boundary is straight and the quadtree's squares fit it);
+// lon_max < lon_min (or a range past lon0 + 360) crosses the seam: the columns wrap. With pole
+// rotation a pixel is inside when its centre's geographic position is in the box (the box is not
+// a lattice rectangle then). Polygon: a pixel is inside when its centre is inside the polygon
+// (even-odd over all rings of the selected features; geographic lon/lat, no rotation).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "config/options.hpp"
+#include "core/bitmap.hpp"
+#include "core/lattice.hpp"
+#include "core/log.hpp"
+#include "core/rotation.hpp"
+#include "raster/bathymetry.hpp"
+
+namespace aq::mask {
+
+struct Domain {
+  config::DomainKind kind = config::DomainKind::kGlobal;
+  Bitmap inside;                 ///< nx × ny: pixel inside the domain (empty for a global run)
+  std::int64_t pixels = 0;       ///< |inside|
+  std::int64_t i0 = 0, j0 = 0;   ///< box: first pixel column (may wrap) and row of the snapped box
+  std::int64_t ni = 0, nj = 0;   ///< box: pixel columns and rows of the snapped box
+  double lon_min = 0, lon_max = 0, lat_min = 0, lat_max = 0;  ///< lattice-frame extent of the region
+  std::string description;       ///< one line for the log and the report
+
+  [[nodiscard]] bool regional() const { return kind != config::DomainKind::kGlobal; }
+  /// Whether pixel (i, j) is inside; i is taken modulo nx, rows outside [0, ny) are outside.
+  [[nodiscard]] bool contains(std::int64_t i, std::int64_t j) const;
+};
+
+/// The domain of `options` on `lattice`. Throws ConfigError naming domain.* (a polygon with
+/// rotation, an empty region) and InputError naming the polygon file (cannot be read, no layer,
+/// no polygon feature, not lon/lat).
+Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot);
+
+/// The seeds of the fill for a regional run: the configured seeds whose pixel is inside the
+/// domain; when none is, the deepest wet pixel inside (ties: smallest (j, i)), logged. Throws
+/// InputError when the domain holds no wet pixel.
+std::vector<std::array<double, 2>> regional_seeds(const Domain& domain, const Bitmap& wet, const Lattice& lattice,
+                                                  const PoleRotation& rot, const raster::Bathymetry& bathy,
+                                                  const std::vector<std::array<double, 2>>& seeds, const Logger& log);
+
+}  // namespace aq::mask

@@ -1,0 +1,188 @@
+// Boundary typing of regional meshes (see boundaries.hpp).
+#include "mesh/boundaries.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include "core/error.hpp"
+
+namespace aq::mesh {
+
+namespace {
+
+struct Run {
+  std::size_t start = 0, length = 0;
+  bool open = false;
+};
+
+// Maximal runs of equal flags around the cycle, the first starting where a run starts.
+std::vector<Run> runs_of(const std::vector<char>& o) {
+  const std::size_t n = o.size();
+  std::vector<Run> out;
+  std::size_t s = 0;
+  while (s < n && o[s] == o[(s + n - 1) % n]) ++s;
+  if (s == n) return {Run{0, n, o[0] != 0}};
+  for (std::size_t k = 0; k < n;) {
+    const std::size_t a = (s + k) % n;
+    std::size_t len = 0;
+    while (k < n && o[(s + k) % n] == o[a]) {
+      ++k;
+      ++len;
+    }
+    out.push_back(Run{a, len, o[a] != 0});
+  }
+  return out;
+}
+
+std::string where(const Mesh& m, NodeId n) {
+  const auto p = static_cast<std::size_t>(n);
+  return fmt::format("{:.4f}°E {:.4f}°N (node {})", m.lon_deg[p], m.lat_deg[p], n + 1);
+}
+
+}  // namespace
+
+BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)>& is_open, const Logger* log) {
+  BoundaryCounts c;
+  m.segments.clear();
+  std::vector<BoundarySegment> land;
+  std::vector<std::tuple<NodeId, NodeId, BoundaryType>> typed;
+  for (std::size_t l = 0; l < m.loops.size(); ++l) {
+    const std::vector<NodeId>& nodes = m.loops[l].nodes;
+    const std::size_t n = nodes.size();
+    if (n == 0) continue;
+    std::vector<char> o(n);
+    for (std::size_t k = 0; k < n; ++k) o[k] = is_open(nodes[k], nodes[(k + 1) % n]) ? 1 : 0;
+    // Short land gaps between open runs become open; then short open runs become land.
+    for (int pass = 0; pass < 2; ++pass) {
+      const bool gap_pass = pass == 0;
+      const std::vector<Run> runs = runs_of(o);
+      if (runs.size() < 2) break;
+      for (const Run& r : runs) {
+        if (r.open == gap_pass || static_cast<std::int64_t>(r.length) >= kMinSegmentEdges) continue;
+        for (std::size_t k = 0; k < r.length; ++k) o[(r.start + k) % n] = gap_pass ? 1 : 0;
+        ++c.merged;
+        if (log != nullptr)
+          log->info("boundaries: {} {} edge(s) from {} to {} (shorter than {} edges) made {}",
+                    gap_pass ? "land gap of" : "open segment of", r.length, where(m, nodes[r.start]),
+                    where(m, nodes[(r.start + r.length) % n]), kMinSegmentEdges,
+                    gap_pass ? "open: the open segments around it merge" : "land");
+      }
+    }
+    const std::vector<Run> runs = runs_of(o);
+    const auto type_of = [&](bool open) {
+      return open ? BoundaryType::kOpen
+             : (runs.size() > 1 || m.loops[l].outer) ? BoundaryType::kMainland
+                                                     : BoundaryType::kIsland;
+    };
+    for (std::size_t k = 0; k < n; ++k) typed.emplace_back(nodes[k], nodes[(k + 1) % n], type_of(o[k] != 0));
+    if (runs.size() == 1) {
+      BoundarySegment s;
+      s.loop = static_cast<std::int32_t>(l);
+      s.type = type_of(runs[0].open);
+      if (runs[0].open) {  // open all round: two open segments (a looped open segment is refused by SCHISM)
+        if (log != nullptr)
+          log->warn("boundaries: loop {} is open all round (the domain edge is water everywhere along it); written "
+                    "as two open segments meeting at {} and {}",
+                    l + 1, where(m, nodes[0]), where(m, nodes[n / 2]));
+        BoundarySegment a = s, b = s;
+        a.nodes.assign(nodes.begin(), nodes.begin() + static_cast<std::ptrdiff_t>(n / 2 + 1));
+        b.nodes.assign(nodes.begin() + static_cast<std::ptrdiff_t>(n / 2), nodes.end());
+        b.nodes.push_back(nodes[0]);
+        m.segments.push_back(std::move(a));
+        m.segments.push_back(std::move(b));
+      } else {
+        s.closed = true;
+        s.nodes = nodes;
+        land.push_back(std::move(s));
+      }
+      continue;
+    }
+    for (const Run& r : runs) {
+      BoundarySegment s;
+      s.loop = static_cast<std::int32_t>(l);
+      s.type = type_of(r.open);
+      for (std::size_t k = 0; k <= r.length; ++k) s.nodes.push_back(nodes[(r.start + k) % n]);
+      (r.open ? m.segments : land).push_back(std::move(s));
+    }
+  }
+  for (auto& s : land) m.segments.push_back(std::move(s));
+  std::sort(typed.begin(), typed.end());
+  m.boundary_edge_type.assign(m.boundary_edges.size(), BoundaryType::kMainland);
+  for (std::size_t e = 0; e < m.boundary_edges.size(); ++e) {
+    const auto [a, b] = std::pair{m.boundary_edges[e][0], m.boundary_edges[e][1]};
+    const auto it = std::lower_bound(typed.begin(), typed.end(), std::make_tuple(a, b, BoundaryType::kMainland));
+    if (it == typed.end() || std::get<0>(*it) != a || std::get<1>(*it) != b)
+      throw InternalError(fmt::format("boundary typing: edge {} -> {} is on no loop", a + 1, b + 1));
+    m.boundary_edge_type[e] = std::get<2>(*it);
+  }
+  m.typed = true;
+  const BoundaryCounts counts = boundary_counts(m);
+  c.open_segments = counts.open_segments;
+  c.open_nodes = counts.open_nodes;
+  c.open_edges = counts.open_edges;
+  c.mainland_segments = counts.mainland_segments;
+  c.mainland_edges = counts.mainland_edges;
+  c.islands = counts.islands;
+  c.island_edges = counts.island_edges;
+  return c;
+}
+
+BoundaryCounts boundary_counts(const Mesh& m) {
+  BoundaryCounts c;
+  for (const BoundarySegment& s : m.segments) {
+    const auto edges = static_cast<std::int64_t>(s.nodes.size()) - (s.closed ? 0 : 1);
+    switch (s.type) {
+      case BoundaryType::kOpen:
+        ++c.open_segments;
+        c.open_nodes += static_cast<std::int64_t>(s.nodes.size());
+        c.open_edges += edges;
+        break;
+      case BoundaryType::kMainland:
+        ++c.mainland_segments;
+        c.mainland_edges += edges;
+        break;
+      case BoundaryType::kIsland:
+        ++c.islands;
+        c.island_edges += edges;
+        break;
+    }
+  }
+  return c;
+}
+
+std::string describe(const BoundaryCounts& c) {
+  return fmt::format("{} open segment(s) ({} nodes, {} edges), {} mainland piece(s) ({} edges), {} island(s) ({} edges)",
+                     c.open_segments, c.open_nodes, c.open_edges, c.mainland_segments, c.mainland_edges, c.islands,
+                     c.island_edges) +
+         (c.merged > 0 ? fmt::format("; {} short piece(s) retyped", c.merged) : std::string());
+}
+
+Json boundaries_json(const Mesh& m, const BoundaryCounts& c) {
+  Json open = Json::array();
+  for (const BoundarySegment& s : m.segments) {
+    if (s.type != BoundaryType::kOpen) continue;
+    const auto a = static_cast<std::size_t>(s.nodes.front()), b = static_cast<std::size_t>(s.nodes.back());
+    open.push_back(Json{{"nodes", s.nodes.size()},
+                        {"from", {m.lon_deg[a], m.lat_deg[a]}},
+                        {"to", {m.lon_deg[b], m.lat_deg[b]}}});
+  }
+  return Json{{"open_segments", c.open_segments}, {"open_nodes", c.open_nodes},   {"open_edges", c.open_edges},
+              {"mainland_segments", c.mainland_segments}, {"mainland_edges", c.mainland_edges},
+              {"islands", c.islands},             {"island_edges", c.island_edges}, {"retyped_short_pieces", c.merged},
+              {"open", open}};
+}
+
+std::vector<std::array<std::int64_t, 4>> open_edge_keys(const Mesh& m) {
+  std::vector<std::array<std::int64_t, 4>> keys;
+  for (std::size_t e = 0; e < m.boundary_edges.size() && e < m.boundary_edge_type.size(); ++e) {
+    if (m.boundary_edge_type[e] != BoundaryType::kOpen) continue;
+    const auto a = static_cast<std::size_t>(m.boundary_edges[e][0]), b = static_cast<std::size_t>(m.boundary_edges[e][1]);
+    keys.push_back({m.node_i[a], m.node_j[a], m.node_i[b], m.node_j[b]});
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+}  // namespace aq::mesh

@@ -1,0 +1,54 @@
+// Boundary typing of regional meshes (README "Regional FE meshes"): every boundary edge is
+// open, mainland or island, and the loops are cut into the segments the model formats write.
+//
+//   * An edge is open when the caller's predicate says so (app: the pixel on its right, outside
+//     the wet area, is wet and outside the domain).
+//   * A land gap shorter than kMinSegmentEdges edges between two open runs becomes open (the two
+//     segments merge); then an open run shorter than kMinSegmentEdges becomes land. A loop that
+//     is open all round is split into two open segments (SCHISM refuses a looped open segment).
+//     Each change is logged with its position.
+//   * Land on a loop with open segments is mainland (it touches the domain edge); a loop without
+//     open edges is mainland when it is the outer loop, else an island.
+//   * Segments: every open segment (loop order, each starting where its run starts), then the
+//     land pieces and closed loops (loop order). An open segment and its land neighbours share
+//     their end nodes (ADCIRC's and SCHISM's convention).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "core/log.hpp"
+#include "core/report.hpp"
+#include "mesh/mesh.hpp"
+
+namespace aq::mesh {
+
+inline constexpr std::int64_t kMinSegmentEdges = 3;
+
+struct BoundaryCounts {
+  std::int64_t open_segments = 0, open_nodes = 0, open_edges = 0;
+  std::int64_t mainland_segments = 0, mainland_edges = 0;
+  std::int64_t islands = 0, island_edges = 0;
+  std::int64_t merged = 0;  ///< short pieces retyped
+};
+
+/// Types every boundary edge of `m` (boundary_edge_type, segments, typed = true). `is_open(a, b)`
+/// tells whether the edge a -> b (wet on the left) is on the open boundary. Logs each merge
+/// when `log` is given.
+BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)>& is_open, const Logger* log);
+
+/// Counts of a typed mesh.
+BoundaryCounts boundary_counts(const Mesh& m);
+
+/// One log line: "N open segments (M nodes), K mainland pieces, I islands".
+std::string describe(const BoundaryCounts& c);
+
+/// The report's "boundaries" section.
+Json boundaries_json(const Mesh& m, const BoundaryCounts& c);
+
+/// The edges of `m` typed open, as pairs of lattice vertices ((I, J), (I, J)), sorted: what the
+/// model cleaning keeps across its renumbering.
+std::vector<std::array<std::int64_t, 4>> open_edge_keys(const Mesh& m);
+
+}  // namespace aq::mesh
