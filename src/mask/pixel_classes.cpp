@@ -323,6 +323,10 @@ void classify_from_vertices(const Bitmap& wet_vertices, Bitmap& wet, Bitmap& coa
     for (std::int64_t j = 0; j < ny; ++j) {
       const std::uint64_t* v0 = wet_vertices.row(j);
       const std::uint64_t* v1 = wet_vertices.row(j + 1);
+      // Two vertex rows without a wet vertex (most rows of a regional run): the pixel row is dry.
+      bool any_wet = false;
+      for (std::int64_t k = 0; k < nw && !any_wet; ++k) any_wet = (v0[k] | v1[k]) != 0;
+      if (!any_wet) continue;
       bits::rotate_row(v0, east0.data(), nx, 1, bits::Combine::kCopy);
       bits::rotate_row(v1, east1.data(), nx, 1, bits::Combine::kCopy);
       std::uint64_t* w = wet.row(j);
