@@ -273,8 +273,14 @@ TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
       EXPECT_LT(i.memory_bytes, whole.info().memory_bytes / 100);
       std::vector<double> lons;
       for (double x = lo; x <= hi; x += 0.37) lons.push_back(x);
+      int finite = 0;
       for (const double lat : {-10.0, -3.3, 0.0, 7.77, 10.0})
-        for (const double lon : lons) EXPECT_EQ(w.sample(lon, lat), whole.sample(lon, lat)) << lon << " " << lat;
+        for (const double lon : lons) {
+          const double x = w.sample(lon, lat), y = whole.sample(lon, lat);
+          finite += std::isfinite(x) ? 1 : 0;
+          EXPECT_TRUE(std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y))) << lon << " " << lat;
+        }
+      EXPECT_GT(finite, 100);
       // The lattice-row path (prepare_columns / sample_row) too.
       const auto cw = w.prepare_columns(lons.data(), static_cast<std::int64_t>(lons.size()));
       const auto cf = whole.prepare_columns(lons.data(), static_cast<std::int64_t>(lons.size()));
@@ -285,9 +291,9 @@ TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
       EXPECT_TRUE(std::isnan(w.sample(lo - 5.0, 0.0)));
       EXPECT_TRUE(std::isnan(w.sample(hi + 5.0, 0.0)));
       EXPECT_TRUE(std::isnan(w.sample(0.5 * (lo + hi), 20.0)));
-      EXPECT_EQ(w.value(static_cast<std::int64_t>(std::floor((lo - i.lon_first) / i.dlon)) + 1, i.held_row_first + 1),
-                whole.value(static_cast<std::int64_t>(std::floor((lo - i.lon_first) / i.dlon)) + 1,
-                            i.held_row_first + 1));
+      const auto c = static_cast<std::int64_t>(std::floor((lo - i.lon_first) / i.dlon)) + 1;
+      const float vw = w.value(c, i.held_row_first + 1), vf = whole.value(c, i.held_row_first + 1);
+      EXPECT_TRUE(vw == vf || (std::isnan(vw) && std::isnan(vf)));
     }
   }
 }
