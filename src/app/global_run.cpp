@@ -4,10 +4,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "core/error.hpp"
+#include "mask/domain.hpp"
 #include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
 #include "mesh/boundaries.hpp"
@@ -95,11 +98,30 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   // Several sources (input.paths) add up; a source above another with input.blend_km > 0 also
   // holds its distance field (4 bytes per cell) and, while it is computed, 9 bytes per cell more.
   const std::vector<std::string> paths = c.input.sources();
+  // A regional run reads each raster over the domain's lon/lat box and one level-0 square (and two
+  // pixels) more on every side (README "Regional FE meshes"): the classification (mask/wet_area)
+  // samples the box and one level-0 square around it, and nothing else samples outside the domain. Not with pole rotation (the lattice's box is not a lon/lat box)
+  // nor bicubic sampling (its spline runs over the whole raster), and not for a source above
+  // another one with input.blend_km > 0 (its distance field measures to the raster's own edges).
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
+  if (c.domain.regional() && s.rotation.identity() && c.input.interpolation == "bilinear") {
+    const mask::Domain d = mask::make_domain(c.domain, s.lattice, s.rotation);
+    const double m = s.lattice.step0_deg + 2.0 * s.lattice.pixel_deg();  // covers what wet_area classifies
+    window = {d.lon_min - m, d.lon_max + m, std::max(-90.0, d.lat_min - m), std::min(90.0, d.lat_max + m)};
+    if (window[1] - window[0] >= 360.0) window[0] = window[1] = kNaN;
+  }
   for (std::size_t k = 0; k < paths.size(); ++k) {
     raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
     ro.path = paths[k];
     ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty() &&
                          !c.domain.regional();
+    if (!std::isnan(window[2]) && !(c.input.blend_km > 0.0 && k + 1 < paths.size())) {
+      ro.lon_min = window[0];
+      ro.lon_max = window[1];
+      ro.lat_min = window[2];
+      ro.lat_max = window[3];
+    }
     apply_test_knobs(ro);
     raster::RasterPlan plan;
     try {
@@ -234,6 +256,13 @@ static std::string source_line(const raster::Bathymetry& b, std::size_t k) {
                      i.lat_first, lat1);
 }
 
+// "window 1234 x 567 cells of 21600 x 10801 (2.7 MB)" for a raster read over a window, else "".
+static std::string window_note(const raster::RasterInfo& i) {
+  if (i.streamed || (i.held_cols >= i.ncols && i.held_rows >= i.nrows)) return {};
+  return fmt::format("window {} x {} cells of {} x {} from column {} row {} ({} bytes)", i.held_cols, i.held_rows,
+                     i.ncols, i.nrows, i.held_col_first, i.held_row_first, i.memory_bytes);
+}
+
 // One source for the report's input.sources (its node counts are added after the mesh).
 static Json source_json(const raster::Bathymetry& b) {
   const auto& i = b.info();
@@ -272,6 +301,19 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
   const raster::Bathymetry& bathy = *run.bathy;
   const auto& ri = bathy.info();
   const std::size_t nsources = bathy.source_count();
+  for (std::size_t k = 0; k < nsources; ++k) {
+    const raster::RasterInfo& si = bathy.source(k).info();
+    if (const std::string w = window_note(si); !w.empty()) {
+      log.info("read: {}: {} (the domain's box and one level-0 square around it)", si.path, w);
+      if (report != nullptr)
+        (*report)["raster_windows"].push_back(Json{{"path", si.path},
+                                                     {"columns", si.held_cols},
+                                                     {"rows", si.held_rows},
+                                                     {"first_column", si.held_col_first},
+                                                     {"first_row", si.held_row_first},
+                                                     {"bytes", si.memory_bytes}});
+    }
+  }
   for (std::size_t k = 0; k < nsources && nsources > 1; ++k) log.info("read: {}", source_line(bathy.source(k), k));
   read_stage.done(nsources > 1 ? fmt::format("{} sources, highest priority first{}", nsources,
                                              c.input.blend_km > 0.0

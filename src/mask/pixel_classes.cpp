@@ -270,7 +270,7 @@ Sampling parse_sampling(const std::string& name) {
 }
 
 Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
-                           double min_depth_m, const ProgressFn& progress) {
+                           double min_depth_m, const ProgressFn& progress, const PixelWindow& window) {
   check_depth(min_depth_m);
   const double threshold = -min_depth_m;  // wet: d <= -h (at h = 0 exactly 0 m is wet)
   const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
@@ -279,16 +279,32 @@ Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& latti
     sample_rotated(bathy, lattice, rot, threshold, progress, wv);
     return wv;
   }
-  std::vector<double> lons(static_cast<std::size_t>(nx));
-  for (std::int64_t I = 0; I < nx; ++I) lons[static_cast<std::size_t>(I)] = vertex_lattice_deg(lattice, I, 0).lon_deg;
-  const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), nx);
-  std::vector<double> lats(static_cast<std::size_t>(nv));
-  for (std::int64_t J = 0; J < nv; ++J) lats[static_cast<std::size_t>(J)] = vertex_lattice_deg(lattice, 0, J).lat_deg;
+  // A window (regional runs): the vertex columns I0 .. I0 + ncv - 1 (wrapping) and rows J0 ..
+  // J0 + nvr - 1 of its pixels; the same values as the whole lattice's there.
+  const bool all_cols = window.col_count < 0 || window.col_count + 1 >= nx;
+  const std::int64_t ncv = all_cols ? nx : window.col_count + 1;
+  const std::int64_t I0 = all_cols ? 0 : ((window.col_first % nx) + nx) % nx;
+  const std::int64_t J0 = window.row_count < 0 ? 0 : std::clamp<std::int64_t>(window.row_first, 0, nv - 1);
+  const std::int64_t nvr = window.row_count < 0 ? nv : std::min(window.row_count + 1, nv - J0);
+  std::vector<double> lons(static_cast<std::size_t>(ncv));
+  for (std::int64_t k = 0; k < ncv; ++k)
+    lons[static_cast<std::size_t>(k)] = vertex_lattice_deg(lattice, (I0 + k) % nx, 0).lon_deg;
+  const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), ncv);
+  std::vector<double> lats(static_cast<std::size_t>(nvr));
+  for (std::int64_t k = 0; k < nvr; ++k)
+    lats[static_cast<std::size_t>(k)] = vertex_lattice_deg(lattice, 0, J0 + k).lat_deg;
   // Row by row (a streamed raster: band by band of raster rows, each read once); each vertex row
   // is thresholded straight into its bitmap row.
   bathy.sample_rows(
-      cols, lats.data(), nv,
-      [&wv, nx, threshold](std::int64_t J, const float* values) { threshold_row(values, nx, threshold, wv.row(J)); },
+      cols, lats.data(), nvr,
+      [&wv, nx, ncv, I0, J0, all_cols, threshold](std::int64_t k, const float* values) {
+        if (all_cols) {
+          threshold_row(values, nx, threshold, wv.row(J0 + k));
+          return;
+        }
+        for (std::int64_t c = 0; c < ncv; ++c)
+          if (static_cast<double>(values[c]) <= threshold) wv.set((I0 + c) % nx, J0 + k);
+      },
       progress);
   return wv;
 }
@@ -307,6 +323,10 @@ void classify_from_vertices(const Bitmap& wet_vertices, Bitmap& wet, Bitmap& coa
     for (std::int64_t j = 0; j < ny; ++j) {
       const std::uint64_t* v0 = wet_vertices.row(j);
       const std::uint64_t* v1 = wet_vertices.row(j + 1);
+      // Two vertex rows without a wet vertex (most rows of a regional run): the pixel row is dry.
+      bool any_wet = false;
+      for (std::int64_t k = 0; k < nw && !any_wet; ++k) any_wet = (v0[k] | v1[k]) != 0;
+      if (!any_wet) continue;
       bits::rotate_row(v0, east0.data(), nx, 1, bits::Combine::kCopy);
       bits::rotate_row(v1, east1.data(), nx, 1, bits::Combine::kCopy);
       std::uint64_t* w = wet.row(j);
@@ -381,7 +401,8 @@ PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lat
     const ProgressFn& p = options.progress;
     vertex_progress = [&p, area](double f, std::string_view label) { p(area ? 0.3 * f : f, label); };
   }
-  pc.wet_vertices = sample_wet_vertices(bathy, lattice, rot, options.min_depth_m, vertex_progress);
+  pc.wet_vertices =
+      sample_wet_vertices(bathy, lattice, rot, options.min_depth_m, vertex_progress, area ? PixelWindow{} : options.window);
   classify_from_vertices(pc.wet_vertices, pc.wet, pc.coastal);
   if (area) {
     ProgressFn area_progress;

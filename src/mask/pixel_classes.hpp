@@ -39,10 +39,20 @@ enum class Sampling { kVertex, kArea };
 /// "vertex" or "area" -> Sampling; throws ConfigError naming mask.sampling otherwise.
 Sampling parse_sampling(const std::string& name);
 
+/// The pixels a regional run classifies (README "Regional FE meshes"): columns col_first ..
+/// col_first + col_count - 1 (wrapping at the seam) and rows row_first .. row_first + row_count - 1;
+/// a count < 0 (or the whole lattice) = all. Outside, no vertex is sampled: its vertices are not
+/// wet and its pixels are dry.
+struct PixelWindow {
+  std::int64_t col_first = 0, col_count = -1, row_first = 0, row_count = -1;
+};
+
 struct ClassifyOptions {
   double min_depth_m = 0.0;  ///< h >= 0 (metres); wet means elevation <= -h
   Sampling sampling = Sampling::kVertex;
   ProgressFn progress;  ///< optional; called from the calling thread, fraction in [0,1]
+  /// Unrotated vertex rule only (else ignored): classify these pixels only.
+  PixelWindow window;
 };
 
 /// The three pixel classes as bitmaps; dry = neither wet nor coastal.
@@ -71,8 +81,9 @@ PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lat
                              const ClassifyOptions& options);
 
 /// Wet vertices only (vertex rule): nx × (ny+1) bitmap, bit (I, J) = d(vertex) <= -h.
+/// Unrotated: only the vertices of the pixels in `window` are sampled (the others are not wet).
 Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
-                           double min_depth_m, const ProgressFn& progress = {});
+                           double min_depth_m, const ProgressFn& progress = {}, const PixelWindow& window = {});
 
 /// Vertex rule on a bitmap of wet vertices (nx × (ny+1)): fills `wet` and `coastal` (nx × ny,
 /// reallocated). Pure bitmap arithmetic, word-parallel, periodic in I.

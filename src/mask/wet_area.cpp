@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -39,6 +40,24 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     co.min_depth_m = options.min_depth_m;
     co.sampling = parse_sampling(options.sampling);
     co.progress = log.progress("classify");
+    if (regional && rot.identity()) {
+      // Only the domain's box and one level-0 square around it (the open-boundary typing looks
+      // one pixel outside the domain): the rest of the lattice stays dry, unsampled.
+      const double pix = lattice.pixel_deg();
+      const std::int64_t sq = lattice.pixels_per_square(0);
+      const auto i_lo = static_cast<std::int64_t>(std::floor((domain->lon_min - lattice.lon0_deg) / pix)) - sq;
+      const auto i_hi = static_cast<std::int64_t>(std::ceil((domain->lon_max - lattice.lon0_deg) / pix)) + sq;
+      const double y_s = lattice.row_of_lat(std::max(domain->lat_min, -lattice.lat_max_deg()));
+      const double y_n = lattice.row_of_lat(std::min(domain->lat_max, lattice.lat_max_deg()));
+      const std::int64_t j_lo = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s)) - sq);
+      const std::int64_t j_hi = std::min<std::int64_t>(lattice.ny, static_cast<std::int64_t>(std::ceil(y_n)) + sq);
+      if (i_hi - i_lo < lattice.nx) {
+        co.window.col_first = i_lo;
+        co.window.col_count = i_hi - i_lo;
+      }
+      co.window.row_first = j_lo;
+      co.window.row_count = std::max<std::int64_t>(0, j_hi - j_lo);
+    }
     if (!regional) check_mercator_caps(bathy, lattice, rot, options.min_depth_m);  // a region is inside the rows
     PixelClasses pc = classify_pixels(bathy, lattice, rot, co);
     area.wet_vertices = std::move(pc.wet_vertices);

@@ -190,6 +190,18 @@ struct Bathymetry::Impl {
   Interpolation interp = Interpolation::kBilinear;
   bool global_lat = false;
   std::int64_t row_lo = 0, row_hi = 0;  // normalised rows held in v (a latitude window)
+  // Normalised columns held in v: col_lo .. col_lo + held_nc - 1 (wrapping on a global raster);
+  // a longitude window when held_nc < ncols, else col_lo = 0 and held_nc = ncols.
+  std::int64_t col_lo = 0, held_nc = 0;
+
+  [[nodiscard]] bool col_window() const { return held_nc < info.ncols; }
+  // The held column of normalised column c (0 <= c < ncols), -1 when outside the window.
+  [[nodiscard]] std::int64_t local_col(std::int64_t c) const {
+    if (!col_window()) return c;
+    std::int64_t l = c - col_lo;
+    if (l < 0 && info.global_lon) l += info.ncols;
+    return l >= 0 && l < held_nc ? l : -1;
+  }
 
   // Reading (whole: during open; streamed: on every pass). GDAL datasets are not thread-safe:
   // one read at a time.
@@ -204,9 +216,9 @@ struct Bathymetry::Impl {
   mutable bool stats_done = false;
 
   [[nodiscard]] std::size_t idx(std::int64_t c, std::int64_t r) const {
-    return static_cast<std::size_t>((r - row_lo) * info.ncols + c);
+    return static_cast<std::size_t>((r - row_lo) * held_nc + c);
   }
-  [[nodiscard]] const float* row_ptr(std::int64_t r) const { return v.data() + (r - row_lo) * info.ncols; }
+  [[nodiscard]] const float* row_ptr(std::int64_t r) const { return v.data() + (r - row_lo) * held_nc; }
 
   // Reads stored rows [y0, y1) and writes them normalised (orientation, duplicated column,
   // no-data, scale/offset, sign) to dst, normalised row r at dst + (r - lo)·ncols. `raw` is scratch
@@ -220,8 +232,25 @@ struct Bathymetry::Impl {
   // Stored rows [y0, y1) as GDAL gives them (Float32) into `raw` (resized). One read at a time.
   void read_raw(std::int64_t y0, std::int64_t y1, std::vector<float>& raw) const {
     const std::int64_t w = info.width, ny = y1 - y0;
-    raw.resize(static_cast<std::size_t>(ny * w));
     const std::lock_guard<std::mutex> lock(io);
+    if (col_window()) {  // the window's columns only: one piece, or two across the seam
+      raw.resize(static_cast<std::size_t>(ny * held_nc));
+      const std::int64_t n1 = std::min(held_nc, info.ncols - col_lo);
+      const auto line = static_cast<GSpacing>(held_nc * sizeof(float));
+      for (int piece = 0; piece < 2; ++piece) {
+        const std::int64_t x0 = piece == 0 ? col_lo : 0, n = piece == 0 ? n1 : held_nc - n1;
+        if (n <= 0) continue;
+        float* dst = raw.data() + (piece == 0 ? 0 : n1);
+        if (band->RasterIO(GF_Read, static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(n),
+                           static_cast<int>(ny), dst, static_cast<int>(n), static_cast<int>(ny), GDT_Float32,
+                           sizeof(float), line, nullptr) != CE_None) {
+          throw InputError(fmt::format("{}: read error at rows {}..{}, columns {}..{}{}", info.path, y0, y1 - 1, x0,
+                                       x0 + n - 1, gdal_message()));
+        }
+      }
+      return;
+    }
+    raw.resize(static_cast<std::size_t>(ny * w));
     if (band->RasterIO(GF_Read, 0, static_cast<int>(y0), static_cast<int>(w), static_cast<int>(ny), raw.data(),
                        static_cast<int>(w), static_cast<int>(ny), GDT_Float32, 0, 0, nullptr) != CE_None) {
       throw InputError(fmt::format("{}: read error at rows {}..{}{}", info.path, y0, y1 - 1, gdal_message()));
@@ -232,7 +261,7 @@ struct Bathymetry::Impl {
   // among the OpenMP threads when `parallel` (each row is written and summarised on its own).
   void normalise_rows(std::int64_t y0, std::int64_t y1, const float* raw, float* dst, std::int64_t lo, RowStats* stats,
                       bool parallel) const {
-    const std::int64_t w = info.width, h = info.height, ny = y1 - y0, nc = info.ncols;
+    const std::int64_t w = col_window() ? held_nc : info.width, h = info.height, ny = y1 - y0, nc = held_nc;
     const bool north_up = info.north_up;
 #pragma omp parallel for schedule(static) default(none) \
     shared(y0, raw, dst, lo, stats, w, h, ny, nc, north_up) if (parallel && ny * nc >= (std::int64_t{1} << 20))
@@ -332,14 +361,21 @@ struct Bathymetry::Impl {
       c0 = static_cast<std::int64_t>(std::floor(x));
       t = x - static_cast<double>(c0);
       c1 = (c0 + 1 == n) ? 0 : c0 + 1;
-      return true;
+      return to_held(c0, c1);
     }
     if (x < -0.5 || x > static_cast<double>(n) - 0.5) return false;
     x = std::clamp(x, 0.0, static_cast<double>(n - 1));
     c0 = std::min<std::int64_t>(static_cast<std::int64_t>(std::floor(x)), n - 1);
     t = x - static_cast<double>(c0);
     c1 = std::min<std::int64_t>(c0 + 1, n - 1);
-    return true;
+    return to_held(c0, c1);
+  }
+  // Normalised columns -> held columns (a longitude window); false when either is outside it.
+  bool to_held(std::int64_t& c0, std::int64_t& c1) const {
+    if (!col_window()) return true;
+    c0 = local_col(c0);
+    c1 = local_col(c1);
+    return c0 >= 0 && c1 >= 0;
   }
 
   bool row(double lat, std::int64_t& r0, std::int64_t& r1, double& u) const {
@@ -426,7 +462,7 @@ struct Bathymetry::Impl {
     const std::int64_t nr = row_hi - row_lo;
     std::vector<RowStats> rows(static_cast<std::size_t>(nr));
     for (std::int64_t r = 0; r < nr; ++r)
-      rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), info.ncols);
+      rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), held_nc);
     finish_stats(rows);
   }
   // The statistics from the held rows' own (rows [row_lo, row_hi) in order), and the memory held.
@@ -515,7 +551,9 @@ float Bathymetry::value(std::int64_t c, std::int64_t r) const {
   if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
   if (c < 0 || c >= i.ncols || r < impl_->row_lo || r >= (i.streamed ? i.nrows : impl_->row_hi))
     return std::numeric_limits<float>::quiet_NaN();
-  return i.streamed ? impl_->read_value(c, r) : impl_->v[impl_->idx(c, r)];
+  if (i.streamed) return impl_->read_value(c, r);
+  c = impl_->local_col(c);
+  return c < 0 ? std::numeric_limits<float>::quiet_NaN() : impl_->v[impl_->idx(c, r)];
 }
 
 void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const {
@@ -533,13 +571,14 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
   for (std::int64_t r = a; r < b; ++r) {
     const float* src = i.streamed ? rows.data() + (r - a) * i.ncols : im.row_ptr(r);
     float* dst = out + (r - r_lo) * nc;
-    if (c_lo >= 0 && c_lo + nc <= i.ncols) {  // no wrap and nothing outside: one copy
+    if (c_lo >= 0 && c_lo + nc <= i.ncols && !im.col_window()) {  // no wrap and nothing outside: one copy
       std::copy(src + c_lo, src + c_lo + nc, dst);
       continue;
     }
     for (std::int64_t k = 0; k < nc; ++k) {
       std::int64_t c = c_lo + k;
       if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
+      if (c >= 0 && c < i.ncols && !i.streamed) c = im.local_col(c);
       if (c >= 0 && c < i.ncols) dst[k] = src[c];
     }
   }
@@ -750,6 +789,7 @@ Bathymetry Bathymetry::from_grid(std::vector<float> values, std::int64_t ncols, 
   im->interp = interpolation;
   im->row_lo = 0;
   im->row_hi = nrows;
+  im->held_nc = ncols;
   auto& i = im->info;
   i.path = "<memory>";
   i.driver = "memory";
@@ -966,13 +1006,14 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   info.block_rows = std::max(1, by);
   im->row_lo = 0;
   im->row_hi = info.nrows;
+  im->held_nc = info.ncols;
 
   // Whole or streamed (README "Big rasters"): streamed when the caller can use it (unrotated
   // vertex rule, bilinear, no latitude window) and the float32 copy would be above 1 GiB or above
   // the memory limit. A band is whole blocks of the file, about 64 MB of float32 (or band_rows).
   const std::int64_t whole = estimate_raster_bytes(info.ncols, info.nrows);
   const bool can_stream = o.allow_streaming && o.interpolation == Interpolation::kBilinear && std::isnan(o.lat_min) &&
-                          std::isnan(o.lat_max);
+                          std::isnan(o.lat_max) && std::isnan(o.lon_min) && std::isnan(o.lon_max);
   using S = OpenOptions::Streaming;
   info.streamed = can_stream && o.streaming != S::kNever &&
                   (o.streaming == S::kAlways || whole > kStreamAboveBytes || whole > memory_limit(o.max_memory_bytes));
@@ -986,6 +1027,54 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
     info.min_m = info.max_m = info.mean_m = kNaN;
     info.valid_count = -1;  // known after the first pass
   }
+  if (!info.streamed && o.interpolation == Interpolation::kBilinear) {
+    // A latitude window: the rows covering it and 2 more each side.
+    if (!std::isnan(o.lat_min) || !std::isnan(o.lat_max)) {
+      const double a = std::isnan(o.lat_min) ? -90.0 : o.lat_min, b = std::isnan(o.lat_max) ? 90.0 : o.lat_max;
+      im->row_lo = std::clamp<std::int64_t>(
+          static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2, 0, info.nrows - 1);
+      im->row_hi = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil((b - info.lat_first) / info.dlat)) + 3,
+                                            im->row_lo + 1, info.nrows);
+    }
+    // A longitude window: the columns covering it and 3 more each side (4 after the last).
+    if (!std::isnan(o.lon_min) && !std::isnan(o.lon_max) && o.lon_max > o.lon_min) {
+      const auto n = info.ncols;
+      const double x0 = std::floor((o.lon_min - info.lon_first) / info.dlon) - 3.0;
+      const double x1 = std::ceil((o.lon_max - info.lon_first) / info.dlon) + 4.0;  // exclusive
+      if (info.global_lon) {
+        if (x1 - x0 < static_cast<double>(n)) {
+          const auto c0 = static_cast<std::int64_t>(x0);
+          im->col_lo = ((c0 % n) + n) % n;
+          im->held_nc = static_cast<std::int64_t>(x1 - x0);
+        }
+      } else {
+        // Sampling takes a longitude a whole turn away as the same meridian (col()): the turn of
+        // the window that overlaps the raster; a raster so wide that the window could meet it in
+        // two places is held whole.
+        const double turn = 360.0 / info.dlon;
+        if (static_cast<double>(n) + (x1 - x0) + 2.0 < turn) {
+          double best = 0.0, lo_best = 0.0, hi_best = 0.0;
+          for (int k = -2; k <= 2; ++k) {
+            const double lo = std::max(0.0, std::floor(x0 + k * turn)),
+                         hi = std::min(static_cast<double>(n), std::ceil(x1 + k * turn));
+            if (hi - lo > best) {
+              best = hi - lo;
+              lo_best = lo;
+              hi_best = hi;
+            }
+          }
+          if (best > 0.0 && best < static_cast<double>(n)) {
+            im->col_lo = static_cast<std::int64_t>(lo_best);
+            im->held_nc = static_cast<std::int64_t>(hi_best - lo_best);
+          }
+        }
+      }
+    }
+  }
+  info.held_cols = im->held_nc;
+  info.held_rows = im->row_hi - im->row_lo;
+  info.held_col_first = im->col_lo;
+  info.held_row_first = im->row_lo;
   im->band = band;
   im->band_number = o.band;
   im->ds = std::move(ds);
@@ -1008,7 +1097,7 @@ RasterPlan plan_raster(const OpenOptions& options) {
   p.block_rows = i.block_rows;
   p.band_rows = i.band_rows;
   const std::int64_t factor = options.interpolation == Interpolation::kBicubic ? 4 : 1;
-  p.bytes = i.streamed ? i.memory_bytes : estimate_raster_bytes(i.ncols, i.nrows) * factor + (64LL << 20);
+  p.bytes = i.streamed ? i.memory_bytes : estimate_raster_bytes(i.held_cols, i.held_rows) * factor + (64LL << 20);
   return p;
 }
 
@@ -1023,18 +1112,11 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     }
     return Bathymetry(std::move(im));
   }
-  // A latitude window (regional runs): the rows covering it and 2 more each side.
-  if ((!std::isnan(o.lat_min) || !std::isnan(o.lat_max)) && o.interpolation == Interpolation::kBilinear) {
-    const double a = std::isnan(o.lat_min) ? -90.0 : o.lat_min, b = std::isnan(o.lat_max) ? 90.0 : o.lat_max;
-    im->row_lo = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2,
-                                          0, info.nrows - 1);
-    im->row_hi = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil((b - info.lat_first) / info.dlat)) + 3,
-                                          im->row_lo + 1, info.nrows);
-  }
+  // The window (regional runs) was chosen with the header (open_header).
   const std::int64_t rows_held = im->row_hi - im->row_lo;
   // Memory estimate before reading.
   const std::int64_t need =
-      estimate_raster_bytes(info.ncols, rows_held) * (o.interpolation == Interpolation::kBicubic ? 4 : 1);
+      estimate_raster_bytes(im->held_nc, rows_held) * (o.interpolation == Interpolation::kBicubic ? 4 : 1);
   const std::int64_t limit = memory_limit(o.max_memory_bytes);
   if (limit > 0 && need > limit) {
     throw InputError(
@@ -1044,7 +1126,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   }
 
   // Read in bands of stored rows through GDAL windows straight into the normalised array.
-  im->v.resize(static_cast<std::size_t>(info.ncols * rows_held));
+  im->v.resize(static_cast<std::size_t>(im->held_nc * rows_held));
   const std::int64_t w = info.width;
   const std::int64_t chunk = std::max<std::int64_t>(1, (64LL << 20) / std::max<std::int64_t>(1, w * 4));
   const std::int64_t y_lo = info.north_up ? h - im->row_hi : im->row_lo;

@@ -39,6 +39,12 @@ struct OpenOptions {
   /// covering it (+2 rows) are read and held; outside them sampling gives NaN. Regional runs.
   double lat_min = std::numeric_limits<double>::quiet_NaN();
   double lat_max = std::numeric_limits<double>::quiet_NaN();
+  /// Longitude window [lon_min, lon_max] (degrees, lon_min < lon_max, either may be past ±180;
+  /// NaN = all longitudes; bilinear only): only the columns covering it (+3 each side) are read
+  /// and held, in two pieces across the seam of a global raster; outside them sampling gives NaN
+  /// like outside any regional raster. Regional runs (README "Regional FE meshes").
+  double lon_min = std::numeric_limits<double>::quiet_NaN();
+  double lon_max = std::numeric_limits<double>::quiet_NaN();
 
   // Hidden knobs for tests and benchmarks (not configuration keys).
   enum class Streaming { kAuto, kAlways, kNever };
@@ -80,6 +86,10 @@ struct RasterInfo {
   std::int64_t block_rows = 0;    ///< the file's block height (rows)
   std::int64_t band_rows = 0;     ///< streamed: stored rows per band read
   std::int64_t passes = 0;        ///< streamed: full or partial passes over the file so far
+  /// Held whole: the window read (OpenOptions lat/lon window), in normalised columns and rows;
+  /// the whole raster when no window was asked (held_cols = ncols, held_rows = nrows).
+  std::int64_t held_cols = 0, held_rows = 0;
+  std::int64_t held_col_first = 0, held_row_first = 0;  ///< first normalised column (wraps) and row
 };
 
 /// What `open` would do with a raster, found from its header only (nothing is read).

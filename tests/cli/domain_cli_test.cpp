@@ -280,6 +280,46 @@ TEST(DomainCli, BoxAcrossTheSeamEqualsTheSameBoxShiftedBy360) {
   for (std::size_t n = 0; n < m.lon.size(); ++n) EXPECT_GE(std::abs(m.lon[n]), 176.0) << n;
 }
 
+// A regional run reads each raster over the domain's box plus one level-0 square (issue 21): the
+// report states the window (about 110 × 110 of the 1440 × 720
+// cells at 0.25° around the 20° box: under 2 % of the raster's bytes), and the files equal those of a run on the raster cut to
+// that window beforehand with gdal_translate (a raster whose extent is the window). Across the
+// seam the window is read in two pieces (BoxAcrossTheSeamEqualsTheSameBoxShiftedBy360).
+TEST(DomainCli, RegionalRunReadsOnlyTheDomainWindowAndEqualsAPreCutRaster) {
+  const fs::path dir = aq::test::fresh_dir("domain", "window"), cut = aq::test::fresh_dir("domain", "window_cut");
+  ASSERT_EQ(mesh_basin(dir, kBox).exit_code, 0);
+  const nlohmann::json rep = aq::test::read_report(dir, "basin");
+  ASSERT_TRUE(rep.contains("raster_windows")) << rep.dump();
+  ASSERT_EQ(rep["raster_windows"].size(), 1U);
+  const auto& w = rep["raster_windows"][0];
+  const std::int64_t cols = w["columns"], rows = w["rows"], c0 = w["first_column"], r0 = w["first_row"];
+  // Box 0..20°E (snapped to 2° squares: 0..20), 0..20°N; margin 2° + 2 pixels (0.5°) + 3/4 cells.
+  EXPECT_GE(cols, 104);  // 80 cells of the box and 12 of margin (2° square + 2 pixels) each side
+  EXPECT_LE(cols, 114);
+  EXPECT_GE(rows, 104);
+  EXPECT_LE(rows, 114);
+  EXPECT_EQ(w["bytes"].get<std::int64_t>(), cols * rows * 4);
+  EXPECT_LT(w["bytes"].get<std::int64_t>(), 1440 * 720 * 4 / 50);
+  // The same window cut beforehand (normalised row r0 from the south = stored row 720 - r0 - rows).
+  fs::create_directories(cut);
+  const fs::path pre = cut / "basin_cut.tif";
+  const auto t = aq::test::run_command("gdal_translate -q -srcwin " + std::to_string(c0) + " " +
+                                       std::to_string(720 - r0 - rows) + " " + std::to_string(cols) + " " +
+                                       std::to_string(rows) + " " + basin_raster().string() + " " + pre.string());
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const auto r = aq::test::run_command(std::string(AQ_BINARY) + " mesh -q --set input.path=" + pre.string() +
+                                       " --set quadtree.step_deg=2.0 --set quadtree.levels=2 --set output.name=basin " +
+                                       kFormats + " -o " + cut.string() + " " + kBox);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Byte for byte after the first line (fort.14, hgrid.gr3 and bctides.in name the raster there).
+  const auto body = [](const std::string& b) { return b.substr(std::min(b.size(), b.find('\n'))); };
+  EXPECT_TRUE(bytes(dir / "basin.msh") == bytes(cut / "basin.msh"));
+  for (const char* f : {"basin.14", "basin.gr3", "basin_bctides.in"}) {
+    EXPECT_GT(bytes(dir / f).size(), 500U) << f;
+    EXPECT_TRUE(body(bytes(dir / f)) == body(bytes(cut / f))) << f;
+  }
+}
+
 TEST(DomainCli, OneAndTwoThreadsGiveTheSameBytes) {
   const fs::path one = aq::test::fresh_dir("domain", "t1"), two = aq::test::fresh_dir("domain", "t2");
   ASSERT_EQ(mesh_basin(one, kBox, 1).exit_code, 0);

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "raster/bathymetry.hpp"
@@ -248,6 +249,53 @@ TEST(StreamedRaster, LatitudeWindowHoldsOnlyItsRows) {
     for (const double lon : {-179.9, 0.1, 33.3})
       EXPECT_EQ(w.sample(lon, lat), whole.sample(lon, lat)) << lon << " " << lat;
   EXPECT_TRUE(std::isnan(w.sample(0.0, 30.0)));  // outside the window
+}
+
+// A lon/lat window across the seam (170°E..170°W): two pieces read, held as one; samples inside
+// equal the whole raster's bit for bit (also the lattice-row path), NaN outside; a window inside
+// one piece; both file orientations.
+TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
+  for (const bool north_up : {true, false}) {
+    const fs::path p = write_tiff(tmpdir() / (north_up ? "lonwin_n.tif" : "lonwin_s.tif"), 0.25, north_up, true);
+    const Bathymetry whole = open(p, false);
+    for (const auto& [lo, hi] : {std::pair{170.0, 190.0}, std::pair{-190.0, -170.0}, std::pair{10.0, 30.0}}) {
+      OpenOptions o;
+      o.path = p.string();
+      o.lat_min = -10.0;
+      o.lat_max = 10.0;
+      o.lon_min = lo;
+      o.lon_max = hi;
+      const Bathymetry w = Bathymetry::open(o);
+      const auto& i = w.info();
+      EXPECT_GE(i.held_cols, 80);
+      EXPECT_LE(i.held_cols, 88);
+      EXPECT_EQ(i.memory_bytes, i.held_cols * i.held_rows * 4);
+      EXPECT_LT(i.memory_bytes, whole.info().memory_bytes / 100);
+      std::vector<double> lons;
+      for (double x = lo; x <= hi; x += 0.37) lons.push_back(x);
+      int finite = 0;
+      for (const double lat : {-10.0, -3.3, 0.0, 7.77, 10.0})
+        for (const double lon : lons) {
+          const double x = w.sample(lon, lat), y = whole.sample(lon, lat);
+          finite += std::isfinite(x) ? 1 : 0;
+          EXPECT_TRUE(std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y))) << lon << " " << lat;
+        }
+      EXPECT_GT(finite, 100);
+      // The lattice-row path (prepare_columns / sample_row) too.
+      const auto cw = w.prepare_columns(lons.data(), static_cast<std::int64_t>(lons.size()));
+      const auto cf = whole.prepare_columns(lons.data(), static_cast<std::int64_t>(lons.size()));
+      std::vector<float> a(lons.size()), b(lons.size());
+      w.sample_row(cw, 1.1, a.data());
+      whole.sample_row(cf, 1.1, b.data());
+      EXPECT_TRUE(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+      EXPECT_TRUE(std::isnan(w.sample(lo - 5.0, 0.0)));
+      EXPECT_TRUE(std::isnan(w.sample(hi + 5.0, 0.0)));
+      EXPECT_TRUE(std::isnan(w.sample(0.5 * (lo + hi), 20.0)));
+      const auto c = static_cast<std::int64_t>(std::floor((lo - i.lon_first) / i.dlon)) + 1;
+      const float vw = w.value(c, i.held_row_first + 1), vf = whole.value(c, i.held_row_first + 1);
+      EXPECT_TRUE(vw == vf || (std::isnan(vw) && std::isnan(vf)));
+    }
+  }
 }
 
 }  // namespace
