@@ -87,6 +87,28 @@ std::vector<double> max_corner_depth(const FieldGrid& grid, const raster::Bathym
   return out;
 }
 
+// The pyramid of a field grid's values: level c (the grid's) is `top`; each coarser level
+// combines the 2 × 2 cells under it with `combine` (min for sizes, max for the CFL bound).
+template <typename Combine>
+std::vector<std::vector<float>> pyramid(const FieldGrid& g, std::vector<float> top, Combine combine) {
+  std::vector<std::vector<float>> levels(static_cast<std::size_t>(g.level()) + 1);
+  levels.back() = std::move(top);
+  for (int l = g.level() - 1; l >= 0; --l) {
+    const std::vector<float>& fine = levels[static_cast<std::size_t>(l) + 1];
+    const std::int64_t fnx = g.nx() >> (g.level() - l - 1);
+    const std::int64_t nx = fnx / 2, ny = (g.ny() >> (g.level() - l - 1)) / 2;
+    std::vector<float>& out = levels[static_cast<std::size_t>(l)];
+    out.resize(static_cast<std::size_t>(nx * ny));
+    for (std::int64_t b = 0; b < ny; ++b)
+      for (std::int64_t a = 0; a < nx; ++a) {
+        const auto f = [&](std::int64_t i, std::int64_t j) { return fine[static_cast<std::size_t>(j * fnx + i)]; };
+        out[static_cast<std::size_t>(b * nx + a)] =
+            combine(combine(f(2 * a, 2 * b), f(2 * a + 1, 2 * b)), combine(f(2 * a, 2 * b + 1), f(2 * a + 1, 2 * b + 1)));
+      }
+  }
+  return levels;
+}
+
 }  // namespace
 
 SizeField::SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, int band_radius)
@@ -94,21 +116,7 @@ SizeField::SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, in
   const FieldGrid& g = *grid_;
   if (static_cast<std::int64_t>(h_km.size()) != g.cells())
     throw InternalError(fmt::format("size: {} values for a grid of {} cells", h_km.size(), g.cells()));
-  levels_.resize(static_cast<std::size_t>(g.level()) + 1);
-  levels_.back() = std::move(h_km);
-  for (int l = g.level() - 1; l >= 0; --l) {
-    const std::vector<float>& fine = levels_[static_cast<std::size_t>(l) + 1];
-    const std::int64_t fnx = g.nx() >> (g.level() - l - 1);
-    const std::int64_t nx = fnx / 2, ny = (g.ny() >> (g.level() - l - 1)) / 2;
-    std::vector<float>& out = levels_[static_cast<std::size_t>(l)];
-    out.resize(static_cast<std::size_t>(nx * ny));
-    for (std::int64_t b = 0; b < ny; ++b)
-      for (std::int64_t a = 0; a < nx; ++a) {
-        const auto f = [&](std::int64_t i, std::int64_t j) { return fine[static_cast<std::size_t>(j * fnx + i)]; };
-        out[static_cast<std::size_t>(b * nx + a)] =
-            std::min(std::min(f(2 * a, 2 * b), f(2 * a + 1, 2 * b)), std::min(f(2 * a, 2 * b + 1), f(2 * a + 1, 2 * b + 1)));
-      }
-  }
+  levels_ = pyramid(g, std::move(h_km), [](float x, float y) { return std::min(x, y); });
 }
 
 double SizeField::grid_min_over_square(int l, std::int64_t a, std::int64_t b) const {
@@ -129,21 +137,7 @@ void SizeField::set_cfl_edges(std::vector<float> edge_km) {
   const FieldGrid& g = *grid_;
   if (static_cast<std::int64_t>(edge_km.size()) != g.cells())
     throw InternalError(fmt::format("size: {} CFL values for a grid of {} cells", edge_km.size(), g.cells()));
-  cfl_levels_.resize(static_cast<std::size_t>(g.level()) + 1);
-  cfl_levels_.back() = std::move(edge_km);
-  for (int l = g.level() - 1; l >= 0; --l) {
-    const std::vector<float>& fine = cfl_levels_[static_cast<std::size_t>(l) + 1];
-    const std::int64_t fnx = g.nx() >> (g.level() - l - 1);
-    const std::int64_t nx = fnx / 2, ny = (g.ny() >> (g.level() - l - 1)) / 2;
-    std::vector<float>& out = cfl_levels_[static_cast<std::size_t>(l)];
-    out.resize(static_cast<std::size_t>(nx * ny));
-    for (std::int64_t b = 0; b < ny; ++b)
-      for (std::int64_t a = 0; a < nx; ++a) {
-        const auto f = [&](std::int64_t i, std::int64_t j) { return fine[static_cast<std::size_t>(j * fnx + i)]; };
-        out[static_cast<std::size_t>(b * nx + a)] =
-            std::max(std::max(f(2 * a, 2 * b), f(2 * a + 1, 2 * b)), std::max(f(2 * a, 2 * b + 1), f(2 * a + 1, 2 * b + 1)));
-      }
-  }
+  cfl_levels_ = pyramid(g, std::move(edge_km), [](float x, float y) { return std::max(x, y); });
 }
 
 double SizeField::cfl_edge_over_square(int l, std::int64_t a, std::int64_t b) const {
