@@ -31,7 +31,9 @@ bash scripts/build.sh asan
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-(cd build-asan && ctest --output-on-failure -j 2 -LE "slow|clients|sweep" --timeout 1800)
+# The two scale benchmarks (10 million triangles, the 1' lattice) check the same invariants in the
+# Release suite; under ASan they took 64 and 32 s of the sanitizer suite's 9 minutes.
+(cd build-asan && ctest --output-on-failure -j 2 -LE "slow|clients|sweep" -E "^(MeshPerf|MaskPerf)\." --timeout 1800)
 echo "test.sh: sanitizer suite done in $(( $(date +%s) - t1 )) s" >&2
 
 t2=$(date +%s)
