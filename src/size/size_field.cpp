@@ -109,6 +109,20 @@ std::vector<std::vector<float>> pyramid(const FieldGrid& g, std::vector<float> t
   return levels;
 }
 
+// The pyramid's value over level-l square (a, b); a square finer than the grid reads the grid
+// cell that holds it.
+double pyramid_at(const FieldGrid& g, const std::vector<std::vector<float>>& levels, int l, std::int64_t a,
+                  std::int64_t b) {
+  const int c = g.level();
+  if (l > c) {
+    a >>= (l - c);
+    b >>= (l - c);
+    l = c;
+  }
+  const std::int64_t nx = g.nx() >> (c - l);
+  return levels[static_cast<std::size_t>(l)][static_cast<std::size_t>(b * nx + a)];
+}
+
 }  // namespace
 
 SizeField::SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, int band_radius)
@@ -121,14 +135,7 @@ SizeField::SizeField(FieldGrid grid, std::vector<float> h_km, double band_km, in
 
 double SizeField::grid_min_over_square(int l, std::int64_t a, std::int64_t b) const {
   if (!grid_) return kInf;
-  const int c = grid_->level();
-  if (l > c) {
-    a >>= (l - c);
-    b >>= (l - c);
-    l = c;
-  }
-  const std::int64_t nx = grid_->nx() >> (c - l);
-  return levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(b * nx + a)];
+  return pyramid_at(*grid_, levels_, l, a, b);
 }
 
 void SizeField::set_cfl_edges(std::vector<float> edge_km) {
@@ -142,14 +149,7 @@ void SizeField::set_cfl_edges(std::vector<float> edge_km) {
 
 double SizeField::cfl_edge_over_square(int l, std::int64_t a, std::int64_t b) const {
   if (cfl_levels_.empty()) return 0.0;
-  const int c = grid_->level();
-  if (l > c) {
-    a >>= (l - c);
-    b >>= (l - c);
-    l = c;
-  }
-  const std::int64_t nx = grid_->nx() >> (c - l);
-  return cfl_levels_[static_cast<std::size_t>(l)][static_cast<std::size_t>(b * nx + a)];
+  return pyramid_at(*grid_, cfl_levels_, l, a, b);
 }
 
 double SizeField::at_pixel(std::int64_t i, std::int64_t j) const {
