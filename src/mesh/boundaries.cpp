@@ -118,15 +118,9 @@ BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)
     m.boundary_edge_type[e] = std::get<2>(*it);
   }
   m.typed = true;
-  const BoundaryCounts counts = boundary_counts(m);
-  c.open_segments = counts.open_segments;
-  c.open_nodes = counts.open_nodes;
-  c.open_edges = counts.open_edges;
-  c.mainland_segments = counts.mainland_segments;
-  c.mainland_edges = counts.mainland_edges;
-  c.islands = counts.islands;
-  c.island_edges = counts.island_edges;
-  return c;
+  BoundaryCounts counts = boundary_counts(m);
+  counts.merged = c.merged;
+  return counts;
 }
 
 BoundaryCounts boundary_counts(const Mesh& m) {

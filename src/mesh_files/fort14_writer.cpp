@@ -38,6 +38,14 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
     f.maybe_flush();
   }
 
+  const auto finish = [&](std::int64_t boundary_edges) {
+    WriteStats stats;
+    stats.bytes = f.close();
+    stats.nodes = np;
+    stats.elements = ne;
+    stats.boundary_edges = boundary_edges;
+    return stats;
+  };
   if (mesh.typed) {
     std::int64_t nope = 0, neta = 0, nbou = 0, nvel = 0, edges = 0;
     for (const auto& sg : mesh.segments) {
@@ -75,12 +83,7 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
       }
       if (sg.closed) f.print("{}\n", sg.nodes.front() + 1);
     }
-    WriteStats stats;
-    stats.bytes = f.close();
-    stats.nodes = np;
-    stats.elements = ne;
-    stats.boundary_edges = edges;
-    return stats;
+    return finish(edges);
   }
 
   std::int64_t nvel = 0, edges = 0;
@@ -104,13 +107,7 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
     }
     f.print("{}\n", loop.nodes.front() + 1);
   }
-
-  WriteStats stats;
-  stats.bytes = f.close();
-  stats.nodes = np;
-  stats.elements = ne;
-  stats.boundary_edges = edges;
-  return stats;
+  return finish(edges);
 }
 
 }  // namespace aq::io
