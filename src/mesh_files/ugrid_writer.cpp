@@ -313,13 +313,16 @@ void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, 
     for (std::int64_t r = 0; r < rows; ++r) {
       const int k = faces.nodes(f0 + r, p);
       std::int64_t max_i = 0, min_i = 0;
+      bool moved = false;
       for (int a = 0; a < k; ++a) {
         max_i = std::max(max_i, mesh.node_i[p[a]]);
         min_i = std::min(min_i, mesh.node_i[p[a]]);
+        moved = moved || (mesh.node_flags[p[a]] & mesh::kNodeMoved) != 0;
       }
       double lon = 0.0, lat = 0.0;
-      if (min_i < 0) {
-        // A face of a pole cap (io/geographic_mesh.hpp): the centre of its nodes on the sphere.
+      if (min_i < 0 || moved) {
+        // A face of a pole cap (io/geographic_mesh.hpp) or with a node moved onto a domain
+        // polygon (mesh/open_snap.hpp): the centre of its nodes on the sphere.
         std::array<double, 3> c{0.0, 0.0, 0.0};
         for (int a = 0; a < k; ++a) {
           const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
