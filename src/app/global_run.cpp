@@ -533,11 +533,29 @@ static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfi
   stage.done(r.describe());
 }
 
+// The statistics and checks of the lattice mesh (conforming, its area that of the filled pixels):
+// before a polygon's open boundary moves off the lattice (the moved nodes change the area by
+// design).
+static void check_lattice_mesh(GlobalRun& run, const Logger& log, Report* report) {
+  StageScope stat_stage("statistics", report, log);
+  run.statistics = mesh::compute_statistics(run.mesh);
+  const mesh::MeshStatistics& st = run.statistics;
+  if (report != nullptr) (*report)["statistics"] = mesh::statistics_json(st);
+  const auto failed = st.failed_checks();
+  if (!failed.empty()) {
+    std::string list;
+    for (const auto& f : failed) list += " " + f;
+    throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
+  }
+  stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics, bool reuse) {
   GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   if (run.domain.regional()) type_regional_boundaries(run, log, report);
+  if (statistics) check_lattice_mesh(run, log, report);
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
@@ -568,18 +586,6 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                setup.lattice.levels, ts.max_stable_dt_s * ts.courant_max, ts.courant_max);
     }
   }
-
-  StageScope stat_stage("statistics", report, log);
-  run.statistics = mesh::compute_statistics(run.mesh);
-  const mesh::MeshStatistics& st = run.statistics;
-  if (report != nullptr) (*report)["statistics"] = mesh::statistics_json(st);
-  const auto failed = st.failed_checks();
-  if (!failed.empty()) {
-    std::string list;
-    for (const auto& f : failed) list += " " + f;
-    throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
-  }
-  stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
   return run;
 }
 

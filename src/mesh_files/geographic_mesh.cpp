@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
+#include "mesh/boundaries.hpp"
 #include "mesh/pole_cap.hpp"
 #include "mesh_files/pole_merge.hpp"
 
@@ -350,6 +351,9 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     const NodeId o = new_id[static_cast<std::size_t>(p)];
     if (o >= 0) g.pinch_nodes.push_back(o);
   }
+  // A regional mesh reaching a pole row keeps its types: an edge stays open where it was open
+  // (the polar island of a cap is an island; a merged pole row has no edges left).
+  if (lm.typed) mesh::type_like(g, lm);
   owned_.emplace(std::move(g));
 }
 
