@@ -320,10 +320,44 @@ TEST(DomainCli, RegionalRunReadsOnlyTheDomainWindowAndEqualsAPreCutRaster) {
   }
 }
 
+// The basin cut by a polygon with a slanted east edge, (20°E, 0°N) -> (24°E, 20°N): the open
+// boundary next to it is a staircase on the 0.5° lattice.
+fs::path slant_polygon() {
+  static const fs::path p = [] {
+    const fs::path dir = aq::test::fresh_dir("domain", "slant_polygon");
+    fs::create_directories(dir);
+    const fs::path f = dir / "slant.geojson";
+    std::ofstream(f) << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "s"},
+      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [20, 0], [24, 20], [0, 20], [0, 0]]]}}]})";
+    return f;
+  }();
+  return p;
+}
+
+// Distance (degrees, in the lon/lat plane) of (x, y) from the slanted edge's segment.
+double slant_distance(double x, double y) {
+  const double ax = 20.0, ay = 0.0, ux = 4.0, uy = 20.0;
+  const double t = std::clamp(((x - ax) * ux + (y - ay) * uy) / (ux * ux + uy * uy), 0.0, 1.0);
+  return std::hypot(x - (ax + t * ux), y - (ay + t * uy));
+}
+
+bool on_half_degree_lattice(double x, double y) {
+  return std::abs(2.0 * x - std::round(2.0 * x)) < 1e-9 && std::abs(2.0 * y - std::round(2.0 * y)) < 1e-9;
+}
+
 TEST(DomainCli, OneAndTwoThreadsGiveTheSameBytes) {
   const fs::path one = aq::test::fresh_dir("domain", "t1"), two = aq::test::fresh_dir("domain", "t2");
   ASSERT_EQ(mesh_basin(one, kBox, 1).exit_code, 0);
   ASSERT_EQ(mesh_basin(two, kBox, 2).exit_code, 0);
+  for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin.nc", "basin_nod2d.out", "basin_bctides.in"})
+    EXPECT_TRUE(bytes(one / f) == bytes(two / f)) << f;
+}
+
+TEST(DomainCli, PolygonWithMovedOpenNodesOneAndTwoThreadsGiveTheSameBytes) {
+  const fs::path one = aq::test::fresh_dir("domain", "pt1"), two = aq::test::fresh_dir("domain", "pt2");
+  const std::string poly = "--set domain.polygon=" + slant_polygon().string() + " --set 'mask.seeds=[[12.0, 12.0]]'";
+  ASSERT_EQ(mesh_basin(one, poly, 1).exit_code, 0);
+  ASSERT_EQ(mesh_basin(two, poly, 2).exit_code, 0);
   for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin.nc", "basin_nod2d.out", "basin_bctides.in"})
     EXPECT_TRUE(bytes(one / f) == bytes(two / f)) << f;
 }
@@ -358,31 +392,6 @@ TEST(DomainCli, MercatorLatticeAndRotatedBoxHaveTheOpenEdge) {
       for (const long n : s.nodes) EXPECT_NEAR(f.lon[static_cast<std::size_t>(n)], 20.0, 0.6) << extra;
     for (const double x : f.lon) EXPECT_LE(x, 20.6) << extra;
   }
-}
-
-// The basin cut by a polygon with a slanted east edge, (20°E, 0°N) -> (24°E, 20°N): the open
-// boundary next to it is a staircase on the 0.5° lattice.
-fs::path slant_polygon() {
-  static const fs::path p = [] {
-    const fs::path dir = aq::test::fresh_dir("domain", "slant_polygon");
-    fs::create_directories(dir);
-    const fs::path f = dir / "slant.geojson";
-    std::ofstream(f) << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "s"},
-      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [20, 0], [24, 20], [0, 20], [0, 0]]]}}]})";
-    return f;
-  }();
-  return p;
-}
-
-// Distance (degrees, in the lon/lat plane) of (x, y) from the slanted edge's segment.
-double slant_distance(double x, double y) {
-  const double ax = 20.0, ay = 0.0, ux = 4.0, uy = 20.0;
-  const double t = std::clamp(((x - ax) * ux + (y - ay) * uy) / (ux * ux + uy * uy), 0.0, 1.0);
-  return std::hypot(x - (ax + t * ux), y - (ay + t * uy));
-}
-
-bool on_half_degree_lattice(double x, double y) {
-  return std::abs(2.0 * x - std::round(2.0 * x)) < 1e-9 && std::abs(2.0 * y - std::round(2.0 * y)) < 1e-9;
 }
 
 // Open nodes moved onto the polygon (README "Regional FE meshes"): every node of the open
