@@ -127,6 +127,12 @@ struct Mesh {
     const auto p = static_cast<std::size_t>(n);
     return (node_flags[p] & kNodeMoved) != 0 ? lattice.plane_y_of_lat(rlat_deg[p]) : lattice.plane_y_of(node_j[p]);
   }
+  /// Whether some node was moved off its lattice vertex (kNodeMoved).
+  [[nodiscard]] bool has_moved_nodes() const {
+    for (const std::uint8_t f : node_flags)
+      if ((f & kNodeMoved) != 0) return true;
+    return false;
+  }
   /// Whether an element crosses the seam (has a node at I = 0 drawn at I = nx).
   template <std::size_t K>
   [[nodiscard]] bool crosses_seam(const std::array<NodeId, K>& nodes) const {

@@ -483,9 +483,13 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
 
   const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
   nc.text(flags, "long_name", "Node flags");
-  const signed char masks[6] = {1, 2, 4, 8, 16, 32};
-  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, 6, masks), "attribute flag_masks");
-  nc.text(flags, "flag_meanings", "boundary midside_hanging_node centre_node pole seam pole_cap_node");
+  // The moved-node flag only where there is one (the files of other runs keep their bytes).
+  const bool moved = mesh.has_moved_nodes();
+  const signed char masks[7] = {1, 2, 4, 8, 16, 32, 64};
+  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, moved ? 7 : 6, masks), "attribute flag_masks");
+  nc.text(flags, "flag_meanings",
+          std::string("boundary midside_hanging_node centre_node pole seam pole_cap_node") +
+              (moved ? " open_boundary_node_moved_onto_polygon" : ""));
   nc.text(flags, "mesh", "mesh");
   nc.text(flags, "location", "node");
   nc.text(flags, "coordinates", all_node_coords);
