@@ -15,7 +15,9 @@
 #include "mask/passages.hpp"
 #include "mesh/boundaries.hpp"
 #include "mesh/build_mesh.hpp"
+#include "mesh/open_snap.hpp"
 #include "mesh/time_step.hpp"
+#include "mesh_files/element_kinds.hpp"
 #include "quadtree/build_leaves.hpp"
 #include "size/size_field.hpp"
 
@@ -505,13 +507,58 @@ static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* 
   stage.done(mesh::describe(counts));
 }
 
+// A polygon domain: the open-boundary nodes moved onto the polygon where the triangles stay valid
+// (mesh/open_snap.hpp). Only when the files hold triangles alone: a moved corner would bend the
+// squares of mesh.elements = "squares" / "both", which the snapping does not check.
+static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfig& c, const Logger& log,
+                                       Report* report) {
+  StageScope stage("open_snap", report, log);
+  if (io::parse_element_kinds(c.mesh.elements) != io::ElementKinds::kTriangles) {
+    stage.done(fmt::format("the open boundary stays on the lattice: mesh.elements = \"{}\" writes squares",
+                           c.mesh.elements));
+    return;
+  }
+  mesh::OpenSnapOptions o;
+  o.wet_max_elevation_m = -c.mask.min_depth_m;
+  const raster::Bathymetry& bathy = *run.bathy;
+  const mesh::OpenSnapResult r = mesh::snap_open_boundary(
+      run.mesh, run.domain.rings, run.setup.rotation,
+      [&bathy](double lon, double lat) {
+        double z = 0.0;
+        bathy.sample_points(&lon, &lat, 1, &z);
+        return z;
+      },
+      o);
+  if (report != nullptr) (*report)["open_boundary_snap"] = r.json();
+  stage.done(r.describe());
+}
+
+// The statistics and checks of the lattice mesh (conforming, its area that of the filled pixels):
+// before a polygon's open boundary moves off the lattice (the moved nodes change the area by
+// design).
+static void check_lattice_mesh(GlobalRun& run, const Logger& log, Report* report) {
+  StageScope stat_stage("statistics", report, log);
+  run.statistics = mesh::compute_statistics(run.mesh);
+  const mesh::MeshStatistics& st = run.statistics;
+  if (report != nullptr) (*report)["statistics"] = mesh::statistics_json(st);
+  const auto failed = st.failed_checks();
+  if (!failed.empty()) {
+    std::string list;
+    for (const auto& f : failed) list += " " + f;
+    throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
+  }
+  stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
+}
+
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics, bool reuse) {
   GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  if (run.domain.regional()) type_regional_boundaries(run, log, report);
+  if (statistics) check_lattice_mesh(run, log, report);
+  if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
-  if (run.domain.regional()) type_regional_boundaries(run, log, report);
   if (!statistics) return run;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)
@@ -539,18 +586,6 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                setup.lattice.levels, ts.max_stable_dt_s * ts.courant_max, ts.courant_max);
     }
   }
-
-  StageScope stat_stage("statistics", report, log);
-  run.statistics = mesh::compute_statistics(run.mesh);
-  const mesh::MeshStatistics& st = run.statistics;
-  if (report != nullptr) (*report)["statistics"] = mesh::statistics_json(st);
-  const auto failed = st.failed_checks();
-  if (!failed.empty()) {
-    std::string list;
-    for (const auto& f : failed) list += " " + f;
-    throw InternalError("mesh checks failed:" + list + "; no files were written (please report this)");
-  }
-  stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
   return run;
 }
 

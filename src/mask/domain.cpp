@@ -24,9 +24,19 @@ using config::DomainKind;
 
 std::int64_t mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 
-struct Ring {
-  std::vector<double> lon, lat;
-};
+using Ring = PolygonRing;
+
+// Rotated lattice: the pixels whose centre's geographic position satisfies inside(lon, lat).
+template <typename Inside>
+void mark_geographic_centres(Domain& d, const Lattice& lat, const PoleRotation& rot, Inside&& inside) {
+  for (std::int64_t j = 0; j < lat.ny; ++j)
+    for (std::int64_t i = 0; i < lat.nx; ++i) {
+      const LonLat c = pixel_center_lattice_deg(lat, {i, j});
+      double lon = 0.0, la = 0.0;
+      rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
+      if (inside(lon, la)) d.inside.set(i, j);
+    }
+}
 
 void add_rings(OGRGeometryH g, std::vector<Ring>& rings) {
   if (g == nullptr) return;
@@ -143,21 +153,36 @@ void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, c
   d.lon_max = w + width;
   d.lat_min = o.box[2];
   d.lat_max = o.box[3];
-  for (std::int64_t j = 0; j < lat.ny; ++j)
-    for (std::int64_t i = 0; i < lat.nx; ++i) {
-      const LonLat c = pixel_center_lattice_deg(lat, {i, j});
-      double lon = 0.0, la = 0.0;
-      rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
-      double dl = std::fmod(lon - w, 360.0);
-      if (dl < 0.0) dl += 360.0;
-      if (dl < width && la >= o.box[2] && la <= o.box[3]) d.inside.set(i, j);
-    }
+  mark_geographic_centres(d, lat, rot, [&](double lon, double la) {
+    double dl = std::fmod(lon - w, 360.0);
+    if (dl < 0.0) dl += 360.0;
+    return dl < width && la >= o.box[2] && la <= o.box[3];
+  });
   d.description = fmt::format("box [{}, {}, {}, {}] (rotated lattice: pixels whose centre is in the box)", o.box[0],
                               o.box[1], o.box[2], o.box[3]);
 }
 
-void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat) {
-  const std::vector<Ring> rings = read_polygon(o);
+// Even-odd over the rings: whether (lon, la) is inside, lon shifted into [lo, lo + 360). The
+// crossing rule is the scanline's of polygon_domain (a centre on a crossing's longitude is on
+// the side east of it).
+bool inside_rings(const std::vector<Ring>& rings, double lo, double lon, double la) {
+  double x = std::fmod(lon - lo, 360.0);
+  if (x < 0.0) x += 360.0;
+  x += lo;
+  bool in = false;
+  for (const Ring& r : rings) {
+    const std::size_t n = r.lon.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const double ax = r.lon[k], ay = r.lat[k], bx = r.lon[(k + 1) % n], by = r.lat[(k + 1) % n];
+      if ((ay <= la) == (by <= la)) continue;
+      if (ax + (la - ay) * (bx - ax) / (by - ay) > x) in = !in;
+    }
+  }
+  return in;
+}
+
+void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, const PoleRotation& rot) {
+  std::vector<Ring> rings = read_polygon(o);
   double lo = std::numeric_limits<double>::infinity(), hi = -lo, so = lo, no = -lo;
   std::size_t vertices = 0;
   for (const Ring& r : rings) {
@@ -174,7 +199,12 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
                                  o.polygon, hi - lo));
   const double pix = lat.pixel_deg();
   std::vector<double> xs;
-  for (std::int64_t j = 0; j < lat.ny; ++j) {
+  if (!rot.identity()) {
+    mark_geographic_centres(d, lat, rot, [&](double lon, double la) {
+      return la >= so && la <= no && inside_rings(rings, lo, lon, la);
+    });
+  }
+  for (std::int64_t j = 0; j < lat.ny && rot.identity(); ++j) {
     const double la = lat.lat_of_row(static_cast<double>(j) + 0.5);
     if (la < so || la > no) continue;
     xs.clear();
@@ -197,8 +227,10 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
   d.lon_max = hi;
   d.lat_min = so;
   d.lat_max = no;
-  d.description = fmt::format("polygon {} ({} ring(s), {} vertices; {:.6g}..{:.6g}°E, {:.6g}..{:.6g}°N)", o.polygon,
-                              rings.size(), vertices, lo, hi, so, no);
+  d.description = fmt::format("polygon {} ({} ring(s), {} vertices; {:.6g}..{:.6g}°E, {:.6g}..{:.6g}°N{})", o.polygon,
+                              rings.size(), vertices, lo, hi, so, no,
+                              rot.identity() ? "" : "; rotated lattice: pixels whose centre is in the polygon");
+  d.rings = std::move(rings);
 }
 
 }  // namespace
@@ -217,10 +249,7 @@ Domain make_domain(const config::DomainOptions& options, const Lattice& lattice,
   if (d.kind == DomainKind::kBox) {
     box_domain(d, options, lattice, rot);
   } else {
-    if (!rot.identity())
-      throw ConfigError("domain.polygon with rotation.enabled = true is not supported: use a domain.box, or "
-                        "rotation.enabled = false");
-    polygon_domain(d, options, lattice);
+    polygon_domain(d, options, lattice, rot);
   }
   d.pixels = d.inside.count();
   if (d.pixels == 0)

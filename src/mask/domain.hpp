@@ -7,12 +7,14 @@
 // sides are lattice lines, so the open boundary is straight and the quadtree's squares fit it);
 // lon_max < lon_min (or a range past lon0 + 360) crosses the seam: the columns wrap. With pole
 // rotation a pixel is inside when its centre's geographic position is in the box (the box is not
-// a lattice rectangle then). Polygon: a pixel is inside when its centre is inside the polygon
-// (even-odd over all rings of the selected features; geographic lon/lat, no rotation).
+// a lattice rectangle then). Polygon: a pixel is inside when its centre's geographic position
+// is inside the polygon (even-odd over all rings of the selected features, edges straight in
+// lon/lat), on a rotated lattice too.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "config/options.hpp"
 #include "core/bitmap.hpp"
@@ -23,6 +25,12 @@
 
 namespace aq::mask {
 
+/// A ring of a domain polygon as read: geographic lon/lat vertices (continuous longitudes, e.g.
+/// 170…190 across the seam), closed (the last vertex joins the first).
+struct PolygonRing {
+  std::vector<double> lon, lat;
+};
+
 struct Domain {
   config::DomainKind kind = config::DomainKind::kGlobal;
   Bitmap inside;                 ///< nx × ny: pixel inside the domain (empty for a global run)
@@ -31,14 +39,15 @@ struct Domain {
   std::int64_t ni = 0, nj = 0;   ///< box: pixel columns and rows of the snapped box
   double lon_min = 0, lon_max = 0, lat_min = 0, lat_max = 0;  ///< lattice-frame extent of the region
   std::string description;       ///< one line for the log and the report
+  std::vector<PolygonRing> rings;  ///< polygon: its rings (the open boundary is moved onto them)
 
   [[nodiscard]] bool regional() const { return kind != config::DomainKind::kGlobal; }
   /// Whether pixel (i, j) is inside; i is taken modulo nx, rows outside [0, ny) are outside.
   [[nodiscard]] bool contains(std::int64_t i, std::int64_t j) const;
 };
 
-/// The domain of `options` on `lattice`. Throws ConfigError naming domain.* (a polygon with
-/// rotation, an empty region) and InputError naming the polygon file (cannot be read, no layer,
+/// The domain of `options` on `lattice`. Throws ConfigError naming domain.* (an empty region)
+/// and InputError naming the polygon file (cannot be read, no layer,
 /// no polygon feature, not lon/lat).
 Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot);
 

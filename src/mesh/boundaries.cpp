@@ -168,15 +168,25 @@ Json boundaries_json(const Mesh& m, const BoundaryCounts& c) {
               {"open", open}};
 }
 
-std::vector<std::array<std::int64_t, 4>> open_edge_keys(const Mesh& m) {
+BoundaryCounts type_like(Mesh& derived, const Mesh& typed) {
+  // The open edges of `typed`, as pairs of lattice vertices, sorted.
   std::vector<std::array<std::int64_t, 4>> keys;
-  for (std::size_t e = 0; e < m.boundary_edges.size() && e < m.boundary_edge_type.size(); ++e) {
-    if (m.boundary_edge_type[e] != BoundaryType::kOpen) continue;
-    const auto a = static_cast<std::size_t>(m.boundary_edges[e][0]), b = static_cast<std::size_t>(m.boundary_edges[e][1]);
-    keys.push_back({m.node_i[a], m.node_j[a], m.node_i[b], m.node_j[b]});
+  for (std::size_t e = 0; e < typed.boundary_edges.size() && e < typed.boundary_edge_type.size(); ++e) {
+    if (typed.boundary_edge_type[e] != BoundaryType::kOpen) continue;
+    const auto a = static_cast<std::size_t>(typed.boundary_edges[e][0]);
+    const auto b = static_cast<std::size_t>(typed.boundary_edges[e][1]);
+    keys.push_back({typed.node_i[a], typed.node_j[a], typed.node_i[b], typed.node_j[b]});
   }
   std::sort(keys.begin(), keys.end());
-  return keys;
+  return type_boundaries(
+      derived,
+      [&](NodeId a, NodeId b) {
+        const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
+        if (derived.node_i[pa] < 0 || derived.node_i[pb] < 0) return false;
+        const std::array<std::int64_t, 4> k{derived.node_i[pa], derived.node_j[pa], derived.node_i[pb], derived.node_j[pb]};
+        return std::binary_search(keys.begin(), keys.end(), k);
+      },
+      nullptr);
 }
 
 }  // namespace aq::mesh

@@ -47,8 +47,10 @@ std::string describe(const BoundaryCounts& c);
 /// The report's "boundaries" section.
 Json boundaries_json(const Mesh& m, const BoundaryCounts& c);
 
-/// The edges of `m` typed open, as pairs of lattice vertices ((I, J), (I, J)), sorted: what the
-/// model cleaning keeps across its renumbering.
-std::vector<std::array<std::int64_t, 4>> open_edge_keys(const Mesh& m);
+/// Types `derived`, a mesh made from the typed mesh `typed` with other node ids (the model
+/// cleaning, the geographic mesh's pole cap or merge): an edge is open when its two lattice
+/// vertices ((I, J) -> (I, J)) are those of an open edge of `typed` (new nodes off the lattice,
+/// I = J = -1, are never open); the rest is typed as type_boundaries does. No log.
+BoundaryCounts type_like(Mesh& derived, const Mesh& typed);
 
 }  // namespace aq::mesh

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ enum NodeFlag : std::uint8_t {
   kNodeSeam = 16,     ///< on the seam I = 0
   kNodeCap = 32,      ///< added by the pole cap of a geographic mesh (io/geographic_mesh.hpp): not a
                       ///< lattice vertex, node_i = node_j = -1
+  kNodeMoved = 64,    ///< an open-boundary node of a polygon domain moved off its lattice vertex (I, J)
+                      ///< onto the polygon (mesh/open_snap.hpp): lon/lat, rlon/rlat and depth are the
+                      ///< new position's; (I, J) stay the vertex it came from (the topology's key)
 };
 
 /// One closed boundary polyline. Nodes are listed in order, anticlockwise around the wet area
@@ -109,6 +113,25 @@ struct Mesh {
     for (const NodeId m : nodes) max_i = node_i[m] > max_i ? node_i[m] : max_i;
     const std::int64_t i = node_i[n];
     return (i == 0 && max_i > lattice.nx / 2) ? lattice.nx : i;
+  }
+  /// Offset (degrees of λ′ in the lattice plane) of node `n` from its lattice column: 0 unless
+  /// the node was moved (kNodeMoved). A writer in the plane draws it at its column's λ′ plus this.
+  [[nodiscard]] double plane_dx_deg(NodeId n) const {
+    const auto p = static_cast<std::size_t>(n);
+    if ((node_flags[p] & kNodeMoved) == 0) return 0.0;
+    const double d = rlon_deg[p] - lattice.lon_of(node_i[p]);
+    return d - 360.0 * std::round(d / 360.0);
+  }
+  /// Plane ordinate (Lattice::plane_y) of node `n`: its row's, or a moved node's own.
+  [[nodiscard]] double plane_y_deg(NodeId n) const {
+    const auto p = static_cast<std::size_t>(n);
+    return (node_flags[p] & kNodeMoved) != 0 ? lattice.plane_y_of_lat(rlat_deg[p]) : lattice.plane_y_of(node_j[p]);
+  }
+  /// Whether some node was moved off its lattice vertex (kNodeMoved).
+  [[nodiscard]] bool has_moved_nodes() const {
+    for (const std::uint8_t f : node_flags)
+      if ((f & kNodeMoved) != 0) return true;
+    return false;
   }
   /// Whether an element crosses the seam (has a node at I = 0 drawn at I = nx).
   template <std::size_t K>

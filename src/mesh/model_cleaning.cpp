@@ -347,17 +347,7 @@ ModelMesh::ModelMesh(const Mesh& m) : input_(m) {
   if (!d.none())
     throw InternalError(fmt::format("mesh cleaning: {} triangles with one neighbour and {} pinches left",
                                     d.one_neighbour_triangles, d.pinch_nodes));
-  if (m.typed) {  // a regional mesh: an edge stays open when it was open (by its lattice vertices)
-    const auto keys = open_edge_keys(m);
-    type_boundaries(
-        g,
-        [&](NodeId a, NodeId b) {
-          const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
-          const std::array<std::int64_t, 4> k{g.node_i[pa], g.node_j[pa], g.node_i[pb], g.node_j[pb]};
-          return std::binary_search(keys.begin(), keys.end(), k);
-        },
-        nullptr);
-  }
+  if (m.typed) type_like(g, m);  // a regional mesh: an edge stays open when it was open (by its lattice vertices)
   owned_.emplace(std::move(g));
 }
 

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
+#include "mesh/boundaries.hpp"
 #include "mesh/pole_cap.hpp"
 #include "mesh_files/pole_merge.hpp"
 
@@ -19,11 +20,6 @@ namespace {
 using Vec3 = std::array<double, 3>;
 
 constexpr double kAuthalicRadiusKm = 6371.0072;  // WGS84's authalic sphere: areas of the island
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // One pole of the lattice system: its row, the level-0 row next to it and the test of whether
 // a square lies in that row.
@@ -72,26 +68,6 @@ std::string cap_obstacle(const mesh::Mesh& m, const PoleRows& r) {
 }
 
 }  // namespace
-
-Vec3 unit_vector_deg(double lon_deg, double lat_deg) {
-  const double lo = lon_deg * kDegToRad, la = lat_deg * kDegToRad;
-  return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
-}
-
-double spherical_triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double det = dot(a, cross(b, c));
-  const double den = 1.0 + dot(a, b) + dot(b, c) + dot(c, a);
-  return 2.0 * std::atan2(det, den);
-}
-
-std::array<double, 3> spherical_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    // Between the great circles p->q and p->r: their tangent directions at p.
-    const Vec3 tq = cross(cross(p, q), p), tr = cross(cross(p, r), p);
-    return std::atan2(std::sqrt(dot(cross(tq, tr), cross(tq, tr))), dot(tq, tr)) * kRadToDeg;
-  };
-  return {angle(a, b, c), angle(b, c, a), angle(c, a, b)};
-}
 
 GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const ElevationSampler& elevation)
     : lattice_(lm) {
@@ -375,6 +351,9 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     const NodeId o = new_id[static_cast<std::size_t>(p)];
     if (o >= 0) g.pinch_nodes.push_back(o);
   }
+  // A regional mesh reaching a pole row keeps its types: an edge stays open where it was open
+  // (the polar island of a cap is an island; a merged pole row has no edges left).
+  if (lm.typed) mesh::type_like(g, lm);
   owned_.emplace(std::move(g));
 }
 

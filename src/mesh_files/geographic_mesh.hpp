@@ -45,6 +45,7 @@
 
 #include "core/report.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/sphere_geometry.hpp"
 #include "mesh_files/element_kinds.hpp"
 
 namespace aq::io {
@@ -102,14 +103,9 @@ class GeographicMesh {
   std::vector<ElementId> source_triangle_;
 };
 
-/// Angles (degrees) of the spherical triangle with vertices at unit vectors a, b, c.
-std::array<double, 3> spherical_angles_deg(const std::array<double, 3>& a, const std::array<double, 3>& b,
-                                           const std::array<double, 3>& c);
-/// Signed area (steradians, anticlockwise seen from outside positive) of the geodesic triangle
-/// a, b, c on the unit sphere (Van Oosterom & Strackee 1983).
-double spherical_triangle_area(const std::array<double, 3>& a, const std::array<double, 3>& b,
-                               const std::array<double, 3>& c);
-/// Unit vector of (λ, φ) in degrees.
-std::array<double, 3> unit_vector_deg(double lon_deg, double lat_deg);
+// The sphere's geometry, where it lives now (mesh/sphere_geometry.hpp).
+using mesh::spherical_angles_deg;
+using mesh::spherical_triangle_area;
+using mesh::unit_vector_deg;
 
 }  // namespace aq::io

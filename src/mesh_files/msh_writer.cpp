@@ -128,7 +128,7 @@ class NodeSet {
     const NodeId n = source(o);
     if (plane_) {
       const std::int64_t i = o < mesh_.node_count() ? mesh_.node_i[n] : mesh_.lattice.nx;
-      return {plane_lon_deg(mesh_.lattice, i), mesh_.lattice.plane_y_of(mesh_.node_j[n]), 0.0};
+      return {plane_lon_deg(mesh_.lattice, i) + mesh_.plane_dx_deg(n), mesh_.plane_y_deg(n), 0.0};
     }
     const double lo = mesh_.lon_deg[n] * kDegToRad, la = mesh_.lat_deg[n] * kDegToRad;
     return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};

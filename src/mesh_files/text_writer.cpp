@@ -29,7 +29,8 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   f.print(
       "# ids are 0-based; depth_m is positive down; lon/lat are geographic degrees; i j are the\n"
       "# integer lattice coordinates (rotated system with a rotated pole), -1 -1 for a node of a pole cap;\n"
-      "# flags: 1 boundary, 2 midside (hanging) node, 4 centre node, 8 pole, 16 seam, 32 pole-cap node\n");
+      "# flags: 1 boundary, 2 midside (hanging) node, 4 centre node, 8 pole, 16 seam, 32 pole-cap node{}\n",
+      mesh.has_moved_nodes() ? ", 64 open-boundary node moved onto the domain polygon (i j: its lattice vertex)" : "");
 
   const std::int64_t np = mesh.node_count();
   f.print("nodes {}\n# id lon_deg lat_deg depth_m flags i j\n", np);

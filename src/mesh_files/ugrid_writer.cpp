@@ -313,13 +313,16 @@ void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, 
     for (std::int64_t r = 0; r < rows; ++r) {
       const int k = faces.nodes(f0 + r, p);
       std::int64_t max_i = 0, min_i = 0;
+      bool moved = false;
       for (int a = 0; a < k; ++a) {
         max_i = std::max(max_i, mesh.node_i[p[a]]);
         min_i = std::min(min_i, mesh.node_i[p[a]]);
+        moved = moved || (mesh.node_flags[p[a]] & mesh::kNodeMoved) != 0;
       }
       double lon = 0.0, lat = 0.0;
-      if (min_i < 0) {
-        // A face of a pole cap (io/geographic_mesh.hpp): the centre of its nodes on the sphere.
+      if (min_i < 0 || moved) {
+        // A face of a pole cap (io/geographic_mesh.hpp) or with a node moved onto a domain
+        // polygon (mesh/open_snap.hpp): the centre of its nodes on the sphere.
         std::array<double, 3> c{0.0, 0.0, 0.0};
         for (int a = 0; a < k; ++a) {
           const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
@@ -480,9 +483,13 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
 
   const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
   nc.text(flags, "long_name", "Node flags");
-  const signed char masks[6] = {1, 2, 4, 8, 16, 32};
-  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, 6, masks), "attribute flag_masks");
-  nc.text(flags, "flag_meanings", "boundary midside_hanging_node centre_node pole seam pole_cap_node");
+  // The moved-node flag only where there is one (the files of other runs keep their bytes).
+  const bool moved = mesh.has_moved_nodes();
+  const signed char masks[7] = {1, 2, 4, 8, 16, 32, 64};
+  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, moved ? 7 : 6, masks), "attribute flag_masks");
+  nc.text(flags, "flag_meanings",
+          std::string("boundary midside_hanging_node centre_node pole seam pole_cap_node") +
+              (moved ? " open_boundary_node_moved_onto_polygon" : ""));
   nc.text(flags, "mesh", "mesh");
   nc.text(flags, "location", "node");
   nc.text(flags, "coordinates", all_node_coords);

@@ -315,8 +315,8 @@ class MeshPainter {
       const auto& t = m_.triangles[k];
       std::array<double, 3> tx{}, ty{};
       for (std::size_t a = 0; a < 3; ++a) {
-        tx[a] = x(m_.unwrapped_i(t, t[a]));
-        ty[a] = y(m_.node_j[t[a]]);
+        tx[a] = x(m_.unwrapped_i(t, t[a])) + m_.plane_dx_deg(t[a]);
+        ty[a] = m_.plane_y_deg(t[a]);
       }
       if (!rows_visible(std::min({ty[0], ty[1], ty[2]}), std::max({ty[0], ty[1], ty[2]}))) continue;
       const auto& rgb = classes.rgb[classes.class_of(values[k])];
@@ -358,8 +358,8 @@ class MeshPainter {
       const auto& t = m_.triangles[k];
       std::array<double, 3> tx{}, ty{};
       for (int a = 0; a < 3; ++a) {
-        tx[a] = x(m_.unwrapped_i(t, t[a]));
-        ty[a] = y(m_.node_j[t[a]]);
+        tx[a] = x(m_.unwrapped_i(t, t[a])) + m_.plane_dx_deg(t[a]);
+        ty[a] = m_.plane_y_deg(t[a]);
       }
       const auto [lo, hi] = std::minmax({tx[0], tx[1], tx[2]});
       if (!rows_visible(std::min({ty[0], ty[1], ty[2]}), std::max({ty[0], ty[1], ty[2]}))) continue;
@@ -401,8 +401,9 @@ class MeshPainter {
       const auto& e = m_.boundary_edges[k];
       if (type >= 0 && static_cast<int>(m_.boundary_edge_type[k]) != type) continue;
       const auto u = SeamNodes::edge_unwrapped(m_, e);
-      const double ax = x(u[0] ? m_.lattice.nx : m_.node_i[e[0]]), bx = x(u[1] ? m_.lattice.nx : m_.node_i[e[1]]);
-      const double ay = y(m_.node_j[e[0]]), by = y(m_.node_j[e[1]]);
+      const double ax = x(u[0] ? m_.lattice.nx : m_.node_i[e[0]]) + m_.plane_dx_deg(e[0]);
+      const double bx = x(u[1] ? m_.lattice.nx : m_.node_i[e[1]]) + m_.plane_dx_deg(e[1]);
+      const double ay = m_.plane_y_deg(e[0]), by = m_.plane_y_deg(e[1]);
       if (!rows_visible(std::min(ay, by), std::max(ay, by))) continue;
       at_shifts(std::min(ax, bx), std::max(ax, bx),
                 [&](double sh) { seg(v_.px(ax + sh), v_.py(ay), v_.px(bx + sh), v_.py(by)); });

@@ -320,10 +320,44 @@ TEST(DomainCli, RegionalRunReadsOnlyTheDomainWindowAndEqualsAPreCutRaster) {
   }
 }
 
+// The basin cut by a polygon with a slanted east edge, (20°E, 0°N) -> (24°E, 20°N): the open
+// boundary next to it is a staircase on the 0.5° lattice.
+fs::path slant_polygon() {
+  static const fs::path p = [] {
+    const fs::path dir = aq::test::fresh_dir("domain", "slant_polygon");
+    fs::create_directories(dir);
+    const fs::path f = dir / "slant.geojson";
+    std::ofstream(f) << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "s"},
+      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [20, 0], [24, 20], [0, 20], [0, 0]]]}}]})";
+    return f;
+  }();
+  return p;
+}
+
+// Distance (degrees, in the lon/lat plane) of (x, y) from the slanted edge's segment.
+double slant_distance(double x, double y) {
+  const double ax = 20.0, ay = 0.0, ux = 4.0, uy = 20.0;
+  const double t = std::clamp(((x - ax) * ux + (y - ay) * uy) / (ux * ux + uy * uy), 0.0, 1.0);
+  return std::hypot(x - (ax + t * ux), y - (ay + t * uy));
+}
+
+bool on_half_degree_lattice(double x, double y) {
+  return std::abs(2.0 * x - std::round(2.0 * x)) < 1e-9 && std::abs(2.0 * y - std::round(2.0 * y)) < 1e-9;
+}
+
 TEST(DomainCli, OneAndTwoThreadsGiveTheSameBytes) {
   const fs::path one = aq::test::fresh_dir("domain", "t1"), two = aq::test::fresh_dir("domain", "t2");
   ASSERT_EQ(mesh_basin(one, kBox, 1).exit_code, 0);
   ASSERT_EQ(mesh_basin(two, kBox, 2).exit_code, 0);
+  for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin.nc", "basin_nod2d.out", "basin_bctides.in"})
+    EXPECT_TRUE(bytes(one / f) == bytes(two / f)) << f;
+}
+
+TEST(DomainCli, PolygonWithMovedOpenNodesOneAndTwoThreadsGiveTheSameBytes) {
+  const fs::path one = aq::test::fresh_dir("domain", "pt1"), two = aq::test::fresh_dir("domain", "pt2");
+  const std::string poly = "--set domain.polygon=" + slant_polygon().string() + " --set 'mask.seeds=[[12.0, 12.0]]'";
+  ASSERT_EQ(mesh_basin(one, poly, 1).exit_code, 0);
+  ASSERT_EQ(mesh_basin(two, poly, 2).exit_code, 0);
   for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin.nc", "basin_nod2d.out", "basin_bctides.in"})
     EXPECT_TRUE(bytes(one / f) == bytes(two / f)) << f;
 }
@@ -358,11 +392,141 @@ TEST(DomainCli, MercatorLatticeAndRotatedBoxHaveTheOpenEdge) {
       for (const long n : s.nodes) EXPECT_NEAR(f.lon[static_cast<std::size_t>(n)], 20.0, 0.6) << extra;
     for (const double x : f.lon) EXPECT_LE(x, 20.6) << extra;
   }
-  // A polygon on a rotated lattice is refused (exit 2) naming the keys.
+}
+
+// Open nodes moved onto the polygon (README "Regional FE meshes"): every node of the open
+// boundary is on the polygon (moved, or on it already) or on its lattice vertex (kept), with the
+// counts the report states; every triangle stays anticlockwise, no angle below the 20° bound;
+// MSH (the lattice plane) and fort.14 / hgrid.gr3 (lon/lat) hold the same moved positions.
+TEST(DomainCli, PolygonOpenNodesMoveOntoTheSlantedEdgeWhereTrianglesStayValid) {
+  const fs::path dir = aq::test::fresh_dir("domain", "slant");
+  const auto r = mesh_basin(dir, "--set domain.polygon=" + slant_polygon().string() + " --set 'mask.seeds=[[12.0, 12.0]]'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = aq::test::read_report(dir, "basin");
+  ASSERT_TRUE(report.contains("open_boundary_snap")) << report.dump();
+  const auto& snap = report["open_boundary_snap"];
+  const long open_nodes = snap["open_nodes"], moved = snap["moved"], on_polygon = snap["on_polygon"], kept = snap["kept"];
+  EXPECT_EQ(open_nodes, moved + on_polygon + kept);
+  EXPECT_GE(moved, 15);   // the staircase's nodes off the edge
+  EXPECT_GE(kept, 1);     // a step whose two nodes would make a sliver
+  EXPECT_GT(snap["max_move_km"].get<double>(), 5.0);
+  EXPECT_LT(snap["max_move_km"].get<double>(), 40.0);  // under a pixel diagonal's half (0.35° ≈ 39 km)
+  EXPECT_GE(report["quality"]["min_angle_deg"]["p0"].get<double>(), 20.0);
+  EXPECT_EQ(report["quality"]["max_angle_above_120_deg_triangles"], 0);
+
+  // MSH: the nodes of the "open" curves (physical group 4), in the λ–φ plane.
+  const auto msh = aq::testing::parse_msh(dir / "basin.msh");
+  std::set<std::size_t> open_tags;
+  for (const auto& e : msh.elements) {
+    if (e.dim != 1) continue;
+    const auto it = msh.entity_physicals.find({1, e.entity});
+    if (it == msh.entity_physicals.end() || std::find(it->second.begin(), it->second.end(), 4) == it->second.end())
+      continue;
+    open_tags.insert(e.nodes.begin(), e.nodes.end());
+  }
+  EXPECT_EQ(static_cast<long>(open_tags.size()), open_nodes);
+  long on_moved = 0, on_lattice_on_polygon = 0, off = 0;
+  std::vector<std::array<double, 2>> moved_xy;
+  for (const std::size_t t : open_tags) {
+    const auto& x = msh.nodes.at(t);
+    const bool on = slant_distance(x[0], x[1]) < 1e-9, lattice = on_half_degree_lattice(x[0], x[1]);
+    EXPECT_TRUE(on || lattice) << "open node " << t << " at " << x[0] << ", " << x[1] << " is neither";
+    if (on && !lattice) {
+      ++on_moved;
+      moved_xy.push_back({x[0], x[1]});
+    }
+    if (on && lattice) ++on_lattice_on_polygon;
+    if (!on) ++off;
+  }
+  EXPECT_EQ(on_moved, moved);
+  EXPECT_EQ(on_lattice_on_polygon, on_polygon);
+  EXPECT_EQ(off, kept);
+  for (const auto& e : msh.elements) {
+    if (e.type != 2) continue;
+    const auto &a = msh.nodes.at(e.nodes[0]), &b = msh.nodes.at(e.nodes[1]), &c = msh.nodes.at(e.nodes[2]);
+    EXPECT_GT((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]), 0.0) << "MSH triangle " << e.tag;
+  }
+  // fort.14 and hgrid.gr3: the same moved positions, anticlockwise triangles, open nodes on the
+  // polygon or on the lattice.
+  for (const char* ext : {".14", ".gr3"}) {
+    const Fort14 f = read_fort14(dir / (std::string("basin") + ext));
+    ASSERT_TRUE(f.error.empty()) << f.error;
+    expect_segments_cover_the_boundary(f);
+    for (const auto& t : f.triangles) {
+      const auto a = static_cast<std::size_t>(t[0]), b = static_cast<std::size_t>(t[1]), c = static_cast<std::size_t>(t[2]);
+      EXPECT_GT((f.lon[b] - f.lon[a]) * (f.lat[c] - f.lat[a]) - (f.lat[b] - f.lat[a]) * (f.lon[c] - f.lon[a]), 0.0) << ext;
+    }
+    long moved_here = 0;
+    for (std::size_t n = 0; n < f.lon.size(); ++n) {
+      if (on_half_degree_lattice(f.lon[n], f.lat[n])) continue;
+      ++moved_here;
+      EXPECT_LT(slant_distance(f.lon[n], f.lat[n]), 1e-9) << ext << " node " << n + 1 << " is off the lattice and off the polygon";
+      bool in_msh = false;
+      for (const auto& xy : moved_xy)
+        in_msh = in_msh || (std::abs(xy[0] - f.lon[n]) < 1e-12 && std::abs(xy[1] - f.lat[n]) < 1e-12);
+      EXPECT_TRUE(in_msh) << ext << " node " << n + 1 << " is not where MSH has it";
+    }
+    EXPECT_GE(moved_here, moved - 2) << ext;  // the model cleaning may take a corner triangle
+    for (const Segment& s : f.open)
+      for (const long n : s.nodes) {
+        const auto p = static_cast<std::size_t>(n);
+        EXPECT_TRUE(slant_distance(f.lon[p], f.lat[p]) < 1e-9 || on_half_degree_lattice(f.lon[p], f.lat[p])) << ext;
+      }
+  }
+}
+
+// A polygon on a rotated lattice: the pixels whose centre's geographic position is inside; the
+// open boundary runs along the slanted edge (and moves onto it) and nothing lies east of it.
+TEST(DomainCli, PolygonOnARotatedLattice) {
   const fs::path dir = aq::test::fresh_dir("domain", "rotpoly");
-  const auto r = mesh_basin(dir, "--set domain.polygon=x.geojson --set rotation.enabled=true");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("domain.polygon"), std::string::npos) << r.err;
+  const auto r = mesh_basin(dir, "--set domain.polygon=" + slant_polygon().string() +
+                                     " --set 'mask.seeds=[[12.0, 12.0]]' --set rotation.enabled=true");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Fort14 f = read_fort14(dir / "basin.14");
+  ASSERT_TRUE(f.error.empty()) << f.error;
+  EXPECT_EQ(f.nope, 1);
+  expect_segments_cover_the_boundary(f);
+  double lat_lo = 90.0, lat_hi = -90.0;
+  for (const Segment& s : f.open)
+    for (const long n : s.nodes) {
+      const auto p = static_cast<std::size_t>(n);
+      EXPECT_LT(slant_distance(f.lon[p], f.lat[p]), 0.45) << "open node " << n + 1;
+      lat_lo = std::min(lat_lo, f.lat[p]);
+      lat_hi = std::max(lat_hi, f.lat[p]);
+    }
+  EXPECT_LT(lat_lo, 3.5);
+  EXPECT_GT(lat_hi, 17.0);
+  // Nothing east of the edge by more than a pixel's half diagonal (0.5° rotated pixels).
+  for (std::size_t n = 0; n < f.lon.size(); ++n) {
+    const double east = (f.lon[n] - (20.0 + f.lat[n] / 5.0)) * std::cos(std::atan(0.2));
+    EXPECT_LT(east, 0.45) << "node " << n + 1 << " at " << f.lon[n] << ", " << f.lat[n];
+  }
+  const auto report = aq::test::read_report(dir, "basin");
+  EXPECT_GE(report["open_boundary_snap"]["moved"].get<long>(), 10);
+  EXPECT_NE(report["domain"].dump().find("rotated lattice"), std::string::npos) << report["domain"].dump();
+}
+
+// A region reaching a pole row (a box up to 90°N in the Arctic): the geographic mesh merges the
+// pole row, and its files keep the boundary types (open segments, mainland / island, bctides,
+// FESOM's open-boundary nodes).
+TEST(DomainCli, RegionReachingAPoleRowKeepsItsBoundaryTypes) {
+  const fs::path dir = aq::test::fresh_dir("domain", "arctic");
+  const auto r = aq::test::run_command(std::string(AQ_BINARY) + " mesh -q --set input.path=" + AQ_ETOPO_DIR +
+                                       "/etopo20.cdf --set quadtree.step_deg=2.0 --set quadtree.levels=2 "
+                                       "--set output.name=arc " + kFormats + " -o " + dir.string() +
+                                       " --set 'domain.box=[0.0, 60.0, 80.0, 90.0]' --set 'mask.seeds=[[30.0, 85.0]]'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* ext : {".14", ".gr3"}) {
+    const Fort14 f = read_fort14(dir / (std::string("arc") + ext));
+    ASSERT_TRUE(f.error.empty()) << f.error;
+    EXPECT_GE(f.nope, 1) << ext;
+    EXPECT_GE(f.neta, 40) << ext;
+    expect_segments_cover_the_boundary(f);
+    const bool gr3 = std::string(ext) == ".gr3";
+    for (const Segment& s : f.land) EXPECT_TRUE(gr3 ? (s.type == 0 || s.type == 1) : (s.type == 20 || s.type == 21));
+  }
+  EXPECT_TRUE(fs::exists(dir / "arc_bctides.in"));
+  EXPECT_TRUE(fs::exists(dir / "arc_obn.out"));
 }
 
 TEST(DomainCli, BadDomainKeysAreConfigErrors) {
