@@ -70,6 +70,38 @@ void apply_test_knobs(raster::OpenOptions& ro) {
   if (const char* s = std::getenv("AQ_RASTER_BAND_ROWS")) ro.band_rows = std::max<std::int64_t>(0, std::atoll(s));
 }
 
+// Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
+// never meshed: every wrap of I and every pole-row assumption of the global code lands there).
+constexpr std::int64_t kWindowPadSquares = 1;
+
+// The window lattice of a regional run (README "Regional FE meshes"): the domain's snapped box
+// (or a polygon's bounding box snapped outward) and kWindowPadSquares level-0 squares on every
+// side, in whole level-0 squares of the global lattice; all columns when that spans 360°. With
+// pole rotation the global lattice stays (the rotated lattice's box is no lon/lat box), and so it
+// does when AQ_GLOBAL_LATTICE=1 (a hidden test knob: tests compare the two).
+Lattice window_lattice(const config::GlobalConfig& c, const Lattice& g, const PoleRotation& rot, std::string& note) {
+  if (!c.domain.regional()) return g;
+  if (!rot.identity()) {
+    note = "rotation.enabled = true: the rotated lattice's box is no lon/lat box";
+    return g;
+  }
+  if (const char* s = std::getenv("AQ_GLOBAL_LATTICE"); s != nullptr && std::string(s) == "1") {
+    note = "AQ_GLOBAL_LATTICE=1";
+    return g;
+  }
+  const mask::DomainExtent e = mask::domain_extent(c.domain, g);
+  const std::int64_t sq = g.pixels_per_square(0), pad = kWindowPadSquares * sq;
+  const double pix = g.pixel_deg(), fsq = static_cast<double>(sq);
+  const double x_w = (e.lon_min - g.lon0_deg) / pix, x_e = (e.lon_max - g.lon0_deg) / pix;
+  const std::int64_t i0 = static_cast<std::int64_t>(std::floor(x_w / fsq + 1e-9)) * sq - pad;
+  const std::int64_t i1 = static_cast<std::int64_t>(std::ceil(x_e / fsq - 1e-9)) * sq + pad;
+  const double y_s = g.row_of_lat(std::max(e.lat_min, -g.lat_max_deg()));
+  const double y_n = g.row_of_lat(std::min(e.lat_max, g.lat_max_deg()));
+  const std::int64_t j0 = static_cast<std::int64_t>(std::floor(y_s / fsq + 1e-9)) * sq - pad;
+  const std::int64_t j1 = static_cast<std::int64_t>(std::ceil(y_n / fsq - 1e-9)) * sq + pad;
+  return Lattice::window(g, i0, i1 - i0, j0, j1 - j0);
+}
+
 }  // namespace
 
 GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
@@ -79,6 +111,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
                                            c.quadtree.mercator_lat_max_deg)
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   s.rotation = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
+  s.global_lattice = s.lattice;
+  s.lattice = window_lattice(c, s.global_lattice, s.rotation, s.lattice_note);
   // A tiny limit is a limit (at least 1 byte), not 0 = "80% of RAM".
   s.memory_limit_bytes = c.input.max_memory_gb > 0
                              ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))
@@ -105,10 +139,12 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   // another one with input.blend_km > 0 (its distance field measures to the raster's own edges).
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
-  if (c.domain.regional() && s.rotation.identity() && c.input.interpolation == "bilinear") {
-    const mask::Domain d = mask::make_domain(c.domain, s.lattice, s.rotation);
-    const double m = s.lattice.step0_deg + 2.0 * s.lattice.pixel_deg();  // covers what wet_area classifies
-    window = {d.lon_min - m, d.lon_max + m, std::max(-90.0, d.lat_min - m), std::min(90.0, d.lat_max + m)};
+  if (c.domain.regional() && s.lattice.windowed() && c.input.interpolation == "bilinear") {
+    // The window lattice's extent (the domain and its padding, which the classification samples)
+    // and two pixels more.
+    const Lattice& w = s.lattice;
+    const double m = 2.0 * w.pixel_deg();
+    window = {w.lon_of(0) - m, w.lon_of(w.nx) + m, std::max(-90.0, w.lat_of(0) - m), std::min(90.0, w.lat_of(w.ny) + m)};
     if (window[1] - window[0] >= 360.0) window[0] = window[1] = kNaN;
   }
   for (std::size_t k = 0; k < paths.size(); ++k) {
@@ -325,21 +361,48 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
                               : fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
                                             ri.memory_bytes >> 20));
   if (nsources == 1) warn_lattice_finer_than_data(lat, ri.dlon, ri.dlat, c, log, report);
+  if (lat.windowed()) {
+    log.info("lattice: window of {} x {} pixels of the {} x {} global lattice, from pixel column {} row {}: "
+             "{:.6g}..{:.6g}°E, {:.6g}..{:.6g}°N (the domain and {} level-0 square(s) of padding; {:.3g} % of the "
+             "global lattice's pixels; bitmaps about {:.3g} MB instead of {:.3g} MB)",
+             lat.nx, lat.ny, lat.nx_global, lat.ny_global, lat.i_origin, lat.j_origin, lat.lon_of(0), lat.lon_of(lat.nx),
+             lat.lat_of(0), lat.lat_of(lat.ny), kWindowPadSquares,
+             100.0 * static_cast<double>(lat.pixel_count()) /
+                 (static_cast<double>(lat.nx_global) * static_cast<double>(lat.ny_global)),
+             static_cast<double>(setup.lattice_bytes) / 1e6, estimate_lattice_bytes_f(setup.global_lattice) / 1e6);
+  } else if (!setup.lattice_note.empty()) {
+    log.info("lattice: the regional run keeps the global lattice ({})", setup.lattice_note);
+  }
   if (report != nullptr) {
     (*report)["lattice"] = Json{{"kind", lat.kind_name()},
                                 {"lat_max_deg", lat.lat_max_deg()},
-                                {"nx", lat.nx},
-                                {"ny", lat.ny},
+                                {"nx", lat.nx_global},
+                                {"ny", lat.ny_global},
                                 {"pixel_deg", lat.pixel_deg()},
                                 {"step0_deg", lat.step0_deg},
                                 {"levels", lat.levels},
                                 {"lon0_deg", lat.lon0_deg}};
+    if (lat.windowed())
+      (*report)["lattice"]["window"] = Json{{"nx", lat.nx},
+                                            {"ny", lat.ny},
+                                            {"first_column", lat.i_origin},
+                                            {"first_row", lat.j_origin},
+                                            {"pixels", lat.pixel_count()},
+                                            {"lon_min_deg", lat.lon_of(0)},
+                                            {"lon_max_deg", lat.lon_of(lat.nx)},
+                                            {"lat_min_deg", lat.lat_of(0)},
+                                            {"lat_max_deg", lat.lat_of(lat.ny)},
+                                            {"padding_squares", kWindowPadSquares},
+                                            {"bitmap_bytes", setup.lattice_bytes}};
+    else if (!setup.lattice_note.empty())
+      (*report)["lattice"]["global_because"] = setup.lattice_note;
   }
 
   run.domain = mask::make_domain(c.domain, lat, rot);
   if (run.domain.regional()) {
     reuse = false;  // the global run file holds a global fill
-    log.info("domain: {}: {} pixels of {} ({:.2g} %)", run.domain.description, run.domain.pixels, lat.pixel_count(),
+    log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
+             lat.pixel_count(), lat.windowed() ? "window" : "global",
              100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
     if (report != nullptr)
       (*report)["domain"] = Json{{"kind", c.domain.resolved == config::DomainKind::kBox ? "box" : "polygon"},

@@ -27,7 +27,9 @@ namespace aq::app {
 
 /// What is known before any data is read: the lattice, the rotation and the memory budget.
 struct GlobalSetup {
-  Lattice lattice;
+  Lattice lattice;                      ///< the run's lattice: the global one, or a window of it (regional run)
+  Lattice global_lattice;               ///< the global lattice of the configuration
+  std::string lattice_note;             ///< why a regional run keeps the global lattice ("" otherwise)
   PoleRotation rotation;
   std::int64_t memory_limit_bytes = 0;  ///< input.max_memory_gb, or 80% of RAM
   std::int64_t lattice_bytes = 0;       ///< estimated bitmaps of the mask and quadtree stages
