@@ -139,12 +139,20 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   // another one with input.blend_km > 0 (its distance field measures to the raster's own edges).
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
-  if (c.domain.regional() && s.lattice.windowed() && c.input.interpolation == "bilinear") {
+  if (c.domain.regional() && s.rotation.identity() && c.input.interpolation == "bilinear") {
     // The window lattice's extent (the domain and its padding, which the classification samples)
-    // and two pixels more.
+    // and two pixels more; on the global lattice (AQ_GLOBAL_LATTICE=1) the domain's extent and
+    // one level-0 square and two pixels more, which is what it classifies.
     const Lattice& w = s.lattice;
     const double m = 2.0 * w.pixel_deg();
-    window = {w.lon_of(0) - m, w.lon_of(w.nx) + m, std::max(-90.0, w.lat_of(0) - m), std::min(90.0, w.lat_of(w.ny) + m)};
+    if (w.windowed()) {
+      window = {w.lon_of(0) - m, w.lon_of(w.nx) + m, std::max(-90.0, w.lat_of(0) - m),
+                std::min(90.0, w.lat_of(w.ny) + m)};
+    } else {
+      const mask::DomainExtent d = mask::domain_extent(c.domain, w);
+      const double mg = w.step0_deg + m;
+      window = {d.lon_min - mg, d.lon_max + mg, std::max(-90.0, d.lat_min - mg), std::min(90.0, d.lat_max + mg)};
+    }
     if (window[1] - window[0] >= 360.0) window[0] = window[1] = kNaN;
   }
   for (std::size_t k = 0; k < paths.size(); ++k) {
