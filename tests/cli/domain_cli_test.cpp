@@ -385,12 +385,14 @@ TEST(DomainCli, WindowLatticeGivesTheSameFilesAsTheGlobalLattice) {
                         Case{"mpoly", poly + " --set quadtree.lattice=mercator"}}) {
     const fs::path w = aq::test::fresh_dir("domain", std::string("wl_") + c.name),
                    g = aq::test::fresh_dir("domain", std::string("gl_") + c.name);
-    const auto rw = mesh_basin(w, c.args);
+    const std::string args =
+        c.args + " --set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"ugrid\", \"fesom\", \"png\"]'";
+    const auto rw = mesh_basin(w, args);
     ASSERT_EQ(rw.exit_code, 0) << c.name << ": " << rw.err;
-    const auto rg = mesh_basin(g, c.args, 2, "AQ_GLOBAL_LATTICE=1 ");
+    const auto rg = mesh_basin(g, args, 2, "AQ_GLOBAL_LATTICE=1 ");
     ASSERT_EQ(rg.exit_code, 0) << c.name << ": " << rg.err;
     for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin.nc", "basin_nod2d.out", "basin_elem2d.out",
-                          "basin_obn.out", "basin_bctides.in"}) {
+                          "basin_obn.out", "basin_bctides.in", "basin.png"}) {
       EXPECT_GT(bytes(w / f).size(), 0U) << c.name << " " << f;
       EXPECT_TRUE(bytes(w / f) == bytes(g / f)) << c.name << " " << f;
     }
