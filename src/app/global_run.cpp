@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/types.hpp"
 #include "mask/domain.hpp"
 #include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
@@ -60,8 +61,11 @@ std::int64_t estimate_triangles(const Lattice& l) {
 double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
 // Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
-// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths.
+// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
+// AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read).
 void apply_test_knobs(raster::OpenOptions& ro) {
+  if (const char* s = std::getenv("AQ_RASTER_WHOLE"); s != nullptr && std::string(s) == "1")
+    ro.lon_min = ro.lon_max = ro.lat_min = ro.lat_max = std::numeric_limits<double>::quiet_NaN();
   if (const char* s = std::getenv("AQ_RASTER_STREAMING")) {
     const std::string v = s;
     if (v == "always") ro.streaming = raster::OpenOptions::Streaming::kAlways;
@@ -102,6 +106,56 @@ Lattice window_lattice(const config::GlobalConfig& c, const Lattice& g, const Po
   return Lattice::window(g, i0, i1 - i0, j0, j1 - j0);
 }
 
+// The raster window of a box on a rotated lattice: the domain is the rotated pixels whose centre
+// is in the geographic box; the classification samples one level-0 square around them and the
+// regional picture shows the mesh's extent and 3 % more in the rotated plane. So: the box's
+// extent in the rotated frame (its edges densified), widened by Δ0 + 2 pixels and 5 % of that
+// extent, whose edges (densified) bound the window in geographic lon/lat. NaN (read it whole)
+// when that rectangle holds a pole or spans half the globe.
+std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lattice& lat, const PoleRotation& rot) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  constexpr int kSteps = 256;
+  double width = b[1] - b[0];
+  if (width < 0.0) width += 360.0;
+  // Points along the edges of [x0, x0 + dx] x [y0, y0 + dy], mapped by f; longitudes unwrapped
+  // against the first point.
+  const auto outline = [&](double x0, double dx, double y0, double dy, auto f, std::array<double, 4>& box) {
+    box = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    double ref = kNaN;
+    for (int e = 0; e < 4; ++e)
+      for (int k = 0; k <= kSteps; ++k) {
+        const double t = static_cast<double>(k) / kSteps;
+        const double x = e < 2 ? x0 + t * dx : (e == 2 ? x0 : x0 + dx);
+        const double y = e < 2 ? (e == 0 ? y0 : y0 + dy) : y0 + t * dy;
+        double u = 0.0, v = 0.0;
+        f(x, y, u, v);
+        if (std::isnan(ref)) ref = u;
+        u = ref + std::remainder(u - ref, 360.0);
+        box = {std::min(box[0], u), std::max(box[1], u), std::min(box[2], v), std::max(box[3], v)};
+      }
+  };
+  std::array<double, 4> r{};
+  outline(b[0], width, b[2], b[3] - b[2], [&](double x, double y, double& u, double& v) { rot.to_rotated(x, y, u, v); }, r);
+  const double mg = lat.step0_deg + 2.0 * lat.pixel_deg();
+  const double mx = mg + 0.05 * (r[1] - r[0]), my = mg + 0.05 * (r[3] - r[2]);
+  r = {r[0] - mx, r[1] + mx, r[2] - my, r[3] + my};
+  if (r[1] - r[0] >= 180.0 || r[2] <= -89.0 || r[3] >= 89.0) return {kNaN, kNaN, kNaN, kNaN};
+  std::array<double, 4> g{};
+  outline(r[0], r[1] - r[0], r[2], r[3] - r[2],
+          [&](double x, double y, double& u, double& v) { rot.to_geographic(x, y, u, v); }, g);
+  // A geographic pole inside the rotated rectangle: the densified edges do not see it.
+  for (const double pole : {-90.0, 90.0}) {
+    double u = 0.0, v = 0.0;
+    rot.to_rotated(0.0, pole, u, v);
+    u = r[0] + std::fmod(std::fmod(u - r[0], 360.0) + 360.0, 360.0);
+    if (u <= r[1] && v >= r[2] && v <= r[3]) return {kNaN, kNaN, kNaN, kNaN};
+  }
+  if (g[1] - g[0] >= 180.0) return {kNaN, kNaN, kNaN, kNaN};
+  const double p = 2.0 * lat.pixel_deg();
+  return {g[0] - p, g[1] + p, std::max(-90.0, g[2] - p), std::min(90.0, g[3] + p)};
+}
+
 }  // namespace
 
 GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
@@ -132,14 +186,17 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   // Several sources (input.paths) add up; a source above another with input.blend_km > 0 also
   // holds its distance field (4 bytes per cell) and, while it is computed, 9 bytes per cell more.
   const std::vector<std::string> paths = c.input.sources();
-  // A regional run reads each raster over the domain's lon/lat box and one level-0 square (and two
-  // pixels) more on every side (README "Regional FE meshes"): the classification (mask/wet_area)
-  // samples the box and one level-0 square around it, and nothing else samples outside the domain. Not with pole rotation (the lattice's box is not a lon/lat box)
-  // nor bicubic sampling (its spline runs over the whole raster), and not for a source above
-  // another one with input.blend_km > 0 (its distance field measures to the raster's own edges).
+  // A regional run reads each raster over the window lattice (the domain's lon/lat box and one
+  // level-0 square more on every side) and two pixels more (README "Regional FE meshes"): the
+  // classification (mask/wet_area) samples the window, and nothing else samples outside the
+  // domain. A box on a rotated lattice: its geographic box and a margin (below). Not a polygon on
+  // a rotated lattice (refused anyway), nor bicubic sampling (its C2 spline couples every cell of
+  // a row: a window changes the slopes), nor a source above another one with input.blend_km > 0
+  // (its distance field is computed over the whole raster grid).
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
-  if (c.domain.regional() && s.rotation.identity() && c.input.interpolation == "bilinear") {
+  if (c.domain.regional() && c.input.interpolation == "bilinear" &&
+      (s.rotation.identity() || c.domain.resolved == config::DomainKind::kBox)) {
     // The window lattice's extent (the domain and its padding, which the classification samples)
     // and two pixels more; on the global lattice (AQ_GLOBAL_LATTICE=1) the domain's extent and
     // one level-0 square and two pixels more, which is what it classifies.
@@ -148,6 +205,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
     if (w.windowed()) {
       window = {w.lon_of(0) - m, w.lon_of(w.nx) + m, std::max(-90.0, w.lat_of(0) - m),
                 std::min(90.0, w.lat_of(w.ny) + m)};
+    } else if (!s.rotation.identity()) {
+      window = rotated_box_window(c.domain.box, w, s.rotation);
     } else {
       const mask::DomainExtent d = mask::domain_extent(c.domain, w);
       const double mg = w.step0_deg + m;

@@ -446,6 +446,28 @@ TEST(DomainCli, WindowLatticeAcrossTheSeamEqualsTheGlobalLatticeWithTheSeamElsew
   }
 }
 
+// A box on a rotated lattice keeps the global lattice (its box is no lattice rectangle) but reads
+// the raster only over the geographic box of the rotated region and its margin, and writes the
+// same files (the picture too) as when the raster is read whole (AQ_RASTER_WHOLE=1).
+TEST(DomainCli, RotatedBoxReadsARasterWindowAndGivesTheSameFiles) {
+  const fs::path w = aq::test::fresh_dir("domain", "rotw"), g = aq::test::fresh_dir("domain", "rotg");
+  const std::string args =
+      kBox + " --set rotation.enabled=true --set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"png\"]'";
+  const auto rw = mesh_basin(w, args);
+  ASSERT_EQ(rw.exit_code, 0) << rw.err;
+  const auto rg = mesh_basin(g, args, 2, "AQ_RASTER_WHOLE=1 ");
+  ASSERT_EQ(rg.exit_code, 0) << rg.err;
+  for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin_bctides.in", "basin.png"}) {
+    EXPECT_GT(bytes(w / f).size(), 100U) << f;
+    EXPECT_TRUE(bytes(w / f) == bytes(g / f)) << f;
+  }
+  const nlohmann::json rep = aq::test::read_report(w, "basin");
+  ASSERT_TRUE(rep.contains("raster_windows")) << rep.dump();
+  EXPECT_LT(rep["raster_windows"][0]["bytes"].get<std::int64_t>(), 1440 * 720 * 4 / 10);
+  EXPECT_EQ(rep["lattice"]["global_because"], "rotation.enabled = true: the rotated lattice's box is no lon/lat box");
+  EXPECT_FALSE(aq::test::read_report(g, "basin").contains("raster_windows"));
+}
+
 TEST(DomainCli, BadDomainKeysAreConfigErrors) {
   const fs::path dir = aq::test::fresh_dir("domain", "bad");
   auto r = mesh_basin(dir, "--set 'domain.box=[0.0, 20.0, 30.0, 20.0]'");
