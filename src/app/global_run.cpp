@@ -158,7 +158,7 @@ std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lat
 
 }  // namespace
 
-GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window) {
   GlobalSetup s;
   s.lattice = c.quadtree.lattice == "mercator"
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
@@ -166,7 +166,11 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   s.rotation = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
   s.global_lattice = s.lattice;
-  s.lattice = window_lattice(c, s.global_lattice, s.rotation, s.lattice_note);
+  if (allow_window) {
+    s.lattice = window_lattice(c, s.global_lattice, s.rotation, s.lattice_note);
+  } else if (c.domain.regional()) {
+    s.lattice_note = "this command works on the global lattice";
+  }
   // A tiny limit is a limit (at least 1 byte), not 0 = "80% of RAM".
   s.memory_limit_bytes = c.input.max_memory_gb > 0
                              ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))

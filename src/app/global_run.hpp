@@ -46,7 +46,9 @@ struct GlobalSetup {
 /// refuses, before any data is read, a lattice whose bitmaps would not fit (ConfigError naming
 /// quadtree.levels, quadtree.step_deg and input.max_memory_gb) or a run whose memory estimate is
 /// above input.max_memory_gb (ConfigError naming the key, the estimate and the limit).
-GlobalSetup prepare_global_run(const config::GlobalConfig& c);
+/// A regional run (`[domain]`) gets a window lattice unless `allow_window` is false (the commands whose
+/// later stages index the global lattice: blocks, the nesting of a ROMS grid in a global run).
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window = true);
 /// The report's "memory" section: the estimate, its parts and the peak RSS so far.
 Json memory_json(const GlobalSetup& s);
 /// "memory: estimate ... of ... allowed" before the run.
