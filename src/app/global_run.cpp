@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/types.hpp"
 #include "mask/domain.hpp"
 #include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
@@ -62,8 +63,11 @@ std::int64_t estimate_triangles(const Lattice& l) {
 double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
 // Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
-// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths.
+// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
+// AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read).
 void apply_test_knobs(raster::OpenOptions& ro) {
+  if (const char* s = std::getenv("AQ_RASTER_WHOLE"); s != nullptr && std::string(s) == "1")
+    ro.lon_min = ro.lon_max = ro.lat_min = ro.lat_max = std::numeric_limits<double>::quiet_NaN();
   if (const char* s = std::getenv("AQ_RASTER_STREAMING")) {
     const std::string v = s;
     if (v == "always") ro.streaming = raster::OpenOptions::Streaming::kAlways;
@@ -72,15 +76,103 @@ void apply_test_knobs(raster::OpenOptions& ro) {
   if (const char* s = std::getenv("AQ_RASTER_BAND_ROWS")) ro.band_rows = std::max<std::int64_t>(0, std::atoll(s));
 }
 
+// Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
+// never meshed: every wrap of I and every pole-row assumption of the global code lands there).
+constexpr std::int64_t kWindowPadSquares = 1;
+
+// The window lattice of a regional run (README "Regional FE meshes"): the domain's snapped box
+// (or a polygon's bounding box snapped outward) and kWindowPadSquares level-0 squares on every
+// side, in whole level-0 squares of the global lattice; all columns when that spans 360°. With
+// pole rotation the global lattice stays (the rotated lattice's box is no lon/lat box), and so it
+// does when AQ_GLOBAL_LATTICE=1 (a hidden test knob: tests compare the two).
+Lattice window_lattice(const config::GlobalConfig& c, const Lattice& g, const PoleRotation& rot, std::string& note) {
+  if (!c.domain.regional()) return g;
+  if (!rot.identity()) {
+    note = "rotation.enabled = true: the rotated lattice's box is no lon/lat box";
+    return g;
+  }
+  if (const char* s = std::getenv("AQ_GLOBAL_LATTICE"); s != nullptr && std::string(s) == "1") {
+    note = "AQ_GLOBAL_LATTICE=1";
+    return g;
+  }
+  const mask::DomainExtent e = mask::domain_extent(c.domain, g);
+  const std::int64_t sq = g.pixels_per_square(0), pad = kWindowPadSquares * sq;
+  const double pix = g.pixel_deg(), fsq = static_cast<double>(sq);
+  const double x_w = (e.lon_min - g.lon0_deg) / pix, x_e = (e.lon_max - g.lon0_deg) / pix;
+  const std::int64_t i0 = static_cast<std::int64_t>(std::floor(x_w / fsq + 1e-9)) * sq - pad;
+  const std::int64_t i1 = static_cast<std::int64_t>(std::ceil(x_e / fsq - 1e-9)) * sq + pad;
+  const double y_s = g.row_of_lat(std::max(e.lat_min, -g.lat_max_deg()));
+  const double y_n = g.row_of_lat(std::min(e.lat_max, g.lat_max_deg()));
+  const std::int64_t j0 = static_cast<std::int64_t>(std::floor(y_s / fsq + 1e-9)) * sq - pad;
+  const std::int64_t j1 = static_cast<std::int64_t>(std::ceil(y_n / fsq - 1e-9)) * sq + pad;
+  return Lattice::window(g, i0, i1 - i0, j0, j1 - j0);
+}
+
+// The raster window of a box on a rotated lattice: the domain is the rotated pixels whose centre
+// is in the geographic box; the classification samples one level-0 square around them and the
+// regional picture shows the mesh's extent and 3 % more in the rotated plane. So: the box's
+// extent in the rotated frame (its edges densified), widened by Δ0 + 2 pixels and 5 % of that
+// extent, whose edges (densified) bound the window in geographic lon/lat. NaN (read it whole)
+// when that rectangle holds a pole or spans half the globe.
+std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lattice& lat, const PoleRotation& rot) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  constexpr int kSteps = 256;
+  double width = b[1] - b[0];
+  if (width < 0.0) width += 360.0;
+  // Points along the edges of [x0, x0 + dx] x [y0, y0 + dy], mapped by f; longitudes unwrapped
+  // against the first point.
+  const auto outline = [&](double x0, double dx, double y0, double dy, auto f, std::array<double, 4>& box) {
+    box = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    double ref = kNaN;
+    for (int e = 0; e < 4; ++e)
+      for (int k = 0; k <= kSteps; ++k) {
+        const double t = static_cast<double>(k) / kSteps;
+        const double x = e < 2 ? x0 + t * dx : (e == 2 ? x0 : x0 + dx);
+        const double y = e < 2 ? (e == 0 ? y0 : y0 + dy) : y0 + t * dy;
+        double u = 0.0, v = 0.0;
+        f(x, y, u, v);
+        if (std::isnan(ref)) ref = u;
+        u = ref + std::remainder(u - ref, 360.0);
+        box = {std::min(box[0], u), std::max(box[1], u), std::min(box[2], v), std::max(box[3], v)};
+      }
+  };
+  std::array<double, 4> r{};
+  outline(b[0], width, b[2], b[3] - b[2], [&](double x, double y, double& u, double& v) { rot.to_rotated(x, y, u, v); }, r);
+  const double mg = lat.step0_deg + 2.0 * lat.pixel_deg();
+  const double mx = mg + 0.05 * (r[1] - r[0]), my = mg + 0.05 * (r[3] - r[2]);
+  r = {r[0] - mx, r[1] + mx, r[2] - my, r[3] + my};
+  if (r[1] - r[0] >= 180.0 || r[2] <= -89.0 || r[3] >= 89.0) return {kNaN, kNaN, kNaN, kNaN};
+  std::array<double, 4> g{};
+  outline(r[0], r[1] - r[0], r[2], r[3] - r[2],
+          [&](double x, double y, double& u, double& v) { rot.to_geographic(x, y, u, v); }, g);
+  // A geographic pole inside the rotated rectangle: the densified edges do not see it.
+  for (const double pole : {-90.0, 90.0}) {
+    double u = 0.0, v = 0.0;
+    rot.to_rotated(0.0, pole, u, v);
+    u = r[0] + std::fmod(std::fmod(u - r[0], 360.0) + 360.0, 360.0);
+    if (u <= r[1] && v >= r[2] && v <= r[3]) return {kNaN, kNaN, kNaN, kNaN};
+  }
+  if (g[1] - g[0] >= 180.0) return {kNaN, kNaN, kNaN, kNaN};
+  const double p = 2.0 * lat.pixel_deg();
+  return {g[0] - p, g[1] + p, std::max(-90.0, g[2] - p), std::min(90.0, g[3] + p)};
+}
+
 }  // namespace
 
-GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window) {
   GlobalSetup s;
   s.lattice = c.quadtree.lattice == "mercator"
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   s.rotation = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
+  s.global_lattice = s.lattice;
+  if (allow_window) {
+    s.lattice = window_lattice(c, s.global_lattice, s.rotation, s.lattice_note);
+  } else if (c.domain.regional()) {
+    s.lattice_note = "this command works on the global lattice";
+  }
   // A tiny limit is a limit (at least 1 byte), not 0 = "80% of RAM".
   s.memory_limit_bytes = c.input.max_memory_gb > 0
                              ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))
@@ -100,17 +192,32 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   // Several sources (input.paths) add up; a source above another with input.blend_km > 0 also
   // holds its distance field (4 bytes per cell) and, while it is computed, 9 bytes per cell more.
   const std::vector<std::string> paths = c.input.sources();
-  // A regional run reads each raster over the domain's lon/lat box and one level-0 square (and two
-  // pixels) more on every side (README "Regional FE meshes"): the classification (mask/wet_area)
-  // samples the box and one level-0 square around it, and nothing else samples outside the domain. Not with pole rotation (the lattice's box is not a lon/lat box)
-  // nor bicubic sampling (its spline runs over the whole raster), and not for a source above
-  // another one with input.blend_km > 0 (its distance field measures to the raster's own edges).
+  // A regional run reads each raster over the window lattice (the domain's lon/lat box and one
+  // level-0 square more on every side) and two pixels more (README "Regional FE meshes"): the
+  // classification (mask/wet_area) samples the window, and nothing else samples outside the
+  // domain. A box on a rotated lattice: its geographic box and a margin (below). Not a polygon on
+  // a rotated lattice (read whole: its pixels are tested by their geographic centres), nor bicubic sampling (its C2 spline couples every cell of
+  // a row: a window changes the slopes), nor a source above another one with input.blend_km > 0
+  // (its distance field is computed over the whole raster grid).
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
-  if (c.domain.regional() && s.rotation.identity() && c.input.interpolation == "bilinear") {
-    const mask::Domain d = mask::make_domain(c.domain, s.lattice, s.rotation);
-    const double m = s.lattice.step0_deg + 2.0 * s.lattice.pixel_deg();  // covers what wet_area classifies
-    window = {d.lon_min - m, d.lon_max + m, std::max(-90.0, d.lat_min - m), std::min(90.0, d.lat_max + m)};
+  if (c.domain.regional() && c.input.interpolation == "bilinear" &&
+      (s.rotation.identity() || c.domain.resolved == config::DomainKind::kBox)) {
+    // The window lattice's extent (the domain and its padding, which the classification samples)
+    // and two pixels more; on the global lattice (AQ_GLOBAL_LATTICE=1) the domain's extent and
+    // one level-0 square and two pixels more, which is what it classifies.
+    const Lattice& w = s.lattice;
+    const double m = 2.0 * w.pixel_deg();
+    if (w.windowed()) {
+      window = {w.lon_of(0) - m, w.lon_of(w.nx) + m, std::max(-90.0, w.lat_of(0) - m),
+                std::min(90.0, w.lat_of(w.ny) + m)};
+    } else if (!s.rotation.identity()) {
+      window = rotated_box_window(c.domain.box, w, s.rotation);
+    } else {
+      const mask::DomainExtent d = mask::domain_extent(c.domain, w);
+      const double mg = w.step0_deg + m;
+      window = {d.lon_min - mg, d.lon_max + mg, std::max(-90.0, d.lat_min - mg), std::min(90.0, d.lat_max + mg)};
+    }
     if (window[1] - window[0] >= 360.0) window[0] = window[1] = kNaN;
   }
   for (std::size_t k = 0; k < paths.size(); ++k) {
@@ -327,21 +434,48 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
                               : fmt::format("{} x {} raster, {:.4g}' ({} MB)", ri.ncols, ri.nrows, ri.dlon * 60.0,
                                             ri.memory_bytes >> 20));
   if (nsources == 1) warn_lattice_finer_than_data(lat, ri.dlon, ri.dlat, c, log, report);
+  if (lat.windowed()) {
+    log.info("lattice: window of {} x {} pixels of the {} x {} global lattice, from pixel column {} row {}: "
+             "{:.6g}..{:.6g}°E, {:.6g}..{:.6g}°N (the domain and {} level-0 square(s) of padding; {:.3g} % of the "
+             "global lattice's pixels; bitmaps about {:.3g} MB instead of {:.3g} MB)",
+             lat.nx, lat.ny, lat.nx_global, lat.ny_global, lat.i_origin, lat.j_origin, lat.lon_of(0), lat.lon_of(lat.nx),
+             lat.lat_of(0), lat.lat_of(lat.ny), kWindowPadSquares,
+             100.0 * static_cast<double>(lat.pixel_count()) /
+                 (static_cast<double>(lat.nx_global) * static_cast<double>(lat.ny_global)),
+             static_cast<double>(setup.lattice_bytes) / 1e6, estimate_lattice_bytes_f(setup.global_lattice) / 1e6);
+  } else if (!setup.lattice_note.empty()) {
+    log.info("lattice: the regional run keeps the global lattice ({})", setup.lattice_note);
+  }
   if (report != nullptr) {
     (*report)["lattice"] = Json{{"kind", lat.kind_name()},
                                 {"lat_max_deg", lat.lat_max_deg()},
-                                {"nx", lat.nx},
-                                {"ny", lat.ny},
+                                {"nx", lat.nx_global},
+                                {"ny", lat.ny_global},
                                 {"pixel_deg", lat.pixel_deg()},
                                 {"step0_deg", lat.step0_deg},
                                 {"levels", lat.levels},
                                 {"lon0_deg", lat.lon0_deg}};
+    if (lat.windowed())
+      (*report)["lattice"]["window"] = Json{{"nx", lat.nx},
+                                            {"ny", lat.ny},
+                                            {"first_column", lat.i_origin},
+                                            {"first_row", lat.j_origin},
+                                            {"pixels", lat.pixel_count()},
+                                            {"lon_min_deg", lat.lon_of(0)},
+                                            {"lon_max_deg", lat.lon_of(lat.nx)},
+                                            {"lat_min_deg", lat.lat_of(0)},
+                                            {"lat_max_deg", lat.lat_of(lat.ny)},
+                                            {"padding_squares", kWindowPadSquares},
+                                            {"bitmap_bytes", setup.lattice_bytes}};
+    else if (!setup.lattice_note.empty())
+      (*report)["lattice"]["global_because"] = setup.lattice_note;
   }
 
   run.domain = mask::make_domain(c.domain, lat, rot);
   if (run.domain.regional()) {
     reuse = false;  // the global run file holds a global fill
-    log.info("domain: {}: {} pixels of {} ({:.2g} %)", run.domain.description, run.domain.pixels, lat.pixel_count(),
+    log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
+             lat.pixel_count(), lat.windowed() ? "window" : "global",
              100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
     if (report != nullptr)
       (*report)["domain"] = Json{{"kind", c.domain.resolved == config::DomainKind::kBox ? "box" : "polygon"},

@@ -27,7 +27,9 @@ namespace aq::app {
 
 /// What is known before any data is read: the lattice, the rotation and the memory budget.
 struct GlobalSetup {
-  Lattice lattice;
+  Lattice lattice;                      ///< the run's lattice: the global one, or a window of it (regional run)
+  Lattice global_lattice;               ///< the global lattice of the configuration
+  std::string lattice_note;             ///< why a regional run keeps the global lattice ("" otherwise)
   PoleRotation rotation;
   std::int64_t memory_limit_bytes = 0;  ///< input.max_memory_gb, or 80% of RAM
   std::int64_t lattice_bytes = 0;       ///< estimated bitmaps of the mask and quadtree stages
@@ -44,7 +46,9 @@ struct GlobalSetup {
 /// refuses, before any data is read, a lattice whose bitmaps would not fit (ConfigError naming
 /// quadtree.levels, quadtree.step_deg and input.max_memory_gb) or a run whose memory estimate is
 /// above input.max_memory_gb (ConfigError naming the key, the estimate and the limit).
-GlobalSetup prepare_global_run(const config::GlobalConfig& c);
+/// A regional run (`[domain]`) gets a window lattice unless `allow_window` is false (the commands whose
+/// later stages index the global lattice: blocks, the nesting of a ROMS grid in a global run).
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window = true);
 /// The report's "memory" section: the estimate, its parts and the peak RSS so far.
 Json memory_json(const GlobalSetup& s);
 /// "memory: estimate ... of ... allowed" before the run.

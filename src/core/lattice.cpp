@@ -35,6 +35,7 @@ Lattice Lattice::make_mercator(double step0_deg, int levels, double lon0_deg, do
   l.kind = LatticeKind::kMercator;
   l.y0_deg = -static_cast<double>(m0) * l.step0_deg;
   l.ny = (2 * m0) << levels;
+  l.ny_global = l.ny;
   return l;
 }
 
@@ -76,10 +77,48 @@ Lattice Lattice::make(double step0_deg, int levels, double lon0_deg) {
   l.n0 = static_cast<std::int64_t>(648000.0 / rounded);
   l.ny = l.n0 << levels;
   l.nx = 2 * l.ny;
+  l.nx_global = l.nx;
+  l.ny_global = l.ny;
   if (l.lat_of(0) != -90.0 || l.lat_of(l.ny) != 90.0)
     throw InternalError(fmt::format("lattice Δ0 = {}\", L = {}: the rows end at φ = {:.17g}, not at ±90°", rounded,
                                     levels, l.lat_of(l.ny)));
   return l;
+}
+
+Lattice Lattice::window(const Lattice& g, std::int64_t i_first, std::int64_t nx, std::int64_t j_first,
+                        std::int64_t ny) {
+  const std::int64_t sq = g.pixels_per_square(0);
+  if (g.windowed() || i_first % sq != 0 || nx % sq != 0 || j_first % sq != 0 || ny % sq != 0 || nx <= 0 || ny <= 0)
+    throw InternalError(fmt::format("lattice window [{}, +{}) x [{}, +{}) is not made of whole level-0 squares of "
+                                    "the global lattice ({} pixels)",
+                                    i_first, nx, j_first, ny, sq));
+  Lattice w = g;
+  if (nx < g.nx_global) {
+    // Columns start in [0, nx_global): the window begins at or east of λ0, running past the seam if it must.
+    w.i_origin = ((i_first % g.nx_global) + g.nx_global) % g.nx_global;
+    w.nx = nx;
+  }
+  const std::int64_t j_lo = std::max<std::int64_t>(0, j_first);
+  const std::int64_t j_hi = std::min(g.ny_global, j_first + ny);
+  if (j_hi <= j_lo) throw InternalError("lattice window: no row inside the lattice");
+  w.j_origin = j_lo;
+  w.ny = j_hi - j_lo;
+  return w;
+}
+
+double Lattice::col_of_lon(double lon_deg) const {
+  double x = (wrap_lon_deg(lon_deg, lon0_deg) - lon0_deg) / pixel_deg();
+  if (periodic()) {
+    if (x >= static_cast<double>(nx)) x -= static_cast<double>(nx);
+    return x < 0.0 ? 0.0 : x;
+  }
+  // A window: the copy of λ (mod 360) nearest the window's middle.
+  x -= static_cast<double>(i_origin);
+  const auto g = static_cast<double>(nx_global);
+  const double mid = 0.5 * static_cast<double>(nx);
+  while (x - mid > 0.5 * g) x -= g;
+  while (mid - x > 0.5 * g) x += g;
+  return x;
 }
 
 }  // namespace aq

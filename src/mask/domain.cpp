@@ -108,29 +108,45 @@ std::vector<Ring> read_polygon(const config::DomainOptions& o) {
   return rings;
 }
 
+// The box snapped outward to whole level-0 squares: columns [i0, i1) (contiguous, may run
+// across the seam), rows [j0, j1) of `lat`.
+struct SnappedBox {
+  std::int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+
+SnappedBox snap_box(const config::DomainOptions& o, const Lattice& lat) {
+  double width = o.box[1] - o.box[0];
+  if (width < 0.0) width += 360.0;
+  const double pix = lat.pixel_deg();
+  const auto sq = lat.pixels_per_square(0);
+  const double x_w = lat.windowed() ? lat.col_of_lon(o.box[0]) : (o.box[0] - lat.lon0_deg) / pix;
+  const double x_e = x_w + width / pix;
+  SnappedBox b;
+  b.i0 = static_cast<std::int64_t>(std::floor(x_w / static_cast<double>(sq) + 1e-9)) * sq;
+  b.i1 = static_cast<std::int64_t>(std::ceil(x_e / static_cast<double>(sq) - 1e-9)) * sq;
+  const double y_s = lat.row_of_lat(std::max(o.box[2], -lat.lat_max_deg()));
+  const double y_n = lat.row_of_lat(std::min(o.box[3], lat.lat_max_deg()));
+  b.j0 = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s / static_cast<double>(sq) + 1e-9)) * sq);
+  b.j1 = std::min<std::int64_t>(lat.ny, static_cast<std::int64_t>(std::ceil(y_n / static_cast<double>(sq) - 1e-9)) * sq);
+  if (b.i1 - b.i0 >= lat.nx_global)
+    throw ConfigError(fmt::format("domain.box = [{}, {}, {}, {}]: snapped outward to {}° squares it covers all "
+                                  "longitudes; use the global domain",
+                                  o.box[0], o.box[1], o.box[2], o.box[3], lat.step0_deg));
+  if (b.j1 <= b.j0)
+    throw ConfigError(fmt::format("domain.box = [{}, {}, {}, {}]: no lattice row inside", o.box[0], o.box[1],
+                                  o.box[2], o.box[3]));
+  return b;
+}
+
 void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, const PoleRotation& rot) {
   const double w = o.box[0];
   double width = o.box[1] - o.box[0];
   if (width < 0.0) width += 360.0;
   if (rot.identity()) {
-    const double pix = lat.pixel_deg();
-    const auto sq = lat.pixels_per_square(0);
-    const double x_w = (w - lat.lon0_deg) / pix, x_e = x_w + width / pix;
-    const auto i0 = static_cast<std::int64_t>(std::floor(x_w / static_cast<double>(sq) + 1e-9)) * sq;
-    const auto i1 = static_cast<std::int64_t>(std::ceil(x_e / static_cast<double>(sq) - 1e-9)) * sq;
-    const double y_s = lat.row_of_lat(std::max(o.box[2], -lat.lat_max_deg()));
-    const double y_n = lat.row_of_lat(std::min(o.box[3], lat.lat_max_deg()));
-    const std::int64_t j0 =
-        std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s / static_cast<double>(sq) + 1e-9)) * sq);
-    const std::int64_t j1 = std::min<std::int64_t>(
-        lat.ny, static_cast<std::int64_t>(std::ceil(y_n / static_cast<double>(sq) - 1e-9)) * sq);
-    if (i1 - i0 >= lat.nx)
-      throw ConfigError(fmt::format("domain.box = [{}, {}, {}, {}]: snapped outward to {}° squares it covers all "
-                                    "longitudes; use the global domain",
-                                    o.box[0], o.box[1], o.box[2], o.box[3], lat.step0_deg));
-    if (j1 <= j0)
-      throw ConfigError(fmt::format("domain.box = [{}, {}, {}, {}]: no lattice row inside", o.box[0], o.box[1],
-                                    o.box[2], o.box[3]));
+    const SnappedBox b = snap_box(o, lat);
+    const std::int64_t i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
+    if (!lat.periodic() && (i0 < 0 || i1 > lat.nx))
+      throw InternalError(fmt::format("domain.box: columns {}..{} outside the window lattice's {}", i0, i1, lat.nx));
     d.i0 = mod(i0, lat.nx);
     d.j0 = j0;
     d.ni = i1 - i0;
@@ -141,11 +157,12 @@ void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, c
     d.lon_max = lat.lon_of(i1);
     d.lat_min = lat.lat_of(j0);
     d.lat_max = lat.lat_of(j1);
+    const std::int64_t g0 = i0 + lat.i_origin, g1 = i1 + lat.i_origin;
     d.description = fmt::format("box [{}, {}, {}, {}] snapped outward to {}° squares: {:.6g}..{:.6g}°E, "
                                 "{:.6g}..{:.6g}°N ({} x {} pixels{})",
                                 o.box[0], o.box[1], o.box[2], o.box[3], lat.step0_deg, d.lon_min, d.lon_max,
                                 d.lat_min, d.lat_max, d.ni, d.nj,
-                                (i0 < 0 || i1 > lat.nx) ? ", across the seam" : "");
+                                (g0 < 0 || g1 > lat.nx_global) ? ", across the seam" : "");
     return;
   }
   // Rotated lattice: pixel centres tested in geographic coordinates.
@@ -198,6 +215,12 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
     throw InputError(fmt::format("domain.polygon = \"{}\": the polygon spans {}° of longitude (360° or more)",
                                  o.polygon, hi - lo));
   const double pix = lat.pixel_deg();
+  // On a window lattice: the column offset of the polygon's copy of the longitudes that lies on it.
+  double shift = 0.0;
+  if (lat.windowed()) {
+    const double x_lo = (lo - lat.lon0_deg) / pix;
+    shift = lat.col_of_lon(lo) - x_lo;
+  }
   std::vector<double> xs;
   if (!rot.identity()) {
     mark_geographic_centres(d, lat, rot, [&](double lon, double la) {
@@ -218,8 +241,13 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
     }
     std::sort(xs.begin(), xs.end());
     for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
-      const auto a = static_cast<std::int64_t>(std::ceil((xs[k] - lat.lon0_deg) / pix - 0.5));
-      const auto b = static_cast<std::int64_t>(std::ceil((xs[k + 1] - lat.lon0_deg) / pix - 0.5));
+      auto a = static_cast<std::int64_t>(std::ceil((xs[k] - lat.lon0_deg) / pix - 0.5));
+      auto b = static_cast<std::int64_t>(std::ceil((xs[k + 1] - lat.lon0_deg) / pix - 0.5));
+      if (!lat.periodic()) {  // the window holds the polygon's bounding box and a level-0 square more
+        const auto sh = static_cast<std::int64_t>(std::llround(shift));
+        a = std::max<std::int64_t>(0, a + sh);
+        b = std::min<std::int64_t>(lat.nx, b + sh);
+      }
       for (std::int64_t i = a; i < b && i < a + lat.nx; ++i) d.inside.set(mod(i, lat.nx), j);
     }
   }
@@ -235,9 +263,30 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
 
 }  // namespace
 
+DomainExtent domain_extent(const config::DomainOptions& options, const Lattice& lattice) {
+  DomainExtent e;
+  if (options.resolved == DomainKind::kBox) {
+    const SnappedBox b = snap_box(options, lattice);
+    e = {lattice.lon_of(b.i0), lattice.lon_of(b.i1), lattice.lat_of(b.j0), lattice.lat_of(b.j1)};
+  } else {
+    const std::vector<Ring> rings = read_polygon(options);
+    e = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const Ring& r : rings)
+      for (std::size_t k = 0; k < r.lon.size(); ++k) {
+        e.lon_min = std::min(e.lon_min, r.lon[k]);
+        e.lon_max = std::max(e.lon_max, r.lon[k]);
+        e.lat_min = std::min(e.lat_min, r.lat[k]);
+        e.lat_max = std::max(e.lat_max, r.lat[k]);
+      }
+  }
+  return e;
+}
+
 bool Domain::contains(std::int64_t i, std::int64_t j) const {
   if (!regional()) return true;
   if (j < 0 || j >= inside.ny()) return false;
+  if (!periodic && (i < 0 || i >= inside.nx())) return false;
   return inside.get(mod(i, inside.nx()), j);
 }
 
@@ -246,6 +295,7 @@ Domain make_domain(const config::DomainOptions& options, const Lattice& lattice,
   d.kind = options.resolved;
   if (!d.regional()) return d;
   d.inside = Bitmap(lattice.nx, lattice.ny);
+  d.periodic = lattice.periodic();
   if (d.kind == DomainKind::kBox) {
     box_domain(d, options, lattice, rot);
   } else {
@@ -266,7 +316,7 @@ std::vector<std::array<double, 2>> regional_seeds(const Domain& domain, const Bi
     double rl = 0.0, rp = 0.0, x = 0.0, y = 0.0;
     rot.to_rotated(seeds[k][0], seeds[k][1], rl, rp);
     deg_to_lattice_xy(lattice, {rl, rp}, x, y);
-    if (!on_lattice_rows(lattice, y)) continue;
+    if (!on_lattice(lattice, x, y)) continue;
     const auto i = static_cast<std::int64_t>(std::floor(x)), j = static_cast<std::int64_t>(std::floor(y));
     if (domain.contains(i, std::min(j, lattice.ny - 1))) out.push_back(seeds[k]);
   }

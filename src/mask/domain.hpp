@@ -40,6 +40,7 @@ struct Domain {
   double lon_min = 0, lon_max = 0, lat_min = 0, lat_max = 0;  ///< lattice-frame extent of the region
   std::string description;       ///< one line for the log and the report
   std::vector<PolygonRing> rings;  ///< polygon: its rings (the open boundary is moved onto them)
+  bool periodic = true;          ///< the lattice wraps in I (false on a window lattice: i outside [0, nx) is outside)
 
   [[nodiscard]] bool regional() const { return kind != config::DomainKind::kGlobal; }
   /// Whether pixel (i, j) is inside; i is taken modulo nx, rows outside [0, ny) are outside.
@@ -50,6 +51,15 @@ struct Domain {
 /// and InputError naming the polygon file (cannot be read, no layer,
 /// no polygon feature, not lon/lat).
 Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot);
+
+/// The lon/lat extent (lattice frame, lon_max > lon_min, continuous across the seam) that a
+/// window lattice must hold for the domain of `options` on the global lattice `lattice`, without
+/// any pixel bitmap: a box snapped outward to level-0 squares, a polygon's bounding box. Only
+/// without pole rotation. Throws what make_domain throws for the box or the polygon file.
+struct DomainExtent {
+  double lon_min = 0, lon_max = 0, lat_min = 0, lat_max = 0;
+};
+DomainExtent domain_extent(const config::DomainOptions& options, const Lattice& lattice);
 
 /// The seeds of the fill for a regional run: the configured seeds whose pixel is inside the
 /// domain; when none is, the deepest wet pixel inside (ties: smallest (j, i)), logged. Throws

@@ -48,24 +48,29 @@ struct LonLat {
 /// Lattice (rotated) coordinates of a point given in fractional pixel units (x along λ from the
 /// seam, y along the rows from row 0).
 [[nodiscard]] inline LonLat lattice_xy_to_deg(const Lattice& lat, double x, double y) {
-  return {lat.lon0_deg + x * lat.pixel_deg(), lat.lat_of_row(y)};
+  return {lat.lon_at(x), lat.lat_of_row(y)};
 }
 
 /// Fractional pixel coordinates of a lattice-degree point: x in [0, nx), y in [0, ny] (beyond
-/// that range on the Mercator lattice for |φ| above its rows).
+/// that range on the Mercator lattice for |φ| above its rows, and on a window lattice for points
+/// outside the window: see on_lattice).
 inline void deg_to_lattice_xy(const Lattice& lat, LonLat p, double& x, double& y) {
-  const double nx = static_cast<double>(lat.nx);
-  x = (wrap_lon_deg(p.lon_deg, lat.lon0_deg) - lat.lon0_deg) / lat.pixel_deg();
-  if (x >= nx) x -= nx;
-  if (x < 0.0) x = 0.0;
+  x = lat.col_of_lon(p.lon_deg);
   y = lat.row_of_lat(p.lat_deg);
 }
 
 /// Whether the fractional row y (deg_to_lattice_xy) lies on the lattice's rows: always on the
-/// lon-lat lattice, whose rows reach the poles; on the Mercator lattice 0 <= y <= ny (the caps
-/// beyond its rows are dry by construction, so nothing there is in a pixel set of the run).
+/// global lon-lat lattice, whose rows reach the poles; on the Mercator lattice and on a window
+/// 0 <= y <= ny (the caps beyond the Mercator rows are dry by construction, so nothing there is
+/// in a pixel set of the run).
 [[nodiscard]] inline bool on_lattice_rows(const Lattice& lat, double y) {
-  return !lat.mercator() || (y >= 0.0 && y <= static_cast<double>(lat.ny));
+  return (!lat.mercator() && lat.ny == lat.ny_global) || (y >= 0.0 && y <= static_cast<double>(lat.ny));
+}
+
+/// Whether the point (x, y) of deg_to_lattice_xy lies on the lattice: its row (on_lattice_rows)
+/// and, on a window that does not span all longitudes, 0 <= x <= nx.
+[[nodiscard]] inline bool on_lattice(const Lattice& lat, double x, double y) {
+  return on_lattice_rows(lat, y) && (lat.periodic() || (x >= 0.0 && x <= static_cast<double>(lat.nx)));
 }
 
 /// Lattice (rotated) coordinates of the centre of pixel (i, j).

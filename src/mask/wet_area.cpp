@@ -43,10 +43,18 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     if (regional && rot.identity()) {
       // Only the domain's box and one level-0 square around it (the open-boundary typing looks
       // one pixel outside the domain): the rest of the lattice stays dry, unsampled.
+      // On a window lattice that is the whole window (its padding is one level-0 square).
       const double pix = lattice.pixel_deg();
       const std::int64_t sq = lattice.pixels_per_square(0);
-      const auto i_lo = static_cast<std::int64_t>(std::floor((domain->lon_min - lattice.lon0_deg) / pix)) - sq;
-      const auto i_hi = static_cast<std::int64_t>(std::ceil((domain->lon_max - lattice.lon0_deg) / pix)) + sq;
+      const double x_lo = lattice.windowed() ? lattice.col_of_lon(domain->lon_min)
+                                             : (domain->lon_min - lattice.lon0_deg) / pix;
+      const double x_hi = x_lo + (domain->lon_max - domain->lon_min) / pix;
+      auto i_lo = static_cast<std::int64_t>(std::floor(x_lo)) - sq;
+      auto i_hi = static_cast<std::int64_t>(std::ceil(x_hi)) + sq;
+      if (!lattice.periodic()) {
+        i_lo = std::max<std::int64_t>(0, i_lo);
+        i_hi = std::min(lattice.nx, i_hi);
+      }
       const double y_s = lattice.row_of_lat(std::max(domain->lat_min, -lattice.lat_max_deg()));
       const double y_n = lattice.row_of_lat(std::min(domain->lat_max, lattice.lat_max_deg()));
       const std::int64_t j_lo = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s)) - sq);

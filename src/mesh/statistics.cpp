@@ -94,7 +94,7 @@ double polygon_area_m2(const Lattice& lat, const PoleRotation& rot, const std::a
   GeographicLib::PolygonArea poly(GeographicLib::Geodesic::WGS84());
   for (int v = 0; v < n; ++v) {
     double lon = 0.0, la = 0.0;
-    rot.to_geographic(lat.lon0_deg + ui[static_cast<std::size_t>(v)] * lat.pixel_deg(),
+    rot.to_geographic(lat.lon_at(ui[static_cast<std::size_t>(v)]),
                       lat.lat_of_row(uj[static_cast<std::size_t>(v)]), lon, la);
     poly.AddPoint(la, lon);
   }
@@ -542,7 +542,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // cos/sin λ' of node u (-1..1) across the square of `side` pixels whose west side is at I = i0.
   const auto column = [&](std::int64_t i0, std::int64_t side, double u, double& c, double& sn) {
     const double rlon =
-        lat.lon0_deg + (static_cast<double>(i0) + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
+        lat.lon0_deg +
+        (static_cast<double>(i0 + lat.i_origin) + 0.5 * static_cast<double>(side) * (1.0 + u)) * lat.pixel_deg();
     c = std::cos(rlon * kDegToRad);
     sn = std::sin(rlon * kDegToRad);
   };

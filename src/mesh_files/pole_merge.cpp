@@ -5,10 +5,11 @@ namespace aq::io {
 
 PoleMerge::PoleMerge(const mesh::Mesh& mesh) {
   const std::int64_t n = mesh.node_count();
-  const std::int64_t ny = mesh.lattice.ny;
+  // Rows 0 and ny of the global lattice (a window lattice's rows are offset by j_origin).
+  const std::int64_t ny = mesh.lattice.ny_global, j0 = mesh.lattice.j_origin;
   std::int64_t pole_nodes = 0;
   for (NodeId a = 0; a < n; ++a)
-    if (mesh.node_j[a] == 0 || mesh.node_j[a] == ny) ++pole_nodes;
+    if (mesh.node_j[a] + j0 == 0 || mesh.node_j[a] + j0 == ny) ++pole_nodes;
   output_count_ = n;
   if (pole_nodes == 0) return;
 
@@ -16,7 +17,7 @@ PoleMerge::PoleMerge(const mesh::Mesh& mesh) {
   sources_.reserve(static_cast<std::size_t>(n));
   NodeId south = -1, north = -1;
   for (NodeId a = 0; a < n; ++a) {
-    const std::int64_t j = mesh.node_j[a];
+    const std::int64_t j = mesh.node_j[a] + j0;
     NodeId* pole = j == 0 ? &south : (j == ny ? &north : nullptr);
     if (pole != nullptr && *pole >= 0) {
       node_map_[a] = *pole;

@@ -59,7 +59,7 @@ class SeamNodes {
 
 /// λ of lattice column `i` in the plane, with i = nx drawn at exactly λ0 + 360.
 inline double plane_lon_deg(const Lattice& lattice, std::int64_t i) {
-  return i == lattice.nx ? lattice.lon0_deg + 360.0 : lattice.lon_of(i);
+  return i == lattice.nx && lattice.periodic() ? lattice.lon0_deg + 360.0 : lattice.lon_of(i);
 }
 
 }  // namespace aq::io

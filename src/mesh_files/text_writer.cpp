@@ -18,7 +18,9 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   auto& buf = f.buffer();
   const Lattice& l = mesh.lattice;
   f.print("# aquatoria mesh, plain text format 1\n");
-  f.print("# lattice lon0_deg={} step0_deg={} levels={} nx={} ny={}", l.lon0_deg, l.step0_deg, l.levels, l.nx, l.ny);
+  // The global lattice and its indices, also from a window lattice (a regional run).
+  f.print("# lattice lon0_deg={} step0_deg={} levels={} nx={} ny={}", l.lon0_deg, l.step0_deg, l.levels, l.nx_global,
+          l.ny_global);
   if (l.mercator()) f.print(" kind=mercator y0_deg={}", l.y0_deg);
   f.print("\n");
   if (mesh.rotation.enabled) {
@@ -36,7 +38,9 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   f.print("nodes {}\n# id lon_deg lat_deg depth_m flags i j\n", np);
   for (NodeId n = 0; n < np; ++n) {
     fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {} {} {} {}\n"), n, mesh.lon_deg[n], mesh.lat_deg[n],
-                   depth_below_datum_m(mesh.depth_m[n]), mesh.node_flags[n], mesh.node_i[n], mesh.node_j[n]);
+                   depth_below_datum_m(mesh.depth_m[n]), mesh.node_flags[n],
+                   mesh.node_i[n] < 0 ? mesh.node_i[n] : (mesh.node_i[n] + l.i_origin) % l.nx_global,
+                   mesh.node_j[n] < 0 ? mesh.node_j[n] : mesh.node_j[n] + l.j_origin);
     f.maybe_flush();
   }
   std::int64_t elements = 0;

@@ -334,7 +334,8 @@ void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, 
         double si = 0.0, sj = 0.0;
         for (int a = 0; a < k; ++a) {
           const std::int64_t i = mesh.node_i[p[a]];
-          si += static_cast<double>(i == 0 && max_i > nx / 2 ? nx : i);
+          // Global columns (a window lattice's origin added as an integer: the same bits as on the global lattice).
+          si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) + mesh.lattice.i_origin);
           sj += static_cast<double>(mesh.node_j[p[a]]);
         }
         const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();

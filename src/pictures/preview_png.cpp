@@ -737,15 +737,18 @@ WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& b
     const auto [i_lo, i_hi] = std::minmax_element(mesh.node_i.begin(), mesh.node_i.end());
     const auto [j_lo, j_hi] = std::minmax_element(mesh.node_j.begin(), mesh.node_j.end());
     const Lattice& l = mesh.lattice;
-    if (*i_hi - *i_lo < l.nx / 2) {  // not across the seam (that one gets the whole map)
+    // Not across the seam (that one gets the whole map); a window lattice's columns never cross it.
+    if (!l.periodic() || *i_hi - *i_lo < l.nx / 2) {
       const double x0 = l.lon_of(*i_lo), x1 = l.lon_of(*i_hi), y0 = l.plane_y_of(*j_lo), y1 = l.plane_y_of(*j_hi);
       const double mx = 0.03 * (x1 - x0) + l.pixel_deg(), my = 0.03 * (y1 - y0) + l.pixel_deg();
-      const View v = make_view(x0 - mx, x1 + mx, std::max(y0 - my, l.plane_y_of(0)),
-                               std::min(y1 + my, l.plane_y_of(l.ny)), options.width_px);
+      // Clamped to the global lattice's rows (a window lattice's rows end a level-0 square from the mesh).
+      const View v = make_view(x0 - mx, x1 + mx, std::max(y0 - my, l.plane_y_of(-l.j_origin)),
+                               std::min(y1 + my, l.plane_y_of(l.ny_global - l.j_origin)), options.width_px);
       return render(mesh, bathy, path, options, v, counts_title(mesh, options), &options.zoom);
     }
   }
-  const View v = make_view(lon0, lon0 + 360.0, mesh.lattice.plane_y_of(0), mesh.lattice.plane_y_of(mesh.lattice.ny),
+  const Lattice& gl = mesh.lattice;  // the global lattice's rows, also from a window lattice
+  const View v = make_view(lon0, lon0 + 360.0, gl.plane_y_of(-gl.j_origin), gl.plane_y_of(gl.ny_global - gl.j_origin),
                            options.width_px);
   return render(mesh, bathy, path, options, v, counts_title(mesh, options), &options.zoom);
 }

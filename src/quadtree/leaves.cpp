@@ -243,10 +243,11 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     // Rules are sampled at the centres of the level-l squares.
     const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
     const double lon0 = lat.lon0_deg;
+    const std::int64_t a0 = lat.square_origin_i(l);  // a window lattice's first level-l column
     const std::int64_t rows = om.ny();
     const std::int64_t words = om.words_per_row();
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
-    shared(om, rows, words, step, lat, lon0, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
+    shared(om, rows, words, step, lat, lon0, a0, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
     for (std::int64_t b = 0; b < rows; ++b) {
       const double centre = square_centre_row(lat, l, b);
       const double size = square_size_km(lat, l, centre);
@@ -263,7 +264,7 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
           bitsleft &= bitsleft - 1;
           const std::int64_t a = 64 * w + t;
           double lon = 0.0, lat_deg = 0.0;
-          rotation.to_geographic(lon0 + (static_cast<double>(a) + 0.5) * step, rlat, lon, lat_deg);
+          rotation.to_geographic(lon0 + (static_cast<double>(a + a0) + 0.5) * step, rlat, lon, lat_deg);
           bool split = false;
           if (need_box) {
             for (const config::BoxRule& r : box_rules)

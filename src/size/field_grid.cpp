@@ -43,7 +43,8 @@ FieldGrid::FieldGrid(const Lattice& lat, int level) : lat_(lat), level_(level) {
 }
 
 double FieldGrid::lon_deg(std::int64_t i) const {
-  return lat_.lon0_deg + (static_cast<double>(i) + 0.5) * lat_.step0_deg / static_cast<double>(std::int64_t{1} << level_);
+  return lat_.lon0_deg + (static_cast<double>(i + lat_.square_origin_i(level_)) + 0.5) * lat_.step0_deg /
+                             static_cast<double>(std::int64_t{1} << level_);
 }
 
 double FieldGrid::distance_km(std::int64_t k, std::int64_t m) const {

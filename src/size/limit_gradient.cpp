@@ -54,7 +54,9 @@ struct Propagation {
         changed += relax(i, j, base_n + (i == nx - 1 ? 0 : i + 1)) ? 1 : 0;
       }
     }
-    if (!grid.lattice().mercator() && (j == 0 || j == ny - 1) && nx % 2 == 0) {  // across the pole
+    const Lattice& lat = grid.lattice();
+    if (!lat.mercator() && ((j == 0 && lat.pole_row(0)) || (j == ny - 1 && lat.pole_row(lat.ny))) && nx % 2 == 0 &&
+        lat.periodic()) {  // across the pole (not on a window lattice away from the poles)
       for (std::int64_t i = 0; i < nx; ++i) changed += relax(i, j, j * nx + (i + nx / 2) % nx) ? 1 : 0;
     }
     // Left to right, then on round the seam while values still improve; the same leftwards.

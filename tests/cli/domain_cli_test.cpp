@@ -168,8 +168,10 @@ double signed_area(const Fort14& f, const std::vector<long>& ring) {
 
 const std::string kFormats = "--set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"ugrid\", \"fesom\"]'";
 
-aq::test::CommandResult mesh_basin(const fs::path& dir, const std::string& domain, int threads = 2) {
-  return aq::test::run_command("OMP_NUM_THREADS=" + std::to_string(threads) + " " + std::string(AQ_BINARY) +
+// `env` is prepended to the command (AQ_GLOBAL_LATTICE=1: the regional run on the global lattice).
+aq::test::CommandResult mesh_basin(const fs::path& dir, const std::string& domain, int threads = 2,
+                                   const std::string& env = "") {
+  return aq::test::run_command(env + "OMP_NUM_THREADS=" + std::to_string(threads) + " " + std::string(AQ_BINARY) +
                                " mesh -q --set input.path=" + basin_raster().string() +
                                " --set quadtree.step_deg=2.0 --set quadtree.levels=2 --set output.name=basin " +
                                kFormats + " -o " + dir.string() + " " + domain);
@@ -527,6 +529,107 @@ TEST(DomainCli, RegionReachingAPoleRowKeepsItsBoundaryTypes) {
   }
   EXPECT_TRUE(fs::exists(dir / "arc_bctides.in"));
   EXPECT_TRUE(fs::exists(dir / "arc_obn.out"));
+}
+
+// The window lattice (README "Regional FE meshes", "What scales with the region"): a regional run
+// works on the domain's box and one level-0 square of padding, not on the globe, and writes the
+// same mesh files as the same run on the global lattice (AQ_GLOBAL_LATTICE=1), on both lattice
+// kinds, for a box and a polygon; the report states the window.
+TEST(DomainCli, WindowLatticeGivesTheSameFilesAsTheGlobalLattice) {
+  const fs::path gj = aq::test::fresh_dir("domain", "wpoly_file");
+  fs::create_directories(gj);
+  std::ofstream(gj / "poly.geojson") << R"({"type": "FeatureCollection", "features": [{"type": "Feature",
+    "properties": {}, "geometry": {"type": "Polygon", "coordinates": [[[1, 1], [19.3, 3], [17, 19], [3, 15], [1, 1]]]}}]})";
+  const std::string poly = "--set domain.polygon=" + (gj / "poly.geojson").string() + " --set 'mask.seeds=[[12.0, 12.0]]'";
+  struct Case {
+    const char* name;
+    std::string args;
+  };
+  for (const Case& c : {Case{"box", kBox}, Case{"merc", kBox + " --set quadtree.lattice=mercator"}, Case{"poly", poly},
+                        Case{"mpoly", poly + " --set quadtree.lattice=mercator"}}) {
+    const fs::path w = aq::test::fresh_dir("domain", std::string("wl_") + c.name),
+                   g = aq::test::fresh_dir("domain", std::string("gl_") + c.name);
+    const std::string args =
+        c.args + " --set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"ugrid\", \"fesom\", \"png\"]'";
+    const auto rw = mesh_basin(w, args);
+    ASSERT_EQ(rw.exit_code, 0) << c.name << ": " << rw.err;
+    const auto rg = mesh_basin(g, args, 2, "AQ_GLOBAL_LATTICE=1 ");
+    ASSERT_EQ(rg.exit_code, 0) << c.name << ": " << rg.err;
+    for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin.nc", "basin_nod2d.out", "basin_elem2d.out",
+                          "basin_obn.out", "basin_bctides.in", "basin.png"}) {
+      EXPECT_GT(bytes(w / f).size(), 0U) << c.name << " " << f;
+      EXPECT_TRUE(bytes(w / f) == bytes(g / f)) << c.name << " " << f;
+    }
+    const nlohmann::json rep = aq::test::read_report(w, "basin");
+    ASSERT_TRUE(rep["lattice"].contains("window")) << c.name << ": " << rep["lattice"].dump();
+    const auto& win = rep["lattice"]["window"];
+    // 2° squares of 0.5° pixels: the box 0..20° (the polygon's bounding box 1..19.3 × 1..19,
+    // snapped outward: the same) and one square each side.
+    EXPECT_EQ(win["nx"], 48) << c.name;
+    EXPECT_EQ(win["first_column"], 356) << c.name;  // (-2 + 180) / 0.5
+    EXPECT_EQ(win["lon_min_deg"], -2.0) << c.name;
+    EXPECT_EQ(win["lon_max_deg"], 22.0) << c.name;
+    EXPECT_EQ(rep["lattice"]["nx"], 720) << c.name;  // the global lattice's
+    if (std::string(c.name) == "box" || std::string(c.name) == "poly") {
+      EXPECT_EQ(win["ny"], 48) << c.name;
+      EXPECT_EQ(win["first_row"], 176) << c.name;  // (-2 + 90) / 0.5
+      EXPECT_EQ(win["lat_min_deg"], -2.0) << c.name;
+      EXPECT_EQ(win["lat_max_deg"], 22.0) << c.name;
+    } else {  // Mercator rows: the box's snapped rows and one 2° square of ordinate each side
+      EXPECT_GT(win["ny"].get<int>(), 40) << c.name;
+      EXPECT_LE(win["lat_min_deg"].get<double>(), -1.9) << c.name;
+      EXPECT_GE(win["lat_max_deg"].get<double>(), 20.5) << c.name;
+    }
+    EXPECT_EQ(win["pixels"].get<std::int64_t>(), win["nx"].get<std::int64_t>() * win["ny"].get<std::int64_t>());
+    EXPECT_LT(rep["memory"]["estimate_lattice_bytes"].get<std::int64_t>(), 20000) << c.name;  // the globe's: ~0.5 MB
+    EXPECT_FALSE(aq::test::read_report(g, "basin")["lattice"].contains("window")) << c.name;
+  }
+}
+
+// Across the seam the window is one contiguous block: the same files as the global lattice whose
+// seam (quadtree.lon0_deg) is away from the box.
+TEST(DomainCli, WindowLatticeAcrossTheSeamEqualsTheGlobalLatticeWithTheSeamElsewhere) {
+  const std::string box = "--set 'domain.box=[176.0, -176.0, 28.0, 42.0]' --set 'mask.seeds=[[179.0, 35.0]]'";
+  for (const std::string kind : {"lonlat", "mercator"}) {
+    const fs::path w = aq::test::fresh_dir("domain", "wseam_" + kind), g = aq::test::fresh_dir("domain", "gseam_" + kind);
+    const std::string args = box + " --set quadtree.lattice=" + kind;
+    const auto rw = mesh_basin(w, args);
+    ASSERT_EQ(rw.exit_code, 0) << rw.err;
+    const auto rg = mesh_basin(g, args + " --set quadtree.lon0_deg=0.0", 2, "AQ_GLOBAL_LATTICE=1 ");
+    ASSERT_EQ(rg.exit_code, 0) << rg.err;
+    for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin_nod2d.out", "basin_elem2d.out"}) {
+      EXPECT_GT(bytes(w / f).size(), 500U) << kind << " " << f;
+      EXPECT_TRUE(bytes(w / f) == bytes(g / f)) << kind << " " << f;
+    }
+    const nlohmann::json rep = aq::test::read_report(w, "basin");
+    ASSERT_TRUE(rep["lattice"].contains("window")) << rep["lattice"].dump();
+    EXPECT_EQ(rep["lattice"]["window"]["nx"], 24);                 // 176..184 and 2° each side
+    EXPECT_EQ(rep["lattice"]["window"]["lon_min_deg"], 174.0);     // west of the seam
+    EXPECT_EQ(rep["lattice"]["window"]["lon_max_deg"], 186.0);     // contiguous past it
+    EXPECT_EQ(rep["lattice"]["window"]["first_column"], 708);      // (174 + 180) / 0.5
+  }
+}
+
+// A box on a rotated lattice keeps the global lattice (its box is no lattice rectangle) but reads
+// the raster only over the geographic box of the rotated region and its margin, and writes the
+// same files (the picture too) as when the raster is read whole (AQ_RASTER_WHOLE=1).
+TEST(DomainCli, RotatedBoxReadsARasterWindowAndGivesTheSameFiles) {
+  const fs::path w = aq::test::fresh_dir("domain", "rotw"), g = aq::test::fresh_dir("domain", "rotg");
+  const std::string args =
+      kBox + " --set rotation.enabled=true --set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"png\"]'";
+  const auto rw = mesh_basin(w, args);
+  ASSERT_EQ(rw.exit_code, 0) << rw.err;
+  const auto rg = mesh_basin(g, args, 2, "AQ_RASTER_WHOLE=1 ");
+  ASSERT_EQ(rg.exit_code, 0) << rg.err;
+  for (const char* f : {"basin.14", "basin.gr3", "basin.msh", "basin_bctides.in", "basin.png"}) {
+    EXPECT_GT(bytes(w / f).size(), 100U) << f;
+    EXPECT_TRUE(bytes(w / f) == bytes(g / f)) << f;
+  }
+  const nlohmann::json rep = aq::test::read_report(w, "basin");
+  ASSERT_TRUE(rep.contains("raster_windows")) << rep.dump();
+  EXPECT_LT(rep["raster_windows"][0]["bytes"].get<std::int64_t>(), 1440 * 720 * 4 / 10);
+  EXPECT_EQ(rep["lattice"]["global_because"], "rotation.enabled = true: the rotated lattice's box is no lon/lat box");
+  EXPECT_FALSE(aq::test::read_report(g, "basin").contains("raster_windows"));
 }
 
 TEST(DomainCli, BadDomainKeysAreConfigErrors) {
