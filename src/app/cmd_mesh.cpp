@@ -112,7 +112,9 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   // Fail on an unwritable output folder before the work, not after.
   OutputSet out(c.output.dir, log);
 
-  const GlobalRun run = run_global_pipeline(c, setup, log, &report);
+  // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
+  const bool tif = std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end();
+  const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, false, tif);
   const raster::Bathymetry& bathy = *run.bathy;
   const auto& ri = bathy.info();
   const mask::WetArea& area = run.area;

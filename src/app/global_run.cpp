@@ -506,12 +506,19 @@ static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* 
 }
 
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics, bool reuse) {
+                              Report* report, bool statistics, bool reuse, bool keep_masks) {
   GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
+  if (!keep_masks) {  // a moved-in empty bitmap frees the words (clear() would keep their capacity)
+    run.area.wet_vertices = Bitmap();
+    run.area.coastal = Bitmap();
+    run.area.filled = Bitmap();
+    if (!run.domain.regional()) run.area.wet = Bitmap();
+  }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (run.domain.regional()) type_regional_boundaries(run, log, report);
+  if (!keep_masks) run.area.wet = Bitmap();
   if (!statistics) return run;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)

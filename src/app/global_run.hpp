@@ -91,7 +91,11 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
 /// With `reuse` set and global_run_file_path(c) present, the mask stage is replaced by reading
 /// that file when its inputs match c (log line "mask: reused <file> ..."); when they differ the
 /// mask stage runs and a warning names the file and the first differing input.
+/// With `keep_masks = false` the lattice bitmaps of `area` (wet_vertices, wet, coastal, filled:
+/// 4 bits per pixel, 1.9 GB at 15") are freed as soon as the quadtree has its leaves (`wet` after
+/// a regional run's boundary typing); their counts stay. The mesh, its checks and every file but
+/// the global run file (`tif`) need none of them.
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics = true, bool reuse = false);
+                              Report* report, bool statistics = true, bool reuse = false, bool keep_masks = true);
 
 }  // namespace aq::app

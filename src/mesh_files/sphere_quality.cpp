@@ -240,6 +240,7 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     size[t] = static_cast<float>((e0 + e1 + e2) / 3.0 * kAuthalicRadiusKm);
     ar[t] = std::abs(spherical_triangle_area(a, b, c));
   }
+  mesh::FillVector<Vec3>().swap(p);  // not needed below: the lists round the nodes take its place
   // Triangle numbers of 32 bits when they fit: half the memory of the lists round the nodes.
   if (nt < (std::int64_t{1} << 31))
     neighbour_area_ratios<std::int32_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
