@@ -30,15 +30,23 @@ namespace {
 //   lattice  kLatticeBitsPerPixel: the wet-vertex, class, fill and quadtree bitmaps alive at the
 //            fill/quadtree peak (about 7 full-lattice bitmaps measured at 15"; 8 bits = 1 byte per
 //            lattice pixel);
-//   mesh     kMeshBytesPerTriangle per triangle (nodes, squares, triangles, statistics, writers;
-//            120 measured at 15", 130 at 1'), with the triangle count guessed before the run as
-//            kTrianglesPerSqrtPixel·√(nx·ny): the refinement follows the coast, whose length in
-//            pixels grows like the side of the lattice (1': 5.3 million triangles, 15": 20.1 million
-//            on ETOPO5 resamples).
-// Measured peak / estimate: 1' whole 2.07 / 2.04 GB, 1' streamed 1.17 / 1.32 GB, 15" streamed
-// 5.76 / 7.06 GB.
+//   mesh     kMeshBytesPerTriangle per triangle: the lattice mesh (about 90 bytes per triangle
+//            with its nodes and squares) and, at the write stage's peak, the geographic copy of
+//            an unrotated mesh (its pole cap; 64) and the shape quality's arrays (33), or the
+//            statistics stage's edge arrays; 215 fits the 15" run with every size term
+//            (29.3 million triangles: 6.6 GB measured at the quality step); a rotated mesh
+//            (no copy) peaks lower, in the statistics stage.
+// `aquatoria mesh` frees the bitmaps before the mesh stage (unless it writes the global run
+// file), so its peak is the larger of the lattice and mesh parts; the other callers keep them
+// beside the mesh (the sum). The triangle count is guessed before the run as
+// kTrianglesPerSqrtPixel·√(nx·ny): the refinement follows the coast, whose length in pixels
+// grows like the side of the lattice (1': 5.3 million triangles, 15": 20.1 million on ETOPO5
+// resamples); the size field's terms move it (the 15" run with every term: 29.3 million).
+// Tolerance: with the mesh's own triangle count (report memory.estimate_bytes_for_mesh) the
+// measured peak is within 25 % of the model for runs whose mesh part exceeds 0.5 GB
+// (tests/cli/memory_estimate_cli_test.cpp); the guessed count adds its own error.
 constexpr double kLatticeBitsPerPixel = 8.0;
-constexpr double kMeshBytesPerTriangle = 140.0;
+constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 64LL << 20;  // program, GDAL cache, small tables
 
@@ -72,8 +80,16 @@ void apply_test_knobs(raster::OpenOptions& ro) {
 
 }  // namespace
 
-GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
+// base + raster + bitmaps and mesh: their sum while the bitmaps stay, else the larger.
+static double model_bytes(const GlobalSetup& s, double mesh_bytes) {
+  const auto lattice = static_cast<double>(s.lattice_bytes);
+  return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
+         (s.masks_kept ? lattice + mesh_bytes : std::max(lattice, mesh_bytes));
+}
+
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool keep_masks) {
   GlobalSetup s;
+  s.masks_kept = keep_masks;
   s.lattice = c.quadtree.lattice == "mercator"
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
@@ -146,8 +162,7 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
     s.source_options.push_back(ro);
     s.source_plans.push_back(plan);
   }
-  s.estimate_bytes = saturate(static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
-                              static_cast<double>(s.lattice_bytes) + static_cast<double>(s.mesh_bytes));
+  s.estimate_bytes = saturate(model_bytes(s, static_cast<double>(s.mesh_bytes)));
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
     std::string why;
     if (!s.raster.streamed && s.raster.bytes > raster::kStreamAboveBytes) {
@@ -166,21 +181,29 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c) {
   return s;
 }
 
-Json memory_json(const GlobalSetup& s) {
-  return Json{{"estimate_bytes", s.estimate_bytes},        {"estimate_raster_bytes", s.raster.bytes},
-              {"estimate_lattice_bytes", s.lattice_bytes}, {"estimate_mesh_bytes", s.mesh_bytes},
-              {"estimate_triangles", s.triangles_guess},   {"limit_bytes", s.memory_limit_bytes},
-              {"raster_streamed", s.raster.streamed},      {"raster_block_rows", s.raster.block_rows},
-              {"raster_band_rows", s.raster.band_rows},    {"peak_rss_bytes", peak_rss_bytes()}};
+std::int64_t estimate_bytes_for(const GlobalSetup& s, std::int64_t triangles) {
+  return saturate(model_bytes(s, kMeshBytesPerTriangle * static_cast<double>(triangles)));
+}
+
+Json memory_json(const GlobalSetup& s, std::int64_t triangles) {
+  Json j{{"estimate_bytes", s.estimate_bytes},        {"estimate_raster_bytes", s.raster.bytes},
+         {"estimate_lattice_bytes", s.lattice_bytes}, {"estimate_mesh_bytes", s.mesh_bytes},
+         {"estimate_triangles", s.triangles_guess},   {"limit_bytes", s.memory_limit_bytes},
+         {"raster_streamed", s.raster.streamed},      {"raster_block_rows", s.raster.block_rows},
+         {"raster_band_rows", s.raster.band_rows},    {"masks_kept", s.masks_kept},
+         {"peak_rss_bytes", peak_rss_bytes()}};
+  if (triangles > 0) j["estimate_bytes_for_mesh"] = estimate_bytes_for(s, triangles);
+  return j;
 }
 
 void log_memory_estimate(const GlobalSetup& s, const Logger& log) {
   log.info(
       "memory: estimate {:.2f} GB of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} GB {}, lattice "
-      "bitmaps {:.2f} GB, mesh {:.2f} GB (~{} triangles)",
+      "bitmaps {:.2f} GB, mesh {:.2f} GB (~{} triangles){}",
       gb(s.estimate_bytes), gb(s.memory_limit_bytes), gb(s.raster.bytes),
       s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows) : std::string("held whole"),
-      gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
+      gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess,
+      s.masks_kept ? "" : "; the bitmaps go before the mesh, so the larger of the two counts");
 }
 
 raster::OpenOptions raster_options(const config::InputOptions& input, std::int64_t max_memory_bytes) {

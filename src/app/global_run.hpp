@@ -38,15 +38,23 @@ struct GlobalSetup {
   std::vector<raster::OpenOptions> source_options;  ///< every source, highest priority first
   std::vector<raster::RasterPlan> source_plans;     ///< and its plan (bytes include a blend distance field)
   std::int64_t estimate_bytes = 0;      ///< the whole run (global_run.cpp states the model)
+  bool masks_kept = true;               ///< the bitmaps stay beside the mesh (estimate: their sum, not the larger)
 };
 
 /// Builds the lattice and rotation of `c`, reads the raster's header (whole or streamed) and
 /// refuses, before any data is read, a lattice whose bitmaps would not fit (ConfigError naming
 /// quadtree.levels, quadtree.step_deg and input.max_memory_gb) or a run whose memory estimate is
 /// above input.max_memory_gb (ConfigError naming the key, the estimate and the limit).
-GlobalSetup prepare_global_run(const config::GlobalConfig& c);
-/// The report's "memory" section: the estimate, its parts and the peak RSS so far.
-Json memory_json(const GlobalSetup& s);
+/// `keep_masks` as the run_global_pipeline that follows will be called: without them (the
+/// bitmaps freed before the mesh) the peak is the larger of the bitmap and the mesh parts, not
+/// their sum.
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool keep_masks = true);
+/// The estimate of `s` had the mesh `triangles` triangles (the model with the count the run made
+/// instead of the guess; global_run.cpp states its tolerance).
+std::int64_t estimate_bytes_for(const GlobalSetup& s, std::int64_t triangles);
+/// The report's "memory" section: the estimate, its parts and the peak RSS so far; with the
+/// mesh's `triangles` (> 0) also the estimate for that count (estimate_bytes_for_mesh).
+Json memory_json(const GlobalSetup& s, std::int64_t triangles = 0);
 /// "memory: estimate ... of ... allowed" before the run.
 void log_memory_estimate(const GlobalSetup& s, const Logger& log);
 

@@ -185,7 +185,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
   g.node_flags.reserve(kept_nodes + added_nodes);
   g.triangles.reserve(kept_triangles);
   g.triangle_level.reserve(kept_triangles);
-  g.triangle_square.reserve(kept_triangles);
+  if (squares_out) g.triangle_square.reserve(kept_triangles);  // triangles alone have no squares to point to
   source_triangle_.reserve(kept_triangles);
   auto push_node = [&](std::int64_t i, std::int64_t j, double lon, double lat_deg, double rlon, double rlat,
                        double depth, std::uint8_t flags) {
@@ -223,7 +223,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     }
     g.triangles.push_back(o);
     g.triangle_level.push_back(lm.triangle_level[t]);
-    g.triangle_square.push_back(squares_out ? lm.triangle_square[t] : -1);
+    if (squares_out) g.triangle_square.push_back(lm.triangle_square[t]);
     source_triangle_.push_back(static_cast<ElementId>(t));
   }
   // Squares (written only with mesh.elements = squares or both, where the poles are merged): a
@@ -300,7 +300,6 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
       }
       g.triangles.push_back(o);
       g.triangle_level.push_back(0);
-      g.triangle_square.push_back(-1);
       source_triangle_.push_back(-1);
     }
     double replaced = 0.0;
