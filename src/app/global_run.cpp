@@ -34,7 +34,7 @@ namespace {
 //            with its nodes and squares) and, at the write stage's peak, the geographic copy of
 //            an unrotated mesh (its pole cap; 64) and the shape quality's arrays (33), or the
 //            statistics stage's edge arrays; 215 fits the 15" run with every size term
-//            (29.3 million triangles: 6.6 GB measured at the quality step); a rotated mesh
+//            (29.3 million triangles: 6.58 GB measured at the quality step); a rotated mesh
 //            (no copy) peaks lower, in the statistics stage.
 // `aquatoria mesh` frees the bitmaps before the mesh stage (unless it writes the global run
 // file), so its peak is the larger of the lattice and mesh parts; the other callers keep them
@@ -46,8 +46,9 @@ namespace {
 // measured peak is within 25 % of the model for runs whose mesh part exceeds 0.4 GB
 // (StreamCli.EstimateForTheMeshIsWithinItsToleranceOfThePeak, ETOPO5 at 1.875': 0.80 GB
 // measured, 0.80 modelled); the guessed count adds its own error (the 15" run with every size
-// term has 37 % more triangles than the guess). Measured peak / estimate for the mesh's count:
-// 15" with every size term 6.8 / 6.8 GB (before the run: 5.1, the guess), ...
+// term has 37 % more triangles than the guess). Measured peak / estimate for the mesh's count
+// (2026-11-28): 15" with every size term 6.58 / 6.80 GB (before the run, from the guessed count:
+// 5.10); global_tides on the 1' raster (rotated: no copy) 2.94 / 3.09 GB.
 constexpr double kLatticeBitsPerPixel = 8.0;
 constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
