@@ -4,7 +4,8 @@
 # target, it reports it.
 #   scripts/bench.sh            all cases (makes the 1' raster once, cached outside the repo)
 #   scripts/bench.sh quick      only the seed reference run and Black Sea
-#   scripts/bench.sh global     only the 1', 30" and 15" global lattices (issue 9's table)
+#   scripts/bench.sh global     only the 1', 30" and 15" global lattices (issue 9's table), and the
+#                               15" one with every size term (configs/global_15s_tides.toml)
 #   scripts/bench.sh mercator   only the two Mercator + rotation runs of issue 12 (ETOPO5 and the
 #                               1' raster), each the fastest of AQ_BENCH_REPEAT runs (default 3)
 #   scripts/bench.sh python     the same two Mercator runs by `aquatoria mesh` and by the Python
@@ -206,17 +207,17 @@ fi
 # compared with one `gdal_translate -q -of ENVI` of the same raster (read + decode + write of the
 # whole raster: the issue's yardstick, target ratio <= 1.5).
 big_rows=()
-big_case() {  # name arcsec levels
-  local name="$1" arcsec="$2" levels="$3" raster envi t_gdal out
+big_case() {  # name arcsec levels [config, default configs/global_15s.toml]
+  local name="$1" arcsec="$2" levels="$3" config="${4:-configs/global_15s.toml}" raster envi t_gdal out
   raster=$(bash data_tools/make_resampled.sh "$arcsec")
   envi="$work/${name}.envi"
   t_gdal=$( { /usr/bin/time -f "%e" gdal_translate -q -of ENVI "$raster" "$envi" >/dev/null; } 2>&1 | tail -1)
   rm -f "$envi" "$envi".*  "${envi%.envi}".hdr
   out="$work/$name"
-  /usr/bin/time -v "$bin" mesh -q -c configs/global_15s.toml -o "$out" --set input.path="$raster" \
+  /usr/bin/time -v "$bin" mesh -q -c "$config" -o "$out" --set input.path="$raster" \
     --set quadtree.levels="$levels" --set output.name="$name" 2>"$work/$name.time" >/dev/null ||
     { cat "$work/$name.time" >&2; exit 1; }
-  table "$name global lattice (Δ0=16', L=$levels) from a ${arcsec}\" raster, binary MSH + UGRID" 1e9 "$out/${name}_report.json"
+  table "$name global lattice (Δ0=16', L=$levels) from a ${arcsec}\" raster, binary MSH + UGRID ($config)" 1e9 "$out/${name}_report.json"
   big_rows+=("$(python3 - "$name" "$t_gdal" "$work/$name.time" "$out/${name}_report.json" <<'PY'
 import json, re, sys
 name, t_gdal, tpath, rpath = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4]
@@ -230,16 +231,18 @@ r = json.load(open(rpath))
 est = r["memory"]["estimate_bytes"] / 1e9
 tri = r["mesh_counts"]["triangles"]
 mode = "streamed" if r["memory"]["raster_streamed"] else "whole"
-print(f"{name:<8}{wall:>9.1f}{cpu:>9.1f}{rss:>10.2f}{est:>10.2f}  {mode:<9}{tri:>12}{t_gdal:>10.1f}{wall / t_gdal:>8.2f}")
+print(f"{name:<10}{wall:>9.1f}{cpu:>9.1f}{rss:>10.2f}{est:>10.2f}  {mode:<9}{tri:>12}{t_gdal:>10.1f}{wall / t_gdal:>8.2f}")
 PY
 )")
 }
 big_case one_minute 60 4
 big_case 30s 30 5
 big_case 15s 15 6
+# The same lattice with every size term of configs/global_tides.toml (ARCHITECTURE §8: < 8 GB).
+big_case 15s_tides 15 6 configs/global_15s_tides.toml
 echo
 echo "== global lattices: wall/CPU s, peak RSS and estimate GB, triangles, one gdal_translate -of ENVI of the raster (s) and the ratio (target <= 1.5); load: $(uptime | sed 's/.*load average: //')"
-printf '%-8s%9s%9s%10s%10s  %-9s%12s%10s%8s\n' case wall cpu peak_GB est_GB raster triangles envi_s ratio
+printf '%-10s%9s%9s%10s%10s  %-9s%12s%10s%8s\n' case wall cpu peak_GB est_GB raster triangles envi_s ratio
 for row in "${big_rows[@]}"; do echo "$row"; done
 # The same on the Mercator lattice of the rotated frame (issue 12): 21600 × 24000 pixels to ±86.6°.
 $bin mesh -q -o "$work/one_minute_mercator" --set input.path="$(bash data_tools/make_resampled.sh 60)" --set quadtree.step_deg=0.26666666666666666 \

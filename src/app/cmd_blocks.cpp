@@ -147,7 +147,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   report["config"]["output"]["dir"] = c.output.dir;
   report["config"]["blocks"]["top"] = c.blocks.top;
 
-  const GlobalSetup setup = prepare_global_run(c, false);  // blocks rank the global lattice's squares
+  const GlobalSetup setup = prepare_global_run(c, {.allow_window = false});  // blocks rank the global lattice's squares
   log_memory_estimate(setup, log);
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;

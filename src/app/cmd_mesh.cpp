@@ -99,7 +99,9 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   warn_if_overwriting(c.output.dir, c.output.name + "_report.json", report["config"], Json::object(),
                       "set output.name (or -o DIR) to keep both", log);
 
-  const GlobalSetup setup = prepare_global_run(c);
+  // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
+  const bool tif = std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end();
+  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif});
   const Lattice& lat = setup.lattice;
   log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
            loaded.source, fmt::join(c.input.sources(), " over "), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
@@ -112,7 +114,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
   // Fail on an unwritable output folder before the work, not after.
   OutputSet out(c.output.dir, log);
 
-  const GlobalRun run = run_global_pipeline(c, setup, log, &report);
+  const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, false, tif);
   const raster::Bathymetry& bathy = *run.bathy;
   const auto& ri = bathy.info();
   const mask::WetArea& area = run.area;
@@ -135,7 +137,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
              {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
              {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
   }
-  report["memory"] = memory_json(setup);
+  report["memory"] = memory_json(setup, m.triangle_count());
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
   const std::string report_name = write_global_report(c, report, out);

@@ -33,17 +33,29 @@ namespace {
 //   lattice  kLatticeBitsPerPixel: the wet-vertex, class, fill and quadtree bitmaps alive at the
 //            fill/quadtree peak (about 7 full-lattice bitmaps measured at 15"; 8 bits = 1 byte per
 //            lattice pixel);
-//   mesh     kMeshBytesPerTriangle per triangle (nodes, squares, triangles, statistics, writers;
-//            120 measured at 15", 130 at 1'), with the triangle count guessed before the run as
-//            kTrianglesPerSqrtPixel·√(nx·ny): the refinement follows the coast, whose length in
-//            pixels grows like the side of the lattice (1': 5.3 million triangles, 15": 20.1 million
-//            on ETOPO5 resamples).
-// Measured peak / estimate: 1' whole 2.07 / 2.04 GB, 1' streamed 1.17 / 1.32 GB, 15" streamed
-// 5.76 / 7.06 GB.
+//   mesh     kMeshBytesPerTriangle per triangle: the lattice mesh (about 90 bytes per triangle
+//            with its nodes and squares) and, at the write stage's peak, the geographic copy of
+//            an unrotated mesh (its pole cap; 64) and the shape quality's arrays (33), or the
+//            statistics stage's edge arrays; 215 fits the 15" run with every size term
+//            (29.3 million triangles: 6.58 GB measured at the quality step); a rotated mesh
+//            (no copy) peaks lower, in the statistics stage.
+// `aquatoria mesh` frees the bitmaps before the mesh stage (unless it writes the global run
+// file), so its peak is the larger of the lattice and mesh parts; the other callers keep them
+// beside the mesh (the sum). The triangle count is guessed before the run as
+// kTrianglesPerSqrtPixel·√(nx·ny): the refinement follows the coast, whose length in pixels
+// grows like the side of the lattice (1': 5.3 million triangles, 15": 20.1 million on ETOPO5
+// resamples); the size field's terms move it (the 15" run with every term: 29.3 million).
+// Tolerance: with the mesh's own triangle count (report memory.estimate_bytes_for_mesh) the
+// measured peak is within 25 % of the model for runs whose mesh part exceeds 0.4 GB
+// (StreamCli.EstimateForTheMeshIsWithinItsToleranceOfThePeak, ETOPO5 at 1.875': 0.80 GB
+// measured, 0.80 modelled); the guessed count adds its own error (the 15" run with every size
+// term has 37 % more triangles than the guess). Measured peak / estimate for the mesh's count
+// (2026-11-28): 15" with every size term 6.58 / 6.80 GB (before the run, from the guessed count:
+// 5.10); global_tides on the 1' raster (rotated: no copy) 2.94 / 3.09 GB.
 constexpr double kLatticeBitsPerPixel = 8.0;
-constexpr double kMeshBytesPerTriangle = 140.0;
+constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
-constexpr std::int64_t kBaseBytes = 64LL << 20;  // program, GDAL cache, small tables
+constexpr std::int64_t kBaseBytes = 230'000'000;  // program, GDAL cache, the writers' chunk buffers, small tables
 
 // Estimates are computed in floating point and saturate at 2^62 bytes (4.6 EB): a 1" lattice
 // at L = 12 overflowed the old integer product into a negative estimate.
@@ -160,15 +172,23 @@ std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lat
 
 }  // namespace
 
-GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window) {
+// base + raster + bitmaps and mesh: their sum while the bitmaps stay, else the larger.
+static double model_bytes(const GlobalSetup& s, double mesh_bytes) {
+  const auto lattice = static_cast<double>(s.lattice_bytes);
+  return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
+         (s.masks_kept ? lattice + mesh_bytes : std::max(lattice, mesh_bytes));
+}
+
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
   GlobalSetup s;
+  s.masks_kept = o.keep_masks;
   s.lattice = c.quadtree.lattice == "mercator"
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
   s.rotation = c.rotation.enabled ? PoleRotation(c.rotation.pole_lon_deg, c.rotation.pole_lat_deg) : PoleRotation();
   s.global_lattice = s.lattice;
-  if (allow_window) {
+  if (o.allow_window) {
     s.lattice = window_lattice(c, s.global_lattice, s.rotation, s.lattice_note);
   } else if (c.domain.regional()) {
     s.lattice_note = "this command works on the global lattice";
@@ -255,8 +275,7 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window)
     s.source_options.push_back(ro);
     s.source_plans.push_back(plan);
   }
-  s.estimate_bytes = saturate(static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
-                              static_cast<double>(s.lattice_bytes) + static_cast<double>(s.mesh_bytes));
+  s.estimate_bytes = saturate(model_bytes(s, static_cast<double>(s.mesh_bytes)));
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
     std::string why;
     if (!s.raster.streamed && s.raster.bytes > raster::kStreamAboveBytes) {
@@ -275,21 +294,29 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window)
   return s;
 }
 
-Json memory_json(const GlobalSetup& s) {
-  return Json{{"estimate_bytes", s.estimate_bytes},        {"estimate_raster_bytes", s.raster.bytes},
-              {"estimate_lattice_bytes", s.lattice_bytes}, {"estimate_mesh_bytes", s.mesh_bytes},
-              {"estimate_triangles", s.triangles_guess},   {"limit_bytes", s.memory_limit_bytes},
-              {"raster_streamed", s.raster.streamed},      {"raster_block_rows", s.raster.block_rows},
-              {"raster_band_rows", s.raster.band_rows},    {"peak_rss_bytes", peak_rss_bytes()}};
+std::int64_t estimate_bytes_for(const GlobalSetup& s, std::int64_t triangles) {
+  return saturate(model_bytes(s, kMeshBytesPerTriangle * static_cast<double>(triangles)));
+}
+
+Json memory_json(const GlobalSetup& s, std::int64_t triangles) {
+  Json j{{"estimate_bytes", s.estimate_bytes},        {"estimate_raster_bytes", s.raster.bytes},
+         {"estimate_lattice_bytes", s.lattice_bytes}, {"estimate_mesh_bytes", s.mesh_bytes},
+         {"estimate_triangles", s.triangles_guess},   {"limit_bytes", s.memory_limit_bytes},
+         {"raster_streamed", s.raster.streamed},      {"raster_block_rows", s.raster.block_rows},
+         {"raster_band_rows", s.raster.band_rows},    {"masks_kept", s.masks_kept},
+         {"peak_rss_bytes", peak_rss_bytes()}};
+  if (triangles > 0) j["estimate_bytes_for_mesh"] = estimate_bytes_for(s, triangles);
+  return j;
 }
 
 void log_memory_estimate(const GlobalSetup& s, const Logger& log) {
   log.info(
       "memory: estimate {:.2f} GB of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} GB {}, lattice "
-      "bitmaps {:.2f} GB, mesh {:.2f} GB (~{} triangles)",
+      "bitmaps {:.2f} GB, mesh {:.2f} GB (~{} triangles){}",
       gb(s.estimate_bytes), gb(s.memory_limit_bytes), gb(s.raster.bytes),
       s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows) : std::string("held whole"),
-      gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
+      gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess,
+      s.masks_kept ? "" : "; the bitmaps go before the mesh, so the larger of the two counts");
 }
 
 raster::OpenOptions raster_options(const config::InputOptions& input, std::int64_t max_memory_bytes) {
@@ -685,14 +712,21 @@ static void check_lattice_mesh(GlobalRun& run, const Logger& log, Report* report
 }
 
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics, bool reuse) {
+                              Report* report, bool statistics, bool reuse, bool keep_masks) {
   GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
+  if (!keep_masks) {  // a moved-in empty bitmap frees the words (clear() would keep their capacity)
+    run.area.wet_vertices = Bitmap();
+    run.area.coastal = Bitmap();
+    run.area.filled = Bitmap();
+    if (!run.domain.regional()) run.area.wet = Bitmap();
+  }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   if (run.domain.regional()) type_regional_boundaries(run, log, report);
   if (statistics) check_lattice_mesh(run, log, report);
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
+  if (!keep_masks) run.area.wet = Bitmap();
   if (!statistics) return run;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)

@@ -40,17 +40,28 @@ struct GlobalSetup {
   std::vector<raster::OpenOptions> source_options;  ///< every source, highest priority first
   std::vector<raster::RasterPlan> source_plans;     ///< and its plan (bytes include a blend distance field)
   std::int64_t estimate_bytes = 0;      ///< the whole run (global_run.cpp states the model)
+  bool masks_kept = true;               ///< the bitmaps stay beside the mesh (estimate: their sum, not the larger)
 };
 
 /// Builds the lattice and rotation of `c`, reads the raster's header (whole or streamed) and
 /// refuses, before any data is read, a lattice whose bitmaps would not fit (ConfigError naming
 /// quadtree.levels, quadtree.step_deg and input.max_memory_gb) or a run whose memory estimate is
 /// above input.max_memory_gb (ConfigError naming the key, the estimate and the limit).
-/// A regional run (`[domain]`) gets a window lattice unless `allow_window` is false (the commands whose
-/// later stages index the global lattice: blocks, the nesting of a ROMS grid in a global run).
-GlobalSetup prepare_global_run(const config::GlobalConfig& c, bool allow_window = true);
-/// The report's "memory" section: the estimate, its parts and the peak RSS so far.
-Json memory_json(const GlobalSetup& s);
+/// A regional run (`[domain]`) gets a window lattice unless `o.allow_window` is false (the commands
+/// whose later stages index the global lattice: blocks, the nesting of a ROMS grid in a global run).
+/// `o.keep_masks` as the run_global_pipeline that follows will be called: without them (the bitmaps
+/// freed before the mesh) the peak is the larger of the bitmap and the mesh parts, not their sum.
+struct SetupOptions {
+  bool allow_window = true;
+  bool keep_masks = true;
+};
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o = {});
+/// The estimate of `s` had the mesh `triangles` triangles (the model with the count the run made
+/// instead of the guess; global_run.cpp states its tolerance).
+std::int64_t estimate_bytes_for(const GlobalSetup& s, std::int64_t triangles);
+/// The report's "memory" section: the estimate, its parts and the peak RSS so far; with the
+/// mesh's `triangles` (> 0) also the estimate for that count (estimate_bytes_for_mesh).
+Json memory_json(const GlobalSetup& s, std::int64_t triangles = 0);
 /// "memory: estimate ... of ... allowed" before the run.
 void log_memory_estimate(const GlobalSetup& s, const Logger& log);
 
@@ -95,7 +106,11 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
 /// With `reuse` set and global_run_file_path(c) present, the mask stage is replaced by reading
 /// that file when its inputs match c (log line "mask: reused <file> ..."); when they differ the
 /// mask stage runs and a warning names the file and the first differing input.
+/// With `keep_masks = false` the lattice bitmaps of `area` (wet_vertices, wet, coastal, filled:
+/// 4 bits per pixel, 1.9 GB at 15") are freed as soon as the quadtree has its leaves (`wet` after
+/// a regional run's boundary typing); their counts stay. The mesh, its checks and every file but
+/// the global run file (`tif`) need none of them.
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics = true, bool reuse = false);
+                              Report* report, bool statistics = true, bool reuse = false, bool keep_masks = true);
 
 }  // namespace aq::app

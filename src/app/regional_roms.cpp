@@ -142,7 +142,7 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   if (g.mesh.elements == "squares") g.mesh.elements = "triangles";  // the nesting weights live on triangles
   GlobalSetup setup;
   try {
-    setup = prepare_global_run(g, false);  // the nesting locates grid points on the global lattice
+    setup = prepare_global_run(g, {.allow_window = false});  // the nesting locates grid points on the global lattice
   } catch (const ConfigError& e) {
     throw named(e);
   }

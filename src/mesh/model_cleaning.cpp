@@ -223,6 +223,16 @@ ModelMesh::ModelMesh(const Mesh& m) : input_(m) {
   Mesh g;
   g.lattice = m.lattice;
   g.rotation = m.rotation;
+  // Exactly the kept counts: growing by push_back alone would leave up to twice the capacity.
+  const auto kept_nodes = static_cast<std::size_t>(std::count(new_id.begin(), new_id.end(), NodeId{0}));
+  const auto kept_triangles = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
+  for (auto* v : {&g.node_i, &g.node_j}) v->reserve(kept_nodes);
+  for (auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) v->reserve(kept_nodes);
+  g.node_flags.reserve(kept_nodes);
+  g.triangles.reserve(kept_triangles);
+  g.triangle_level.reserve(kept_triangles);
+  g.triangle_square.reserve(kept_triangles);
+  source_triangle_.reserve(kept_triangles);
   for (std::size_t n = 0; n < static_cast<std::size_t>(nn); ++n) {
     if (new_id[n] < 0) {
       ++stats_.removed_nodes;

@@ -132,17 +132,37 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     }
     if (rep[n] < 0) ++change_of(j >= lat.ny / 2).removed_nodes;
   }
+  // The caps' rings (old ids, ascending I: the node order is by (J, I)) and triangulations, first:
+  // the arrays below are reserved for exactly the kept and the added nodes and triangles (a
+  // capacity of the lattice mesh's counts, which the cap exceeds, doubled every array at the
+  // first cap node: 2.1 GB more at 15").
+  std::vector<std::vector<NodeId>> rings(caps.size());
+  std::vector<mesh::PoleCap> cap_meshes;
+  std::size_t added_nodes = 0, added_triangles = 0;
+  for (std::size_t k = 0; k < caps.size(); ++k) {
+    const PoleRows& r = caps[k];
+    for (std::size_t n = 0; n < nn; ++n)
+      if (lm.node_j[n] == r.ring_j && used[n] != 0) rings[k].push_back(static_cast<NodeId>(n));
+    std::vector<double> ring_lon;
+    for (const NodeId n : rings[k]) ring_lon.push_back(lat.lon_of(lm.node_i[static_cast<std::size_t>(n)]));
+    cap_meshes.push_back(mesh::make_pole_cap(ring_lon, lat.lat_of(r.ring_j), r.north));
+    added_nodes += cap_meshes.back().rlon_deg.size();
+    added_triangles += cap_meshes.back().triangles.size();
+  }
+  std::size_t kept_nodes = 0, kept_triangles = added_triangles;  // at most: a merge drops a few more
+  for (std::size_t n = 0; n < nn; ++n) kept_nodes += rep[n] == static_cast<NodeId>(n);
+  for (const std::int8_t c : tri_cap) kept_triangles += c < 0;
   std::vector<NodeId> new_id(nn, -1);
   mesh::Mesh g;
   g.lattice = lm.lattice;
   g.rotation = lm.rotation;
-  for (auto* v : {&g.node_i, &g.node_j}) v->reserve(nn);
-  for (auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) v->reserve(nn);
-  g.node_flags.reserve(nn);
-  g.triangles.reserve(lm.triangles.size());
-  g.triangle_level.reserve(lm.triangles.size());
-  g.triangle_square.reserve(lm.triangles.size());
-  source_triangle_.reserve(lm.triangles.size());
+  for (auto* v : {&g.node_i, &g.node_j}) v->reserve(kept_nodes + added_nodes);
+  for (auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) v->reserve(kept_nodes + added_nodes);
+  g.node_flags.reserve(kept_nodes + added_nodes);
+  g.triangles.reserve(kept_triangles);
+  g.triangle_level.reserve(kept_triangles);
+  if (squares_out) g.triangle_square.reserve(kept_triangles);  // triangles alone have no squares to point to
+  source_triangle_.reserve(kept_triangles);
   auto push_node = [&](std::int64_t i, std::int64_t j, double lon, double lat_deg, double rlon, double rlat,
                        double depth, std::uint8_t flags) {
     g.node_i.push_back(i);
@@ -162,6 +182,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
   }
   for (std::size_t n = 0; n < nn; ++n)
     if (rep[n] >= 0 && rep[n] != static_cast<NodeId>(n)) new_id[n] = new_id[static_cast<std::size_t>(rep[n])];
+  std::vector<NodeId>().swap(rep);  // new_id says it all now
 
   // Kept triangles (those a merge makes degenerate are dropped).
   for (std::size_t t = 0; t < lm.triangles.size(); ++t) {
@@ -178,7 +199,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     }
     g.triangles.push_back(o);
     g.triangle_level.push_back(lm.triangle_level[t]);
-    g.triangle_square.push_back(squares_out ? lm.triangle_square[t] : -1);
+    if (squares_out) g.triangle_square.push_back(lm.triangle_square[t]);
     source_triangle_.push_back(static_cast<ElementId>(t));
   }
   // Squares (written only with mesh.elements = squares or both, where the poles are merged): a
@@ -211,12 +232,8 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
   for (std::size_t k = 0; k < caps.size(); ++k) {
     const PoleRows& r = caps[k];
     PoleChange& c = change_of(r.north);
-    std::vector<NodeId> ring;  // old ids, ascending I (the node order is by (J, I))
-    for (std::size_t n = 0; n < nn; ++n)
-      if (lm.node_j[n] == r.ring_j && used[n] != 0) ring.push_back(static_cast<NodeId>(n));
-    std::vector<double> ring_lon;
-    for (const NodeId n : ring) ring_lon.push_back(lat.lon_of(lm.node_i[static_cast<std::size_t>(n)]));
-    const mesh::PoleCap cap = mesh::make_pole_cap(ring_lon, lat.lat_of(r.ring_j), r.north);
+    const std::vector<NodeId>& ring = rings[k];
+    const mesh::PoleCap& cap = cap_meshes[k];
     const auto first = static_cast<NodeId>(g.node_i.size());
     const std::size_t added = cap.rlon_deg.size();
     std::vector<double> lon(added), la(added), elev(added, 0.0);
@@ -259,7 +276,6 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
       }
       g.triangles.push_back(o);
       g.triangle_level.push_back(0);
-      g.triangle_square.push_back(-1);
       source_triangle_.push_back(-1);
     }
     double replaced = 0.0;

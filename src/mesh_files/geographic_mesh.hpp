@@ -33,8 +33,10 @@
 //
 // Node ids: the kept lattice nodes in their order, then the new cap nodes (South cap, North cap;
 // rings from the outside in). New nodes have node_i = node_j = -1 and the flag kNodeCap. The
-// island loops follow the kept loops. Cap triangles have level 0 and triangle_square = -1; the
-// capped mesh has no squares. The result depends only on the mesh (no threads, no clock).
+// island loops follow the kept loops. Cap triangles have level 0; the capped mesh has no squares.
+// A mesh for triangle writers has no triangle_square (empty: no squares to point to; it was
+// 8 bytes of -1 per triangle); with squares it keeps the lattice mesh's. The result depends only
+// on the mesh (no threads, no clock).
 #pragma once
 
 #include <cstdint>

@@ -164,6 +164,18 @@ void neighbour_area_ratios(const std::array<NodeId, 3>* tri, std::int64_t nt, st
   }
 }
 
+// The unit vector of every node of m.
+mesh::FillVector<Vec3> unit_vectors(const mesh::Mesh& m) {
+  const auto nn = static_cast<std::int64_t>(m.lon_deg.size());
+  mesh::FillVector<Vec3> p(static_cast<std::size_t>(nn));  // every node written below
+  const double* lon = m.lon_deg.data();
+  const double* lat = m.lat_deg.data();
+  Vec3* pp = p.data();
+#pragma omp parallel for schedule(static) default(none) shared(nn, lon, lat, pp) if (nn >= kParallelMin)
+  for (std::int64_t k = 0; k < nn; ++k) pp[k] = unit_vector_deg(lon[k], lat[k]);
+  return p;
+}
+
 }  // namespace
 
 std::vector<float> order_statistics(const std::vector<float>& values, const std::vector<double>& qs) {
@@ -200,34 +212,46 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     if (bad < 3 * nt) throw InternalError(fmt::format("triangle_shapes: node {} out of range", tri[bad / 3][bad % 3]));
   }
 
-  mesh::FillVector<Vec3> p(static_cast<std::size_t>(nn));  // every node written below
-  {
-    const double* lon = m.lon_deg.data();
-    const double* lat = m.lat_deg.data();
-    Vec3* pp = p.data();
-#pragma omp parallel for schedule(static) default(none) shared(nn, lon, lat, pp) if (nn >= kParallelMin)
-    for (std::int64_t k = 0; k < nn; ++k) pp[k] = unit_vector_deg(lon[k], lat[k]);
-  }
-
+  // In three passes so that at most about 33 bytes per triangle and 24 per node are alive at
+  // once (the five arrays, the areas, the unit vectors and the lists round the nodes together
+  // were 45 per triangle: 1.3 GB at 15"): the areas, then the neighbour ratios (the lists round
+  // the nodes take the unit vectors' place), then the other four from the unit vectors again.
   TriangleShapes s;
   const auto un = static_cast<std::size_t>(nt);
+  mesh::FillVector<double> area(un);  // every triangle written below
+  {
+    const mesh::FillVector<Vec3> p = unit_vectors(m);
+    const Vec3* pp = p.data();
+    double* ar = area.data();
+#pragma omp parallel for schedule(static) default(none) shared(nt, tri, pp, ar) if (nt >= kParallelMin)
+    for (std::int64_t t = 0; t < nt; ++t) {
+      const auto& v = tri[t];
+      ar[t] = std::abs(spherical_triangle_area(pp[v[0]], pp[v[1]], pp[v[2]]));
+    }
+  }
+  s.neighbour_area_ratio.resize(un);
+  // Triangle numbers of 32 bits when they fit: half the memory of the lists round the nodes.
+  if (nt < (std::int64_t{1} << 31))
+    neighbour_area_ratios<std::int32_t>(tri, nt, nn, area.data(), s.neighbour_area_ratio.data());
+  else
+    neighbour_area_ratios<std::int64_t>(tri, nt, nn, area.data(), s.neighbour_area_ratio.data());
+  mesh::FillVector<double>().swap(area);
+
+  const mesh::FillVector<Vec3> p = unit_vectors(m);
   {  // resize zeroes the arrays (their first touch): the four spread over the threads
-    const std::array<std::vector<float>*, 5> arrays{&s.min_angle_deg, &s.max_angle_deg, &s.edge_ratio,
-                                                    &s.neighbour_area_ratio, &s.size_km};
-    const int blocks = std::min(5, nt >= kParallelMin ? thread_count() : 1);
-    quadtree::for_each_block(5, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+    const std::array<std::vector<float>*, 4> arrays{&s.min_angle_deg, &s.max_angle_deg, &s.edge_ratio, &s.size_km};
+    const int blocks = std::min(4, nt >= kParallelMin ? thread_count() : 1);
+    quadtree::for_each_block(4, blocks, [&](int, std::int64_t begin, std::int64_t end) {
       for (std::int64_t k = begin; k < end; ++k) arrays[static_cast<std::size_t>(k)]->resize(un);
     });
   }
-  mesh::FillVector<double> area(un);  // every triangle written below
   const Vec3* pp = p.data();
-  double* ar = area.data();
   float* min_angle = s.min_angle_deg.data();
   float* max_angle = s.max_angle_deg.data();
   float* edge_ratio = s.edge_ratio.data();
   float* size = s.size_km.data();
 #pragma omp parallel for schedule(static) default(none) \
-    shared(nt, tri, pp, ar, min_angle, max_angle, edge_ratio, size) if (nt >= kParallelMin)
+    shared(nt, tri, pp, min_angle, max_angle, edge_ratio, size) if (nt >= kParallelMin)
   for (std::int64_t t = 0; t < nt; ++t) {
     const auto& v = tri[t];
     const Vec3 &a = pp[v[0]], &b = pp[v[1]], &c = pp[v[2]];
@@ -238,13 +262,7 @@ TriangleShapes triangle_shapes(const mesh::Mesh& m) {
     const double lo = std::min({e0, e1, e2}), hi = std::max({e0, e1, e2});
     edge_ratio[t] = lo > 0.0 ? static_cast<float>(hi / lo) : std::numeric_limits<float>::infinity();
     size[t] = static_cast<float>((e0 + e1 + e2) / 3.0 * kAuthalicRadiusKm);
-    ar[t] = std::abs(spherical_triangle_area(a, b, c));
   }
-  // Triangle numbers of 32 bits when they fit: half the memory of the lists round the nodes.
-  if (nt < (std::int64_t{1} << 31))
-    neighbour_area_ratios<std::int32_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
-  else
-    neighbour_area_ratios<std::int64_t>(tri, nt, nn, ar, s.neighbour_area_ratio.data());
   return s;
 }
 

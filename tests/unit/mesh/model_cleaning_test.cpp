@@ -147,6 +147,15 @@ TEST(ModelCleaning, RemovesATriangleHangingOnOneEdge) {
   expect_loops_match(c.mesh());
   EXPECT_EQ(c.source_triangle().size(), 16u);
   EXPECT_EQ(c.source_triangle().back(), 15);
+  // The copy is reserved for exactly what it keeps (push_back alone left up to twice that).
+  const Mesh& g = c.mesh();
+  for (const auto* v : {&g.node_i, &g.node_j}) EXPECT_EQ(v->capacity(), v->size());
+  for (const auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) EXPECT_EQ(v->capacity(), v->size());
+  EXPECT_EQ(g.node_flags.capacity(), g.node_flags.size());
+  EXPECT_EQ(g.triangles.capacity(), g.triangles.size());
+  EXPECT_EQ(g.triangle_level.capacity(), g.triangle_level.size());
+  EXPECT_EQ(g.triangle_square.capacity(), g.triangle_square.size());
+  EXPECT_EQ(c.source_triangle().capacity(), c.source_triangle().size());
 }
 
 TEST(ModelCleaning, ResolvesAPinchKeepingTheFirstOfEqualFans) {

@@ -117,6 +117,25 @@ TEST(GeographicMesh, CapReplacesThePolarRow) {
   EXPECT_EQ(cap_nodes, c.added_nodes);
 }
 
+// The copy is the write stage's largest array set (2.1 GB at 15"): every node and triangle array
+// is reserved for exactly what it holds. A capacity of the lattice mesh's counts, which the cap's
+// nodes exceed, doubled every array at the first cap node.
+TEST(GeographicMesh, CapArraysHoldNoSpareCapacity) {
+  const mesh::Mesh lm = arctic_mesh();
+  const GeographicMesh g(lm, ElementKinds::kTriangles, kSampler);
+  ASSERT_TRUE(g.changed());
+  const mesh::Mesh& m = g.mesh();
+  ASSERT_GT(m.node_count(), 0);
+  for (const auto* v : {&m.node_i, &m.node_j}) EXPECT_EQ(v->capacity(), v->size());
+  for (const auto* v : {&m.lon_deg, &m.lat_deg, &m.rlon_deg, &m.rlat_deg, &m.depth_m})
+    EXPECT_EQ(v->capacity(), v->size());
+  EXPECT_EQ(m.node_flags.capacity(), m.node_flags.size());
+  EXPECT_EQ(m.triangles.capacity(), m.triangles.size());
+  EXPECT_EQ(m.triangle_level.capacity(), m.triangle_level.size());
+  EXPECT_EQ(m.triangle_square.capacity(), m.triangle_square.size());
+  EXPECT_EQ(g.source_triangle().capacity(), g.source_triangle().size());
+}
+
 TEST(GeographicMesh, RotatedLatticeCapsInTheLatticeFrame) {
   const Lattice lat = Lattice::make(10.0, 1, -180.0);
   std::vector<testing::LeafSpec> leaves;

@@ -153,6 +153,35 @@ TEST(UgridWriter, ConnectivityRowsEdgesAndBoundary) {
   EXPECT_EQ(loop[0], m.boundary_edge_loop[0]);
 }
 
+// The edges are made again while they are written, in chunks of 2^20 rows: over more than one
+// chunk (the last one shorter) the file holds exactly the list made whole, in face order: the
+// half-edge a -> b of a face when a < b or when it is a boundary edge (the top row's edges run
+// towards smaller ids, so they come from the boundary set).
+TEST(UgridWriter, EdgesWrittenInChunksAreTheWholeListInFaceOrder) {
+  testing::TempDir dir;
+  const Lattice lat = Lattice::make(1.0, 2, -180.0);  // nx = 1440
+  const auto m = testing::regular_band_mesh(lat, 100, 480);
+  std::set<std::pair<NodeId, NodeId>> boundary;
+  for (const auto& e : m.boundary_edges) boundary.insert({e[0], e[1]});
+  std::vector<long long> want;
+  for (const auto& t : m.triangles)
+    for (int a = 0; a < 3; ++a) {
+      const NodeId u = t[a], v = t[(a + 1) % 3];
+      if (u < v || boundary.count({u, v}) > 0) {
+        want.push_back(u);
+        want.push_back(v);
+      }
+    }
+  ASSERT_GT(want.size() / 2, std::size_t{1} << 20);  // more than one chunk
+  ASSERT_NE(want.size() / 2 % (std::size_t{1} << 20), 0u);
+  UgridOptions o;
+  o.deflate = 0;
+  write_ugrid(m, dir / "m.nc", o);
+  Nc nc(dir / "m.nc");
+  EXPECT_EQ(nc.dim("nMesh_edge"), want.size() / 2);
+  EXPECT_TRUE(nc.ints("mesh_edge_nodes") == want);
+}
+
 TEST(UgridWriter, NodeDataFlagsAndFaceLevels) {
   testing::TempDir dir;
   const auto m = testing::tiny_mesh();
