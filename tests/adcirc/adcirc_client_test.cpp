@@ -18,6 +18,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace adcirc_adcirc_client_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 
@@ -81,3 +83,5 @@ TEST(AdcircClient, RotatedGreenlandMeshRunsSixHours) {
 TEST(AdcircClient, MercatorMeshRunsSixHours) { run_case("configs/global_mercator.toml", "global_mercator", -22); }
 
 }  // namespace
+
+}  // namespace adcirc_adcirc_client_test

@@ -8,6 +8,8 @@
 
 #include "support/regional_client.hpp"
 
+namespace adcirc_adcirc_regional_test {
+
 namespace {
 
 const aq::test::RegionalClientCase kAdcirc{"adcirc", "adcirc.sh", "fort14", "14"};
@@ -19,3 +21,5 @@ TEST(AdcircRegional, GulfOfMexicoM2OnTheOpenBoundaryRunsADay) {
 }
 
 }  // namespace
+
+}  // namespace adcirc_adcirc_regional_test

@@ -11,6 +11,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_blocks_cli_test {
+
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -116,3 +118,5 @@ TEST(BlocksCli, BadTopIsAUsageError) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("1000"));
 }
+
+}  // namespace cli_blocks_cli_test

@@ -16,6 +16,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_check_cli_test {
+
 namespace {
 
 using aq::test::run_aquatoria;
@@ -164,3 +166,5 @@ TEST(CheckCli, PngAndNoPngExcludeEachOther) {
 }
 
 }  // namespace
+
+}  // namespace cli_check_cli_test

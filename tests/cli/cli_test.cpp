@@ -8,6 +8,8 @@
 
 #include "support/run_command.hpp"
 
+namespace cli_cli_test {
+
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -100,3 +102,5 @@ TEST(Cli, ThreeBadValuesAllReported) {
   EXPECT_THAT(r.err, HasSubstr("quadtree.step_deg"));
   EXPECT_THAT(r.err, HasSubstr("output.formats"));
 }
+
+}  // namespace cli_cli_test

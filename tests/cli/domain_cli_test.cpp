@@ -24,6 +24,8 @@
 #include "support/msh_parse.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_domain_cli_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -653,3 +655,5 @@ TEST(DomainCli, GlobalSeedRunIsUnchanged) {
 }
 
 }  // namespace
+
+}  // namespace cli_domain_cli_test

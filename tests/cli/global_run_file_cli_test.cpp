@@ -14,6 +14,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_global_run_file_cli_test {
+
 using aq::test::run_aquatoria;
 using aq::test::slurp;
 using ::testing::HasSubstr;
@@ -154,3 +156,5 @@ TEST(GlobalRunFileCli, MercatorLatticeFileMapsRowsToTheirLatitudes) {
   EXPECT_NEAR(bottom, -lat_max, 1e-6);
   EXPECT_THAT(j["metadata"][""]["AQ_LATTICE"].get<std::string>(), HasSubstr("kind=mercator"));
 }
+
+}  // namespace cli_global_run_file_cli_test

@@ -13,6 +13,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_handoff_chain_cli_test {
+
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -125,3 +127,5 @@ TEST(HandoffChainCli, DataHonestyWarnings) {
   EXPECT_THAT(seed.err, HasSubstr("mask.min_depth_m > 0 leaves them dry"));
   EXPECT_THAT(seed.err, ::testing::Not(HasSubstr("lattice finer than its data")));
 }
+
+}  // namespace cli_handoff_chain_cli_test

@@ -20,6 +20,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_interrupt_cli_test {
+
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -97,3 +99,5 @@ TEST(CliInterrupt, SigpipeWhileWritingLeavesNothingAndExits141) {
 }
 
 }  // namespace
+
+}  // namespace cli_interrupt_cli_test

@@ -33,6 +33,8 @@
 #include "support/run_command.hpp"
 #include "support/ugrid_read.hpp"
 
+namespace cli_mercator_blocks_cli_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -248,3 +250,5 @@ TEST(MercatorBlocksCli, BlocksContoursAndNestingOnTheRotatedMercatorMesh) {
   EXPECT_GT(ratio, 2.0);
   EXPECT_LT(ratio, 4.5);
 }
+
+}  // namespace cli_mercator_blocks_cli_test

@@ -19,6 +19,8 @@
 #include "support/run_command.hpp"
 #include "support/ugrid_read.hpp"
 
+namespace cli_mercator_cli_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -130,3 +132,5 @@ TEST(MercatorCli, WithoutRotationTheArcticBeyondTheRowsIsAnErrorAndNothingIsWrit
 }
 
 }  // namespace
+
+}  // namespace cli_mercator_cli_test

@@ -20,6 +20,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_model_formats_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 
@@ -167,3 +169,5 @@ TEST(ModelFormatsCli, MercatorHasNoLonelyTriangleAndNoPinch) {
 }
 
 }  // namespace
+
+}  // namespace cli_model_formats_cli_test

@@ -22,6 +22,8 @@
 #include "support/nest_invariant.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_refine_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
@@ -366,3 +368,5 @@ TEST_F(RefineCli, SameBytesOnOneAndTwoThreads) {
     EXPECT_TRUE(a == b) << f;
   }
 }
+
+}  // namespace cli_refine_cli_test

@@ -11,6 +11,8 @@
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_regional_bvp_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
@@ -105,3 +107,5 @@ TEST(RegionalBvpCli, TwoBlocksAreMergedIntoOneGrid) {
   const auto rep = report(out, "two_blocks");
   EXPECT_GT(rep.at("quality").at("f1").at("worst").get<double>(), 0.0);  // no folded cell at the seam
 }
+
+}  // namespace cli_regional_bvp_cli_test

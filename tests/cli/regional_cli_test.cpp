@@ -11,6 +11,8 @@
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_regional_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
@@ -123,3 +125,5 @@ TEST(RegionalCli, FourPointLonLatRectangleConvergesAtItsRoundOffFloor) {
   EXPECT_THAT(t.err, ::testing::Not(HasSubstr("round-off floor")));
   fs::remove_all(dir);
 }
+
+}  // namespace cli_regional_cli_test

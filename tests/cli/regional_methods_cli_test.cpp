@@ -11,6 +11,8 @@
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_regional_methods_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_aquatoria;
 using aq::test::run_command;
@@ -140,3 +142,5 @@ TEST(RegionalMethodsCli, BadMethodKeysAreClearErrors) {
   EXPECT_THAT(r.err, HasSubstr("not star-shaped"));
   EXPECT_FALSE(fs::exists(out / "swan_xygrid.nc"));
 }
+
+}  // namespace cli_regional_methods_cli_test

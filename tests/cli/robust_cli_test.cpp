@@ -17,6 +17,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_robust_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::CommandResult;
 using aq::test::run_command;
@@ -210,3 +212,5 @@ TEST(RobustOutputs, AFullDiskIsAClearErrorNeverACrash) {
     EXPECT_EQ(r.out, "") << "left in the folder";
   }
 }
+
+}  // namespace cli_robust_cli_test

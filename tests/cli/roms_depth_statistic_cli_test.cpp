@@ -14,6 +14,8 @@
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_roms_depth_statistic_cli_test {
+
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -78,3 +80,5 @@ TEST(RomsDepthStatisticCli, MinIsDeepestMeanDiffersFromPointAutoIsPointOnACoarse
   EXPECT_GT(differ, mean.hraw.size() / 2);
   EXPECT_EQ(shallower, 0u);
 }
+
+}  // namespace cli_roms_depth_statistic_cli_test

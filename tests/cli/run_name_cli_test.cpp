@@ -9,6 +9,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace cli_run_name_cli_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
@@ -46,3 +48,5 @@ TEST(CliRunName, AnExplicitNameWins) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "mine.txt"));
 }
+
+}  // namespace cli_run_name_cli_test

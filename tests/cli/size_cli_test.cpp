@@ -17,6 +17,8 @@
 #include "support/run_command.hpp"
 #include "support/ugrid_read.hpp"
 
+namespace cli_size_cli_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -136,3 +138,5 @@ TEST(SizeCli, BadSizeKeysNameTheKey) {
 }
 
 }  // namespace
+
+}  // namespace cli_size_cli_test

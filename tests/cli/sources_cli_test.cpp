@@ -19,6 +19,8 @@
 #include "support/run_command.hpp"
 #include "support/synthetic_raster.hpp"
 
+namespace cli_sources_cli_test {
+
 using aq::test::fresh_dir;
 using aq::test::run_aquatoria;
 using aq::test::slurp;
@@ -232,3 +234,5 @@ TEST(SourcesCli, CommandLineReplacesTheFilesChoice) {
   EXPECT_EQ(c.exit_code, 2) << c.err;
   EXPECT_THAT(c.err, HasSubstr("input.path = \"" + r.coarse.string() + "\" and input.paths"));
 }
+
+}  // namespace cli_sources_cli_test

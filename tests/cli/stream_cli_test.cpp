@@ -11,6 +11,8 @@
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
+namespace cli_stream_cli_test {
+
 using aq::test::fresh_dir;
 using aq::test::run_aquatoria;
 using ::testing::HasSubstr;
@@ -128,3 +130,5 @@ TEST(StreamCli, EstimateForTheMeshIsWithinItsToleranceOfThePeak) {
 }
 
 }  // namespace
+
+}  // namespace cli_stream_cli_test

@@ -20,7 +20,7 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::clients_mesh_formats_client_test {
 namespace {
 
 bool have(const std::string& program) { return test::run_command("command -v " + program).exit_code == 0; }
@@ -250,4 +250,4 @@ TEST(MercatorClients, GmshNcdumpCdoAndVtkReadAMercatorMesh) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::clients_mesh_formats_client_test

@@ -25,6 +25,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace clients_roms_grid_client_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -361,3 +363,5 @@ TEST(RomsDisabled, NoGridFileWhenRomsIsOff) {
 }
 
 }  // namespace
+
+}  // namespace clients_roms_grid_client_test

@@ -19,6 +19,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace fesom2_fesom2_client_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 
@@ -109,3 +111,5 @@ TEST(Fesom2Client, MercatorMeshRunsSixHours) {
 }
 
 }  // namespace
+
+}  // namespace fesom2_fesom2_client_test

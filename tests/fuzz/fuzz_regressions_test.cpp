@@ -14,6 +14,8 @@
 
 #include "fuzz/targets.hpp"
 
+namespace fuzz_fuzz_regressions_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -61,3 +63,5 @@ TEST(FuzzRegressions, KeptInputsEndInAClearErrorOrSucceed) {
 }
 
 }  // namespace
+
+}  // namespace fuzz_fuzz_regressions_test

@@ -22,6 +22,8 @@
 #include "support/run_command.hpp"
 #include "support/ugrid_read.hpp"
 
+namespace integration_global_mesh_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 using nlohmann::json;
@@ -427,3 +429,5 @@ TEST(GlobalMeshEtopo5, SquaresUgridHasNoDuplicatePoleNodes) {
   EXPECT_NEAR(w.geodesic_area_km2 / run.report.at("statistics").at("area").at("triangles_km2").get<double>(), 1.0,
               1e-9);
 }
+
+}  // namespace integration_global_mesh_test

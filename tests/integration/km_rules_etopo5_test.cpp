@@ -19,6 +19,8 @@
 #include "support/cli_outputs.hpp"
 #include "support/run_command.hpp"
 
+namespace integration_km_rules_etopo5_test {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -188,3 +190,5 @@ TEST_F(KmRulesEtopo5, SameFilesOnOneAndTwoThreadsAndTheRuleAsGivenInReportAndLog
 }
 
 }  // namespace
+
+}  // namespace integration_km_rules_etopo5_test

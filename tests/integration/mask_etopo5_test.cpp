@@ -9,7 +9,7 @@
 
 #include "mask/wet_area.hpp"
 
-namespace aq::mask {
+namespace aq::mask::integration_mask_etopo5_test {
 namespace {
 
 const std::string kEtopo5 = std::string(AQ_ETOPO_DIR) + "/etopo5.cdf";
@@ -169,4 +169,4 @@ TEST_F(MaskEtopo5, PassageBoxesAreRightOnTheWetMask) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::integration_mask_etopo5_test

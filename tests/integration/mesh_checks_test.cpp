@@ -15,6 +15,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace integration_mesh_checks_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 using nlohmann::json;
@@ -114,3 +116,5 @@ TEST(MeshChecksEtopo5, RotatedH200PassesBecauseBothAreasAreOnTheEllipsoid) {
     EXPECT_LT(tol, 4.4e-4);  // tighter than the old fixed 0.05 × pixel
   }
 }
+
+}  // namespace integration_mesh_checks_test

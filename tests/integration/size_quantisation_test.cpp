@@ -27,7 +27,7 @@
 #include "raster/bathymetry.hpp"
 #include "size/size_field.hpp"
 
-namespace aq {
+namespace aq::integration_size_quantisation_test {
 namespace {
 
 constexpr double kRad = 3.14159265358979323846 / 180.0;
@@ -142,4 +142,4 @@ TEST(SizeQuantisation, EveryTriangleKeepsTheCourantBoundWhereNothingForcesALevel
 }
 
 }  // namespace
-}  // namespace aq
+}  // namespace aq::integration_size_quantisation_test

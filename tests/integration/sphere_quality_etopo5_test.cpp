@@ -20,6 +20,8 @@
 #include "mesh_files/sphere_quality.hpp"
 #include "support/run_command.hpp"
 
+namespace integration_sphere_quality_etopo5_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 using nlohmann::json;
@@ -205,3 +207,5 @@ TEST(SphereQualityEtopo5, RotatedRunGivesFesomTheEulerAnglesOfItsPole) {
   EXPECT_NEAR(q.at("min_angle_deg").at("p50").get<double>(), 34.7, 0.05);
   EXPECT_NEAR(q.at("min_angle_below_20_deg_percent").get<double>(), 26.8, 0.05);
 }
+
+}  // namespace integration_sphere_quality_etopo5_test

@@ -16,7 +16,7 @@
 #include "mask/pixel_classes.hpp"
 #include "support/synthetic_raster.hpp"
 
-namespace aq {
+namespace aq::integration_streamed_input_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -137,4 +137,4 @@ TEST(StreamedInput, VrtOfFourTilesGivesTheSameMesh) {
 }
 
 }  // namespace
-}  // namespace aq
+}  // namespace aq::integration_streamed_input_test

@@ -29,6 +29,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace roms_roms_client_test {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -129,3 +131,5 @@ TEST_F(RomsClient, NorthWesternShelfTwoWayRefinementTwoDays) {
 }
 
 }  // namespace
+
+}  // namespace roms_roms_client_test

@@ -15,6 +15,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace schism_schism_client_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_command;
 
@@ -61,3 +63,5 @@ TEST(SchismClient, DefaultMeshRunsOneDay) { run_case("", "seed_4deg_L3"); }
 TEST(SchismClient, MercatorMeshRunsOneDay) { run_case("configs/global_mercator.toml", "global_mercator"); }
 
 }  // namespace
+
+}  // namespace schism_schism_client_test

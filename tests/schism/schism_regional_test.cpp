@@ -11,6 +11,8 @@
 
 #include "support/regional_client.hpp"
 
+namespace schism_schism_regional_test {
+
 namespace {
 
 const aq::test::RegionalClientCase kSchism{"schism", "schism.sh", "schism", "gr3"};
@@ -27,3 +29,5 @@ TEST(SchismRegional, NorthSeaM2OnTheOpenBoundaryRunsADay) { run_schism("north_se
 TEST(SchismRegional, GulfOfMexicoM2OnTheOpenBoundaryRunsADay) { run_schism("gulf_of_mexico_fe"); }
 
 }  // namespace
+
+}  // namespace schism_schism_regional_test

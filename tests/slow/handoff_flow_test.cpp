@@ -15,6 +15,8 @@
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
+namespace slow_handoff_flow_test {
+
 namespace fs = std::filesystem;
 using aq::test::run_aquatoria;
 
@@ -67,3 +69,5 @@ TEST(HandoffFlow, MeshBlocksRegionalOnTheOneDegreeL5Run) {
   EXPECT_GT(ratio, 2.0);
   EXPECT_LT(ratio, 4.5);
 }
+
+}  // namespace slow_handoff_flow_test

@@ -15,7 +15,7 @@
 #include "support/io_test_mesh.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::slow_io_large_mesh_test {
 namespace {
 
 TEST(LargeMeshWriters, TenMillionTriangles) {
@@ -80,4 +80,4 @@ TEST(LargeMeshWriters, TenMillionTriangles) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::slow_io_large_mesh_test

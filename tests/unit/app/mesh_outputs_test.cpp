@@ -16,7 +16,7 @@
 #include "support/synthetic_raster.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_app_mesh_outputs_test {
 namespace {
 
 raster::Bathymetry flat_sea() {
@@ -248,4 +248,4 @@ TEST(MeshOutputs, AFailingWriterLeavesNoFiles) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_app_mesh_outputs_test

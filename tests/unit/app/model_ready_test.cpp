@@ -9,6 +9,8 @@
 #include "curvilinear/common/roms_depth.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_app_model_ready_test {
+
 namespace {
 
 TEST(ModelReady, DefaultRmaxSmoothsASteepBasinToRx0OfAtMostPointTwo) {
@@ -55,3 +57,5 @@ TEST(ModelReady, Rx1IsZeroOnAFlatBottomAndGrowsWithTheStep) {
 }
 
 }  // namespace
+
+}  // namespace unit_app_model_ready_test

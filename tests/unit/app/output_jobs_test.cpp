@@ -20,7 +20,7 @@
 #include "core/error.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_app_output_jobs_test {
 namespace {
 
 struct CapturedLog {
@@ -271,4 +271,4 @@ TEST(OutputJobs, AnOwnThreadStepRunsBesideTheFiles) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_app_output_jobs_test

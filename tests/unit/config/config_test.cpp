@@ -14,6 +14,8 @@
 #include "config/load.hpp"
 #include "core/error.hpp"
 
+namespace unit_config_config_test {
+
 namespace fs = std::filesystem;
 using aq::config::load_global;
 using ::testing::HasSubstr;
@@ -268,3 +270,5 @@ TEST(RunName, ListsWhatDiffersFromTheSeedRun) {
       load_global(std::nullopt, {"quadtree.step_deg=1", "mask.min_depth_m=10", "output.name=ignored"}).options);
   EXPECT_THAT(n.changed, ::testing::ElementsAre("mask.min_depth_m = 10.0", "quadtree.step_deg = 1.0"));
 }
+
+}  // namespace unit_config_config_test

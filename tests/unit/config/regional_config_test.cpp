@@ -11,6 +11,8 @@
 #include "config/regional.hpp"
 #include "core/error.hpp"
 
+namespace unit_config_regional_config_test {
+
 namespace fs = std::filesystem;
 using aq::config::load_regional;
 using ::testing::HasSubstr;
@@ -93,3 +95,5 @@ TEST(RegionalConfig, CornerNumbersOutOfRange) {
                             "[regional]\ncontrol_points = [[0, 0], [1, 0], [1, 1], [0, 1]]\ncorners = [1, 2, 3, 9]\n");
   EXPECT_THROW((void)load_regional(p.string(), {}), aq::ConfigError);
 }
+
+}  // namespace unit_config_regional_config_test

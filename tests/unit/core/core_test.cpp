@@ -17,6 +17,8 @@
 #include "core/temp_registry.hpp"
 #include "core/types.hpp"
 
+namespace unit_core_core_test {
+
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -249,3 +251,5 @@ TEST(Report, StagesAreRecordedAndLogged) {
   EXPECT_EQ(r.root()["stages"][0]["stage"], "fill");
   EXPECT_TRUE(r.root()["total"].contains("peak_rss_mb"));
 }
+
+}  // namespace unit_core_core_test

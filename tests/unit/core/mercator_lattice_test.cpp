@@ -11,6 +11,8 @@
 #include "core/lattice.hpp"
 #include "core/types.hpp"
 
+namespace unit_core_mercator_lattice_test {
+
 namespace {
 
 using aq::Lattice;
@@ -111,3 +113,5 @@ TEST(MercatorLattice, TheLonLatRowFormulaIsUnchanged) {
 }
 
 }  // namespace
+
+}  // namespace unit_core_mercator_lattice_test

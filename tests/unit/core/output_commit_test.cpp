@@ -20,6 +20,8 @@
 #include "core/temp_registry.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_core_output_commit_test {
+
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -176,3 +178,5 @@ TEST(Errors, NulBytesInMessagesAreShownNotCut) {
   EXPECT_STREQ(e.what(), "key = a\\0b: bad");
   EXPECT_EQ(e.exit_code(), 2);
 }
+
+}  // namespace unit_core_output_commit_test

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_boundary_equidistribution_test {
 namespace {
 
 TEST(Equidistribution, UnitWeightGivesEqualArcLength) {
@@ -32,4 +32,4 @@ TEST(Equidistribution, ProductOfStepAndWeightIsConstant) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_boundary_equidistribution_test

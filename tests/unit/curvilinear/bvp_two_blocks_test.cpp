@@ -11,7 +11,7 @@
 #include "curvilinear/bvp/bvp_two_blocks.hpp"
 #include "curvilinear/bvp/transfinite_interpolation.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_bvp_two_blocks_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -116,4 +116,4 @@ TEST(BvpTwoBlocks, OuterIterationsStopWhenFmaxAndFavgLevelOff) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_bvp_two_blocks_test

@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_cgrid_test {
 namespace {
 
 constexpr double kR = 6371000.0;
@@ -271,4 +271,4 @@ TEST(CGrid, GreatCircleMatchesHaversine) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_cgrid_test

@@ -16,7 +16,7 @@
 #include "curvilinear/common/periodic_spline.hpp"
 #include "curvilinear/common/spline_contour.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_contour_test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -337,4 +337,4 @@ TEST(ContourTest, UniformNodesHaveEqualChordsToRoundOff) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_contour_test

@@ -15,7 +15,7 @@
 #include "curvilinear/elliptic/initial_grids.hpp"
 #include "unit/curvilinear/seed004_domains.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_elliptic_grids_test {
 namespace {
 
 Grid2D swan_tfi_with_section(int L, int M) {
@@ -210,4 +210,4 @@ TEST(Ed2, SameBytesOnOneAndTwoThreads) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_elliptic_grids_test

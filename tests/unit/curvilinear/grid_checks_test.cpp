@@ -19,7 +19,7 @@
 #include "curvilinear/common/grid_checks.hpp"
 #include "curvilinear/conformal/laplace_fill.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_grid_checks_test {
 namespace {
 
 using Complex = std::complex<double>;
@@ -264,9 +264,9 @@ TEST(GridChecks, FieldsAreListedWithNamesAndLocations) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_grid_checks_test
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_grid_checks_test {
 namespace {
 
 // Issue 11: a criterion that is NaN where it is defined fails the check and says where. Finite
@@ -296,4 +296,4 @@ TEST(GridChecks, NaNCriteriaFromFiniteNodesAreListedWithTheCell) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_grid_checks_test

@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_grid_selection_test {
 namespace {
 
 Candidate cand(const char* name, std::array<double, 4> worst, std::array<double, 4> avg, int folded = 0,
@@ -60,4 +60,4 @@ TEST(GridSelection, WhenAllFoldTheAveragesDecideLexicographically) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_grid_selection_test

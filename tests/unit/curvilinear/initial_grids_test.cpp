@@ -11,7 +11,7 @@
 #include "curvilinear/common/grid_checks.hpp"
 #include "unit/curvilinear/seed004_domains.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_initial_grids_test {
 namespace {
 
 TEST(Blending, NormalisedWeightsSumToOneAndInterpolateTheirSections) {
@@ -139,4 +139,4 @@ TEST(Crossings, ALineThroughTheBoundaryIsCounted) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_initial_grids_test

@@ -21,7 +21,7 @@
 #include "curvilinear/regional.hpp"
 #include "grid_params/izogrid_file.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_inverse_test {
 namespace {
 
 RegionalParams black_sea_params() {
@@ -262,4 +262,4 @@ TEST(InverseTest, DISABLED_BigGridTiming) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_inverse_test

@@ -27,7 +27,7 @@
 #include "curvilinear/conformal/inverse_problem.hpp"
 #include "curvilinear/conformal/iz89.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_iz89_test {
 namespace {
 
 struct Polygon {
@@ -225,4 +225,4 @@ TEST(Iz89Test, InnerPassSchedules) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_iz89_test

@@ -20,7 +20,7 @@
 #include "curvilinear/common/grid_checks.hpp"
 #include "curvilinear/conformal/laplace_fill.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_laplace_fill_test {
 namespace {
 
 using Complex = std::complex<double>;
@@ -407,4 +407,4 @@ TEST(LaplaceFillTiming, DISABLED_SorAtFig16Size) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_laplace_fill_test

@@ -19,7 +19,7 @@
 #include "curvilinear/bvp/orthogonal_bvp.hpp"
 #include "curvilinear/bvp/transfinite_interpolation.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_orthogonal_bvp_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -260,4 +260,4 @@ TEST(OrthogonalBvp, TransfiniteInterpolationReproducesBilinearAndLevelsAreChecke
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_orthogonal_bvp_test

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "curvilinear/common/projection.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_projection_test {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -195,4 +195,4 @@ TEST(ProjectionTest, RefusesSingularConfigurations) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_projection_test

@@ -13,6 +13,9 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+
+namespace unit_curvilinear_refine_test {
+
 #endif
 
 namespace {
@@ -119,3 +122,5 @@ TEST(Refine, BoxLeavingTheParentIsRefused) {
   EXPECT_NO_THROW((void)aq::curvilinear::refine_supergrid(p, RefineBox{1, 10, 1, 8, 3}, 0));
   EXPECT_THROW((void)aq::curvilinear::refine_supergrid(p, RefineBox{2, 5, 2, 5, 2}, 0), aq::InternalError);
 }
+
+}  // namespace unit_curvilinear_refine_test

@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_curvilinear_roms_depth_test {
 namespace {
 
 std::size_t at(int ni, int i, int j) { return static_cast<std::size_t>(j * ni + i); }
@@ -129,4 +129,4 @@ TEST(RomsDepth, BadOptionsNameTheKey) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_curvilinear_roms_depth_test

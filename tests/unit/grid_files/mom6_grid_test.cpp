@@ -15,7 +15,7 @@
 #include "grid_files/roms_grid.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_grid_files_mom6_grid_test {
 namespace {
 
 // A curved (but conformal-map-like) supergrid of (2nx+1) x (2ny+1) points in Mercator plane units.
@@ -129,4 +129,4 @@ TEST(Mom6Grid, CheckReadsRomsAndMom6FilesAsOrthogonalGrids) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_grid_files_mom6_grid_test

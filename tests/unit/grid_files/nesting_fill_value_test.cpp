@@ -11,6 +11,8 @@
 #include "grid_files/nesting_netcdf.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_grid_files_nesting_fill_value_test {
+
 namespace {
 
 aq::io::NestingFile two_points() {
@@ -64,3 +66,5 @@ TEST(NestingFillValue, EveryVariableHoldingNanOrMinusOneDeclaresIt) {
   EXPECT_EQ(nc_inq_att(nc, v, "_FillValue", nullptr, nullptr), NC_ENOTATT);
   nc_close(nc);
 }
+
+}  // namespace unit_grid_files_nesting_fill_value_test

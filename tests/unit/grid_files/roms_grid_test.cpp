@@ -13,7 +13,7 @@
 #include "core/error.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_grid_files_roms_grid_test {
 namespace {
 
 curvilinear::Grid2D plane_rectangle(int nx, int ny) {
@@ -251,4 +251,4 @@ TEST(RomsGridFile, UpdatedCopyChangesDepthAndMasksOnly) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_grid_files_roms_grid_test

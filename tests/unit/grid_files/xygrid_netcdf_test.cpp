@@ -16,7 +16,7 @@
 #include "grid_files/xygrid_netcdf.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_grid_files_xygrid_netcdf_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -242,4 +242,4 @@ TEST(XyGridNetcdf, WorksThroughAnOutputSet) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_grid_files_xygrid_netcdf_test

@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_grid_params_control_function_test {
 namespace {
 
 TEST(ControlFunction, EvaluatesThePapersFormulas) {
@@ -41,4 +41,4 @@ TEST(ControlFunction, SampledFieldIsBilinearAndClamped) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_grid_params_control_function_test

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "grid_params/izogrid_file.hpp"
 
-namespace aq::curvilinear {
+namespace aq::curvilinear::unit_grid_params_izogrid_file_test {
 namespace {
 
 const char* kPoints =
@@ -179,4 +179,4 @@ TEST(IzogridFileTest, SurvivesGarbage) {
 }
 
 }  // namespace
-}  // namespace aq::curvilinear
+}  // namespace aq::curvilinear::unit_grid_params_izogrid_file_test

@@ -18,6 +18,8 @@
 #include "mask/lattice_coords.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_handoff_block_contour_test {
+
 namespace {
 
 using aq::Bitmap;
@@ -381,3 +383,5 @@ TEST(ShrinkToWet, ControlPointsDoNotCutAcrossANarrowInlet) {
   }
   EXPECT_EQ(wet_behind, 0);
 }
+
+}  // namespace unit_handoff_block_contour_test

@@ -12,6 +12,8 @@
 #include "core/types.hpp"
 #include "handoff/coastal_blocks.hpp"
 
+namespace unit_handoff_coastal_blocks_test {
+
 namespace {
 
 using aq::Bitmap;
@@ -204,3 +206,5 @@ TEST(RankBlocks, MercatorSquaresAreBoxesOfTheirRowsAndMeasureTheirPixels) {
   EXPECT_NEAR(gp[1], 2.0 / (0.5 * std::cos(61.0 * aq::kDegToRad)), 1e-9);
   EXPECT_EQ(aq::handoff::suggest_ny(g, lat, PoleRotation(), 1, 0), 10);  // ceil(8.25) = 9 -> even
 }
+
+}  // namespace unit_handoff_coastal_blocks_test

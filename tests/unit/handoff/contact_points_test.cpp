@@ -18,6 +18,8 @@
 #include "handoff/contact_points.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_handoff_contact_points_test {
+
 namespace {
 
 using aq::curvilinear::CGrid;
@@ -359,3 +361,5 @@ TEST(ContactPoints, ReceiverValuesInsideTheFineGridComeFromItsFile) {
   EXPECT_THROW((void)aq::handoff::refinement_contact(s.parent, b, fine_grid(s, b), kPad, nullptr, &short_rv),
                aq::InternalError);
 }
+
+}  // namespace unit_handoff_contact_points_test

@@ -15,6 +15,8 @@
 #include "handoff/mesh_locator.hpp"
 #include "unit/handoff/global_mesh_fixture.hpp"
 
+namespace unit_handoff_mesh_locator_test {
+
 namespace {
 
 using aq::handoff::MeshLocation;
@@ -399,3 +401,5 @@ TEST(MeshLocatorMercator, RandomPointsAgreeWithBruteForceInTheMercatorPlane) {
   EXPECT_GT(outside, 150);
   EXPECT_GT(phi_linear_off, inside / 2);
 }
+
+}  // namespace unit_handoff_mesh_locator_test

@@ -15,6 +15,8 @@
 #include "curvilinear/common/roms_depth.hpp"
 #include "handoff/contact_points.hpp"
 
+namespace unit_handoff_nested_bathymetry_test {
+
 namespace {
 
 using aq::curvilinear::RefineBox;
@@ -256,3 +258,5 @@ TEST(NestedBathymetry, BadInputsAreRefused) {
 }
 
 }  // namespace
+
+}  // namespace unit_handoff_nested_bathymetry_test

@@ -17,6 +17,8 @@
 #include "support/temp_dir.hpp"
 #include "unit/handoff/global_mesh_fixture.hpp"
 
+namespace unit_handoff_nesting_test {
+
 namespace {
 
 using aq::curvilinear::Grid2D;
@@ -224,3 +226,5 @@ TEST(GlobalNesting, RotatedMercatorMeshWeightsAreInTheMercatorPlane) {
     EXPECT_NEAR(n.global_element_size_m[k], size, 1e-6 * size);
   }
 }
+
+}  // namespace unit_handoff_nesting_test

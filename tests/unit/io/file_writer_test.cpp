@@ -11,6 +11,8 @@
 #include "core/error.hpp"
 #include "io/file_writer.hpp"
 
+namespace unit_io_file_writer_test {
+
 namespace fs = std::filesystem;
 using aq::io::FileWriter;
 
@@ -80,3 +82,5 @@ TEST(FileWriter, DestroyedWhileWritingLeavesNoThreadBehind) {
   EXPECT_EQ(fs::file_size(p), FileWriter::kChunkBytes + 10);
   fs::remove(p);
 }
+
+}  // namespace unit_io_file_writer_test

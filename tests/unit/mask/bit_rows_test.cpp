@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-namespace aq::mask::bits {
+namespace aq::mask::bits::unit_mask_bit_rows_test {
 namespace {
 
 struct Row {
@@ -109,4 +109,4 @@ TEST(BitRows, ReadWriteBitsAcrossWordBoundary) {
 }
 
 }  // namespace
-}  // namespace aq::mask::bits
+}  // namespace aq::mask::bits::unit_mask_bit_rows_test

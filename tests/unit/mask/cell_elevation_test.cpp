@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_cell_elevation_test {
 namespace {
 
 // A raster of n × n points at (c·d, r·d) with values f(c, r).
@@ -123,4 +123,4 @@ TEST(CellElevation, ParseNamesTheKey) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_cell_elevation_test

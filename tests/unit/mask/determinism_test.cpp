@@ -13,7 +13,7 @@
 #include "mask/pixel_classes.hpp"
 #include "unit/mask/mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_determinism_test {
 namespace {
 
 struct Outputs {
@@ -94,4 +94,4 @@ TEST(MaskDeterminism, OneAndTwoThreadsGiveIdenticalBitmaps) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_determinism_test

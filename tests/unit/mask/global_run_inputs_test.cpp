@@ -11,7 +11,7 @@
 #include "mask/global_run_file.hpp"
 #include "support/synthetic_raster.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_global_run_inputs_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -27,9 +27,9 @@ bool has_key(const std::vector<std::pair<std::string, std::string>>& items, cons
 }
 
 TEST(GlobalRunInputs, VrtTilesCountBySizeAndTime) {
-  const fs::path dir = test::synthetic_dir() / "vrt_inputs";
+  const fs::path dir = aq::test::synthetic_dir() / "vrt_inputs";
   fs::create_directories(dir);
-  const fs::path tile = test::write_tiff(dir / "tile.tif", 1.0, true, true);
+  const fs::path tile = aq::test::write_tiff(dir / "tile.tif", 1.0, true, true);
   const fs::path vrt = dir / "mosaic.vrt";
   std::ofstream(vrt) << R"(<VRTDataset rasterXSize="360" rasterYSize="180">
   <SRS>EPSG:4326</SRS>
@@ -68,4 +68,4 @@ TEST(GlobalRunInputs, VrtTilesCountBySizeAndTime) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_global_run_inputs_test

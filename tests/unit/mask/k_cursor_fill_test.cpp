@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "unit/mask/mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_k_cursor_fill_test {
 namespace {
 
 using test::draw;
@@ -399,4 +399,4 @@ TEST(KFillSeeds, SeedsAreMappedThroughThePoleRotation) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_k_cursor_fill_test

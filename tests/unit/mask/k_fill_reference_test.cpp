@@ -11,7 +11,7 @@
 #include "mask/k_cursor_fill.hpp"
 #include "unit/mask/mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_k_fill_reference_test {
 namespace {
 
 bool cursor_all_wet(const Bitmap& wet, int k, std::int64_t i0, std::int64_t j0) {
@@ -110,4 +110,4 @@ TEST(KFillReference, FloodFillAndComponentsMatchBfs) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_k_fill_reference_test

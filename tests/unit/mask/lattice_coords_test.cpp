@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_lattice_coords_test {
 namespace {
 
 TEST(LatticeCoords, PixelAndWindowCentres) {
@@ -55,4 +55,4 @@ TEST(LatticeCoords, RowMapperAgreesWithPoleRotation) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_lattice_coords_test

@@ -19,7 +19,7 @@
 #include "core/types.hpp"
 #include "mask/wet_area.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_mask_perf_test {
 namespace {
 
 raster::Bathymetry one_minute_raster() {
@@ -128,4 +128,4 @@ TEST(MaskPerf, OneMinuteGlobalLattice) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_mask_perf_test

@@ -11,7 +11,7 @@
 #include "mask/lattice_coords.hpp"
 #include "mask/wet_area.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_mercator_fill_test {
 namespace {
 
 constexpr double kKmPerDeg = 6371.0088 * kPi / 180.0;
@@ -82,4 +82,4 @@ TEST(MercatorFill, ChannelsOfTheSameWidthInKmAreAlikeOnTheMercatorLatticeOnly) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_mercator_fill_test

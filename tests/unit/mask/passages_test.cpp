@@ -13,7 +13,7 @@
 #include "mask/lattice_coords.hpp"
 #include "unit/mask/mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_passages_test {
 namespace {
 
 // 1° lattice; the drawing is pasted with its pixel (0, 0) at (200, 100): λ 20..28, φ 10..15.
@@ -272,4 +272,4 @@ TEST(Passages, JsonAndTextTable) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_passages_test

@@ -8,7 +8,7 @@
 #include "mask/k_cursor_fill.hpp"
 #include "unit/mask/mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_pinches_test {
 namespace {
 
 using test::draw;
@@ -175,4 +175,4 @@ TEST(PinchRemoval, ResultIsAPinchFreeKFillOfItselfOnRandomMasks) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_pinches_test

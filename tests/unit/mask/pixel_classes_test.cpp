@@ -13,7 +13,7 @@
 #include "mask/lattice_coords.hpp"
 #include "unit/mask/mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_pixel_classes_test {
 namespace {
 
 // Global grid-registered raster of step `d` degrees: columns λ = -180 + c·d (c < 360/d), rows
@@ -289,4 +289,4 @@ TEST(PixelClasses, ProgressReachesOneAndBadOptionsThrow) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_pixel_classes_test

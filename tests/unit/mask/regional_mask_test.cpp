@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "mask_drawing.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_regional_mask_test {
 namespace {
 
 // A ROMS-style mask from rows drawn north first ('1' water, anything else land).
@@ -172,4 +172,4 @@ TEST(RegionalMask, PointsOutsideARegionalRasterAreAClearError) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_regional_mask_test

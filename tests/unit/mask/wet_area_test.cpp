@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::mask {
+namespace aq::mask::unit_mask_wet_area_test {
 namespace {
 
 // 1° global raster: ocean (-3000 m) with a land continent, an inland lake and 150 pairs of
@@ -129,4 +129,4 @@ TEST(WetArea, BadOptionsAreConfigErrorsNamingTheKey) {
 }
 
 }  // namespace
-}  // namespace aq::mask
+}  // namespace aq::mask::unit_mask_wet_area_test

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_boundaries_test {
 namespace {
 
 // One loop of n nodes 0..n-1 (edges k -> k+1), plus an optional island loop of 4 nodes.
@@ -103,4 +103,4 @@ TEST(Boundaries, NoOpenEdgeOuterLoopIsMainlandOthersIslands) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_boundaries_test

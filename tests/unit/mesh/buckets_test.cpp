@@ -10,7 +10,7 @@
 
 #include "support/omp_threads.hpp"
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_buckets_test {
 namespace {
 
 // Item i emits (i·7919 mod 5000, 3i) and, for odd i, twice into bucket 31i mod 5000 (3i + 1, 3i + 2):
@@ -54,4 +54,4 @@ TEST(StableBuckets, NoItemsGiveEmptyBuckets) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_buckets_test

@@ -20,7 +20,7 @@
 #include "unit/mesh/mesh_fixtures.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_build_mesh_test {
 namespace {
 
 using testing::build_all;
@@ -336,4 +336,4 @@ TEST(MeshPerf, TenMillionTriangles) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_build_mesh_test

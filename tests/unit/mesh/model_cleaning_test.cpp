@@ -23,7 +23,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_model_cleaning_test {
 namespace {
 
 // Nodes at doubled integer coordinates (centres at odd ones), numbered by (y, x) on first use.
@@ -237,4 +237,4 @@ TEST(ModelCleaning, NothingLeftIsAnError) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_model_cleaning_test

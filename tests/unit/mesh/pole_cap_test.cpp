@@ -13,7 +13,7 @@
 #include "core/error.hpp"
 #include "core/types.hpp"
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_pole_cap_test {
 namespace {
 
 using Vec3 = std::array<double, 3>;
@@ -166,4 +166,4 @@ TEST(PoleCap, RefusesBadRings) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_pole_cap_test

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-namespace aq {
+namespace aq::unit_mesh_rotation_test {
 namespace {
 
 double lon_diff(double a, double b) {
@@ -73,4 +73,4 @@ TEST(Rotation, GreenlandPoleMovesTheGeographicNorthPoleOffTheLatticePole) {
 }
 
 }  // namespace
-}  // namespace aq
+}  // namespace aq::unit_mesh_rotation_test

@@ -25,7 +25,7 @@
 #include "unit/quadtree/mask_fixtures.hpp"
 #include "support/omp_threads.hpp"
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_statistics_test {
 namespace {
 
 using testing::build_all;
@@ -549,4 +549,4 @@ TEST(Statistics, ReportSection) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_statistics_test

@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 
-namespace aq::mesh {
+namespace aq::mesh::unit_mesh_templates_test {
 namespace {
 
 struct Code {
@@ -185,4 +185,4 @@ TEST(Templates, DiagonalChoice) {
 }
 
 }  // namespace
-}  // namespace aq::mesh
+}  // namespace aq::mesh::unit_mesh_templates_test

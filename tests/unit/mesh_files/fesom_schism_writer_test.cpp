@@ -21,7 +21,7 @@
 #include "support/io_test_mesh.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_fesom_schism_writer_test {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -284,4 +284,4 @@ TEST(SchismWriter, HgridReadsBackWithClosedLandBoundariesOnTheMeshBoundary) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_fesom_schism_writer_test

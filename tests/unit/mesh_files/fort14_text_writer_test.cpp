@@ -16,7 +16,7 @@
 #include "support/msh_parse.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_fort14_text_writer_test {
 namespace {
 
 std::vector<std::string> lines_of(const std::filesystem::path& p) {
@@ -158,4 +158,4 @@ TEST(TextWriter, UnwritablePathThrowsOutputErrorNamingIt) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_fort14_text_writer_test

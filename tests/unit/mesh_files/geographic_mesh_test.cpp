@@ -15,7 +15,7 @@
 
 #include "support/io_test_mesh.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_geographic_mesh_test {
 namespace {
 
 using testing::arctic_mesh;
@@ -254,4 +254,4 @@ TEST(GeographicMesh, SphericalHelpers) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_geographic_mesh_test

@@ -14,7 +14,7 @@
 #include "support/msh_parse.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_msh_writer_test {
 namespace {
 
 using testing::MshFile;
@@ -337,4 +337,4 @@ TEST(MshWriter, TrianglesAskedFromASquaresOnlyMeshIsAnInternalError) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_msh_writer_test

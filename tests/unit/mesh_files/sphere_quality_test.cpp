@@ -19,7 +19,7 @@
 #include "support/io_test_mesh.hpp"
 #include "support/omp_threads.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_sphere_quality_test {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -158,4 +158,4 @@ TEST(SphereQuality, ANodeOutOfRangeThrowsNamingTheFirstOne) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_sphere_quality_test

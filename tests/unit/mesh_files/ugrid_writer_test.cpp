@@ -17,7 +17,7 @@
 #include "support/msh_parse.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_ugrid_writer_test {
 namespace {
 
 // Minimal checked reader.
@@ -320,4 +320,4 @@ TEST(UgridWriter, InconsistentBoundaryIsAnInternalError) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_ugrid_writer_test

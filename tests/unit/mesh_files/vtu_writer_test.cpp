@@ -16,7 +16,7 @@
 #include "support/msh_parse.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_mesh_files_vtu_writer_test {
 namespace {
 
 struct Vtu {
@@ -171,4 +171,4 @@ TEST(VtuWriter, UnwritableAndFullDiskThrowOutputErrorNamingThePath) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_mesh_files_vtu_writer_test

@@ -10,6 +10,8 @@
 #include "support/png_pixels.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_pictures_blocks_picture_test {
+
 namespace {
 
 struct Picture : aq::testing::PngPixels {
@@ -72,3 +74,5 @@ TEST(BlocksPicture, OutlinesAreDrawnAlsoAcrossTheSeam) {
   EXPECT_GT(side(-170.0, -20.0), 0);  // its east side at 190 = -170
   EXPECT_EQ(side(-160.0, -20.0), 0);
 }
+
+}  // namespace unit_pictures_blocks_picture_test

@@ -15,7 +15,7 @@
 #include "core/output_files.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_pictures_grid_quality_png_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -78,4 +78,4 @@ TEST(GridQualityPng, DrawsTheCellsColouredAndIsReproducible) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_pictures_grid_quality_png_test

@@ -11,7 +11,7 @@
 #include "support/msh_parse.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_pictures_png_encode_test {
 namespace {
 
 cairo_surface_t* make_picture(int w, int h, bool noisy) {
@@ -71,4 +71,4 @@ TEST(PngEncode, NoisyPictureOverSeveralIdatChunksRoundTrips) { expect_round_trip
 TEST(PngEncode, TinyPicturesWithFewerRowsThanStrips) { expect_round_trip(3, 2, true); }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_pictures_png_encode_test

@@ -17,7 +17,7 @@
 #include "support/synthetic_raster.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_pictures_preview_png_test {
 namespace {
 
 // 5° global raster: ocean 4000 m deep, one land block at λ ∈ [20, 60], φ ∈ [0, 40].
@@ -279,4 +279,4 @@ TEST(PreviewPng, UnwritablePathThrowsOutputErrorNamingIt) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_pictures_preview_png_test

@@ -15,7 +15,7 @@
 #include "grid_params/izogrid_file.hpp"
 #include "pictures/regional_pictures.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_pictures_regional_pictures_test {
 namespace {
 
 using curvilinear::Stage;
@@ -86,4 +86,4 @@ TEST(RegionalPicturesTest, RefusesStagesThatWereNotRun) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_pictures_regional_pictures_test

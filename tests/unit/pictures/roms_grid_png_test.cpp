@@ -13,7 +13,7 @@
 #include "curvilinear/common/projection.hpp"
 #include "support/temp_dir.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_pictures_roms_grid_png_test {
 namespace {
 
 // A 6 x 4 cell plane rectangle (super grid 13 x 9 points) and, at its rho points, every third
@@ -66,4 +66,4 @@ TEST(RomsPicture, ShowsLandAndShadedWater) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_pictures_roms_grid_png_test

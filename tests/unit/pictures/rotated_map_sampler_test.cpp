@@ -15,7 +15,7 @@
 #include "core/lattice.hpp"
 #include "core/types.hpp"
 
-namespace aq::io {
+namespace aq::io::unit_pictures_rotated_map_sampler_test {
 namespace {
 
 constexpr double kStep = 1.0 / 6.0;  // raster spacing, degrees (10')
@@ -144,4 +144,4 @@ TEST(RotatedMapSampler, ARegionalRastersEdgesAreLeftToTheExactPath) {
 }
 
 }  // namespace
-}  // namespace aq::io
+}  // namespace aq::io::unit_pictures_rotated_map_sampler_test

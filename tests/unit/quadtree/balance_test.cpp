@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_balance_test {
 namespace {
 
 using testing::make_lattice;
@@ -123,4 +123,4 @@ TEST(Balance, ParseMode) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_balance_test

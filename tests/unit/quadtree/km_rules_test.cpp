@@ -23,7 +23,7 @@
 #include "core/log.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_km_rules_test {
 namespace {
 
 constexpr double kRad = std::numbers::pi / 180.0;
@@ -302,4 +302,4 @@ TEST(KmRules, BadTargetsNameTheRule) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_km_rules_test

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_leaf_levels_test {
 namespace {
 
 TEST(LeafLevels, PaintsEachLeafsPixelsWithItsLevel) {
@@ -46,4 +46,4 @@ TEST(LeafLevels, LeavesTallerThanABand) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_leaf_levels_test

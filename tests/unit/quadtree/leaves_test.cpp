@@ -10,7 +10,7 @@
 #include "raster/bathymetry.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_leaves_test {
 namespace {
 
 using testing::draw;
@@ -324,4 +324,4 @@ TEST(Leaves, BadInputIsReported) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_leaves_test

@@ -10,7 +10,7 @@
 #include "quadtree/balance.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_nodes_test {
 namespace {
 
 using testing::draw;
@@ -266,4 +266,4 @@ TEST(Nodes, RejectsUnsortedOrOverlappingLeaves) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_nodes_test

@@ -13,7 +13,7 @@
 #include "quadtree/leaves.hpp"
 #include "size/limit_gradient.hpp"
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_size_field_test {
 namespace {
 
 Bitmap all_filled(const Lattice& lat) {
@@ -93,4 +93,4 @@ TEST(SizeField, SteeperFieldGivesMoreLevelStepsPerDistance) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_size_field_test

@@ -13,7 +13,7 @@
 #include "quadtree/leaves.hpp"
 #include "size/size_field.hpp"
 
-namespace aq::quadtree {
+namespace aq::quadtree::unit_quadtree_size_rules_test {
 namespace {
 
 // quadtree.size_km / coast_size_km / coast_band as the size field carries them (size/size_field.hpp).
@@ -119,4 +119,4 @@ TEST(SizeRules, BadTargetsNameTheKey) {
 }
 
 }  // namespace
-}  // namespace aq::quadtree
+}  // namespace aq::quadtree::unit_quadtree_size_rules_test

@@ -20,6 +20,8 @@
 #include "raster/bathymetry.hpp"
 #include "support/synthetic_raster.hpp"
 
+namespace unit_raster_bathymetry_stream_test {
+
 namespace fs = std::filesystem;
 using aq::raster::Bathymetry;
 using aq::raster::OpenOptions;
@@ -299,3 +301,5 @@ TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
 }
 
 }  // namespace
+
+}  // namespace unit_raster_bathymetry_stream_test

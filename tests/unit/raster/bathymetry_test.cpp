@@ -14,6 +14,8 @@
 #include "core/error.hpp"
 #include "raster/bathymetry.hpp"
 
+namespace unit_raster_bathymetry_test {
+
 namespace fs = std::filesystem;
 using aq::raster::Bathymetry;
 using aq::raster::OpenOptions;
@@ -314,3 +316,5 @@ TEST(RealEtopo, Etopo5_20_60AgreeAtOceanPoints) {
   // Coastal point (English Channel): all three see shallow water or coast, within 100 m depth.
   EXPECT_NEAR(b5.sample(-1.0, 50.2), b20.sample(-1.0, 50.2), 100.0);
 }
+
+}  // namespace unit_raster_bathymetry_test

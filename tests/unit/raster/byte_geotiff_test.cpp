@@ -16,7 +16,7 @@
 #include <omp.h>
 #endif
 
-namespace aq::raster {
+namespace aq::raster::unit_raster_byte_geotiff_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -106,4 +106,4 @@ TEST(ByteGeoTiff, FailuresNameTheFile) {
 }
 
 }  // namespace
-}  // namespace aq::raster
+}  // namespace aq::raster::unit_raster_byte_geotiff_test

@@ -18,6 +18,8 @@
 #include "raster/bathymetry.hpp"
 #include "support/temp_dir.hpp"
 
+namespace unit_raster_raster_validation_test {
+
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -194,3 +196,5 @@ TEST(RasterValidation, RegionalRastersWrapInLongitude) {
   EXPECT_DOUBLE_EQ(b.sample(-40.0 - 720.0, 40.0), at320);
   EXPECT_TRUE(std::isnan(b.sample(0.0, 40.0)));  // outside the raster stays no data
 }
+
+}  // namespace unit_raster_raster_validation_test

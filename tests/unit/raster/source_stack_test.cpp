@@ -13,6 +13,8 @@
 #include "raster/bathymetry.hpp"
 #include "support/synthetic_raster.hpp"
 
+namespace unit_raster_source_stack_test {
+
 using aq::raster::Bathymetry;
 
 namespace {
@@ -186,3 +188,5 @@ TEST(SourceStack, OneSourceIsThatSource) {
   EXPECT_FALSE(st.samples_bilinear());
   EXPECT_THROW((void)st.value(0, 0), aq::InternalError);
 }
+
+}  // namespace unit_raster_source_stack_test

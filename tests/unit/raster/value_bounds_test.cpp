@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-namespace aq::raster {
+namespace aq::raster::unit_raster_value_bounds_test {
 namespace {
 
 // A 1° global grid-registered raster: λ = -180 + c, φ = -90 + r; a no-data patch at 10..12°E,
@@ -127,4 +127,4 @@ TEST(ValueBounds, NotAvailableForBicubicSampling) {
 }
 
 }  // namespace
-}  // namespace aq::raster
+}  // namespace aq::raster::unit_raster_value_bounds_test

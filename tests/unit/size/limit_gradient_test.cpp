@@ -15,7 +15,7 @@
 #include "core/types.hpp"
 #include "size/limit_gradient.hpp"
 
-namespace aq::size {
+namespace aq::size::unit_size_limit_gradient_test {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -151,4 +151,4 @@ TEST(DistanceTo, ZeroAtSourcesAndGreatCircleElsewhere) {
 }
 
 }  // namespace
-}  // namespace aq::size
+}  // namespace aq::size::unit_size_limit_gradient_test

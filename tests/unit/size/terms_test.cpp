@@ -12,7 +12,7 @@
 #include "core/types.hpp"
 #include "size/terms.hpp"
 
-namespace aq::size {
+namespace aq::size::unit_size_terms_test {
 namespace {
 
 // 0.5° cells: 720 x 360 (lon-lat lattice, Δ0 = 4°, L = 3).
@@ -125,4 +125,4 @@ TEST(Terms, CflBound) {
 }
 
 }  // namespace
-}  // namespace aq::size
+}  // namespace aq::size::unit_size_terms_test
