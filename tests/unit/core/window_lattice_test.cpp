@@ -5,6 +5,8 @@
 #include "core/error.hpp"
 #include "core/lattice.hpp"
 
+namespace unit_core_window_lattice_test {
+
 namespace {
 
 using aq::Lattice;
@@ -62,3 +64,5 @@ TEST(WindowLattice, RowsClampToThePolesWhichStayPoles) {
 }
 
 }  // namespace
+
+}  // namespace unit_core_window_lattice_test
