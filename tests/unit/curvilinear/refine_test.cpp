@@ -13,10 +13,9 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+#endif
 
 namespace unit_curvilinear_refine_test {
-
-#endif
 
 namespace {
 
