@@ -114,6 +114,11 @@ namespace {
 // model is within its stated 25 %; the bitmaps are freed before the mesh (no tif), so the
 // estimate takes the larger of the bitmap and mesh parts.
 TEST(StreamCli, EstimateForTheMeshIsWithinItsToleranceOfThePeak) {
+#if defined(__SANITIZE_ADDRESS__)
+  // ASan's shadow memory and redzones add to every allocation: the peak of a sanitized binary is
+  // not the one the model states (1.47 x it here). The Release suite checks it.
+  GTEST_SKIP() << "the peak RSS of an AddressSanitizer build is not the product's";
+#endif
   const fs::path dir = fresh_dir("stream", "estimate_medium");
   const auto r = run_aquatoria("mesh -q -o " + dir.string() +
                                " --set quadtree.step_deg=1.0 --set quadtree.levels=5 --set output.name=medium"
