@@ -186,6 +186,7 @@ OpenSnapResult snap_open_boundary(Mesh& m, const std::vector<mask::PolygonRing>&
       }
       if (!(spherical_triangle_area(u[0], u[1], u[2]) > 0.0) || !(orient(q[0], q[1], q[2]) > 0.0)) s.positive = false;
       for (const double ang : spherical_angles_deg(u[0], u[1], u[2])) {
+        if (!std::isfinite(ang)) s.positive = false;  // std::min/max would pass a NaN angle by
         s.min_angle = std::min(s.min_angle, ang);
         s.max_angle = std::max(s.max_angle, ang);
       }
