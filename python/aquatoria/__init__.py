@@ -20,7 +20,12 @@ The C++ work runs with the GIL released and uses OpenMP threads (``OMP_NUM_THREA
 ``threads=`` per call); calls from several Python threads run one after another.
 """
 
-from ._core import (
+from ._import_check import check_interpreter as _check_interpreter
+
+_check_interpreter()  # numpy and the interpreter the module was built for, with one clear message
+del _check_interpreter
+
+from ._core import (  # noqa: E402 (after the check)
     ConfigError,
     Error,
     InputError,
