@@ -17,6 +17,7 @@
 #include <limits>
 #include <mutex>
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/input_files.hpp"
 #include "core/row_progress.hpp"
@@ -325,6 +326,7 @@ struct Bathymetry::Impl {
       next.get();
       if (k + 1 < todo.size()) next = std::async(std::launch::async, read, k + 1);
       try {
+        throw_if_cancelled();  // between bands (core/cancel.hpp)
         if (wanted(todo[k])) work(todo[k], static_cast<const float*>(buf[k % 2].data()));
       } catch (...) {
         if (next.valid()) next.wait();
@@ -698,11 +700,13 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
       std::vector<float> buf(static_cast<std::size_t>(nc));
 #pragma omp for schedule(static)
       for (std::int64_t k = 0; k < n; ++k) {
+        if (cancel_requested()) continue;  // a stop request (core/cancel.hpp): skipped, thrown below
         sample_row(cols, lats[k], buf.data());
         sink(k, buf.data());
         rp.row_done();
       }
     }
+    throw_if_cancelled();
     rp.finish();
     return;
   }
@@ -1149,6 +1153,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     try {
       im->normalise_rows(y0, y1, raw[k % 2].data(), im->v.data(), im->row_lo, rows.data(), true);
       if (progress) progress(static_cast<double>(y1 - y_lo) / static_cast<double>(y_hi - y_lo), "rows");
+      throw_if_cancelled();  // between chunks (core/cancel.hpp)
     } catch (...) {
       if (next.valid()) next.wait();
       throw;
