@@ -40,7 +40,9 @@
 #include "core/report.hpp"
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/model_cleaning.hpp"
 #include "mesh_files/element_kinds.hpp"
+#include "mesh_files/ugrid_writer.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::io {
@@ -62,6 +64,20 @@ struct MeshOutputInfo {
   /// both pictures of a run share one scale; empty = each picture's own values.
   std::vector<double> size_scale_km;
 };
+
+/// The UGRID writer's options of the "ugrid" format (the Python package's to_xarray describes the
+/// same dataset with them).
+UgridOptions ugrid_options(const config::OutputOptions& options, const MeshOutputInfo& info);
+
+/// What the cleaning for the models did (the mesh fort14, fesom and schism write), as
+/// write_mesh_outputs logs and reports it: the "mesh cleaning: ..." line (with `seconds`, the time
+/// the cleaning took), a warning when a lon-lat lattice leaves triangles with an angle above 120°,
+/// and the "cleaning" report section. The Python package's Run.model_mesh says the same.
+struct ModelMeshNotes {
+  std::vector<LogLine> lines;
+  Json cleaning;
+};
+ModelMeshNotes model_mesh_notes(const mesh::ModelMesh& model, double seconds);
 
 /// The formats write_mesh_outputs knows, in its order.
 const std::vector<std::string>& known_output_formats();
