@@ -35,7 +35,7 @@ from ._core import (  # noqa: E402 (after the check)
     __version__,
 )
 from ._config import AquatoriaWarning
-from ._mesh import Run, mesh
+from ._mesh import Mesh, ModelMesh, Run, mesh
 from ._mask import Mask, mask
 from ._regional import Grid, regional
 
@@ -51,6 +51,8 @@ __all__ = [
     "mesh",
     "mask",
     "Run",
+    "Mesh",
+    "ModelMesh",
     "Mask",
     "regional",
     "Grid",

@@ -2,6 +2,7 @@
 
 from . import _core
 from ._config import emit_warnings, prepare, threads_arg
+from ._interrupt import call
 
 #: Values of Mask.classes.
 DRY, COASTAL, WET = 0, 1, 2
@@ -26,7 +27,7 @@ def mask(config=None, overrides=None, *, raster=None, lon=None, lat=None, thread
         As :func:`aquatoria.mesh`.
     """
     config, sets, mem = prepare(config, overrides, raster, lon, lat)
-    core = _core.MaskRun(config, sets, bool(verbose), threads_arg(threads))
+    core = call(_core.MaskRun, config, sets, bool(verbose), threads_arg(threads))
     emit_warnings(core.take_log())
     return Mask(core, mem)
 
@@ -55,9 +56,9 @@ class Mask:
     def __init__(self, core, memory_raster=None):
         self._core = core
         self._memory_raster = memory_raster
-        self.classes = core.classes()
-        self.filled = core.filled()
-        self.levels = core.levels()
+        self.classes = call(core.classes)
+        self.filled = call(core.filled)
+        self.levels = call(core.levels)
         self.lon = core.lon
         self.lat = core.lat
         self.lon_edges = core.lon_edges
