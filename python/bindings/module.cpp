@@ -27,19 +27,19 @@
 #include "app/global_run.hpp"
 #include "app/mesh_outputs.hpp"
 #include "app/mesh_run.hpp"
-#include "core/cancel.hpp"
-#include "core/timer.hpp"
-#include "io/memory_dataset.hpp"
 #include "config/load.hpp"
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
+#include "core/timer.hpp"
+#include "io/memory_dataset.hpp"
+#include "mesh/model_cleaning.hpp"
+#include "mesh_arrays.hpp"
 #include "mesh_files/element_kinds.hpp"
 #include "mesh_files/geographic_mesh.hpp"
 #include "mesh_files/ugrid_writer.hpp"
-#include "mesh/model_cleaning.hpp"
-#include "mesh_arrays.hpp"
 #include "python_common.hpp"
 #include "quadtree/leaf_levels.hpp"
 #include "raster/memory_raster.hpp"
@@ -374,12 +374,11 @@ PYBIND11_MODULE(_core, m) {
             return aq::python::mesh_dict(*g, r.geographic_columns(), self);
           },
           py::arg("threads"))
-      .def(
-          "lattice_mesh",
-          [](py::object self) {
-            MeshRun& r = self.cast<MeshRun&>();
-            return aq::python::mesh_dict(r.run().mesh, r.lattice_columns(), self);
-          })
+      .def("lattice_mesh",
+           [](py::object self) {
+             MeshRun& r = self.cast<MeshRun&>();
+             return aq::python::mesh_dict(r.run().mesh, r.lattice_columns(), self);
+           })
       .def(
           "model_mesh",
           [](py::object self, const std::string& format, int threads) {

@@ -37,8 +37,7 @@ class Report {
 class StageScope {
  public:
   /// Starts a stage; throws Cancelled when the run has been asked to stop (core/cancel.hpp).
-  StageScope(std::string name, Report* report, const Logger& log)
-      : name_(std::move(name)), report_(report), log_(log) {
+  StageScope(std::string name, Report* report, const Logger& log) : name_(std::move(name)), report_(report), log_(log) {
     throw_if_cancelled();
   }
   /// Ends the stage with a one-line summary of what it produced; then throws Cancelled when the

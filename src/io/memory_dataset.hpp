@@ -22,16 +22,16 @@ class MemoryDataset final : public DatasetSink {
   struct Attribute {
     std::string name;
     bool is_text = false;
-    std::string text;            ///< is_text
+    std::string text;                   ///< is_text
     DataType type = DataType::kDouble;  ///< otherwise: the numbers and their type
     std::vector<double> values;
   };
   struct Variable {
     std::string name;
     DataType type = DataType::kDouble;
-    std::vector<int> dims;                  ///< dimension ids, slowest first
-    std::vector<Attribute> attributes;      ///< in definition order
-    std::vector<unsigned char> data;        ///< row-major values of `type` (sized by end_definitions)
+    std::vector<int> dims;              ///< dimension ids, slowest first
+    std::vector<Attribute> attributes;  ///< in definition order
+    std::vector<unsigned char> data;    ///< row-major values of `type` (sized by end_definitions)
   };
 
   void start(bool large_indices) override { large_indices_ = large_indices; }

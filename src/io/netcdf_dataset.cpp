@@ -44,8 +44,8 @@ NetcdfDataset::~NetcdfDataset() {
 
 void NetcdfDataset::check(int status, const std::string& what) const {
   if (status != NC_NOERR) {
-    throw OutputError(fmt::format("{}: netCDF {}: {}{}", path_.string(), what, nc_strerror(status),
-                                  write_failure_note(path_)));
+    throw OutputError(
+        fmt::format("{}: netCDF {}: {}{}", path_.string(), what, nc_strerror(status), write_failure_note(path_)));
   }
 }
 
@@ -144,12 +144,14 @@ void NetcdfDataset::extent(int var, std::int64_t row, std::int64_t rows, std::ve
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const double* values) {
   std::vector<std::size_t> s, c;
   extent(var, row, rows, s, c);
-  check(nc_put_vara_double(id_, var, s.data(), c.data(), values), "write " + var_names_.at(static_cast<std::size_t>(var)));
+  check(nc_put_vara_double(id_, var, s.data(), c.data(), values),
+        "write " + var_names_.at(static_cast<std::size_t>(var)));
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const long long* values) {
   std::vector<std::size_t> s, c;
   extent(var, row, rows, s, c);
-  check(nc_put_vara_longlong(id_, var, s.data(), c.data(), values), "write " + var_names_.at(static_cast<std::size_t>(var)));
+  check(nc_put_vara_longlong(id_, var, s.data(), c.data(), values),
+        "write " + var_names_.at(static_cast<std::size_t>(var)));
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const int* values) {
   std::vector<std::size_t> s, c;
@@ -159,12 +161,14 @@ void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const int*
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const short* values) {
   std::vector<std::size_t> s, c;
   extent(var, row, rows, s, c);
-  check(nc_put_vara_short(id_, var, s.data(), c.data(), values), "write " + var_names_.at(static_cast<std::size_t>(var)));
+  check(nc_put_vara_short(id_, var, s.data(), c.data(), values),
+        "write " + var_names_.at(static_cast<std::size_t>(var)));
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const signed char* values) {
   std::vector<std::size_t> s, c;
   extent(var, row, rows, s, c);
-  check(nc_put_vara_schar(id_, var, s.data(), c.data(), values), "write " + var_names_.at(static_cast<std::size_t>(var)));
+  check(nc_put_vara_schar(id_, var, s.data(), c.data(), values),
+        "write " + var_names_.at(static_cast<std::size_t>(var)));
 }
 
 void NetcdfDataset::close() {

@@ -88,7 +88,9 @@ Fort14Boundaries fort14_boundaries(const mesh::Mesh& mesh, const Fort14Options& 
       const bool island = sg.type == mesh::BoundaryType::kIsland;
       l.flag = island ? options.island_type : options.mainland_type;
       l.comment = fmt::format("land boundary {} ({})", b.land.size() + 1,
-                              island ? "island" : sg.closed ? "mainland, closed" : "mainland");
+                              island      ? "island"
+                              : sg.closed ? "mainland, closed"
+                                          : "mainland");
       b.land.push_back(std::move(l));
     }
     return b;
