@@ -138,8 +138,7 @@ inline Logger make_logger(const std::shared_ptr<LogLines>& lines, bool verbose) 
 // to view: an empty std::vector's data() may be null).
 template <typename T>
 py::array view(const T* data, std::vector<py::ssize_t> shape, py::handle owner) {
-  if (data == nullptr) {
-    for (auto& n : shape) n = 0;
+  if (data == nullptr) {  // an empty vector: its first dimension is 0
     py::array_t<T> empty(shape);
     empty.attr("setflags")(py::arg("write") = false);
     return empty;
