@@ -5,8 +5,10 @@ and run in the calling process::
 
     import aquatoria as aq
     run = aq.mesh("configs/global_mercator.toml", {"quadtree.size_km": 110})
-    run.nodes, run.triangles, run.depth, run.level, run.boundaries, run.report
-    ds = run.to_xarray()                       # UGRID-1.0 / CF dataset
+    run.nodes, run.triangles, run.depth, run.level, run.boundaries, run.report  # the UGRID file's mesh
+    m = run.model_mesh("fort14")               # the mesh the .14 file holds, node for node
+    m.nodes, m.triangles, m.depth, m.open_segments, m.land_segments
+    ds = run.to_xarray()                       # UGRID-1.0 / CF dataset, made in memory
     run.write("out/gm", formats=["msh", "fort14"])
     m = aq.mask("configs/global_mercator.toml")  # classes, filled area, levels; no mesh
     g = aq.regional("configs/black_sea.toml")     # g.lon_rho, g.pm, g.check()
@@ -17,7 +19,8 @@ overrides with the keys of ``aquatoria mesh --set`` (``{"quadtree.size_km": 110}
 :class:`InputError`, :class:`OutputError`, ... with the command line's messages.
 
 The C++ work runs with the GIL released and uses OpenMP threads (``OMP_NUM_THREADS``, or
-``threads=`` per call); calls from several Python threads run one after another.
+``threads=`` per call); calls from several Python threads run one after another. Ctrl-C stops a
+long call with KeyboardInterrupt and leaves no file behind.
 """
 
 from ._import_check import check_interpreter as _check_interpreter

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <cstring>
-#include <type_traits>
 
 #include "core/error.hpp"
 
@@ -91,8 +90,11 @@ void MemoryDataset::put_values(int var, std::int64_t row, std::int64_t rows, con
     throw InternalError(fmt::format("memory dataset: rows {}..{} of {} are out of range", row, row + rows, v.name));
   auto store = [&](auto tag) {
     using U = decltype(tag);
-    U* out = reinterpret_cast<U*>(v.data.data()) + first;
-    for (std::int64_t k = 0; k < count; ++k) out[k] = static_cast<U>(values[k]);
+    unsigned char* out = v.data.data() + static_cast<std::size_t>(first) * sizeof(U);
+    for (std::int64_t k = 0; k < count; ++k) {
+      const U x = static_cast<U>(values[k]);
+      std::memcpy(out + static_cast<std::size_t>(k) * sizeof(U), &x, sizeof(U));
+    }
   };
   switch (v.type) {
     case DataType::kByte:

@@ -154,8 +154,10 @@ TEST(MemoryDataset, StoresValuesInTheVariablesTypeAndRefusesMisuse) {
   EXPECT_THROW(m.dim("late", 1), InternalError);
   const long long values[4] = {7, 8, 9, 10};
   m.put(idx, 1, 2, values);
-  const auto* stored = reinterpret_cast<const std::int32_t*>(m.variables()[0].data.data());
-  EXPECT_EQ(std::vector<std::int32_t>(stored, stored + 6), (std::vector<std::int32_t>{0, 0, 7, 8, 9, 10}));
+  std::vector<std::int32_t> stored(6);
+  ASSERT_EQ(m.variables()[0].data.size(), 6 * sizeof(std::int32_t));
+  std::memcpy(stored.data(), m.variables()[0].data.data(), 6 * sizeof(std::int32_t));
+  EXPECT_EQ(stored, (std::vector<std::int32_t>{0, 0, 7, 8, 9, 10}));
   EXPECT_EQ(m.variables()[static_cast<std::size_t>(scalar)].data.size(), 4U);  // a scalar holds one 0
   EXPECT_THROW(m.put(idx, 2, 2, values), InternalError);                       // rows 2..3 of 3
   EXPECT_EQ(m.global_attributes().at(0).text, "t");
