@@ -14,8 +14,8 @@ namespace aq::mask {
 namespace {
 
 void validate(const config::MaskOptions& o) {
-  if (!std::isfinite(o.min_depth_m) || o.min_depth_m < 0.0)
-    throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", o.min_depth_m));
+  if (!std::isfinite(o.min_depth_m))
+    throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", o.min_depth_m));
   if (o.cursor < 1 || o.cursor > 64)
     throw ConfigError(fmt::format("mask.cursor = {}: K must be between 1 and 64", o.cursor));
   (void)parse_sampling(o.sampling);
@@ -72,9 +72,18 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     area.wet = std::move(pc.wet);
     area.coastal = std::move(pc.coastal);
     area.classes = {pc.wet_vertex_count, pc.wet_count, pc.coastal_count, pc.dry_count};
-    stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule)", lattice.nx,
+    std::string datum;
+    if (options.min_depth_m < 0.0) {  // a floodplain: the same pixel rule at the datum, for the sea inside Ω_L
+      ClassifyOptions at_datum = co;
+      at_datum.min_depth_m = 0.0;
+      at_datum.progress = {};
+      area.datum_wet = std::move(classify_pixels(bathy, lattice, rot, at_datum).wet);
+      area.datum_wet_pixels = area.datum_wet.count();
+      datum = fmt::format("; {} wet at the datum", area.datum_wet_pixels);
+    }
+    stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule){}", lattice.nx,
                            lattice.ny, lattice.mercator() ? "Mercator " : "", lattice.pixel_deg(), pc.wet_count,
-                           pc.coastal_count, pc.dry_count, options.min_depth_m, options.sampling));
+                           pc.coastal_count, pc.dry_count, options.min_depth_m, options.sampling, datum));
   }
   {
     StageScope stage("fill", report, log);
@@ -93,6 +102,13 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     area.fill = kf.stats;
     area.seeds = std::move(kf.seeds);
     area.filled_pixels = area.fill.filled_pixels;
+    if (regional) {  // the water beyond the domain edge, at the datum: where the mesh is open
+      const Bitmap& water = area.datum_wet.nx() > 0 ? area.datum_wet : area.wet;
+      area.open = water;
+      auto& o = area.open.words();
+      const auto& d = domain->inside.words();
+      for (std::size_t k = 0; k < o.size(); ++k) o[k] &= ~d[k];
+    }
     stage.done(fmt::format("K = {}: {} filled pixels ({:.1f}% of wet), {} wet pixels left out, {} wet components",
                            options.cursor, area.fill.filled_pixels,
                            area.fill.wet_pixels > 0 ? 100.0 * static_cast<double>(area.fill.filled_pixels) /
@@ -108,6 +124,13 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
       for (const SeedInfo& s : area.seeds) seed_windows.push_back(s.window);
       area.pinches.removal = remove_pinches(area.filled, options.cursor, seed_windows);
       area.filled_pixels = area.filled.count();
+    }
+    if (area.datum_wet.nx() > 0) {  // the sea inside Ω_L (after pinch removal); the rest is floodplain
+      area.sea = area.filled;
+      auto& w = area.sea.words();
+      const auto& d = area.datum_wet.words();
+      for (std::size_t k = 0; k < w.size(); ++k) w[k] &= d[k];
+      area.floodplain_pixels = area.filled_pixels - area.sea.count();
     }
     area.pinches.pinches = find_pinches(area.filled);
     locate_pinches(area.pinches.pinches, lattice, rot);
@@ -141,6 +164,11 @@ Json wet_area_json(const WetArea& area, const config::MaskOptions& options, std:
   j["cursor"] = options.cursor;
   j["sampling"] = options.sampling;
   j["lattice"] = {{"nx", area.wet.nx()}, {"ny", area.wet.ny()}};
+  if (options.min_depth_m < 0.0)  // README "A storm-surge mesh"
+    j["floodplain"] = {{"top_m", -options.min_depth_m},
+                       {"datum_wet_pixels", area.datum_wet_pixels},
+                       {"floodplain_pixels", area.floodplain_pixels},
+                       {"sea_pixels", area.filled_pixels - area.floodplain_pixels}};
   j["classes"] = {{"wet_vertices", area.classes.wet_vertices},
                   {"wet", area.classes.wet},
                   {"coastal", area.classes.coastal},
