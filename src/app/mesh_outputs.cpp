@@ -345,6 +345,14 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
         if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
       };
       if (o->colour == PreviewColour::kTarget) o->triangle_values = info.target_km;
+      if (o->colour == PreviewColour::kElevation) {  // the mean node elevation (m) of each lattice-mesh triangle
+        o->triangle_values.resize(mesh.triangles.size());
+        for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+          double sum = 0.0;
+          for (const NodeId n : mesh.triangles[k]) sum += mesh.depth_m[static_cast<std::size_t>(n)];
+          o->triangle_values[k] = static_cast<float>(sum / 3.0);
+        }
+      }
       if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget) o->value_range_km = info.size_scale_km;
       plan(
           format, name + ".png",
