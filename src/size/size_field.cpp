@@ -320,9 +320,12 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
         take_min(h, term);
       }
       if (needs_depth(s)) {
+        // A floodplain cell without sea has no depth at rest: the wavelength and slope terms are
+        // the sea's (the floodplain terms size it), as on land (the CFL bound keeps it, below).
         depth.assign(n, std::numeric_limits<double>::quiet_NaN());
         for (std::size_t k = 0; k < n; ++k)
-          if (water[k] != 0) depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
+          if (water[k] != 0 && (sea_cells.empty() || sea_cells[k] != 0))
+            depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
       }
     }
     timings["depth"] = round3(t.wall_s());
