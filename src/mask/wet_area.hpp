@@ -53,6 +53,11 @@ struct WetArea {
   ClassCounts classes;
   std::int64_t datum_wet_pixels = 0;   ///< h < 0: pixels wet at the datum
   std::int64_t floodplain_pixels = 0;  ///< h < 0: filled pixels not wet at the datum (after pinch removal)
+  /// h < 0: sea pixels the seeds reach only across the floodplain (4-connected through sea pixels
+  /// they are not): lakes, lagoons and depressions below the datum behind land. A model starts
+  /// them wet at 0 m. Their count, components and geographic box (pixel centres).
+  std::int64_t inland_sea_pixels = 0, inland_sea_components = 0;
+  double inland_sea_lon_min = 0.0, inland_sea_lon_max = 0.0, inland_sea_lat_min = 0.0, inland_sea_lat_max = 0.0;
   FillStats fill;                  ///< statistics of the fill (before pinch removal)
   std::int64_t filled_pixels = 0;  ///< |Ω_L| as returned (after pinch removal)
   std::vector<SeedInfo> seeds;
