@@ -251,8 +251,8 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   if (s.coast.h0_km > 0.0) {
     Timer t;
     std::vector<double> term = coast_term(coast_d, s.coast.h0_km, s.coast.alpha);
-    for (std::size_t k = 0; k < n; ++k)
-      if (coast_water[k] == 0) term[k] = kInf;  // a floodplain cell: the floodplain terms size it
+    for (std::size_t k = 0; k < floodplain_cells.size(); ++k)  // the floodplain terms size floodplain without sea
+      if (floodplain_cells[k] != 0 && sea_cells[k] == 0) term[k] = kInf;
     st.terms["coast"] = summary(term, water);
     take_min(h, term);
     timings["coast"] = round3(t.wall_s());
