@@ -168,12 +168,13 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
       area.floodplain_pixels = area.filled_pixels - area.sea.count();
       find_inland_sea(area, lattice, rot, options.cursor);
       if (area.inland_sea_pixels > 0)
-        log.warn("floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
-                 "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
-                 "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
-                 "elevation (elev.ic) starts them dry",
-                 area.inland_sea_pixels, area.inland_sea_components, area.inland_sea_lon_min, area.inland_sea_lon_max,
-                 area.inland_sea_lat_min, area.inland_sea_lat_max);
+        log.warn(
+            "floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
+            "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
+            "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
+            "elevation (elev.ic) starts them dry",
+            area.inland_sea_pixels, area.inland_sea_components, area.inland_sea_lon_min, area.inland_sea_lon_max,
+            area.inland_sea_lat_min, area.inland_sea_lat_max);
     }
     area.pinches.pinches = find_pinches(area.filled);
     locate_pinches(area.pinches.pinches, lattice, rot);
@@ -215,8 +216,8 @@ Json wet_area_json(const WetArea& area, const config::MaskOptions& options, std:
                        {"inland_sea_pixels", area.inland_sea_pixels},
                        {"inland_sea_components", area.inland_sea_components}};
   if (area.inland_sea_pixels > 0)
-    j["floodplain"]["inland_sea_box_deg"] = {area.inland_sea_lon_min, area.inland_sea_lon_max,
-                                             area.inland_sea_lat_min, area.inland_sea_lat_max};
+    j["floodplain"]["inland_sea_box_deg"] = {area.inland_sea_lon_min, area.inland_sea_lon_max, area.inland_sea_lat_min,
+                                             area.inland_sea_lat_max};
   j["classes"] = {{"wet_vertices", area.classes.wet_vertices},
                   {"wet", area.classes.wet},
                   {"coastal", area.classes.coastal},

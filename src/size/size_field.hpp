@@ -96,9 +96,9 @@ struct SizeFieldStats {
 /// `coast` (mask/coast.hpp) says where the coast is: a cell is a coast cell when it holds a pixel
 /// that is not filled (not sea, with a floodplain) and not open water beyond a regional domain's
 /// edge. The coast and feature terms measure from those cells; with a floodplain (coast.sea) they,
-/// and the wavelength and slope terms, size the cells holding sea, and the floodplain terms (size.inland: distance inland from the
-/// nearest cell holding sea; size.elevation: the elevation at the cell centre, at least 0) size
-/// the cells holding floodplain pixels (filled, not sea).
+/// and the wavelength and slope terms, size the cells holding sea, and the floodplain terms (size.inland: distance
+/// inland from the nearest cell holding sea; size.elevation: the elevation at the cell centre, at least 0) size the
+/// cells holding floodplain pixels (filled, not sea).
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report, const mask::CoastSources& coast = {});

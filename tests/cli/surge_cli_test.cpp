@@ -53,7 +53,8 @@ fs::path coast_raster() {
     GDALAllRegister();
     const double step = 0.1;
     const int n = 240;
-    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(f.c_str(), n, n, 1, GDT_Float32, nullptr);
+    GDALDataset* ds =
+        GetGDALDriverManager()->GetDriverByName("GTiff")->Create(f.c_str(), n, n, 1, GDT_Float32, nullptr);
     double gt[6] = {-2.0, step, 0.0, 22.0, 0.0, -step};
     ds->SetGeoTransform(gt);
     OGRSpatialReference srs;
@@ -72,7 +73,8 @@ fs::path coast_raster() {
   return p;
 }
 
-const std::string kFormats = "--set 'output.formats=[\"fort14\", \"schism\", \"text\", \"ugrid\", \"msh\", \"vtu\", \"png\"]'";
+const std::string kFormats =
+    "--set 'output.formats=[\"fort14\", \"schism\", \"text\", \"ugrid\", \"msh\", \"vtu\", \"png\"]'";
 
 aq::test::CommandResult mesh_coast(const fs::path& dir, double h, int threads = 2, const std::string& more = "") {
   std::ostringstream cmd;
@@ -254,7 +256,7 @@ TEST(SurgeCli, ALimitAboveTheRidgeReachesThePlainBehindIt) {
   ASSERT_EQ(mesh_coast(dir, -25.0).exit_code, 0);
   const std::vector<Node> text = read_text_nodes(dir / "coast.txt");
   EXPECT_GT(count_if_nodes(text, 15.4, 18.6), 100);  // plain B, over the 20 m ridge
-  EXPECT_EQ(count_if_nodes(text, 19.1, 25.0), 0);     // not the 50 m land
+  EXPECT_EQ(count_if_nodes(text, 19.1, 25.0), 0);    // not the 50 m land
 }
 
 TEST(SurgeCli, AtTheDatumThereIsNoFloodplain) {
@@ -346,10 +348,12 @@ TEST(SurgeCli, ShippedGulfSurgeConfig) {
   for (std::size_t k = 0; k < m.open[0].size(); ++k) {
     const Node& n = m.nodes[static_cast<std::size_t>(m.open[0][k])];
     EXPECT_GT(n.depth, 0.0) << "an open node on land at " << n.lon << ", " << n.lat;
-    if (k + 1 < m.open[0].size()) open_km.push_back(great_circle_km(n, m.nodes[static_cast<std::size_t>(m.open[0][k + 1])]));
+    if (k + 1 < m.open[0].size())
+      open_km.push_back(great_circle_km(n, m.nodes[static_cast<std::size_t>(m.open[0][k + 1])]));
   }
   // The open boundary follows the size field (the deep Gulf: level 0-1), the coast is at the finest level.
-  EXPECT_GT(median(open_km), 2.0 * median(land_km)) << "open " << median(open_km) << " km, land " << median(land_km) << " km";
+  EXPECT_GT(median(open_km), 2.0 * median(land_km))
+      << "open " << median(open_km) << " km, land " << median(land_km) << " km";
   const auto report = aq::test::read_report(one, "gulf_surge");
   EXPECT_EQ(report["floodplain"]["top_m"].get<double>(), 10.0);
   EXPECT_GT(report["floodplain"]["nodes"].get<long>(), 200);
@@ -379,8 +383,9 @@ TEST(SurgeCli, BadValuesAreRefusedAtLoadWithTheKeyAndTheRange) {
       {"--set output.png_color=\\\"flood\\\"", {"output.png_color", "\"elevation\""}},
   };
   for (const auto& c : cases) {
-    const auto r = aq::test::run_command(std::string(AQ_BINARY) + " mesh -q --set input.path=" +
-                                         coast_raster().string() + " -o " + dir.string() + " " + c.set);
+    const auto r =
+        aq::test::run_command(std::string(AQ_BINARY) + " mesh -q --set input.path=" + coast_raster().string() + " -o " +
+                              dir.string() + " " + c.set);
     EXPECT_EQ(r.exit_code, 2) << c.set << "\n" << r.err;
     for (const std::string& s : c.says) EXPECT_NE(r.err.find(s), std::string::npos) << c.set << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir)) << c.set << ": nothing is written";
@@ -388,9 +393,9 @@ TEST(SurgeCli, BadValuesAreRefusedAtLoadWithTheKeyAndTheRange) {
 }
 
 TEST(SurgeCli, BlocksRefuseAFloodplain) {
-  const auto r = aq::test::run_command(std::string(AQ_BINARY) + " blocks -q --set input.path=" +
-                                       coast_raster().string() + " --set mask.min_depth_m=-5 -o " +
-                                       aq::test::fresh_dir("surge", "blocks").string());
+  const auto r =
+      aq::test::run_command(std::string(AQ_BINARY) + " blocks -q --set input.path=" + coast_raster().string() +
+                            " --set mask.min_depth_m=-5 -o " + aq::test::fresh_dir("surge", "blocks").string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("mask.min_depth_m = -5"), std::string::npos) << r.err;
 }

@@ -38,8 +38,8 @@ namespace fs = std::filesystem;
 // The client's param.nml with the values of a 24-hour run at its default Δt = 300 s (hourly records
 // in one stack), as `schism.sh run GR3 24` writes them.
 std::string day_run(std::string nml) {
-  for (const auto& [key, value] : {std::pair{"rnday", "1"}, std::pair{"dt", "300"}, std::pair{"nspool", "12"},
-                                   std::pair{"ihfskip", "288"}}) {
+  for (const auto& [key, value] :
+       {std::pair{"rnday", "1"}, std::pair{"dt", "300"}, std::pair{"nspool", "12"}, std::pair{"ihfskip", "288"}}) {
     const std::regex re(std::string("\\n\\s*") + key + "\\s*=\\s*([^\\s!]+)");
     std::smatch m;
     if (!std::regex_search(nml, m, re)) {
@@ -138,8 +138,9 @@ TEST(SchismSurge, GulfSurgeFloodplainWetsAndDriesForADay) {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
   const fs::path bin = (cache != nullptr && *cache != '\0') ? fs::path(cache) / "bin" / "pschism"
-                       : (xdg != nullptr && *xdg != '\0') ? fs::path(xdg) / "aq-schism" / "bin" / "pschism"
-                                                          : fs::path(home != nullptr ? home : "") / ".cache" / "aq-schism" / "bin" / "pschism";
+                       : (xdg != nullptr && *xdg != '\0')
+                           ? fs::path(xdg) / "aq-schism" / "bin" / "pschism"
+                           : fs::path(home != nullptr ? home : "") / ".cache" / "aq-schism" / "bin" / "pschism";
   ASSERT_TRUE(fs::exists(bin)) << bin.string();
   const auto sim = aq::test::run_command("cd " + run.string() +
                                          " && OMPI_MCA_btl_vader_single_copy_mechanism=none mpirun --oversubscribe "
@@ -148,8 +149,8 @@ TEST(SchismSurge, GulfSurgeFloodplainWetsAndDriesForADay) {
                                          " > screen.log 2>&1");
   const std::string mirror = aq::test::slurp(run / "outputs" / "mirror.out");
   ASSERT_NE(mirror.find("Run completed successfully"), std::string::npos)
-      << "SCHISM did not end normally (exit " << sim.exit_code << "): " << aq::test::slurp(run / "outputs" / "fatal.error")
-      << aq::test::slurp(run / "screen.log");
+      << "SCHISM did not end normally (exit " << sim.exit_code
+      << "): " << aq::test::slurp(run / "outputs" / "fatal.error") << aq::test::slurp(run / "screen.log");
   EXPECT_NE(mirror.find("TIME STEP=          288;"), std::string::npos) << "288 steps of 300 s";
 
   std::set<long> flooded;

@@ -193,7 +193,8 @@ TEST(Leaves, CoastalBandWithCoastSourcesSkipsOpenWaterAndHoldsTheShoreline) {
               shore = shore || !sea.get(ii, jj);
             }
           const bool expect = m.get(i, j) && (edge || (with_sea && sea.get(i, j) && shore));
-          ASSERT_EQ(cb.get(i, j), expect) << "band " << band << (with_sea ? " with sea" : "") << " at " << i << "," << j;
+          ASSERT_EQ(cb.get(i, j), expect)
+              << "band " << band << (with_sea ? " with sea" : "") << " at " << i << "," << j;
           shore_only += expect && !edge ? 1 : 0;
         }
       }

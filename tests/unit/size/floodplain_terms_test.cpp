@@ -31,7 +31,8 @@ raster::Bathymetry strip_raster() {
   const std::int64_t nc = 361, nr = 181;
   std::vector<float> v(static_cast<std::size_t>(nc * nr));
   for (std::int64_t r = 0; r < nr; ++r)
-    for (std::int64_t c = 0; c < nc; ++c) v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(elevation(-180.0 + static_cast<double>(c)));
+    for (std::int64_t c = 0; c < nc; ++c)
+      v[static_cast<std::size_t>(r * nc + c)] = static_cast<float>(elevation(-180.0 + static_cast<double>(c)));
   return raster::Bathymetry::from_grid(std::move(v), nc, nr, -180.0, -90.0, 1.0, 1.0);
 }
 
@@ -63,7 +64,9 @@ config::GlobalConfig floodplain_config() {
 // Row 72: the cells just north of the equator, where the nearest cell of a column is on the row.
 constexpr std::int64_t kRow = 72;
 
-double cells_km(const FieldGrid& g, std::int64_t a, std::int64_t b) { return g.distance_km(g.index(a, kRow), g.index(b, kRow)); }
+double cells_km(const FieldGrid& g, std::int64_t a, std::int64_t b) {
+  return g.distance_km(g.index(a, kRow), g.index(b, kRow));
+}
 
 TEST(FloodplainTerms, CoastFromTheShorelineInlandAndElevationOnTheFloodplain) {
   const Strip s;
