@@ -43,6 +43,10 @@ class Mask:
         0 dry (all 4 pixel corners above -h), 1 coastal, 2 wet (all 4 corners at or below -h).
     filled : numpy.ndarray of bool
         The K-cursor fill from the seeds (the area the mesh covers).
+    floodplain : numpy.ndarray of bool
+        With mask.min_depth_m < 0 (a storm-surge mesh): the filled pixels that are not wet at the
+        datum, land up to -min_depth_m above it (the report's mask.floodplain.floodplain_pixels);
+        all False otherwise.
     levels : numpy.ndarray of uint8
         Quadtree level of the leaf holding each pixel, 255 where there is none.
     lon, lat : numpy.ndarray of float64
@@ -58,6 +62,7 @@ class Mask:
         self._memory_raster = memory_raster
         self.classes = call(core.classes)
         self.filled = call(core.filled)
+        self.floodplain = call(core.floodplain)
         self.levels = call(core.levels)
         self.lon = core.lon
         self.lat = core.lat
@@ -81,7 +86,7 @@ class Mask:
         return self._core.report()
 
     def to_xarray(self):
-        """classes, filled and levels as an xarray.Dataset on (lat, lon) pixel centres, with the
+        """classes, filled, floodplain and levels as an xarray.Dataset on (lat, lon) pixel centres, with the
         pixel edges as lon_bnds / lat_bnds and the lattice as attributes."""
         import numpy as np
         import xarray as xr
@@ -95,6 +100,8 @@ class Mask:
                             {"long_name": "pixel class", "flag_values": np.array([0, 1, 2], np.uint8),
                              "flag_meanings": "dry coastal wet"}),
                 "filled": (("lat", "lon"), self.filled, {"long_name": "K-cursor fill (the meshed area)"}),
+                "floodplain": (("lat", "lon"), self.floodplain,
+                               {"long_name": "filled pixels above the datum (mask.min_depth_m < 0)"}),
                 "levels": (("lat", "lon"), self.levels,
                            {"long_name": "quadtree level of the leaf holding the pixel", "_FillValue": NO_LEVEL}),
                 "lon_bnds": (("lon", "nv"), lon_b),

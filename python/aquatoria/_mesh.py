@@ -117,8 +117,15 @@ class Mesh:
 
     @property
     def depth(self):
-        """(n,) float64: sea-floor depth at the nodes in metres, positive down (the files' depth)."""
+        """(n,) float64: sea-floor depth at the nodes in metres, positive down (the files' depth);
+        negative on a floodplain above the datum (:attr:`floodplain_top_m` > 0)."""
         return self._a["depth"]
+
+    @property
+    def floodplain_top_m(self):
+        """float: > 0 for a floodplain mesh (mask.min_depth_m < 0): it reaches land up to this many
+        metres above the datum, where :attr:`depth` is negative (dry at rest); 0 otherwise."""
+        return self._a["floodplain_top_m"]
 
     @property
     def elevation(self):
@@ -185,8 +192,13 @@ class ModelMesh:
         The files' triangles in their corner order: anticlockwise (fort.14, hgrid.gr3) or
         clockwise (FESOM2's elem2d.out, n1 n3 n2).
     depth : numpy.ndarray, (n,) float64
-        The files' depth column: metres below the datum, positive down (fort.14, hgrid.gr3), or
-        FESOM2's aux3d.out bottom, negative, 0 where the elevation is at or above the datum.
+        The files' depth column: metres below the datum, positive down (fort.14, hgrid.gr3;
+        negative on a floodplain above the datum, which ADCIRC and SCHISM start dry), or FESOM2's
+        aux3d.out bottom, negative, 0 where the elevation is at or above the datum (FESOM2 has no
+        wetting and drying: model_mesh("fesom") of a floodplain mesh warns as the command does).
+    floodplain_top_m : float
+        > 0 for a floodplain mesh (mask.min_depth_m < 0): the highest land it reaches above the
+        datum (m); 0 otherwise.
     boundaries : list of dict
         The files' boundary lists in their order (fort.14 / hgrid.gr3: the NOPE open segments, then
         the NBOU / NLAND land boundaries): ``type`` ("open", "mainland", "island"), ``flag``
@@ -212,6 +224,7 @@ class ModelMesh:
         self.nodes = arrays["nodes"]
         self.triangles = arrays["triangles"]
         self.depth = arrays["depth"]
+        self.floodplain_top_m = arrays["floodplain_top_m"]
         self.boundaries = arrays["boundaries"]
         self.open_segments = [b for b in self.boundaries if b["type"] == "open"]
         self.land_segments = [b for b in self.boundaries if b["type"] != "open"]
@@ -304,8 +317,16 @@ class Run:
 
     @property
     def depth(self):
-        """(n,) float64: the geographic mesh's sea-floor depth in metres, positive down."""
+        """(n,) float64: the geographic mesh's sea-floor depth in metres, positive down (negative on
+        a floodplain above the datum)."""
         return self.geographic_mesh.depth
+
+    @property
+    def floodplain_top_m(self):
+        """float: > 0 for a floodplain mesh (mask.min_depth_m < 0): the mesh reaches land up to this
+        many metres above the datum (its nodes there have a negative depth; the report's
+        "floodplain" section counts them); 0 otherwise."""
+        return self.lattice_mesh.floodplain_top_m
 
     @property
     def elevation(self):

@@ -84,6 +84,7 @@ py::dict mesh_dict(const mesh::Mesh& m, const NodeColumns& columns, py::handle o
   d["boundary_edge_loop"] = vec_view(m.boundary_edge_loop, owner);
   d["pinch_nodes"] = vec_view(m.pinch_nodes, owner);
   d["typed"] = m.typed;
+  d["floodplain_top_m"] = m.floodplain_top_m;
   py::list boundaries;
   if (m.typed) {
     std::vector<std::uint8_t> types(m.boundary_edge_type.size());
@@ -175,6 +176,7 @@ py::dict model_dict(const mesh::ModelMesh& model, const mesh::Mesh& geographic, 
 
   py::dict d;
   d["format"] = model_format_name(format);
+  d["floodplain_top_m"] = model.mesh().floodplain_top_m;
   d["nodes"] = nodes;
   d["depth"] = depth;
   d["triangles"] = triangles;

@@ -124,6 +124,13 @@ class MeshRun {
     }
     return *model_;
   }
+  /// What the "fesom" format logs of the model mesh (the floodplain a FESOM2 mesh cannot keep dry),
+  /// once per run.
+  void fesom_notes() {
+    if (fesom_noted_) return;
+    fesom_noted_ = true;
+    if (const auto w = io::fesom_floodplain_warning(model().mesh())) log_.log(LogLevel::kWarning, *w);
+  }
   /// The mesh model() cleaned: the geographic mesh when the elements are triangles.
   const mesh::Mesh& geographic_triangles() {
     if (kinds_ == io::ElementKinds::kTriangles) return geographic();
@@ -198,6 +205,7 @@ class MeshRun {
 
   std::shared_ptr<LogLines> lines_;
   Logger log_;
+  bool fesom_noted_ = false;
   config::Loaded<config::GlobalConfig> loaded_;
   Report report_;
   app::GlobalRun run_;
@@ -396,6 +404,7 @@ PYBIND11_MODULE(_core, m) {
               model = &r.model();
               geo = &r.geographic_triangles();
             }
+            if (f == aq::python::ModelFormat::kFesom) r.fesom_notes();
             return aq::python::model_dict(*model, *geo, f, r.options().output.fesom_levels, self);
           },
           py::arg("format"), py::arg("threads"))
@@ -443,6 +452,24 @@ PYBIND11_MODULE(_core, m) {
                py::gil_scoped_release release;
                std::fill(o, o + nx * ny, std::uint8_t{0});
                aq::python::add_bitmap(a.filled, 1, o);
+             }
+             return out.attr("view")("bool");
+           })
+      .def("floodplain",
+           [](const MaskRun& r) {
+             // mask.min_depth_m < 0: the filled pixels not wet at the datum (WetArea::sea is the rest)
+             const auto& a = r.run().area;
+             const auto nx = a.filled.nx(), ny = a.filled.ny();
+             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
+             std::uint8_t* o = out.mutable_data();
+             {
+               py::gil_scoped_release release;
+               std::fill(o, o + nx * ny, std::uint8_t{0});
+               if (a.sea.nx() == nx && a.sea.ny() == ny) {
+                 aq::python::add_bitmap(a.filled, 1, o);
+                 aq::python::add_bitmap(a.sea, 1, o);  // sea ⊂ filled: 2 = sea, 1 = floodplain
+                 for (std::int64_t k = 0; k < nx * ny; ++k) o[k] = o[k] == 1 ? 1 : 0;
+               }
              }
              return out.attr("view")("bool");
            })

@@ -83,6 +83,17 @@ ModelMeshNotes model_mesh_notes(const mesh::ModelMesh& model, double seconds) {
   return notes;
 }
 
+std::optional<std::string> fesom_floodplain_warning(const mesh::Mesh& model) {
+  if (model.floodplain_top_m <= 0.0) return std::nullopt;  // FESOM2 has no wetting and drying
+  const auto above = std::count_if(model.depth_m.begin(), model.depth_m.end(), [](double e) { return e > 0.0; });
+  if (above == 0) return std::nullopt;
+  return fmt::format(
+      "fesom: FESOM2 has no wetting and drying: aux3d.out writes the {} nodes of the floodplain "
+      "(above the datum, up to {} m) at 0 m, and FESOM2 deepens them to its 5th level, water; "
+      "mesh a surge domain for ADCIRC or SCHISM (fort14, schism), or set mask.min_depth_m >= 0",
+      above, model.floodplain_top_m);
+}
+
 void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elements) {
   const auto& known = known_output_formats();
   for (const auto& f : o.formats) {
@@ -307,15 +318,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
               return Facts{{"open-boundary nodes", s.nodes}};
             });
       }
-      if (g.floodplain_top_m > 0.0) {  // FESOM2 has no wetting and drying
-        const auto above = std::count_if(g.depth_m.begin(), g.depth_m.end(), [](double e) { return e > 0.0; });
-        if (above > 0)
-          hold(LogLevel::kWarning,
-               fmt::format("fesom: FESOM2 has no wetting and drying: aux3d.out writes the {} nodes of the floodplain "
-                           "(above the datum, up to {} m) at 0 m, and FESOM2 deepens them to its 5th level, water; "
-                           "mesh a surge domain for ADCIRC or SCHISM (fort14, schism), or set mask.min_depth_m >= 0",
-                           above, g.floodplain_top_m));
-      }
+      if (const auto w = fesom_floodplain_warning(g)) hold(LogLevel::kWarning, *w);
       const FesomRotation r = fesom_rotation(mesh.rotation);
       hold(LogLevel::kInfo,
            fmt::format("FESOM namelist.config &geometry: {} ({})", r.namelist(),

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,6 +79,11 @@ struct ModelMeshNotes {
   Json cleaning;
 };
 ModelMeshNotes model_mesh_notes(const mesh::ModelMesh& model, double seconds);
+
+/// The warning the "fesom" format gives for a floodplain mesh (floodplain_top_m > 0) of the
+/// cleaned model mesh `model` with nodes above the datum (FESOM2 has no wetting and drying: aux3d.out
+/// writes them at 0 m); nullopt otherwise. The Python package's Run.model_mesh("fesom") says the same.
+std::optional<std::string> fesom_floodplain_warning(const mesh::Mesh& model);
 
 /// The formats write_mesh_outputs knows, in its order.
 const std::vector<std::string>& known_output_formats();
