@@ -150,6 +150,21 @@ class Build(build):
         super().run()
 
 
+def check_build_tools():
+    """pip --no-build-isolation builds with what the interpreter running it has: without `wheel`
+    setuptools stops with "invalid command 'bdist_wheel'", which names neither the cause nor the fix
+    (pyenv's or conda's python3 first on PATH, a venv made without --system-site-packages)."""
+    try:
+        import wheel  # noqa: F401
+    except ImportError:
+        sys.exit("aquatoria: building needs the package `wheel` in the interpreter running pip, %s (Python %s), "
+                 "and pip --no-build-isolation takes only what it has. Make the virtual environment with "
+                 "Debian's interpreter, which sees Debian's wheel, setuptools and numpy (apt-get install "
+                 "python3-wheel python3-setuptools python3-numpy): /usr/bin/python3 -m venv --system-site-packages "
+                 ".venv; or install wheel for this one" % (sys.executable, sys.version.split()[0]))
+
+
+check_build_tools()
 # setuptools' own working folders (build/lib.*, bdist.*) go inside the CMake tree, not beside it.
 _work = os.path.join(build_dir(), "python-setuptools")
 os.makedirs(_work, exist_ok=True)

@@ -126,3 +126,22 @@ def test_import_by_another_python_version_names_the_one_to_use(tmp_path):
     last = p.stderr.strip().splitlines()[-1]
     assert last.startswith("ImportError: aquatoria's compiled module was built for Python 3.99"), last
     assert "-m pip install --no-build-isolation" in last
+
+
+def test_pip_in_an_environment_without_wheel_says_which_python_to_use(tmp_path):
+    # a venv without --system-site-packages has pip and setuptools but no wheel, as pyenv's python3
+    # first on PATH: pip --no-build-isolation then fails before CMake with one message naming the fix
+    env_dir = tmp_path / "bare"
+    subprocess.run([sys._base_executable, "-m", "venv", str(env_dir)], check=True, env=clean_env())
+    bare = str(env_dir / "bin" / "python")
+    assert subprocess.run([bare, "-c", "import wheel"], capture_output=True).returncode != 0
+    env = clean_env()
+    env["AQ_BUILD_DIR"] = str(tmp_path / "tree")
+    p = subprocess.run([bare, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--no-deps",
+                        "--disable-pip-version-check", SOURCE_DIR], cwd=tmp_path, env=env, capture_output=True,
+                       text=True)
+    assert p.returncode != 0
+    out = p.stdout + p.stderr
+    assert "aquatoria: building needs the package `wheel` in the interpreter running pip, %s" % bare in out, out
+    assert "/usr/bin/python3 -m venv --system-site-packages" in out and "python3-wheel" in out
+    assert not (tmp_path / "tree").exists()  # nothing configured or built
