@@ -48,6 +48,11 @@ struct WetArea {
   std::vector<PassageResult> passages;  ///< empty unless mask.passages
 };
 
+/// The pixels a regional run classifies on an unrotated lattice (README "Regional FE meshes"):
+/// the domain's box and one level-0 square around it (clamped to a window lattice); outside it no
+/// vertex is sampled and every pixel is dry.
+PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
+
 /// Runs the mask stage. Validates `options` first (ConfigError naming the mask.* key: min_depth_m
 /// finite >= 0, cursor 1..64, sampling "vertex"/"area", seeds non-empty and valid, seed_radius_deg
 /// finite >= 0) and the lattice/bitmap sizes; seeds as in place_seeds (ConfigError when no
