@@ -7,9 +7,12 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <limits>
+#include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/timer.hpp"
 #include "core/types.hpp"
 #include "mask/domain.hpp"
 #include "mask/global_run_file.hpp"
@@ -21,6 +24,11 @@
 #include "mesh_files/element_kinds.hpp"
 #include "quadtree/build_leaves.hpp"
 #include "size/size_field.hpp"
+#ifdef AQ_HAVE_MPI
+#include "forest/comm.hpp"
+#include "forest/mpi_session.hpp"
+#include "forest/pipeline.hpp"
+#endif
 
 namespace aq::app {
 
@@ -422,10 +430,10 @@ static Json source_json(const raster::Bathymetry& b) {
               {"memory_bytes", i.memory_bytes}};
 }
 
-GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
-                            bool reuse) {
-  GlobalRun run;
-  run.setup = setup;
+// The read stage, the lattice's and the domain's lines and report sections: what both engines do
+// first.
+static void open_inputs(GlobalRun& run, const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                        Report* report) {
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;
   const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
@@ -500,7 +508,6 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
 
   run.domain = mask::make_domain(c.domain, lat, rot);
   if (run.domain.regional()) {
-    reuse = false;  // the global run file holds a global fill
     log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
              lat.pixel_count(), lat.windowed() ? "window" : "global",
              100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
@@ -513,6 +520,40 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
                                  {"lat_min_deg", run.domain.lat_min},
                                  {"lat_max_deg", run.domain.lat_max}};
   }
+}
+
+// The report's "input" section (after the classification: a streamed raster's statistics come from
+// that pass).
+static void input_json(const raster::Bathymetry& bathy, const config::GlobalConfig& c, Report* report) {
+  if (report == nullptr) return;
+  const auto& ri = bathy.info();
+  const std::size_t nsources = bathy.source_count();
+  if (nsources == 1) {
+    (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
+                              {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
+                              {"min_m", ri.min_m},         {"max_m", ri.max_m},          {"streamed", ri.streamed},
+                              {"band_rows", ri.band_rows}, {"block_rows", ri.block_rows}};
+  } else {
+    (*report)["input"] = Json{{"path", ri.path}, {"blend_km", c.input.blend_km}, {"streamed", ri.streamed}};
+  }
+  Json sources = Json::array();
+  for (std::size_t k = 0; k < nsources; ++k) sources.push_back(source_json(bathy.source(k)));
+  (*report)["input"]["sources"] = sources;
+}
+
+GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
+                            bool reuse) {
+  if (c.quadtree.engine == config::QuadtreeEngine::kForest)
+    throw ConfigError("quadtree.engine = \"forest\": this command needs the dense engine's bitmaps; quadtree.engine = "
+                      "\"dense\" (aquatoria mesh runs the forest)");
+  GlobalRun run;
+  run.setup = setup;
+  const Lattice& lat = setup.lattice;
+  const PoleRotation& rot = setup.rotation;
+  open_inputs(run, c, setup, log, report);
+  if (run.domain.regional()) reuse = false;  // the global run file holds a global fill
+  const raster::Bathymetry& bathy = *run.bathy;
+  const std::size_t nsources = bathy.source_count();
   const std::filesystem::path file = global_run_file_path(c);
   if (reuse && std::filesystem::exists(file)) {
     StageScope stage("mask", report, log);
@@ -539,19 +580,7 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
     if (si.streamed && run.area_file.empty())
       if (const std::string note = raster::implausible_note(si); !note.empty()) log.warn("{}: {}", si.path, note);
   }
-  if (report != nullptr) {  // after the classification: a streamed raster's statistics come from that pass
-    if (nsources == 1) {
-      (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
-                                {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
-                                {"min_m", ri.min_m},         {"max_m", ri.max_m},          {"streamed", ri.streamed},
-                                {"band_rows", ri.band_rows}, {"block_rows", ri.block_rows}};
-    } else {
-      (*report)["input"] = Json{{"path", ri.path}, {"blend_km", c.input.blend_km}, {"streamed", ri.streamed}};
-    }
-    Json sources = Json::array();
-    for (std::size_t k = 0; k < nsources; ++k) sources.push_back(source_json(bathy.source(k)));
-    (*report)["input"]["sources"] = sources;
-  }
+  input_json(bathy, c, report);
   const mask::WetArea& area = run.area;
   if (c.mask.passages && !area.passages.empty()) {
     log.info("critical passages (open = the filled ocean connects both sides):");
@@ -638,34 +667,49 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
 
 // Open = the pixel on the right of the edge's first lattice step (outside the wet area) is wet
 // and outside the domain; everything else is land (mesh/boundaries.hpp).
-static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* report) {
+// The pixel on the right of the first lattice step of boundary edge a -> b, or false for a
+// diagonal or degenerate edge and rows beyond the lattice.
+static bool right_pixel(const mesh::Mesh& m, NodeId a, NodeId b, mask::PixelIJ& px) {
+  const Lattice& lat = m.lattice;
+  const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
+  const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
+  std::int64_t di = m.node_i[pb] - ia;
+  const std::int64_t dj = m.node_j[pb] - ja;
+  if (di > lat.nx / 2) di -= lat.nx;
+  if (di < -lat.nx / 2) di += lat.nx;
+  if ((di != 0) == (dj != 0)) return false;  // a diagonal (after cleaning) or a degenerate edge
+  std::int64_t pi = ia, pj = ja;             // the pixel on the right of the first unit step
+  if (di > 0) pj = ja - 1;
+  if (di < 0) pi = ia - 1;
+  if (dj < 0) {
+    pi = ia - 1;
+    pj = ja - 1;
+  }
+  if (pj < 0 || pj >= lat.ny) return false;
+  px = {((pi % lat.nx) + lat.nx) % lat.nx, pj};
+  return true;
+}
+
+// Open = the pixel on the right of the edge's first lattice step (outside the wet area) is wet
+// and outside the domain (`wet_outside`); everything else is land (mesh/boundaries.hpp).
+static void type_regional_boundaries(GlobalRun& run, const std::function<bool(const mask::PixelIJ&)>& wet_outside,
+                                     const Logger& log, Report* report) {
   StageScope stage("boundaries", report, log);
   mesh::Mesh& m = run.mesh;
-  const Lattice& lat = m.lattice;
-  const mask::Domain& d = run.domain;
-  const Bitmap& wet = run.area.wet;
   const auto is_open = [&](NodeId a, NodeId b) {
-    const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
-    const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
-    std::int64_t di = m.node_i[pb] - ia;
-    const std::int64_t dj = m.node_j[pb] - ja;
-    if (di > lat.nx / 2) di -= lat.nx;
-    if (di < -lat.nx / 2) di += lat.nx;
-    if ((di != 0) == (dj != 0)) return false;  // a diagonal (after cleaning) or a degenerate edge
-    std::int64_t pi = ia, pj = ja;             // the pixel on the right of the first unit step
-    if (di > 0) pj = ja - 1;
-    if (di < 0) pi = ia - 1;
-    if (dj < 0) {
-      pi = ia - 1;
-      pj = ja - 1;
-    }
-    if (pj < 0 || pj >= lat.ny) return false;
-    pi = ((pi % lat.nx) + lat.nx) % lat.nx;
-    return !d.contains(pi, pj) && wet.get(pi, pj);
+    mask::PixelIJ px;
+    return right_pixel(m, a, b, px) && wet_outside(px);
   };
   const mesh::BoundaryCounts counts = mesh::type_boundaries(m, is_open, &log);
   if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(m, counts);
   stage.done(mesh::describe(counts));
+}
+
+static void type_regional_boundaries_dense(GlobalRun& run, const Logger& log, Report* report) {
+  const mask::Domain& d = run.domain;
+  const Bitmap& wet = run.area.wet;
+  type_regional_boundaries(
+      run, [&](const mask::PixelIJ& px) { return !d.contains(px.i, px.j) && wet.get(px.i, px.j); }, log, report);
 }
 
 // A polygon domain: the open-boundary nodes moved onto the polygon where the triangles stay valid
@@ -711,23 +755,17 @@ static void check_lattice_mesh(GlobalRun& run, const Logger& log, Report* report
   stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
 }
 
-GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics, bool reuse, bool keep_masks) {
-  GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
-  if (!keep_masks) {  // a moved-in empty bitmap frees the words (clear() would keep their capacity)
-    run.area.wet_vertices = Bitmap();
-    run.area.coastal = Bitmap();
-    run.area.filled = Bitmap();
-    if (!run.domain.regional()) run.area.wet = Bitmap();
-  }
-  run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
-  if (run.domain.regional()) type_regional_boundaries(run, log, report);
+// The stages after the lattice mesh, on the process that holds it (rank 0 of a forest run): the
+// lattice mesh's checks, a polygon's open boundary, the sources' node counts, the threshold depth
+// warning and the time step.
+static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                        Report* report, bool statistics, bool keep_masks) {
   if (statistics) check_lattice_mesh(run, log, report);
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (!keep_masks) run.area.wet = Bitmap();
-  if (!statistics) return run;
+  if (!statistics) return;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)
     StageScope dt_stage("time_step", report, log);
@@ -754,6 +792,86 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                setup.lattice.levels, ts.max_stable_dt_s * ts.courant_max, ts.courant_max);
     }
   }
+}
+
+// The forest engine (README "The forest engine"): the same stages on every MPI rank; rank 0
+// gathers the leaves, builds the mesh and runs the stages after it (the other ranks return a run
+// without a mesh and answer the open boundary's questions).
+static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                                     Report* report, bool statistics, bool keep_masks) {
+#ifdef AQ_HAVE_MPI
+  if (std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end())
+    throw ConfigError("output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the "
+                      "forest engine never makes; quadtree.engine = \"dense\" writes it");
+  forest::start_mpi();
+  GlobalRun run;
+  run.setup = setup;
+  const Lattice& lat = setup.lattice;
+  const forest::Comm comm;
+  forest::collective(comm, [&] { open_inputs(run, c, setup, log, report); });
+  forest::ForestLeaves fl =
+      forest::run_forest_leaves(c, lat, setup.rotation, *run.bathy, run.domain, log, comm.root() ? report : nullptr);
+  run.area = std::move(fl.area);
+  run.size_field = std::move(fl.size_field);
+  input_json(*run.bathy, c, report);
+  if (c.mask.passages && !run.area.passages.empty()) {
+    log.info("critical passages (open = the filled ocean connects both sides):");
+    for (const auto& line : mask::format_passage_table(run.area.passages)) log.info("  {}", line);
+  }
+  forest::collective(comm, [&] {  // the mesh, on rank 0
+    if (!comm.root()) return;
+    StageScope stage("mesh", report, log);
+    Timer t;
+    quadtree::QuadNodes qn = quadtree::build_nodes_from_neighbourhoods(
+        fl.leaves, fl.neighbourhoods, lat, quadtree::NodeOptions{mesh::mesh_needs_centres(c.mesh)});
+    run.mesh = mesh::build_mesh(fl.leaves, std::move(qn), t.wall_s(), lat, setup.rotation, *run.bathy, c.mesh, log,
+                                report, stage);
+    fl.neighbourhoods = {};
+    run.leaves = std::move(fl.leaves);
+  });
+  if (run.domain.regional()) {  // the open boundary: whether the pixel outside each edge is wet water outside
+    std::vector<mask::PixelIJ> queries;
+    for (const auto& e : run.mesh.boundary_edges) {
+      mask::PixelIJ px{-1, -1};
+      if (right_pixel(run.mesh, e[0], e[1], px)) queries.push_back(px);
+    }
+    const std::vector<char> answers = forest::wet_outside_domain(*fl.state, run.domain, queries);
+    forest::collective(comm, [&] {
+      if (!comm.root()) return;
+      std::unordered_map<std::int64_t, bool> open;
+      for (std::size_t k = 0; k < queries.size(); ++k) open[queries[k].j * lat.nx + queries[k].i] = answers[k] != 0;
+      type_regional_boundaries(
+          run, [&](const mask::PixelIJ& px) { return open.at(px.j * lat.nx + px.i); }, log, report);
+    });
+  }
+  if (comm.root()) finish_mesh(run, c, setup, log, report, statistics, keep_masks);
+  return run;
+#else
+  (void)setup;
+  (void)log;
+  (void)report;
+  (void)statistics;
+  (void)keep_masks;
+  throw ConfigError(fmt::format("quadtree.engine = \"{}\": this aquatoria was built without the forest engine "
+                                "(AQ_MPI=OFF: p4est and MPI were not found; scripts/install_deps.sh installs them)",
+                                config::engine_name(c.quadtree.engine)));
+#endif
+}
+
+GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                              Report* report, bool statistics, bool reuse, bool keep_masks) {
+  if (c.quadtree.engine == config::QuadtreeEngine::kForest)
+    return run_forest_pipeline(c, setup, log, report, statistics, keep_masks);
+  GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
+  if (!keep_masks) {  // a moved-in empty bitmap frees the words (clear() would keep their capacity)
+    run.area.wet_vertices = Bitmap();
+    run.area.coastal = Bitmap();
+    run.area.filled = Bitmap();
+    if (!run.domain.regional()) run.area.wet = Bitmap();
+  }
+  run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  if (run.domain.regional()) type_regional_boundaries_dense(run, log, report);
+  finish_mesh(run, c, setup, log, report, statistics, keep_masks);
   return run;
 }
 

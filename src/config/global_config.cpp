@@ -605,9 +605,11 @@ RunName default_run_name(const GlobalConfig& c) {
   const Json now = schema().echo(c), def = schema().echo(d);
   for (const auto& [sec, keys] : now.items()) {
     if (sec == "output" || sec == "blocks") continue;
-    for (const auto& [key, value] : keys.items())
+    for (const auto& [key, value] : keys.items()) {
+      if (sec == "quadtree" && key == "engine") continue;  // both engines write the same files
       if (!def.contains(sec) || !def[sec].contains(key) || def[sec][key] != value)
         out.changed.push_back(fmt::format("{}.{} = {}", sec, key, value.dump()));
+    }
   }
   if (out.changed.empty()) {
     out.name = "seed_4deg_L3";

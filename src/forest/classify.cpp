@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 #include "core/error.hpp"
 #include "core/types.hpp"
@@ -123,7 +124,8 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
   out.wet.resize(static_cast<std::size_t>(n));
   std::int64_t wv = 0, wet = 0, coastal = 0, decided = 0, sampled = 0;
 
-  if (streamed) {
+  std::exception_ptr error;  // the first failure of this rank (sampling reads rasters)
+  if (streamed) try {
     // A streamed raster is read band by band: the vertex rows of several tree rows at once, over
     // the columns of this rank's trees in them, thresholded into one buffer and cut into patches.
     const LatticeBrick& brick = pf.brick();
@@ -172,15 +174,19 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
       }
       t0 = t_end;
     }
-  } else {
+  } catch (...) {
+    error = std::current_exception();
+  }
+  else {
+    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(n));
 #pragma omp parallel default(none) shared(pf, g, lat, bathy, bounds, rot, vw, out, n, p, nx, threshold, rotated, \
-                                              global_lon) reduction(+ : wv, wet, coastal, decided, sampled)
+                                              global_lon, errors) reduction(+ : wv, wet, coastal, decided, sampled)
     {
       std::vector<double> lons(static_cast<std::size_t>(p + 1)), la(lons.size()), vals(lons.size());
       std::vector<float> fv(lons.size());
       std::vector<double> x(lons.size());
 #pragma omp for schedule(dynamic, 4)
-      for (std::int64_t l = 0; l < n; ++l) {
+      for (std::int64_t l = 0; l < n; ++l) try {
         const std::int64_t key = pf.key(static_cast<std::size_t>(l));
         const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
         const bool top = g.gy(key) == g.npy - 1;
@@ -229,9 +235,14 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
         wv += pc.wet_vertices;
         wet += pc.wet;
         coastal += pc.coastal;
+      } catch (...) {
+        errors[static_cast<std::size_t>(l)] = std::current_exception();
       }
     }
+    for (const std::exception_ptr& e : errors)
+      if (e && !error) error = e;
   }
+  agree(pf.comm(), error);
   const Comm& comm = pf.comm();
   out.counts.wet_vertices = comm.sum(wv);
   out.counts.wet = comm.sum(wet);

@@ -79,6 +79,10 @@ int finish_run(int code, const std::string& message, bool print) {
     return code;
   }
   const Comm comm;
+  // AQ_FOREST_DEBUG=1 (a diagnostic, not a configuration key): every rank says how it ended.
+  if (const char* d = std::getenv("AQ_FOREST_DEBUG"); d != nullptr && std::string(d) == "1")
+    std::fprintf(stderr, "rank %d of %d: exit %d%s%s\n", comm.rank(), comm.size(), code, message.empty() ? "" : ": ",
+                 message.c_str());
   // The lowest failing rank's outcome.
   const std::int64_t first = comm.min(code != 0 ? static_cast<std::int64_t>(comm.rank()) : INT_MAX);
   int agreed = code;

@@ -185,6 +185,13 @@ bool needs_grid(const config::GlobalConfig& c) {
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report) {
+  return build_size_field([&filled](const FieldGrid& grid) { return grid.filled_counts(filled); }, lat, c, rotation,
+                          bathy, log, report);
+}
+
+SizeField build_size_field(const std::function<std::vector<std::int32_t>(const FieldGrid&)>& filled_counts,
+                           const Lattice& lat, const config::GlobalConfig& c, const PoleRotation& rotation,
+                           const raster::Bathymetry* bathy, const Logger& log, Report* report) {
   const config::SizeOptions& s = c.size;
   const double band_km = c.quadtree.coast_size_km;
   const int band_radius = std::max(c.quadtree.coast_band, 1);
@@ -211,7 +218,7 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   Timer t_total;
   const FieldGrid grid(lat, choose_grid_level(lat, s.grid_level));
   const auto n = static_cast<std::size_t>(grid.cells());
-  const std::vector<std::int32_t> counts = grid.filled_counts(filled);
+  const std::vector<std::int32_t> counts = filled_counts(grid);
   std::vector<std::uint8_t> water(n);
   for (std::size_t k = 0; k < n; ++k) water[k] = counts[k] > 0 ? 1 : 0;
   const std::vector<std::uint8_t> coast = coast_cells(grid, counts);

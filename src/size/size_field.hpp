@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -94,6 +95,12 @@ struct SizeFieldStats {
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report);
+
+/// The same with the filled set given as its pixel counts per cell of the field's grid
+/// (FieldGrid::filled_counts; the forest engine sums them over its patches and ranks).
+SizeField build_size_field(const std::function<std::vector<std::int32_t>(const FieldGrid&)>& filled_counts,
+                           const Lattice& lat, const config::GlobalConfig& c, const PoleRotation& rotation,
+                           const raster::Bathymetry* bathy, const Logger& log, Report* report);
 
 /// Whether `q` has depth or box rules in the size form (size_km > 0): terms of the field.
 [[nodiscard]] bool has_size_rules(const config::QuadtreeOptions& q);

@@ -57,6 +57,29 @@ TEST(ForestBrick, TreesAndQuadrantsFollowTheDenseLeafOrder) {
   EXPECT_EQ(count, 90 * 45 * 16);
 }
 
+TEST(ForestBrick, FacesJoinTheNeighbouringLevel0Squares) {
+  start_mpi();
+  for (const bool periodic : {true, false}) {
+    Lattice lat = Lattice::make(4.0, 3, -180.0);
+    if (!periodic) lat = Lattice::window(lat, 8 * 10, 8 * 20, 8 * 5, 8 * 12);
+    const LatticeBrick brick(lat);
+    const p4est_connectivity_t* c = brick.connectivity();
+    ASSERT_EQ(c->num_trees, brick.trees());
+    for (std::int64_t t = 0; t < brick.trees(); ++t) {
+      const std::int64_t a0 = brick.tree_a0(t), b0 = brick.tree_b0(t);
+      const std::int64_t w = a0 > 0 ? brick.tree(a0 - 1, b0) : periodic ? brick.tree(brick.nx0() - 1, b0) : t;
+      const std::int64_t e = a0 + 1 < brick.nx0() ? brick.tree(a0 + 1, b0) : periodic ? brick.tree(0, b0) : t;
+      const std::int64_t s = b0 > 0 ? brick.tree(a0, b0 - 1) : t;
+      const std::int64_t n = b0 + 1 < brick.ny0() ? brick.tree(a0, b0 + 1) : t;
+      EXPECT_EQ(c->tree_to_tree[4 * t + 0], w) << "tree " << t << " west";
+      EXPECT_EQ(c->tree_to_tree[4 * t + 1], e) << "tree " << t << " east";
+      EXPECT_EQ(c->tree_to_tree[4 * t + 2], s) << "tree " << t << " south";
+      EXPECT_EQ(c->tree_to_tree[4 * t + 3], n) << "tree " << t << " north";
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+}
+
 struct Case {
   double step;
   int levels;
