@@ -124,7 +124,12 @@ int run_mesh(const MeshArgs& a, const Logger& main_log) {
 
   // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
   const bool tif = std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end();
-  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif});
+#ifdef AQ_HAVE_MPI
+  const int ranks = aq::forest::world_size();
+#else
+  const int ranks = 1;
+#endif
+  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif, .ranks = ranks});
   const Lattice& lat = setup.lattice;
   log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
            loaded.source, fmt::join(c.input.sources(), " over "), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,

@@ -60,7 +60,17 @@ namespace {
 // term has 37 % more triangles than the guess). Measured peak / estimate for the mesh's count
 // (2026-11-28): 15" with every size term 6.58 / 6.80 GB (before the run, from the guessed count:
 // 5.10); global_tides on the 1' raster (rotated: no copy) 2.94 / 3.09 GB.
+//   forest   (quadtree.engine = "forest") instead of the lattice bitmaps, per rank: kForestBytesPerPatch
+//            for every patch of its trees (p4est's quadrant, the patch's sets and their ghosts),
+//            kForestBytesPerActivePixel·P per coastal pixel (the mixed patches' bitmaps and fine
+//            pyramids; coastal pixels ~ triangles / 10) and kForestBytesPerQuadrant per mesh-forest
+//            quadrant (leaves ~ triangles / 2.4, land included ×1.5); rank 0 holds the mesh and the
+//            gathered leaves as well (kForestGatherBytesPerLeaf).
 constexpr double kLatticeBitsPerPixel = 8.0;
+constexpr double kForestBytesPerPatch = 200.0;
+constexpr double kForestBytesPerActivePixel = 2.25;
+constexpr double kForestBytesPerQuadrant = 120.0;
+constexpr double kForestGatherBytesPerLeaf = 27.0;
 constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 230'000'000;  // program, GDAL cache, the writers' chunk buffers, small tables
@@ -183,8 +193,22 @@ std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lat
 // base + raster + bitmaps and mesh: their sum while the bitmaps stay, else the larger.
 static double model_bytes(const GlobalSetup& s, double mesh_bytes) {
   const auto lattice = static_cast<double>(s.lattice_bytes);
+  if (s.forest)  // rank 0: its share of the forest beside the whole mesh
+    return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) + lattice + mesh_bytes;
   return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
          (s.masks_kept ? lattice + mesh_bytes : std::max(lattice, mesh_bytes));
+}
+
+// The forest's structures on one of `ranks` ranks (the memory model above).
+static double forest_bytes(const Lattice& l, double triangles, int ranks) {
+  const int plog = std::min(l.levels, 7);
+  const double p = static_cast<double>(std::int64_t{1} << plog);
+  const double patches = static_cast<double>(l.nx) / p * static_cast<double>(l.ny) / p;
+  const double leaves = triangles / 2.4;
+  const double r = std::max(1, ranks);
+  return (kForestBytesPerPatch * patches + kForestBytesPerActivePixel * p * triangles / 10.0 +
+          kForestBytesPerQuadrant * 1.5 * leaves) / r +
+         kForestGatherBytesPerLeaf * leaves;
 }
 
 GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
@@ -205,11 +229,14 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   s.memory_limit_bytes = c.input.max_memory_gb > 0
                              ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))
                              : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
-  s.lattice_bytes = estimate_lattice_bytes(s.lattice);
+  s.forest = c.quadtree.engine == config::QuadtreeEngine::kForest;
+  s.ranks = std::max(1, o.ranks);
   s.triangles_guess = estimate_triangles(s.lattice);
+  s.lattice_bytes = s.forest ? saturate(forest_bytes(s.lattice, static_cast<double>(s.triangles_guess), s.ranks))
+                             : estimate_lattice_bytes(s.lattice);
   s.mesh_bytes = saturate(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
   const Lattice& lat = s.lattice;
-  if (s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
+  if (!s.forest && s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
     throw ConfigError(fmt::format(
         "quadtree.levels = {} with quadtree.step_deg = {}: the {} x {} pixel lattice needs about {:.1f} GB of "
         "bitmaps, more than the {:.3g} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
@@ -294,10 +321,11 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
                                                   : "";
     }
     throw ConfigError(fmt::format(
-        "the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, lattice bitmaps {:.2f} GB, mesh {:.2f} GB), "
+        "the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
         "more than input.max_memory_gb = {:.2f} GB; nothing was read",
         gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
-        gb(s.lattice_bytes), gb(s.mesh_bytes), gb(s.memory_limit_bytes)));
+        s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
+        gb(s.memory_limit_bytes)));
   }
   return s;
 }
@@ -318,6 +346,15 @@ Json memory_json(const GlobalSetup& s, std::int64_t triangles) {
 }
 
 void log_memory_estimate(const GlobalSetup& s, const Logger& log) {
+  if (s.forest) {
+    log.info("memory: estimate {:.2f} GB on rank 0 of {} of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} "
+             "GB {}, forest {:.2f} GB per rank, mesh {:.2f} GB (~{} triangles) on rank 0",
+             gb(s.estimate_bytes), s.ranks, gb(s.memory_limit_bytes), gb(s.raster.bytes),
+             s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows)
+                               : std::string("held whole"),
+             gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
+    return;
+  }
   log.info(
       "memory: estimate {:.2f} GB of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} GB {}, lattice "
       "bitmaps {:.2f} GB, mesh {:.2f} GB (~{} triangles){}",

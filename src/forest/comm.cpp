@@ -6,6 +6,8 @@
 #include <sc.h>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <climits>
 #include <cstdio>
 #include <cstdlib>
@@ -79,6 +81,18 @@ int finish_run(int code, const std::string& message, bool print) {
     return code;
   }
   const Comm comm;
+  // Ranks done early wait without spinning (OpenMPI's blocking collectives poll a core): a
+  // non-blocking barrier tested every 2 ms until the last rank arrives.
+  {
+    MPI_Request req;
+    MPI_Ibarrier(MPI_COMM_WORLD, &req);
+    int arrived = 0;
+    while (true) {
+      MPI_Test(&req, &arrived, MPI_STATUS_IGNORE);
+      if (arrived != 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
   // AQ_FOREST_DEBUG=1 (a diagnostic, not a configuration key): every rank says how it ended.
   if (const char* d = std::getenv("AQ_FOREST_DEBUG"); d != nullptr && std::string(d) == "1")
     std::fprintf(stderr, "rank %d of %d: exit %d%s%s\n", comm.rank(), comm.size(), code, message.empty() ? "" : ": ",
