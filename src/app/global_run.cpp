@@ -470,7 +470,7 @@ static Json source_json(const raster::Bathymetry& b) {
 // The read stage, the lattice's and the domain's lines and report sections: what both engines do
 // first.
 static void open_inputs(GlobalRun& run, const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                        Report* report) {
+                        Report* report, bool dense_domain = true) {
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;
   const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
@@ -543,11 +543,12 @@ static void open_inputs(GlobalRun& run, const config::GlobalConfig& c, const Glo
       (*report)["lattice"]["global_because"] = setup.lattice_note;
   }
 
-  run.domain = mask::make_domain(c.domain, lat, rot);
+  run.domain = mask::make_domain(c.domain, lat, rot, dense_domain);
   if (run.domain.regional()) {
-    log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
-             lat.pixel_count(), lat.windowed() ? "window" : "global",
-             100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
+    if (dense_domain)  // (the forest counts its domain's pixels over its patches, and logs them)
+      log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
+               lat.pixel_count(), lat.windowed() ? "window" : "global",
+               100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
     if (report != nullptr)
       (*report)["domain"] = Json{{"kind", c.domain.resolved == config::DomainKind::kBox ? "box" : "polygon"},
                                  {"description", run.domain.description},
@@ -845,11 +846,18 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   run.setup = setup;
   const Lattice& lat = setup.lattice;
   const forest::Comm comm;
-  forest::collective(comm, [&] { open_inputs(run, c, setup, log, report); });
+  forest::collective(comm, [&] { open_inputs(run, c, setup, log, report, false); });
   forest::ForestLeaves fl =
       forest::run_forest_leaves(c, lat, setup.rotation, *run.bathy, run.domain, log, comm.root() ? report : nullptr);
   run.area = std::move(fl.area);
   run.size_field = std::move(fl.size_field);
+  if (run.domain.regional()) {
+    run.domain.pixels = fl.area_domain_pixels;
+    log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
+             lat.pixel_count(), lat.windowed() ? "window" : "global",
+             100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
+    if (report != nullptr) (*report)["domain"]["pixels"] = run.domain.pixels;
+  }
   input_json(*run.bathy, c, report);
   if (c.mask.passages && !run.area.passages.empty()) {
     log.info("critical passages (open = the filled ocean connects both sides):");

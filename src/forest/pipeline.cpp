@@ -45,13 +45,12 @@ std::int64_t count_pixels(const std::vector<PatchBits>& v, std::int64_t p) {
   return n;
 }
 
-// The domain's pixels in a patch (the dense domain's bitmap, cut to the patch).
+// The domain's pixels in a patch (from its shape: no bitmap of the lattice).
 PatchBits domain_patch(const mask::Domain& d, const PatchGrid& g, std::int64_t key) {
-  const std::int64_t p = g.size, i0 = g.gx(key) * p, j0 = g.gy(key) * p;
+  const std::int64_t p = g.size;
   PatchBits b;
   b.state = Fill::kMixed;
-  b.bits = Bitmap(p, p);
-  for (std::int64_t j = 0; j < p; ++j) take_bits(d.inside.row(j0 + j), i0, b.bits.row(j), p);
+  b.bits = d.window(g.gx(key) * p, g.gy(key) * p, p, p);
   b.normalise();
   return b;
 }
@@ -219,8 +218,17 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     std::vector<PatchBits> wet_in = st->wet;
     std::vector<std::array<double, 2>> seeds = mo.seeds;
     if (regional) {
-      for (std::size_t l = 0; l < pf.local_count(); ++l)
-        wet_in[l] = intersect(wet_in[l], domain_patch(domain, g, pf.key(l)), p);
+      std::int64_t inside = 0;
+      for (std::size_t l = 0; l < pf.local_count(); ++l) {
+        const PatchBits d = domain_patch(domain, g, pf.key(l));
+        inside += d.state == Fill::kAll ? p * p : d.state == Fill::kMixed ? d.bits.count() : 0;
+        wet_in[l] = intersect(wet_in[l], d, p);
+      }
+      inside = comm.sum(inside);
+      if (inside == 0)
+        throw ConfigError(fmt::format("domain: the {} holds no pixel of the lattice ({}° pixels)", domain.description,
+                                      lat.pixel_deg()));
+      out.area_domain_pixels = inside;
       seeds = regional_seeds(pf, domain, wet_in, lat, rot, bathy, mo.seeds, log);
     }
     ForestFill ff = forest_fill(pf, wet_in, rot, mo.cursor, seeds, mo.seed_radius_deg, log);

@@ -33,6 +33,7 @@ struct ForestLeaves {
   size::SizeField size_field;
   std::vector<quadtree::Leaf> leaves;
   std::vector<quadtree::LeafNeighbourhood> neighbourhoods;
+  std::int64_t area_domain_pixels = 0;  ///< a regional run: the domain's pixels, over all ranks
   std::shared_ptr<ForestState> state;
 };
 
