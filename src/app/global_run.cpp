@@ -71,6 +71,8 @@ constexpr double kForestBytesPerPatch = 200.0;
 constexpr double kForestBytesPerActivePixel = 2.25;
 constexpr double kForestBytesPerQuadrant = 120.0;
 constexpr double kForestGatherBytesPerLeaf = 27.0;
+// The forest reads a raster in tiles (raster::OpenOptions::tiles_above_bytes) above this.
+constexpr std::int64_t kForestTilesAboveBytes = std::int64_t{1} << 30;
 constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 230'000'000;  // program, GDAL cache, the writers' chunk buffers, small tables
@@ -94,7 +96,8 @@ double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
 // Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
 // AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
-// AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read).
+// AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read);
+// AQ_RASTER_TILES_ABOVE (below) reads them in tiles.
 void apply_test_knobs(raster::OpenOptions& ro) {
   if (const char* s = std::getenv("AQ_RASTER_WHOLE"); s != nullptr && std::string(s) == "1")
     ro.lon_min = ro.lon_max = ro.lat_min = ro.lat_max = std::numeric_limits<double>::quiet_NaN();
@@ -104,6 +107,8 @@ void apply_test_knobs(raster::OpenOptions& ro) {
     if (v == "never") ro.streaming = raster::OpenOptions::Streaming::kNever;
   }
   if (const char* s = std::getenv("AQ_RASTER_BAND_ROWS")) ro.band_rows = std::max<std::int64_t>(0, std::atoll(s));
+  // AQ_RASTER_TILES_ABOVE = bytes: read rasters above that size in tiles (tests compare with held).
+  if (const char* s = std::getenv("AQ_RASTER_TILES_ABOVE")) ro.tiles_above_bytes = std::max<std::int64_t>(0, std::atoll(s));
 }
 
 // Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
@@ -278,6 +283,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   for (std::size_t k = 0; k < paths.size(); ++k) {
     raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
     ro.path = paths[k];
+    // The forest reads a raster too large to hold in tiles where it samples (a fine tile stack).
+    if (s.forest) ro.tiles_above_bytes = kForestTilesAboveBytes;
     ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty() &&
                          !c.domain.regional();
     if (!std::isnan(window[2]) && !(c.input.blend_km > 0.0 && k + 1 < paths.size())) {

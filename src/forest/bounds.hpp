@@ -9,7 +9,9 @@
 // the sources' values): source k's bounds count only while the sources above it may have no data
 // in the box; a source with data everywhere in the box ends the search. With a blend every source
 // counts. A source the bounds cannot summarise (bicubic sampling, a streamed raster) makes every
-// box undecided.
+// box undecided. A source read in tiles (a fine tile stack) is summarised where it is asked: a box
+// where GDAL's data coverage says it has no data (no tile there) leaves it out without reading; any
+// other box reads its cells (the same cells the sampling of the box would read).
 #pragma once
 
 #include <memory>
@@ -31,7 +33,12 @@ class StackBounds {
   [[nodiscard]] raster::ValueRange in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const;
 
  private:
+  // Bounds of source k over a box: its held summary, or (tiled) its cells read.
+  [[nodiscard]] raster::ValueRange source_box(std::size_t k, double lon_lo, double lon_hi, double lat_lo,
+                                              double lat_hi) const;
+  const raster::Bathymetry* bathy_ = nullptr;
   std::vector<std::unique_ptr<raster::ValueBounds>> sources_;
+  std::vector<char> tiled_;
   bool blend_ = false;
   bool available_ = false;
 };

@@ -336,11 +336,11 @@ Bathymetry Bathymetry::open_sources(const std::vector<OpenOptions>& sources, dou
     OpenOptions o = sources[k];
     o.warn_partial_coverage = o.warn_partial_coverage && k + 1 == sources.size();
     open_ones.push_back(open(o, log));
-    if (blend_km > 0.0 && k + 1 < sources.size() && open_ones.back().info().streamed)
+    if (blend_km > 0.0 && k + 1 < sources.size() && (open_ones.back().info().streamed || open_ones.back().info().tiled))
       throw InputError(fmt::format(
           "{}: input.blend_km = {} needs the distance to this raster's data edge, held whole beside it, but the "
-          "raster is streamed (too large to hold); blend only below a smaller source, or set input.blend_km = 0",
-          sources[k].path, blend_km));
+          "raster is {} (too large to hold); blend only below a smaller source, or set input.blend_km = 0",
+          sources[k].path, blend_km, open_ones.back().info().streamed ? "streamed" : "read in tiles"));
   }
   return stack(std::move(open_ones), blend_km);
 }
