@@ -8,8 +8,7 @@
 
 namespace aq::forest {
 
-StackBounds::StackBounds(const raster::Bathymetry& bathy, double cells_per_pixel, double blend_km) : bathy_(&bathy) {
-  const std::int64_t block = cells_per_pixel < 2.0 ? 4 : 8;
+StackBounds::StackBounds(const raster::Bathymetry& bathy, double box_deg, double blend_km) : bathy_(&bathy) {
   const std::size_t n = bathy.source_count();
   blend_ = false;
   available_ = true;
@@ -17,6 +16,9 @@ StackBounds::StackBounds(const raster::Bathymetry& bathy, double cells_per_pixel
     const raster::Bathymetry& s = n == 1 ? bathy : bathy.source(k);
     const bool tiled = s.info().tiled;
     tiled_.push_back(tiled ? 1 : 0);
+    const double cells = box_deg / std::min(s.info().dlon, s.info().dlat) / 4.0;
+    std::int64_t block = 1;
+    while (block < 8 && static_cast<double>(2 * block) <= cells) block *= 2;
     sources_.push_back(tiled ? nullptr : std::make_unique<raster::ValueBounds>(s, block));
     available_ = available_ && (tiled || sources_.back()->available());
   }

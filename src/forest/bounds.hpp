@@ -24,10 +24,10 @@ namespace aq::forest {
 
 class StackBounds {
  public:
-  /// Summaries of every source of `bathy`; `cells_per_pixel` (raster cells per lattice pixel side)
-  /// picks the finest block as the rotated classification does (4 below 2, else 8); `blend_km`
-  /// is input.blend_km.
-  StackBounds(const raster::Bathymetry& bathy, double cells_per_pixel, double blend_km);
+  /// Summaries of every source of `bathy` for boxes of about `box_deg` (a patch's side): each
+  /// source's finest block is about a quarter of such a box in its own cells (1 to 8 cells), so a
+  /// coarse source under a fine lattice is bounded cell by cell. `blend_km` is input.blend_km.
+  StackBounds(const raster::Bathymetry& bathy, double box_deg, double blend_km);
   [[nodiscard]] bool available() const { return available_; }
   /// Every value Bathymetry::sample can return at a point of the box (see value_bounds.hpp).
   [[nodiscard]] raster::ValueRange in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const;

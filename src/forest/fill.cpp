@@ -104,16 +104,13 @@ class WindowComponents {
     const std::vector<PatchBits> ghosts = pf.exchange(set);
     const auto n = pf.local_count();
     win_.resize(n);
-    // Border ids of every local patch: west, east, south, north (p each), -1 where no window.
-    const std::size_t rec = static_cast<std::size_t>(8 + 4 * p_ * 8);
-    std::vector<char> borders(n * rec, 0);
+    // Border ids of the materialised patches: west, east, south, north (p each), -1 where no
+    // window; a core patch's are all its one node.
     std::vector<std::int32_t> lab;
     for (std::size_t l = 0; l < n; ++l) {
       const std::int64_t key = pf.key(l);
       Windows& w = win_[l];
       const PatchBits& s = set[l];
-      auto* ids = reinterpret_cast<std::int64_t*>(borders.data() + l * rec + 8);
-      std::fill(ids, ids + 4 * p_, std::int64_t{-1});
       if (s.state == Fill::kNone) continue;
       bool core = s.state == Fill::kAll;
       for (std::int64_t dy = -1; dy <= 1 && core; ++dy)
@@ -123,29 +120,39 @@ class WindowComponents {
         }
       if (core) {
         w.kind = Kind::kCore;
-        std::fill(ids, ids + 4 * p_, key * stride_);
-      } else {
-        w.kind = Kind::kMat;
-        const Bitmap big = mask::all_wet_windows(pf.assemble(l, set, ghosts, OutsideRule{false, false}), k);
-        w.w = centre_of(big, p_);
-        w.comps = label_bits(w.w, p_, lab);
-        const auto id = [&](std::int64_t i, std::int64_t j) {
-          const std::int32_t c = lab[static_cast<std::size_t>(j * p_ + i)];
-          return c < 0 ? std::int64_t{-1} : key * stride_ + c;
-        };
-        for (std::int64_t t = 0; t < p_; ++t) {
-          ids[t] = id(0, t);
-          ids[p_ + t] = id(p_ - 1, t);
-          ids[2 * p_ + t] = id(t, 0);
-          ids[3 * p_ + t] = id(t, p_ - 1);
-        }
+        continue;
       }
-      borders[l * rec] = static_cast<char>(w.kind);
+      w.kind = Kind::kMat;
+      const Bitmap big = mask::all_wet_windows(pf.assemble(l, set, ghosts, OutsideRule{false, false}), k);
+      w.w = centre_of(big, p_);
+      w.comps = label_bits(w.w, p_, lab);
+      std::vector<std::int64_t>& ids = borders_[l];
+      ids.assign(static_cast<std::size_t>(4 * p_), -1);
+      const auto id = [&](std::int64_t i, std::int64_t j) {
+        const std::int32_t c = lab[static_cast<std::size_t>(j * p_ + i)];
+        return c < 0 ? std::int64_t{-1} : key * stride_ + c;
+      };
+      for (std::int64_t t = 0; t < p_; ++t) {
+        ids[static_cast<std::size_t>(t)] = id(0, t);
+        ids[static_cast<std::size_t>(p_ + t)] = id(p_ - 1, t);
+        ids[static_cast<std::size_t>(2 * p_ + t)] = id(t, 0);
+        ids[static_cast<std::size_t>(3 * p_ + t)] = id(t, p_ - 1);
+      }
     }
-    const std::vector<char> ghost_borders = pf.exchange_bytes(borders, rec);
-    const auto border_of = [&](std::int64_t key) -> const std::int64_t* {
-      if (const std::int64_t l = pf.local_index(key); l >= 0)
-        return reinterpret_cast<const std::int64_t*>(borders.data() + static_cast<std::size_t>(l) * rec + 8);
+    // The border records of the patches other ranks see (kind, then the 4p ids).
+    const std::size_t rec = static_cast<std::size_t>(8 + 4 * p_ * 8);
+    const std::vector<char> ghost_borders = pf.exchange_records(rec, [&](std::size_t l, char* out) {
+      out[0] = static_cast<char>(win_[l].kind);
+      auto* ids = reinterpret_cast<std::int64_t*>(out + 8);
+      border_into(l, ids);
+    });
+    std::vector<std::int64_t> mine_buf(static_cast<std::size_t>(4 * p_)), theirs_buf(mine_buf.size());
+    // The border ids of a local or ghost patch into `buf` (returns it), or null when neither.
+    const auto border_of = [&](std::int64_t key, std::vector<std::int64_t>& buf) -> const std::int64_t* {
+      if (const std::int64_t l = pf.local_index(key); l >= 0) {
+        border_into(static_cast<std::size_t>(l), buf.data());
+        return buf.data();
+      }
       if (const std::int64_t gi = pf.ghost_index(key); gi >= 0)
         return reinterpret_cast<const std::int64_t*>(ghost_borders.data() + static_cast<std::size_t>(gi) * rec + 8);
       return nullptr;
@@ -158,15 +165,15 @@ class WindowComponents {
       if (w.kind == Kind::kCore) dsu_.find(key * stride_);
       for (std::int32_t c = 0; c < w.comps; ++c) dsu_.find(key * stride_ + c);
       if (w.kind == Kind::kNone) continue;
-      const std::int64_t* mine = border_of(key);
+      const std::int64_t* mine = border_of(key, mine_buf);
       for (const auto [dx, dy] : {std::array<std::int64_t, 2>{1, 0}, std::array<std::int64_t, 2>{0, 1}}) {
         const std::int64_t nk = g.neighbour(g.gx(key), g.gy(key), dx, dy);
         if (nk < 0) continue;
-        const std::int64_t* theirs = border_of(nk);
+        const std::int64_t* theirs = border_of(nk, theirs_buf);
         if (theirs == nullptr) throw InternalError("forest fill: a neighbour patch is neither local nor a ghost");
         const bool local = pf.local_index(nk) >= 0;
-        const std::int64_t* a = dx == 1 ? mine + p_ : mine + 3 * p_;         // my east / north
-        const std::int64_t* b = dx == 1 ? theirs : theirs + 2 * p_;           // their west / south
+        const std::int64_t* a = dx == 1 ? mine + p_ : mine + 3 * p_;  // my east / north
+        const std::int64_t* b = dx == 1 ? theirs : theirs + 2 * p_;    // their west / south
         for (std::int64_t t = 0; t < p_; ++t) {
           if (a[t] < 0 || b[t] < 0) continue;
           dsu_.unite(a[t], b[t]);
@@ -175,6 +182,17 @@ class WindowComponents {
       }
     }
     merge_ranks(ghost_nodes);
+  }
+
+  // The 4p border ids of local patch l (see the constructor).
+  void border_into(std::size_t l, std::int64_t* ids) const {
+    const Windows& w = win_[l];
+    if (w.kind == Kind::kMat) {
+      const std::vector<std::int64_t>& b = borders_.at(l);
+      std::copy(b.begin(), b.end(), ids);
+    } else {
+      std::fill(ids, ids + 4 * p_, w.kind == Kind::kCore ? pf_.key(l) * stride_ : std::int64_t{-1});
+    }
   }
 
   [[nodiscard]] std::int64_t root(std::int64_t id) {
@@ -270,6 +288,7 @@ class WindowComponents {
   int k_ = 1;
   std::int64_t p_ = 1, stride_ = 2;
   std::vector<Windows> win_;
+  std::unordered_map<std::size_t, std::vector<std::int64_t>> borders_;  // materialised patches only
   MinDsu dsu_;
   std::unordered_map<std::int64_t, std::int64_t> merged_;
 };

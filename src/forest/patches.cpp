@@ -151,6 +151,21 @@ std::vector<char> PatchForest::exchange_bytes(const std::vector<char>& local, st
   return out;
 }
 
+std::vector<char> PatchForest::exchange_records(std::size_t bytes,
+                                                const std::function<void(std::size_t, char*)>& pack) const {
+  const sc_array_t& mirrors = ghost_->mirrors;
+  std::vector<char> packed(mirrors.elem_count * bytes, 0);
+  std::vector<void*> mirror_data(mirrors.elem_count);
+  for (size_t m = 0; m < mirrors.elem_count; ++m) {
+    const auto* q = static_cast<const p4est_quadrant_t*>(sc_array_index(const_cast<sc_array_t*>(&mirrors), m));
+    pack(static_cast<std::size_t>(q->p.piggy3.local_num), packed.data() + m * bytes);
+    mirror_data[m] = packed.data() + m * bytes;
+  }
+  std::vector<char> out(ghost_->ghosts.elem_count * bytes);
+  p4est_ghost_exchange_custom(forest_.get(), ghost_.get(), bytes, mirror_data.data(), out.data());
+  return out;
+}
+
 std::vector<PatchBits> PatchForest::exchange(const std::vector<PatchBits>& local) const {
   const std::int64_t p = grid_.size;
   const std::int64_t wpr = (p + 63) / 64;

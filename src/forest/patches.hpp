@@ -101,6 +101,10 @@ class PatchForest {
   [[nodiscard]] std::vector<PatchBits> exchange(const std::vector<PatchBits>& local) const;
   /// The ghosts' copies of fixed-size plain records, `bytes` per local patch. Collective.
   [[nodiscard]] std::vector<char> exchange_bytes(const std::vector<char>& local, std::size_t bytes) const;
+  /// The same with each record written by pack(local index, out) for the patches other ranks see
+  /// only (no record of every local patch is held). Collective.
+  [[nodiscard]] std::vector<char> exchange_records(std::size_t bytes,
+                                                   const std::function<void(std::size_t, char*)>& pack) const;
 
   /// The 3P × 3P window of the set around local patch `local`: patch (gx + dx, gy + dy) at pixel
   /// offset ((dx + 1)·P, (dy + 1)·P), taken from `mine` (local patches) or `ghosts` (ghost patches).

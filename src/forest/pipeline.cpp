@@ -194,10 +194,9 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   // Pixel classes.
   {
     StageScope stage("classify", report, log);
-    const auto& in = bathy.info();
     // Every rank runs the same checks on the same data: an error is everyone's.
     if (!regional) mask::check_mercator_caps(bathy, lat, rot, mo.min_depth_m);
-    const StackBounds bounds(bathy, lat.pixel_deg() / std::min(in.dlon, in.dlat), c.input.blend_km);
+    const StackBounds bounds(bathy, lat.pixel_deg() * static_cast<double>(p), c.input.blend_km);
     const mask::PixelWindow window =
         regional && rot.identity() ? mask::classify_window(lat, domain) : mask::PixelWindow{};
     PatchClasses pc = classify_patches(pf, bathy, bounds, rot, mo.min_depth_m, window);

@@ -24,9 +24,14 @@ using config::DomainKind;
 
 std::int64_t mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 
-// Sets bits [x0, x1) of a row.
+// Sets bits [x0, x1) of a row, a word at a time.
 void quadtree_free_set_range(std::uint64_t* row, std::int64_t x0, std::int64_t x1) {
-  for (std::int64_t x = x0; x < x1; ++x) row[x >> 6] |= std::uint64_t{1} << (x & 63);
+  while (x0 < x1) {
+    const std::int64_t w = x0 >> 6, b = x0 & 63, n = std::min<std::int64_t>(64 - b, x1 - x0);
+    const std::uint64_t bits = n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1) << b;
+    row[w] |= bits;
+    x0 += n;
+  }
 }
 
 using Ring = PolygonRing;
@@ -250,9 +255,12 @@ void row_bits(const Domain& d, std::int64_t j, std::int64_t i0, std::int64_t w, 
   }
   if (d.kind == config::DomainKind::kBox) {
     if (j < d.j0 || j >= d.j0 + d.nj) return;
-    // Columns d.i0 .. d.i0 + ni - 1, modulo nx.
-    for (std::int64_t x = 0; x < w; ++x)
-      if (mod(i0 + x - d.i0, lat.nx) < d.ni) out[x >> 6] |= std::uint64_t{1} << (x & 63);
+    // Columns d.i0 .. d.i0 + ni - 1, modulo nx: the unwrapped pieces [d.i0 + t·nx, ... + ni) that
+    // meet [i0, i0 + w) (0 <= i0, i0 + w <= nx).
+    for (std::int64_t t = -1; t <= 1; ++t) {
+      const std::int64_t a = std::max(d.i0 + t * lat.nx, i0), b = std::min(d.i0 + t * lat.nx + d.ni, i0 + w);
+      if (a < b) quadtree_free_set_range(out, a - i0, b - i0);
+    }
     return;
   }
   const double la = lat.lat_of_row(static_cast<double>(j) + 0.5);

@@ -741,9 +741,10 @@ void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std
   im->stream(wanted, work, nullptr, progress, "bands of raster rows");
 }
 
-Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n) const {
-  if (stack_) return stack_->prepare_columns(lons, n);
+Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n, bool skip_tiled) const {
+  if (stack_) return stack_->prepare_columns(lons, n, skip_tiled);
   Columns c;
+  c.skip_tiled = skip_tiled;
   c.c0.resize(static_cast<std::size_t>(n));
   c.c1.resize(c.c0.size());
   c.t.resize(c.c0.size());
@@ -773,6 +774,10 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
     std::vector<float> rows(static_cast<std::size_t>((r1 - r0 + 1) * im.info.ncols));
     im.read_rows(r0, r1 - r0 + 1, rows.data());
     fill_row(rows.data(), rows.data() + (r1 - r0) * im.info.ncols, cols, u, out);
+    return;
+  }
+  if (im.info.tiled && cols.skip_tiled) {
+    std::fill(out, out + n, std::numeric_limits<float>::quiet_NaN());
     return;
   }
   if (im.info.tiled) {  // fill_row's formula on the tiles' values

@@ -186,8 +186,11 @@ class Bathymetry {
     std::vector<double> lon;           ///< the longitudes (for bicubic)
     /// Several sources: the columns of each source and of each blend-distance field.
     std::vector<Columns> sources, distances;
+    /// A source read in tiles gives NaN on these columns (the sources below it answer): for a
+    /// picture, whose sparse samples would read a tile each.
+    bool skip_tiled = false;
   };
-  [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n) const;
+  [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n, bool skip_tiled = false) const;
   void sample_row(const Columns& cols, double lat_deg, float* out) const;
 
   /// Many rows at once: for k < n, sink(k, values) where values[0..cols) = sample_row(cols,

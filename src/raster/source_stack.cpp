@@ -201,10 +201,11 @@ void Bathymetry::Stack::points_from(std::size_t k, const double* lon_deg, const 
   }
 }
 
-Bathymetry::Columns Bathymetry::Stack::prepare_columns(const double* lons, std::int64_t n) const {
+Bathymetry::Columns Bathymetry::Stack::prepare_columns(const double* lons, std::int64_t n, bool skip_tiled) const {
   Columns c;
   c.lon.assign(lons, lons + n);
-  for (const Bathymetry& s : sources) c.sources.push_back(s.prepare_columns(lons, n));
+  c.skip_tiled = skip_tiled;
+  for (const Bathymetry& s : sources) c.sources.push_back(s.prepare_columns(lons, n, skip_tiled));
   for (const Bathymetry& d : distances) c.distances.push_back(d.prepare_columns(lons, n));
   return c;
 }

@@ -102,8 +102,7 @@ TEST_P(ForestMask, WetAndFilledBitsEqualTheDenseEngine) {
   const LatticeBrick brick(lat);
   const Comm comm;
   const PatchForest pf(brick, comm);
-  const auto& in = etopo5().info();
-  const StackBounds bounds(etopo5(), lat.pixel_deg() / std::min(in.dlon, in.dlat), 0.0);
+  const StackBounds bounds(etopo5(), lat.pixel_deg() * static_cast<double>(pf.grid().size), 0.0);
   const PatchClasses pc = classify_patches(pf, etopo5(), bounds, rot, 0.0, mask::PixelWindow{});
   EXPECT_EQ(pc.counts.wet_vertices, dense.classes.wet_vertices);
   EXPECT_EQ(pc.counts.wet, dense.classes.wet);
