@@ -60,8 +60,10 @@ raster::ValueRange StackBounds::source_box(std::size_t k, double lon_lo, double 
   // The cells a bilinear sample in the box can use, one more on every side (ValueBounds::in_box).
   const double x_lo = (lon_lo - in.lon_first) / in.dlon, x_hi = (lon_hi - in.lon_first) / in.dlon;
   const double y_lo = (lat_lo - in.lat_first) / in.dlat, y_hi = (lat_hi - in.lat_first) / in.dlat;
-  std::int64_t c_lo = static_cast<std::int64_t>(std::floor(x_lo)) - 1, c_hi = static_cast<std::int64_t>(std::floor(x_hi)) + 2;
-  const std::int64_t r_lo = static_cast<std::int64_t>(std::floor(y_lo)) - 1, r_hi = static_cast<std::int64_t>(std::floor(y_hi)) + 2;
+  std::int64_t c_lo = static_cast<std::int64_t>(std::floor(x_lo)) - 1,
+               c_hi = static_cast<std::int64_t>(std::floor(x_hi)) + 2;
+  const std::int64_t r_lo = static_cast<std::int64_t>(std::floor(y_lo)) - 1,
+                     r_hi = static_cast<std::int64_t>(std::floor(y_hi)) + 2;
   if (!in.global_lon && (x_hi < -0.5 || x_lo > static_cast<double>(in.ncols) - 0.5)) {
     // Past the raster's columns (also a whole turn away, as sampling takes it): no data there.
     const double turn = 360.0 / in.dlon;

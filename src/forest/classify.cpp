@@ -115,9 +115,10 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
   const bool streamed = bathy.info().streamed;
   const bool global_lon = bathy.info().global_lon;
   if (streamed && rotated)
-    throw ConfigError(fmt::format("{}: a streamed raster (not held whole) supports the unrotated vertex rule only; "
-                                  "rotation.enabled = true needs the raster whole",
-                                  bathy.info().path));
+    throw ConfigError(
+        fmt::format("{}: a streamed raster (not held whole) supports the unrotated vertex rule only; "
+                    "rotation.enabled = true needs the raster whole",
+                    bathy.info().path));
   const VertexWindow vw(lat, rotated ? mask::PixelWindow{} : window);
   PatchClasses out;
   const auto n = static_cast<std::int64_t>(pf.local_count());
@@ -126,57 +127,60 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
 
   std::exception_ptr error;  // the first failure of this rank (sampling reads rasters)
   if (streamed) try {
-    // A streamed raster is read band by band: the vertex rows of several tree rows at once, over
-    // the columns of this rank's trees in them, thresholded into one buffer and cut into patches.
-    const LatticeBrick& brick = pf.brick();
-    const std::int64_t side0 = lat.pixels_per_square(0);
-    const std::int64_t group =
-        std::max<std::int64_t>(1, (4 * std::max<std::int64_t>(bathy.info().band_rows, 1) + side0 - 1) / side0);
-    for (std::int64_t t0 = pf.first_tree(); t0 < pf.last_tree();) {
-      const std::int64_t b_first = brick.tree_b0(t0);
-      const std::int64_t b_last = std::min(brick.tree_b0(pf.last_tree() - 1), b_first + group - 1);
-      const std::int64_t t_end = std::min(pf.last_tree(), brick.tree(0, b_last + 1));
-      std::int64_t a_lo = 0, a_hi = brick.nx0() - 1;  // several tree rows: all columns
-      if (b_first == b_last) {
-        a_lo = brick.tree_a0(t0);
-        a_hi = brick.tree_a0(t_end - 1);
-      }
-      const std::int64_t I_lo = a_lo * side0;
-      const std::int64_t ncols = (a_hi + 1) * side0 - I_lo + 1;
-      const std::int64_t J_lo = b_first * side0, nrows = (b_last - b_first + 1) * side0 + 1;
-      std::vector<double> lons(static_cast<std::size_t>(ncols)), lats(static_cast<std::size_t>(nrows));
-      for (std::int64_t k = 0; k < ncols; ++k) lons[static_cast<std::size_t>(k)] = lat.lon_of(wrap_index(I_lo + k, nx));
-      for (std::int64_t k = 0; k < nrows; ++k) lats[static_cast<std::size_t>(k)] = lat.lat_of(J_lo + k);
-      const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), ncols);
-      Bitmap v(ncols, nrows);
-      bathy.sample_rows(cols, lats.data(), nrows, [&v, &vw, ncols, I_lo, J_lo, threshold](std::int64_t k, const float* values) {
-        std::uint64_t* row = v.row(k);
-        for (std::int64_t c = 0; c < ncols; ++c)
-          if (static_cast<double>(values[c]) <= threshold && vw.row(J_lo + k) && vw.col(I_lo + c))
-            row[c >> 6] |= std::uint64_t{1} << (c & 63);
-      });
-      for (std::int64_t t = t0; t < t_end; ++t) {
-        for (std::int64_t k = 0; k < g.per_tree * g.per_tree; ++k) {
-          const std::int64_t local = pf.local_index(g.key(brick.tree_a0(t) * g.per_tree, brick.tree_b0(t) * g.per_tree)) + k;
-          const std::int64_t key = pf.key(static_cast<std::size_t>(local));
-          const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
-          Bitmap pv(p + 1, p + 1);
-          for (std::int64_t r = 0; r <= p; ++r)
-            for (std::int64_t c = 0; c <= p; ++c)
-              if (v.get(I0 - I_lo + c, J0 - J_lo + r)) pv.set(c, r);
-          PatchCounts pc;
-          pixels_from_vertices(pv, p, g.gy(key) == g.npy - 1, out.wet[static_cast<std::size_t>(local)], pc);
-          wv += pc.wet_vertices;
-          wet += pc.wet;
-          coastal += pc.coastal;
-          ++sampled;
+      // A streamed raster is read band by band: the vertex rows of several tree rows at once, over
+      // the columns of this rank's trees in them, thresholded into one buffer and cut into patches.
+      const LatticeBrick& brick = pf.brick();
+      const std::int64_t side0 = lat.pixels_per_square(0);
+      const std::int64_t group =
+          std::max<std::int64_t>(1, (4 * std::max<std::int64_t>(bathy.info().band_rows, 1) + side0 - 1) / side0);
+      for (std::int64_t t0 = pf.first_tree(); t0 < pf.last_tree();) {
+        const std::int64_t b_first = brick.tree_b0(t0);
+        const std::int64_t b_last = std::min(brick.tree_b0(pf.last_tree() - 1), b_first + group - 1);
+        const std::int64_t t_end = std::min(pf.last_tree(), brick.tree(0, b_last + 1));
+        std::int64_t a_lo = 0, a_hi = brick.nx0() - 1;  // several tree rows: all columns
+        if (b_first == b_last) {
+          a_lo = brick.tree_a0(t0);
+          a_hi = brick.tree_a0(t_end - 1);
         }
+        const std::int64_t I_lo = a_lo * side0;
+        const std::int64_t ncols = (a_hi + 1) * side0 - I_lo + 1;
+        const std::int64_t J_lo = b_first * side0, nrows = (b_last - b_first + 1) * side0 + 1;
+        std::vector<double> lons(static_cast<std::size_t>(ncols)), lats(static_cast<std::size_t>(nrows));
+        for (std::int64_t k = 0; k < ncols; ++k)
+          lons[static_cast<std::size_t>(k)] = lat.lon_of(wrap_index(I_lo + k, nx));
+        for (std::int64_t k = 0; k < nrows; ++k) lats[static_cast<std::size_t>(k)] = lat.lat_of(J_lo + k);
+        const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), ncols);
+        Bitmap v(ncols, nrows);
+        bathy.sample_rows(cols, lats.data(), nrows,
+                          [&v, &vw, ncols, I_lo, J_lo, threshold](std::int64_t k, const float* values) {
+                            std::uint64_t* row = v.row(k);
+                            for (std::int64_t c = 0; c < ncols; ++c)
+                              if (static_cast<double>(values[c]) <= threshold && vw.row(J_lo + k) && vw.col(I_lo + c))
+                                row[c >> 6] |= std::uint64_t{1} << (c & 63);
+                          });
+        for (std::int64_t t = t0; t < t_end; ++t) {
+          for (std::int64_t k = 0; k < g.per_tree * g.per_tree; ++k) {
+            const std::int64_t local =
+                pf.local_index(g.key(brick.tree_a0(t) * g.per_tree, brick.tree_b0(t) * g.per_tree)) + k;
+            const std::int64_t key = pf.key(static_cast<std::size_t>(local));
+            const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
+            Bitmap pv(p + 1, p + 1);
+            for (std::int64_t r = 0; r <= p; ++r)
+              for (std::int64_t c = 0; c <= p; ++c)
+                if (v.get(I0 - I_lo + c, J0 - J_lo + r)) pv.set(c, r);
+            PatchCounts pc;
+            pixels_from_vertices(pv, p, g.gy(key) == g.npy - 1, out.wet[static_cast<std::size_t>(local)], pc);
+            wv += pc.wet_vertices;
+            wet += pc.wet;
+            coastal += pc.coastal;
+            ++sampled;
+          }
+        }
+        t0 = t_end;
       }
-      t0 = t_end;
+    } catch (...) {
+      error = std::current_exception();
     }
-  } catch (...) {
-    error = std::current_exception();
-  }
   else {
     std::vector<std::exception_ptr> errors(static_cast<std::size_t>(n));
 #pragma omp parallel default(none) shared(pf, g, lat, bathy, bounds, rot, vw, out, n, p, nx, threshold, rotated, \
@@ -187,57 +191,59 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
       std::vector<double> x(lons.size());
 #pragma omp for schedule(dynamic, 4)
       for (std::int64_t l = 0; l < n; ++l) try {
-        const std::int64_t key = pf.key(static_cast<std::size_t>(l));
-        const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
-        const bool top = g.gy(key) == g.npy - 1;
-        PatchBits& w = out.wet[static_cast<std::size_t>(l)];
-        PatchCounts pc;
-        if (vw.misses(I0, J0, p)) {
-          w.state = Fill::kNone;
-          ++decided;
-          continue;
-        }
-        const bool whole = vw.holds(I0, J0, p);
-        int s = 0;
-        if (whole && bounds.available()) {
-          s = rotated ? rotated_side(bounds, lat, rot, global_lon, threshold, I0, I0 + p, J0, J0 + p)
-                      : side(bounds.in_box(lat.lon_of(I0), lat.lon_of(I0 + p), lat.lat_of(J0), lat.lat_of(J0 + p)),
-                             threshold, true);
-        }
-        if (s != 0) {
-          uniform(s, p, top, w, pc);
-          ++decided;
-        } else {
-          Bitmap v(p + 1, p + 1);
-          if (rotated) {
-            for (std::int64_t k = 0; k <= p; ++k) x[static_cast<std::size_t>(k)] = static_cast<double>(wrap_index(I0 + k, nx));
-            const mask::LatticeRowMapper mapper(lat, rot, x);
-            for (std::int64_t r = 0; r <= p; ++r) {
-              mapper.map_row(static_cast<double>(J0 + r), lons.data(), la.data());
-              bathy.sample_points(lons.data(), la.data(), p + 1, vals.data());
-              for (std::int64_t c = 0; c <= p; ++c)
-                if (vals[static_cast<std::size_t>(c)] <= threshold && vw.row(J0 + r) && vw.col(I0 + c)) v.set(c, r);
-            }
-          } else {
-            for (std::int64_t k = 0; k <= p; ++k) lons[static_cast<std::size_t>(k)] = lat.lon_of(wrap_index(I0 + k, nx));
-            const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), p + 1);
-            for (std::int64_t r = 0; r <= p; ++r) {
-              bathy.sample_row(cols, lat.lat_of(J0 + r), fv.data());
-              for (std::int64_t c = 0; c <= p; ++c)
-                if (static_cast<double>(fv[static_cast<std::size_t>(c)]) <= threshold && vw.row(J0 + r) &&
-                    vw.col(I0 + c))
-                  v.set(c, r);
-            }
+          const std::int64_t key = pf.key(static_cast<std::size_t>(l));
+          const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
+          const bool top = g.gy(key) == g.npy - 1;
+          PatchBits& w = out.wet[static_cast<std::size_t>(l)];
+          PatchCounts pc;
+          if (vw.misses(I0, J0, p)) {
+            w.state = Fill::kNone;
+            ++decided;
+            continue;
           }
-          pixels_from_vertices(v, p, top, w, pc);
-          ++sampled;
+          const bool whole = vw.holds(I0, J0, p);
+          int s = 0;
+          if (whole && bounds.available()) {
+            s = rotated ? rotated_side(bounds, lat, rot, global_lon, threshold, I0, I0 + p, J0, J0 + p)
+                        : side(bounds.in_box(lat.lon_of(I0), lat.lon_of(I0 + p), lat.lat_of(J0), lat.lat_of(J0 + p)),
+                               threshold, true);
+          }
+          if (s != 0) {
+            uniform(s, p, top, w, pc);
+            ++decided;
+          } else {
+            Bitmap v(p + 1, p + 1);
+            if (rotated) {
+              for (std::int64_t k = 0; k <= p; ++k)
+                x[static_cast<std::size_t>(k)] = static_cast<double>(wrap_index(I0 + k, nx));
+              const mask::LatticeRowMapper mapper(lat, rot, x);
+              for (std::int64_t r = 0; r <= p; ++r) {
+                mapper.map_row(static_cast<double>(J0 + r), lons.data(), la.data());
+                bathy.sample_points(lons.data(), la.data(), p + 1, vals.data());
+                for (std::int64_t c = 0; c <= p; ++c)
+                  if (vals[static_cast<std::size_t>(c)] <= threshold && vw.row(J0 + r) && vw.col(I0 + c)) v.set(c, r);
+              }
+            } else {
+              for (std::int64_t k = 0; k <= p; ++k)
+                lons[static_cast<std::size_t>(k)] = lat.lon_of(wrap_index(I0 + k, nx));
+              const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), p + 1);
+              for (std::int64_t r = 0; r <= p; ++r) {
+                bathy.sample_row(cols, lat.lat_of(J0 + r), fv.data());
+                for (std::int64_t c = 0; c <= p; ++c)
+                  if (static_cast<double>(fv[static_cast<std::size_t>(c)]) <= threshold && vw.row(J0 + r) &&
+                      vw.col(I0 + c))
+                    v.set(c, r);
+              }
+            }
+            pixels_from_vertices(v, p, top, w, pc);
+            ++sampled;
+          }
+          wv += pc.wet_vertices;
+          wet += pc.wet;
+          coastal += pc.coastal;
+        } catch (...) {
+          errors[static_cast<std::size_t>(l)] = std::current_exception();
         }
-        wv += pc.wet_vertices;
-        wet += pc.wet;
-        coastal += pc.coastal;
-      } catch (...) {
-        errors[static_cast<std::size_t>(l)] = std::current_exception();
-      }
     }
     for (const std::exception_ptr& e : errors)
       if (e && !error) error = e;

@@ -45,7 +45,8 @@ class Comm {
   [[nodiscard]] std::vector<T> allgatherv(const std::vector<T>& mine) const {
     static_assert(std::is_trivially_copyable_v<T>);
     std::vector<std::int64_t> counts;
-    std::vector<char> bytes = allgather_bytes(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(T), counts);
+    std::vector<char> bytes =
+        allgather_bytes(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(T), counts);
     std::vector<T> out(bytes.size() / sizeof(T));
     if (!out.empty()) std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;

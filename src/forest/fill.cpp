@@ -173,7 +173,7 @@ class WindowComponents {
         if (theirs == nullptr) throw InternalError("forest fill: a neighbour patch is neither local nor a ghost");
         const bool local = pf.local_index(nk) >= 0;
         const std::int64_t* a = dx == 1 ? mine + p_ : mine + 3 * p_;  // my east / north
-        const std::int64_t* b = dx == 1 ? theirs : theirs + 2 * p_;    // their west / south
+        const std::int64_t* b = dx == 1 ? theirs : theirs + 2 * p_;   // their west / south
         for (std::int64_t t = 0; t < p_; ++t) {
           if (a[t] < 0 || b[t] < 0) continue;
           dsu_.unite(a[t], b[t]);
@@ -296,9 +296,10 @@ class WindowComponents {
 void check_cursor(int k, std::int64_t p) {
   if (k < 1 || k > 64) throw ConfigError(fmt::format("mask.cursor = {}: K must be between 1 and 64", k));
   if (k > p)
-    throw ConfigError(fmt::format("mask.cursor = {}: the forest engine needs K <= {} pixels (its patches of 2^min(L, "
-                                  "7) pixels); more quadtree.levels, or quadtree.engine = \"dense\"",
-                                  k, p));
+    throw ConfigError(
+        fmt::format("mask.cursor = {}: the forest engine needs K <= {} pixels (its patches of 2^min(L, "
+                    "7) pixels); more quadtree.levels, or quadtree.engine = \"dense\"",
+                    k, p));
 }
 
 std::string seed_name(std::size_t n, const std::array<double, 2>& s) {
@@ -398,7 +399,8 @@ std::vector<mask::SeedInfo> place_seeds(const PatchForest& pf, WindowComponents&
         if (lb > radius_deg + 1e-9) continue;
         order.push_back({lb, l});
       }
-      std::sort(order.begin(), order.end(), [](const Near& a, const Near& b) { return a.lb < b.lb || (a.lb == b.lb && a.l < b.l); });
+      std::sort(order.begin(), order.end(),
+                [](const Near& a, const Near& b) { return a.lb < b.lb || (a.lb == b.lb && a.l < b.l); });
       Candidate near;
       for (const Near& o : order) {
         if (near.found() && o.lb > near.dist + 1e-12) break;
@@ -568,7 +570,8 @@ ForestFill forest_fill(const PatchForest& pf, const std::vector<PatchBits>& wet,
       reached.insert(r);
       out.stats.reached_windows += sizes[n];
       for (std::size_t m = n + 1; m < out.seeds.size(); ++m)
-        if (out.seeds[m].same_fill_as < 0 && sizes[n] > 0 && roots[m] == r) out.seeds[m].same_fill_as = static_cast<int>(n);
+        if (out.seeds[m].same_fill_as < 0 && sizes[n] > 0 && roots[m] == r)
+          out.seeds[m].same_fill_as = static_cast<int>(n);
     }
   }
   out.filled = dilate_reached(pf, wc, k, reached);

@@ -20,9 +20,10 @@ LatticeBrick::LatticeBrick(const Lattice& lat) : lat_(lat) {
     throw InternalError(fmt::format("forest: the {} x {} lattice is not whole level-0 squares of {} pixels", lat.nx,
                                     lat.ny, lat.pixels_per_square(0)));
   if (nx0_ * ny0_ > std::numeric_limits<p4est_topidx_t>::max())
-    throw ConfigError(fmt::format("quadtree.engine = \"forest\": {} x {} level-0 squares are more trees than p4est "
-                                  "numbers; a larger quadtree.step_deg",
-                                  nx0_, ny0_));
+    throw ConfigError(
+        fmt::format("quadtree.engine = \"forest\": {} x {} level-0 squares are more trees than p4est "
+                    "numbers; a larger quadtree.step_deg",
+                    nx0_, ny0_));
   conn_.reset(p4est_connectivity_new_brick(static_cast<int>(nx0_), static_cast<int>(ny0_), periodic_ ? 1 : 0, 0));
   // Tree t of the brick has its lower-left vertex at (a0, b0): the new index is b0·nx0 + a0.
   p4est_connectivity_t* c = conn_.get();

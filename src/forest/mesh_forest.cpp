@@ -2,8 +2,8 @@
 #include "forest/mesh_forest.hpp"
 
 #include <fmt/format.h>
-#include <p4est_bits.h>
 #include <p4est_algorithms.h>
+#include <p4est_bits.h>
 #include <p4est_communication.h>
 
 #include <algorithm>
@@ -332,7 +332,8 @@ std::vector<quadtree::LeafNeighbourhood> MeshForest::local_neighbourhoods() cons
       const std::int64_t I = cv[c][0], J = cv[c][1];
       if (J <= 0 || J >= ny) continue;
       const bool ne = filled(I, J), nw = filled(I - 1, J), se = filled(I, J - 1), sw = filled(I - 1, J - 1);
-      if ((ne && sw && !nw && !se) || (nw && se && !ne && !sw)) nb.pinch = static_cast<std::uint8_t>(nb.pinch | (1U << c));
+      if ((ne && sw && !nw && !se) || (nw && se && !ne && !sw))
+        nb.pinch = static_cast<std::uint8_t>(nb.pinch | (1U << c));
     }
   }
   return out;

@@ -33,7 +33,7 @@ class MeshForest {
 
   /// What the balance did.
   struct BalanceResult {
-    bool used_p4est = false;       ///< p4est_balance, else the dense rule's rounds
+    bool used_p4est = false;         ///< p4est_balance, else the dense rule's rounds
     std::int64_t forced_splits = 0;  ///< leaves split (the rounds: filled leaves)
     int rounds = 0;
   };

@@ -108,7 +108,8 @@ PatchForest::PatchForest(const LatticeBrick& brick, const Comm& comm)
     if (static_cast<std::int64_t>(tree->quadrants.elem_count) != grid_.per_tree * grid_.per_tree)
       throw InternalError("forest: a tree of the patch forest is split between ranks");
     for (size_t k = 0; k < tree->quadrants.elem_count; ++k) {
-      const auto* q = static_cast<const p4est_quadrant_t*>(sc_array_index(const_cast<sc_array_t*>(&tree->quadrants), k));
+      const auto* q =
+          static_cast<const p4est_quadrant_t*>(sc_array_index(const_cast<sc_array_t*>(&tree->quadrants), k));
       const Square s = brick_.square(t, *q);
       keys_.push_back(grid_.key(s.a, s.b));
     }
@@ -263,7 +264,8 @@ Bitmap gather_dense(const PatchForest& pf, const std::vector<PatchBits>& set) {
       for (std::int64_t j = 0; j < p; ++j) or_bits_at(out.row(y0 + j), x0, ones.data(), p);
     } else if (state == static_cast<std::int64_t>(Fill::kMixed)) {
       Bitmap b(p, p);
-      for (std::int64_t w = 0; w < words; ++w) b.words()[static_cast<std::size_t>(w)] = static_cast<std::uint64_t>(all[q + static_cast<std::size_t>(w)]);
+      for (std::int64_t w = 0; w < words; ++w)
+        b.words()[static_cast<std::size_t>(w)] = static_cast<std::uint64_t>(all[q + static_cast<std::size_t>(w)]);
       q += static_cast<std::size_t>(words);
       for (std::int64_t j = 0; j < p; ++j) or_bits_at(out.row(y0 + j), x0, b.row(j), p);
     }

@@ -32,9 +32,9 @@ inline constexpr int kMaxPatchLog2 = 7;
 
 struct PatchGrid {
   Lattice lat;
-  int plog = 0;               ///< log2 P
-  int level = 0;              ///< lp: the quadtree level of a patch
-  std::int64_t size = 1;      ///< P
+  int plog = 0;           ///< log2 P
+  int level = 0;          ///< lp: the quadtree level of a patch
+  std::int64_t size = 1;  ///< P
   std::int64_t npx = 0, npy = 0;
   std::int64_t per_tree = 1;  ///< patches per tree side, 2^lp
   bool periodic = true;

@@ -105,7 +105,8 @@ std::vector<std::array<double, 2>> regional_seeds(const PatchForest& pf, const m
         if (!rot.identity()) rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
         const double z = bathy.sample(lon, la);
         const std::int64_t j = j0 + y, i = i0 + x;
-        if (std::isfinite(z) && (z < mine.z || (z == mine.z && (j < mine.j || (j == mine.j && i < mine.i))))) mine = {z, j, i};
+        if (std::isfinite(z) && (z < mine.z || (z == mine.z && (j < mine.j || (j == mine.j && i < mine.i)))))
+          mine = {z, j, i};
       }
   }
   const std::vector<Deepest> all = pf.comm().allgatherv(std::vector<Deepest>{mine});
@@ -116,9 +117,10 @@ std::vector<std::array<double, 2>> regional_seeds(const PatchForest& pf, const m
   const mask::LonLat c = mask::pixel_center_lattice_deg(lattice, {best.i, best.j});
   double lon = c.lon_deg, la = c.lat_deg;
   if (!rot.identity()) rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
-  log.info("domain: no mask.seeds point is inside the domain; the fill starts at the deepest wet pixel inside, "
-           "{:.4f}°E {:.4f}°N ({:.0f} m)",
-           lon, la, best.z);
+  log.info(
+      "domain: no mask.seeds point is inside the domain; the fill starts at the deepest wet pixel inside, "
+      "{:.4f}°E {:.4f}°N ({:.0f} m)",
+      lon, la, best.z);
   return {{lon, la}};
 }
 
@@ -169,13 +171,15 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     if (!std::isfinite(mo.min_depth_m) || mo.min_depth_m < 0.0)
       throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", mo.min_depth_m));
     if (mask::parse_sampling(mo.sampling) != mask::Sampling::kVertex)
-      throw ConfigError("mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
-                        "quadtree.engine = \"dense\" for the area rule");
+      throw ConfigError(
+          "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
+          "quadtree.engine = \"dense\" for the area rule");
     if (!std::isfinite(mo.seed_radius_deg) || mo.seed_radius_deg < 0.0)
       throw ConfigError(fmt::format("mask.seed_radius_deg = {}: must be a finite number >= 0", mo.seed_radius_deg));
     if (mo.seeds.empty()) throw ConfigError("mask.seeds = []: give at least one [lon, lat] point in the ocean");
     if (lat.levels < 1)
-      throw ConfigError("quadtree.levels = 0: the forest engine needs at least one level (quadtree.engine = \"dense\")");
+      throw ConfigError(
+          "quadtree.levels = 0: the forest engine needs at least one level (quadtree.engine = \"dense\")");
   });
   st->brick = std::make_unique<LatticeBrick>(lat);
   st->patches = std::make_unique<PatchForest>(*st->brick, comm);
@@ -203,10 +207,11 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     st->wet = std::move(pc.wet);
     out.area.classes = pc.counts;
     fj["classify"] = Json{{"patches_decided_by_bounds", pc.decided}, {"patches_sampled", pc.sampled}};
-    stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule; {} patches "
-                           "decided by bounds, {} sampled)",
-                           lat.nx, lat.ny, lat.mercator() ? "Mercator " : "", lat.pixel_deg(), pc.counts.wet,
-                           pc.counts.coastal, pc.counts.dry, mo.min_depth_m, mo.sampling, pc.decided, pc.sampled));
+    stage.done(
+        fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule; {} patches "
+                    "decided by bounds, {} sampled)",
+                    lat.nx, lat.ny, lat.mercator() ? "Mercator " : "", lat.pixel_deg(), pc.counts.wet,
+                    pc.counts.coastal, pc.counts.dry, mo.min_depth_m, mo.sampling, pc.decided, pc.sampled));
   }
 
   // The K-cursor fill (on wet ∩ domain for a regional run).
@@ -238,11 +243,11 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     out.area.filled_pixels = out.area.fill.filled_pixels;
     for (const mask::SeedInfo& s : out.area.seeds) seed_windows.push_back(s.window);
     const mask::FillStats& f = out.area.fill;
-    stage.done(fmt::format("K = {}: {} filled pixels ({:.1f}% of wet), {} wet pixels left out, {} wet components",
-                           mo.cursor, f.filled_pixels,
-                           f.wet_pixels > 0 ? 100.0 * static_cast<double>(f.filled_pixels) / static_cast<double>(f.wet_pixels)
-                                            : 0.0,
-                           f.wet_left_out, f.wet_components));
+    stage.done(fmt::format(
+        "K = {}: {} filled pixels ({:.1f}% of wet), {} wet pixels left out, {} wet components", mo.cursor,
+        f.filled_pixels,
+        f.wet_pixels > 0 ? 100.0 * static_cast<double>(f.filled_pixels) / static_cast<double>(f.wet_pixels) : 0.0,
+        f.wet_left_out, f.wet_components));
   }
 
   // Pinch vertices (and their removal: the choices in the dense order on rank 0's gathered set,
@@ -313,8 +318,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   }
 
   // The size field (its grid replicated on every rank, from the counts of all ranks).
-  out.size_field = size::build_size_field(
-      [&](const size::FieldGrid& grid) { return filled_counts(pf, filled, grid); }, lat, c, rot, &bathy, log, report);
+  out.size_field = size::build_size_field([&](const size::FieldGrid& grid) { return filled_counts(pf, filled, grid); },
+                                          lat, c, rot, &bathy, log, report);
 
   // The quadtree: the pyramid's refinements, the p4est forest, its balance.
   {
@@ -346,7 +351,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     const double balance_s = t_balance.wall_s();
     Timer t_check;
     // The checkers: the counts are global (the same on every rank), so is the error.
-    for (const std::vector<std::int64_t>* cnt : std::array<const std::vector<std::int64_t>*, 4>{&bare, &banded, &refined, &balanced})
+    for (const std::vector<std::int64_t>* cnt :
+         std::array<const std::vector<std::int64_t>*, 4>{&bare, &banded, &refined, &balanced})
       if (pixels_of(*cnt, lat.levels) != filled_pixels)
         throw InternalError(
             fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*cnt, lat.levels), filled_pixels));
@@ -418,7 +424,9 @@ std::vector<char> wet_outside_domain(const ForestState& state, const mask::Domai
   for (std::size_t k = 0; k < q.size(); ++k) {
     const std::int64_t l = pf.local_index(g.key(q[k].i / p, q[k].j / p));
     if (l < 0) continue;
-    ans[k] = (!domain.contains(q[k].i, q[k].j) && state.wet[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p)) ? 1 : 0;
+    ans[k] = (!domain.contains(q[k].i, q[k].j) && state.wet[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
+                 ? 1
+                 : 0;
   }
   comm.or_in_place(ans);
   if (!comm.root()) return {};

@@ -45,9 +45,10 @@ ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>
     throw ConfigError("quadtree.levels = 0: the forest engine needs at least one level (quadtree.engine = \"dense\")");
   if (coast_band < 0) throw ConfigError(fmt::format("quadtree.coast_band = {}: must be >= 0 (pixels)", coast_band));
   if (coast_band > p_)
-    throw ConfigError(fmt::format("quadtree.coast_band = {}: the forest engine needs at most {} pixels (its patches); "
-                                  "quadtree.engine = \"dense\"",
-                                  coast_band, p_));
+    throw ConfigError(
+        fmt::format("quadtree.coast_band = {}: the forest engine needs at most {} pixels (its patches); "
+                    "quadtree.engine = \"dense\"",
+                    coast_band, p_));
   ghosts_ = pf.exchange(filled);
   const std::size_t n = pf.local_count();
   fine_.resize(n);
@@ -336,7 +337,8 @@ quadtree::GradeStats ForestPyramid::grade(const size::SizeField& field) {
     std::vector<Sq> split(flat.size() / 2);
     for (std::size_t q = 0; q < split.size(); ++q) split[q] = {flat[2 * q], flat[2 * q + 1]};
     flat = {};
-    std::sort(split.begin(), split.end(), [](const Sq& x, const Sq& y) { return x.b < y.b || (x.b == y.b && x.a < y.a); });
+    std::sort(split.begin(), split.end(),
+              [](const Sq& x, const Sq& y) { return x.b < y.b || (x.b == y.b && x.a < y.a); });
     if (v == L_ - 1) {
       std::vector<std::int64_t> rx, ry;
       quadtree::grading_radii(lat, v, gr, rx, ry);

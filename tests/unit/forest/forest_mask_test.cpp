@@ -36,7 +36,8 @@ TEST(ForestBrick, TreesAndQuadrantsFollowTheDenseLeafOrder) {
   for (p4est_topidx_t t = f->first_local_tree; t <= f->last_local_tree; ++t) {
     const auto* tree = static_cast<const p4est_tree_t*>(sc_array_index(f->trees, static_cast<size_t>(t)));
     for (size_t k = 0; k < tree->quadrants.elem_count; ++k) {
-      const auto* q = static_cast<const p4est_quadrant_t*>(sc_array_index(const_cast<sc_array_t*>(&tree->quadrants), k));
+      const auto* q =
+          static_cast<const p4est_quadrant_t*>(sc_array_index(const_cast<sc_array_t*>(&tree->quadrants), k));
       const Square s = brick.square(t, *q);
       ASSERT_EQ(s.level, 2);
       EXPECT_EQ(brick.tree(s.a >> 2, s.b >> 2), t);
