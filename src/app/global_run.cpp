@@ -19,6 +19,7 @@
 #include "mask/passages.hpp"
 #include "mesh/boundaries.hpp"
 #include "mesh/build_mesh.hpp"
+#include "mesh/floodplain.hpp"
 #include "mesh/open_snap.hpp"
 #include "mesh/time_step.hpp"
 #include "mesh_files/element_kinds.hpp"
@@ -73,6 +74,9 @@ constexpr double kForestBytesPerQuadrant = 120.0;
 constexpr double kForestGatherBytesPerLeaf = 27.0;
 // The forest reads a raster in tiles (raster::OpenOptions::tiles_above_bytes) above this.
 constexpr std::int64_t kForestTilesAboveBytes = std::int64_t{1} << 30;
+// A floodplain run (mask.min_depth_m < 0) keeps 3 bitmaps more: the pixels wet at the datum, the
+// sea inside Ω_L and, regional, the open water (mask/wet_area.hpp).
+constexpr double kFloodplainBitsPerPixel = 3.0;
 constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 230'000'000;  // program, GDAL cache, the writers' chunk buffers, small tables
@@ -237,8 +241,11 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   s.forest = c.quadtree.engine == config::QuadtreeEngine::kForest;
   s.ranks = std::max(1, o.ranks);
   s.triangles_guess = estimate_triangles(s.lattice);
-  s.lattice_bytes = s.forest ? saturate(forest_bytes(s.lattice, static_cast<double>(s.triangles_guess), s.ranks))
-                             : estimate_lattice_bytes(s.lattice);
+  s.lattice_bytes = estimate_lattice_bytes(s.lattice);
+  if (c.mask.min_depth_m < 0.0)  // a floodplain: the pixels at the datum, the sea and (regional) the open water
+    s.lattice_bytes = saturate(estimate_lattice_bytes_f(s.lattice) * (kLatticeBitsPerPixel + kFloodplainBitsPerPixel) /
+                               kLatticeBitsPerPixel);
+  if (s.forest) s.lattice_bytes = saturate(forest_bytes(s.lattice, static_cast<double>(s.triangles_guess), s.ranks));
   s.mesh_bytes = saturate(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
   const Lattice& lat = s.lattice;
   if (!s.forest && s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
@@ -631,8 +638,11 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
     log.info("critical passages (open = the filled ocean connects both sides):");
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
-  run.size_field = size::build_size_field(area.filled, lat, c, rot, &bathy, log, report);
-  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report, &run.size_field);
+  // The coast beyond Ω_L's edge (mask/coast.hpp): not the open water beyond a regional domain,
+  // and with a floodplain the shoreline at the datum.
+  const mask::CoastSources coast = area.coast();
+  run.size_field = size::build_size_field(area.filled, lat, c, rot, &bathy, log, report, coast);
+  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report, &run.size_field, coast);
   return run;
 }
 
@@ -750,11 +760,11 @@ static void type_regional_boundaries(GlobalRun& run, const std::function<bool(co
   stage.done(mesh::describe(counts));
 }
 
+// The dense engine's: WetArea::open, the water at the datum outside the domain (wet at max(h, 0), so
+// the floodplain of a surge mesh meets the domain edge with land).
 static void type_regional_boundaries_dense(GlobalRun& run, const Logger& log, Report* report) {
-  const mask::Domain& d = run.domain;
-  const Bitmap& wet = run.area.wet;
-  type_regional_boundaries(
-      run, [&](const mask::PixelIJ& px) { return !d.contains(px.i, px.j) && wet.get(px.i, px.j); }, log, report);
+  const Bitmap& open = run.area.open;
+  type_regional_boundaries(run, [&](const mask::PixelIJ& px) { return open.get(px.i, px.j); }, log, report);
 }
 
 // A polygon domain: the open-boundary nodes moved onto the polygon where the triangles stay valid
@@ -769,7 +779,7 @@ static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfi
     return;
   }
   mesh::OpenSnapOptions o;
-  o.wet_max_elevation_m = -c.mask.min_depth_m;
+  o.wet_max_elevation_m = -std::max(c.mask.min_depth_m, 0.0);  // an open node stays in water at the datum
   const raster::Bathymetry& bathy = *run.bathy;
   const mesh::OpenSnapResult r = mesh::snap_open_boundary(
       run.mesh, run.domain.rings, run.setup.rotation,
@@ -781,6 +791,23 @@ static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfi
       o);
   if (report != nullptr) (*report)["open_boundary_snap"] = r.json();
   stage.done(r.describe());
+}
+
+// A floodplain mesh (mask.min_depth_m < 0; README "A storm-surge mesh"): its nodes and area above
+// the datum (mesh/floodplain.hpp), the "floodplain" stage line and report section.
+static void report_floodplain(const GlobalRun& run, const Logger& log, Report* report) {
+  StageScope stage("floodplain", report, log);
+  const mesh::Floodplain f = mesh::floodplain(run.mesh, run.mesh.floodplain_top_m);
+  if (report != nullptr) {
+    Json j = mesh::floodplain_json(f);
+    j["pixels"] = run.area.floodplain_pixels;
+    (*report)["floodplain"] = j;
+  }
+  stage.done(
+      fmt::format("{} of {} nodes above the datum (dry at rest; highest {:.1f} m), {:.1f} km² (WGS84) of land up "
+                  "to +{:g} m in {} triangles; {} of the {} land-boundary nodes are above the datum",
+                  f.nodes, run.mesh.node_count(), f.highest_node_m, f.area_km2, f.top_m, f.triangles,
+                  f.land_boundary_nodes_above, f.land_boundary_nodes));
 }
 
 // The statistics and checks of the lattice mesh (conforming, its area that of the filled pixels):
@@ -809,13 +836,24 @@ static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const Glo
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
-  if (!keep_masks) run.area.wet = Bitmap();
+  if (!keep_masks) run.area.open = Bitmap();
   if (!statistics) return;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)
     StageScope dt_stage("time_step", report, log);
-    const mesh::TimeStep ts = mesh::time_step(run.mesh, c.size.min_depth_m, c.size.cfl.dt_s, c.size.cfl.courant_max);
+    const mesh::TimeStep ts = mesh::time_step(run.mesh, c.size.min_depth_m, c.size.cfl.dt_s, c.size.cfl.courant_max,
+                                              run.mesh.floodplain_top_m);
     if (report != nullptr) (*report)["time_step"] = mesh::time_step_json(ts);
+    if (ts.wetting_drying.flood_level_m > 0.0) {
+      const mesh::TimeStep::WettingDrying& w = ts.wetting_drying;
+      log.info(
+          "time_step: with wetting and drying, water up to {:g} m above the datum over every node (H = {:g} m - "
+          "elevation, at least {} m): dt {:.2f} s (edge {:.0f} m, H {:.1f} m at {:.3f}, {:.3f}, whose highest "
+          "node is at {:.1f} m); {:.2f} s at Courant {}",
+          w.flood_level_m, w.flood_level_m, ts.min_depth_m, w.max_stable_dt_s, w.limiting_edge_m, w.limiting_depth_m,
+          w.limiting_lon_deg, w.limiting_lat_deg, w.limiting_elevation_m, w.max_stable_dt_s * ts.courant_max,
+          ts.courant_max);
+    }
     std::string courant;
     if (ts.dt_s > 0.0 && ts.courant_percentiles.size() == 5)
       courant = fmt::format("; at dt = {} s Courant min/median/p99/max {:.3f}/{:.3f}/{:.3f}/{:.3f}, {} triangles above {}",
@@ -837,6 +875,7 @@ static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const Glo
                setup.lattice.levels, ts.max_stable_dt_s * ts.courant_max, ts.courant_max);
     }
   }
+  if (run.mesh.floodplain_top_m > 0.0) report_floodplain(run, log, report);
 }
 
 // The forest engine (README "The forest engine"): the same stages on every MPI rank; rank 0
@@ -919,9 +958,12 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     run.area.wet_vertices = Bitmap();
     run.area.coastal = Bitmap();
     run.area.filled = Bitmap();
-    if (!run.domain.regional()) run.area.wet = Bitmap();
+    run.area.datum_wet = Bitmap();
+    run.area.sea = Bitmap();
+    run.area.wet = Bitmap();  // a regional run types its boundaries with `open`
   }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
   if (run.domain.regional()) type_regional_boundaries_dense(run, log, report);
   finish_mesh(run, c, setup, log, report, statistics, keep_masks);
   return run;

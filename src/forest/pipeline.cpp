@@ -25,6 +25,7 @@
 #include "mask/passages.hpp"
 #include "mask/pinches.hpp"
 #include "quadtree/balance.hpp"
+#include "size/terms.hpp"
 
 namespace aq::forest {
 
@@ -63,6 +64,18 @@ PatchBits intersect(const PatchBits& a, const PatchBits& b, std::int64_t p) {
   for (std::size_t k = 0; k < out.bits.words().size(); ++k) out.bits.words()[k] &= b.bits.words()[k];
   out.normalise();
   (void)p;
+  return out;
+}
+
+// a \ b.
+PatchBits subtract(const PatchBits& a, const PatchBits& b, std::int64_t p) {
+  if (a.state == Fill::kNone || b.state == Fill::kAll) return {};
+  if (b.state == Fill::kNone) return a;
+  PatchBits out;
+  out.state = Fill::kMixed;
+  out.bits = a.dense(p);
+  for (std::size_t k = 0; k < out.bits.words().size(); ++k) out.bits.words()[k] &= ~b.bits.words()[k];
+  out.normalise();
   return out;
 }
 
@@ -147,6 +160,28 @@ std::vector<std::int32_t> filled_counts(const PatchForest& pf, const std::vector
   return count;
 }
 
+// The size field's cells (size::FieldCells; no floodplain on the forest): the coast cells hold a
+// pixel that is neither filled nor, in a regional run, `open` water beyond the domain's edge
+// (size/terms.hpp shore_cells), else one not filled (coast_cells).
+size::FieldCells field_cells(const PatchForest& pf, const std::vector<PatchBits>& filled,
+                             const std::vector<PatchBits>& open, bool regional, const size::FieldGrid& grid) {
+  size::FieldCells cells;
+  cells.filled = filled_counts(pf, filled, grid);
+  if (!regional) {
+    cells.coast = size::coast_cells(grid, cells.filled);
+    return cells;
+  }
+  const std::int64_t p = pf.grid().size;
+  std::vector<PatchBits> coast(pf.local_count());
+  PatchBits all;
+  all.state = Fill::kAll;
+  for (std::size_t l = 0; l < coast.size(); ++l) coast[l] = subtract(subtract(all, filled[l], p), open[l], p);
+  const std::vector<std::int32_t> count = filled_counts(pf, coast, grid);
+  cells.coast.resize(count.size());
+  for (std::size_t k = 0; k < count.size(); ++k) cells.coast[k] = count[k] > 0 ? 1 : 0;
+  return cells;
+}
+
 std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
   std::int64_t n = 0;
   for (int l = 0; l <= levels; ++l) {
@@ -168,8 +203,13 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   const Comm& comm = st->comm;
   Json fj;  // the report's "forest" section
   collective(comm, [&] {
-    if (!std::isfinite(mo.min_depth_m) || mo.min_depth_m < 0.0)
-      throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", mo.min_depth_m));
+    if (!std::isfinite(mo.min_depth_m))
+      throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", mo.min_depth_m));
+    if (mo.min_depth_m < 0.0)  // and with it [size.inland] and [size.elevation], which need a floodplain
+      throw ConfigError(fmt::format(
+          "mask.min_depth_m = {}: a floodplain (a threshold above the datum) is meshed by the dense engine only; "
+          "set quadtree.engine = \"dense\" or mask.min_depth_m >= 0",
+          mo.min_depth_m));
     if (mask::parse_sampling(mo.sampling) != mask::Sampling::kVertex)
       throw ConfigError(
           "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
@@ -216,6 +256,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
 
   // The K-cursor fill (on wet ∩ domain for a regional run).
   std::vector<PatchBits> filled;
+  std::vector<PatchBits> open;  // a regional run: the wet pixels beyond the domain (no coast, mask/coast.hpp)
   std::vector<mask::PixelIJ> seed_windows;
   {
     StageScope stage("fill", report, log);
@@ -227,6 +268,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
         const PatchBits d = domain_patch(domain, g, pf.key(l));
         inside += d.state == Fill::kAll ? p * p : d.state == Fill::kMixed ? d.bits.count() : 0;
         wet_in[l] = intersect(wet_in[l], d, p);
+        open.push_back(subtract(st->wet[l], d, p));
       }
       inside = comm.sum(inside);
       if (inside == 0)
@@ -304,13 +346,13 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     collective(comm, [&] {
       if (comm.root()) out.area.passages = mask::judge_passages(mask::critical_passages(), set, lat, rot);
     });
-    int open = 0, closed = 0;
+    int n_open = 0, closed = 0;
     for (const mask::PassageResult& r : out.area.passages) {
-      open += r.status == mask::PassageStatus::kOpen ? 1 : 0;
+      n_open += r.status == mask::PassageStatus::kOpen ? 1 : 0;
       closed += r.status == mask::PassageStatus::kClosed ? 1 : 0;
     }
-    stage.done(fmt::format("{} open, {} closed, {} not resolvable", open, closed,
-                           static_cast<int>(out.area.passages.size()) - open - closed));
+    stage.done(fmt::format("{} open, {} closed, {} not resolvable", n_open, closed,
+                           static_cast<int>(out.area.passages.size()) - n_open - closed));
   }
   if (report != nullptr) {
     (*report)["mask"] = mask::wet_area_json(out.area, mo);
@@ -318,8 +360,9 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   }
 
   // The size field (its grid replicated on every rank, from the counts of all ranks).
-  out.size_field = size::build_size_field([&](const size::FieldGrid& grid) { return filled_counts(pf, filled, grid); },
-                                          lat, c, rot, &bathy, log, report);
+  out.size_field = size::build_size_field(
+      [&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, regional, grid); }, lat, c, rot, &bathy,
+      log, report);
 
   // The quadtree: the pyramid's refinements, the p4est forest, its balance.
   {
@@ -331,7 +374,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     std::vector<std::int64_t> bare, banded, refined;
     bare = ForestPyramid(pf, filled, 0).leaves_per_level();
     const int band = qo.coast_band != 0 && qo.coast_size_km == 0.0 ? qo.coast_band : 0;
-    auto pyr = std::make_unique<ForestPyramid>(pf, filled, band);
+    auto pyr = std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr);
     banded = pyr->leaves_per_level();
     const double masks_s = t_masks.wall_s();
     Timer t_rules;
@@ -345,8 +388,9 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     const std::int64_t active = comm.sum(pyr->active_patches()), fine = comm.sum(pyr->fine_bytes());
     fj["pyramid"] = Json{{"active_patches", active}, {"fine_bytes", fine}};
     pyr.reset();
-    // p4est's balance is the dense rule when every filled leaf touching land is a level-L pixel.
-    const MeshForest::BalanceResult br = mf->balance(mode, band >= 1);
+    // p4est's balance is the dense rule when every filled leaf touching land is a level-L pixel:
+    // not in a regional run, whose open boundary is no coast (its leaves follow the other rules).
+    const MeshForest::BalanceResult br = mf->balance(mode, band >= 1 && !regional);
     const std::vector<std::int64_t> balanced = mf->leaves_per_level();
     const double balance_s = t_balance.wall_s();
     Timer t_check;

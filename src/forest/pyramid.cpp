@@ -34,8 +34,9 @@ bool any_bit(const Bitmap& b) {
 
 }  // namespace
 
-ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>& filled, int coast_band)
-    : pf_(pf), filled_(filled) {
+ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>& filled, int coast_band,
+                             const std::vector<PatchBits>* open)
+    : pf_(pf), filled_(filled), open_(open) {
   const PatchGrid& g = pf.grid();
   L_ = g.lat.levels;
   lp_ = g.level;
@@ -50,6 +51,7 @@ ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>
                     "quadtree.engine = \"dense\"",
                     coast_band, p_));
   ghosts_ = pf.exchange(filled);
+  if (open_ != nullptr) open_ghosts_ = pf.exchange(*open_);
   const std::size_t n = pf.local_count();
   fine_.resize(n);
   all_.assign(n, 0);
@@ -118,7 +120,11 @@ Bitmap ForestPyramid::band_bits(std::size_t l, int radius) const {
     }
   if (all_around) return Bitmap(p_, p_);
   const Bitmap window = pf_.assemble(l, filled_, ghosts_, OutsideRule{true, false});
-  return centre_of(quadtree::coastal_band(window, radius), p_);
+  if (open_ == nullptr) return centre_of(quadtree::coastal_band(window, radius), p_);
+  // A regional run: the water beyond the domain's edge is no coast (its copy beyond the lattice
+  // never matters: the domain lies a level-0 square inside the window lattice).
+  const Bitmap open = pf_.assemble(l, *open_, open_ghosts_, OutsideRule{false, false});
+  return centre_of(quadtree::coastal_band(window, radius, mask::CoastSources{&open, nullptr}), p_);
 }
 
 ForestPyramid::Fine& ForestPyramid::activate(std::size_t l) {
