@@ -112,7 +112,8 @@ void apply_test_knobs(raster::OpenOptions& ro) {
   }
   if (const char* s = std::getenv("AQ_RASTER_BAND_ROWS")) ro.band_rows = std::max<std::int64_t>(0, std::atoll(s));
   // AQ_RASTER_TILES_ABOVE = bytes: read rasters above that size in tiles (tests compare with held).
-  if (const char* s = std::getenv("AQ_RASTER_TILES_ABOVE")) ro.tiles_above_bytes = std::max<std::int64_t>(0, std::atoll(s));
+  if (const char* s = std::getenv("AQ_RASTER_TILES_ABOVE"))
+    ro.tiles_above_bytes = std::max<std::int64_t>(0, std::atoll(s));
 }
 
 // Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
@@ -216,7 +217,8 @@ static double forest_bytes(const Lattice& l, double triangles, int ranks) {
   const double leaves = triangles / 2.4;
   const double r = std::max(1, ranks);
   return (kForestBytesPerPatch * patches + kForestBytesPerActivePixel * p * triangles / 10.0 +
-          kForestBytesPerQuadrant * 1.5 * leaves) / r +
+          kForestBytesPerQuadrant * 1.5 * leaves) /
+             r +
          kForestGatherBytesPerLeaf * leaves;
 }
 
@@ -334,12 +336,12 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
             : c.input.interpolation != "bilinear" ? " (input.interpolation = \"bicubic\" holds the raster whole)"
                                                   : "";
     }
-    throw ConfigError(fmt::format(
-        "the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
-        "more than input.max_memory_gb = {:.2f} GB; nothing was read",
-        gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
-        s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
-        gb(s.memory_limit_bytes)));
+    throw ConfigError(
+        fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
+                    "more than input.max_memory_gb = {:.2f} GB; nothing was read",
+                    gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
+                    s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
+                    gb(s.memory_limit_bytes)));
   }
   return s;
 }
@@ -361,12 +363,12 @@ Json memory_json(const GlobalSetup& s, std::int64_t triangles) {
 
 void log_memory_estimate(const GlobalSetup& s, const Logger& log) {
   if (s.forest) {
-    log.info("memory: estimate {:.2f} GB on rank 0 of {} of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} "
-             "GB {}, forest {:.2f} GB per rank, mesh {:.2f} GB (~{} triangles) on rank 0",
-             gb(s.estimate_bytes), s.ranks, gb(s.memory_limit_bytes), gb(s.raster.bytes),
-             s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows)
-                               : std::string("held whole"),
-             gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
+    log.info(
+        "memory: estimate {:.2f} GB on rank 0 of {} of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} "
+        "GB {}, forest {:.2f} GB per rank, mesh {:.2f} GB (~{} triangles) on rank 0",
+        gb(s.estimate_bytes), s.ranks, gb(s.memory_limit_bytes), gb(s.raster.bytes),
+        s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows) : std::string("held whole"),
+        gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
     return;
   }
   log.info(
@@ -596,8 +598,9 @@ static void input_json(const raster::Bathymetry& bathy, const config::GlobalConf
 GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
                             bool reuse) {
   if (c.quadtree.engine == config::QuadtreeEngine::kForest)
-    throw ConfigError("quadtree.engine = \"forest\": this command needs the dense engine's bitmaps; quadtree.engine = "
-                      "\"dense\" (aquatoria mesh runs the forest)");
+    throw ConfigError(
+        "quadtree.engine = \"forest\": this command needs the dense engine's bitmaps; quadtree.engine = "
+        "\"dense\" (aquatoria mesh runs the forest)");
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -764,7 +767,8 @@ static void type_regional_boundaries(GlobalRun& run, const std::function<bool(co
 // the floodplain of a surge mesh meets the domain edge with land).
 static void type_regional_boundaries_dense(GlobalRun& run, const Logger& log, Report* report) {
   const Bitmap& open = run.area.open;
-  type_regional_boundaries(run, [&](const mask::PixelIJ& px) { return open.get(px.i, px.j); }, log, report);
+  type_regional_boundaries(
+      run, [&](const mask::PixelIJ& px) { return open.get(px.i, px.j); }, log, report);
 }
 
 // A polygon domain: the open-boundary nodes moved onto the polygon where the triangles stay valid
@@ -885,8 +889,9 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
                                      Report* report, bool statistics, bool keep_masks) {
 #ifdef AQ_HAVE_MPI
   if (std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end())
-    throw ConfigError("output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the "
-                      "forest engine never makes; quadtree.engine = \"dense\" writes it");
+    throw ConfigError(
+        "output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the "
+        "forest engine never makes; quadtree.engine = \"dense\" writes it");
   forest::start_mpi();
   GlobalRun run;
   run.setup = setup;
@@ -943,9 +948,10 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   (void)report;
   (void)statistics;
   (void)keep_masks;
-  throw ConfigError(fmt::format("quadtree.engine = \"{}\": this aquatoria was built without the forest engine "
-                                "(AQ_MPI=OFF: p4est and MPI were not found; scripts/install_deps.sh installs them)",
-                                config::engine_name(c.quadtree.engine)));
+  throw ConfigError(
+      fmt::format("quadtree.engine = \"{}\": this aquatoria was built without the forest engine "
+                  "(AQ_MPI=OFF: p4est and MPI were not found; scripts/install_deps.sh installs them)",
+                  config::engine_name(c.quadtree.engine)));
 #endif
 }
 

@@ -360,9 +360,9 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   }
 
   // The size field (its grid replicated on every rank, from the counts of all ranks).
-  out.size_field = size::build_size_field(
-      [&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, regional, grid); }, lat, c, rot, &bathy,
-      log, report);
+  out.size_field =
+      size::build_size_field([&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, regional, grid); },
+                             lat, c, rot, &bathy, log, report);
 
   // The quadtree: the pyramid's refinements, the p4est forest, its balance.
   {

@@ -191,7 +191,8 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
       [&](const FieldGrid& grid) {
         FieldCells cells;
         cells.filled = grid.filled_counts(filled);
-        cells.coast = coast_sources.plain() ? coast_cells(grid, cells.filled) : shore_cells(grid, filled, coast_sources);
+        cells.coast =
+            coast_sources.plain() ? coast_cells(grid, cells.filled) : shore_cells(grid, filled, coast_sources);
         if (coast_sources.sea != nullptr) cells.sea = grid.filled_counts(*coast_sources.sea);
         return cells;
       },
@@ -199,8 +200,8 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
 }
 
 SizeField build_size_field(const std::function<FieldCells(const FieldGrid&)>& field_cells, const Lattice& lat,
-                           const config::GlobalConfig& c, const PoleRotation& rotation,
-                           const raster::Bathymetry* bathy, const Logger& log, Report* report) {
+                           const config::GlobalConfig& c, const PoleRotation& rotation, const raster::Bathymetry* bathy,
+                           const Logger& log, Report* report) {
   const config::SizeOptions& s = c.size;
   const double band_km = c.quadtree.coast_size_km;
   const int band_radius = std::max(c.quadtree.coast_band, 1);

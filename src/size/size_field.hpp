@@ -116,8 +116,8 @@ struct FieldCells {
 
 /// The same with the filled set given as its cells on the field's grid.
 SizeField build_size_field(const std::function<FieldCells(const FieldGrid&)>& field_cells, const Lattice& lat,
-                           const config::GlobalConfig& c, const PoleRotation& rotation,
-                           const raster::Bathymetry* bathy, const Logger& log, Report* report);
+                           const config::GlobalConfig& c, const PoleRotation& rotation, const raster::Bathymetry* bathy,
+                           const Logger& log, Report* report);
 
 /// Whether `q` has depth or box rules in the size form (size_km > 0): terms of the field.
 [[nodiscard]] bool has_size_rules(const config::QuadtreeOptions& q);
