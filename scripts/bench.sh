@@ -222,7 +222,7 @@ if [ "$mode" = forest ]; then
     forest_case 15s "dense f1 f2" -c configs/global_15s.toml --set input.path="$(bash data_tools/make_resampled.sh 15)"
   fi
   tiles="$HOME/.cache/aquatoria/us_east_19/tiles.vrt"
-  [ -f "$tiles" ] || python3 data_tools/make_coast_tiles.py "$(dirname "$tiles")" -80 -70 32 42 >/dev/null
+  [ -f "$tiles" ] || data_tools/make_coast_tiles.py "$(dirname "$tiles")" -80 -70 32 42 >/dev/null
   forest_case us_east_19 "f1 f2" -c configs/us_east_19.toml --set 'output.formats=["ugrid","fort14"]'
   echo
   echo "== forest vs dense: wall s, CPU s (all ranks), peak GB (largest rank), leaves, triangles, same bytes as the first row; load: $(uptime | sed 's/.*load average: //')"

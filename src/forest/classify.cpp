@@ -202,8 +202,12 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
             continue;
           }
           const bool whole = vw.holds(I0, J0, p);
+          // The last vertex column of a window lattice (not periodic) wraps to column 0, as the
+          // dense engine's vertex rule does (mask/pixel_classes.hpp): a box cannot bound it, so
+          // the patches of the east edge are sampled.
+          const bool wraps = !g.periodic && I0 + p >= nx;
           int s = 0;
-          if (whole && bounds.available()) {
+          if (whole && !wraps && bounds.available()) {
             s = rotated ? rotated_side(bounds, lat, rot, global_lon, threshold, I0, I0 + p, J0, J0 + p)
                         : side(bounds.in_box(lat.lon_of(I0), lat.lon_of(I0 + p), lat.lat_of(J0), lat.lat_of(J0 + p)),
                                threshold, true);
