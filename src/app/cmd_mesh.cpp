@@ -76,9 +76,10 @@ int run_mesh(const MeshArgs& a, const Logger& main_log) {
 #ifdef AQ_HAVE_MPI
   if (forest) aq::forest::start_mpi();
   if (!forest && aq::forest::world_size() > 1)
-    throw ConfigError(fmt::format("quadtree.engine = \"dense\" runs in one process, but this run has {} MPI ranks: "
-                                  "set quadtree.engine = \"forest\" (--set quadtree.engine=forest) or run without mpirun",
-                                  aq::forest::world_size()));
+    throw ConfigError(
+        fmt::format("quadtree.engine = \"dense\" runs in one process, but this run has {} MPI ranks: "
+                    "set quadtree.engine = \"forest\" (--set quadtree.engine=forest) or run without mpirun",
+                    aq::forest::world_size()));
 #endif
   const bool writer = !forest || world_rank() == 0;
   const Logger& log = writer ? main_log : Logger::null();

@@ -203,8 +203,8 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
     }
   }
   if (hi - lo >= 360.0)
-    throw InputError(fmt::format("domain.polygon = \"{}\": the polygon spans {}° of longitude (360° or more)",
-                                 o.polygon, hi - lo));
+    throw InputError(
+        fmt::format("domain.polygon = \"{}\": the polygon spans {}° of longitude (360° or more)", o.polygon, hi - lo));
   // On a window lattice: the column offset of the polygon's copy of the longitudes that lies on it.
   double shift = 0.0;
   if (lat.windowed()) {
@@ -355,8 +355,8 @@ Domain make_domain(const config::DomainOptions& options, const Lattice& lattice,
     for (std::int64_t j = 0; j < lattice.ny; ++j) row_bits(d, j, 0, lattice.nx, d.inside.row(j));
     d.pixels = d.inside.count();
     if (d.pixels == 0)
-      throw ConfigError(fmt::format("domain: the {} holds no pixel of the lattice ({}° pixels)", d.description,
-                                    lattice.pixel_deg()));
+      throw ConfigError(
+          fmt::format("domain: the {} holds no pixel of the lattice ({}° pixels)", d.description, lattice.pixel_deg()));
   }
   return d;
 }

@@ -42,7 +42,7 @@ struct Domain {
   std::vector<PolygonRing> rings;  ///< polygon: its rings (the open boundary is moved onto them)
   bool periodic = true;          ///< the lattice wraps in I (false on a window lattice: i outside [0, nx) is outside)
 
-  bool dense = true;             ///< `inside` is held; otherwise pixels are tested from the shape
+  bool dense = true;  ///< `inside` is held; otherwise pixels are tested from the shape
   // The shape (for a domain without its bitmap): the lattice, the rotation, the box as given and
   // the polygon's longitude origin and column shift on a window lattice.
   Lattice lattice;

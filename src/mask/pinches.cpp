@@ -346,8 +346,7 @@ std::int64_t resolve_pinches(PixelSet& filled, int k, std::span<const PixelIJ> s
     if (!pa) ra = evaluate(a);
     if (!pb) rb = evaluate(b);
     bool take_a = !pa;
-    if (!pa && !pb)
-      take_a = std::make_pair(ra.cost, pixel_index(a, nx)) < std::make_pair(rb.cost, pixel_index(b, nx));
+    if (!pa && !pb) take_a = std::make_pair(ra.cost, pixel_index(a, nx)) < std::make_pair(rb.cost, pixel_index(b, nx));
     for (const PixelIJ& q : (take_a ? ra : rb).lost) filled.clear(q.i, q.j);
     ++chosen;
   }

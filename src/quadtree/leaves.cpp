@@ -354,7 +354,6 @@ bool cfl_allows_split(const size::SizeField& field, int l, std::int64_t a, std::
   return !field.has_cfl() || child_edge_km * (1.0 + 1e-9) >= field.cfl_edge_over_square(l, a, b);
 }
 
-
 void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field) {
   const int levels = masks.levels();
   if (levels == 0 || !field.active()) return;

@@ -192,8 +192,7 @@ static void add_boundary(QuadNodes& out, const std::vector<std::uint8_t>& across
       for (std::int64_t f = begin; f < end; ++f) {
         const auto k = static_cast<std::size_t>(f);
         if (per_leaf[k] == 0) continue;
-        pos += static_cast<std::size_t>(
-            leaf_boundary(across[k], out.corners[k], out.midside[k], &edges[pos]));
+        pos += static_cast<std::size_t>(leaf_boundary(across[k], out.corners[k], out.midside[k], &edges[pos]));
       }
     });
   }
@@ -302,7 +301,6 @@ static void add_boundary(QuadNodes& out, const std::vector<std::uint8_t>& across
     }
     out.loops[best].outer = true;
   }
-
 }
 
 QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const NodeOptions& options) {
@@ -506,7 +504,8 @@ QuadNodes build_nodes_from_neighbourhoods(const std::vector<Leaf>& leaves, const
   out.node_i.resize(v.size());
   out.node_j.resize(v.size());
   out.node_flags.resize(v.size());
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nnodes)) shared(v, out, nnodes, nx, ny) schedule(static)
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nnodes)) shared(v, out, nnodes, nx, ny) \
+    schedule(static)
   for (std::int64_t n = 0; n < nnodes; ++n) {
     const auto p = static_cast<std::size_t>(n);
     const std::int64_t i = v[p] % nx, j = v[p] / nx;

@@ -287,10 +287,11 @@ struct Bathymetry::Impl {
     }
     std::int64_t implausible = 0;
     for (std::int64_t k = 0; k < nr; ++k) {
-      const std::int64_t y = y0 + k;                       // stored row
+      const std::int64_t y = y0 + k;                                   // stored row
       const std::int64_t r = info.north_up ? info.height - 1 - y : y;  // normalised row
       for (std::int64_t c = 0; c < nc; ++c)
-        out[static_cast<std::size_t>((r - r0) * kTileCells + c)] = normalise(raw[static_cast<std::size_t>(k * nc + c)], implausible);
+        out[static_cast<std::size_t>((r - r0) * kTileCells + c)] =
+            normalise(raw[static_cast<std::size_t>(k * nc + c)], implausible);
     }
   }
 
@@ -785,8 +786,8 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
       const auto s = static_cast<std::size_t>(k);
       const std::int64_t c0 = cols.c0[s], c1 = cols.c1[s];
       out[k] = c0 < 0 ? std::numeric_limits<float>::quiet_NaN()
-                      : static_cast<float>(bilinear4(im.tile_value(c0, r0), im.tile_value(c1, r0), im.tile_value(c0, r1),
-                                                     im.tile_value(c1, r1), cols.t[s], u));
+                      : static_cast<float>(bilinear4(im.tile_value(c0, r0), im.tile_value(c1, r0),
+                                                     im.tile_value(c0, r1), im.tile_value(c1, r1), cols.t[s], u));
     }
     return;
   }
@@ -1270,8 +1271,8 @@ RasterPlan plan_raster(const OpenOptions& options) {
   p.block_rows = i.block_rows;
   p.band_rows = i.band_rows;
   const std::int64_t factor = options.interpolation == Interpolation::kBicubic ? 4 : 1;
-  p.bytes = i.streamed || i.tiled ? i.memory_bytes
-                                   : estimate_raster_bytes(i.held_cols, i.held_rows) * factor + (64LL << 20);
+  p.bytes =
+      i.streamed || i.tiled ? i.memory_bytes : estimate_raster_bytes(i.held_cols, i.held_rows) * factor + (64LL << 20);
   return p;
 }
 

@@ -96,7 +96,7 @@ struct RasterInfo {
   std::int64_t band_rows = 0;     ///< streamed: stored rows per band read
   std::int64_t passes = 0;        ///< streamed: full or partial passes over the file so far
   bool tiled = false;             ///< values read in tiles on demand and cached (OpenOptions::tiles_above_bytes)
-  std::int64_t tile_cache_bytes = 0;  ///< tiled: the cache's bound
+  std::int64_t tile_cache_bytes = 0;    ///< tiled: the cache's bound
   mutable std::int64_t tiles_read = 0;  ///< tiled: tiles read so far (with repeats after eviction)
   /// Held whole: the window read (OpenOptions lat/lon window), in normalised columns and rows;
   /// the whole raster when no window was asked (held_cols = ncols, held_rows = nrows).
