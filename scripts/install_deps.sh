@@ -21,8 +21,9 @@ PACKAGES=(
   python3-pip python3-venv python3-setuptools python3-wheel
   # the ADCIRC and ROMS client tests (../shared/clients/adcirc and roms build the models with these)
   gfortran libnetcdff-dev make perl patch xz-utils python3
-  # the FESOM2 and SCHISM client tests (MPI models: mpif90/mpicc and mpirun)
-  libopenmpi-dev openmpi-bin
+  # the forest engine (quadtree.engine = "forest": p4est's forest of quadtrees on MPI ranks) and the
+  # FESOM2 and SCHISM client tests (MPI models: mpif90/mpicc and mpirun)
+  libp4est-dev libopenmpi-dev openmpi-bin
 )
 
 missing=()
