@@ -74,8 +74,9 @@ std::int64_t estimate_triangles(const Lattice& l) {
 
 double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
-// Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
-// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
+// Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto,
+// AQ_RASTER_BAND_ROWS = rows per band and AQ_RASTER_MAP = never (streamed through GDAL reads,
+// not the file map), so that tests can compare the streamed and whole paths;
 // AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read).
 void apply_test_knobs(raster::OpenOptions& ro) {
   if (const char* s = std::getenv("AQ_RASTER_WHOLE"); s != nullptr && std::string(s) == "1")
@@ -86,6 +87,7 @@ void apply_test_knobs(raster::OpenOptions& ro) {
     if (v == "never") ro.streaming = raster::OpenOptions::Streaming::kNever;
   }
   if (const char* s = std::getenv("AQ_RASTER_BAND_ROWS")) ro.band_rows = std::max<std::int64_t>(0, std::atoll(s));
+  if (const char* s = std::getenv("AQ_RASTER_MAP"); s != nullptr && std::string(s) == "never") ro.map_file = false;
 }
 
 // Level-0 squares of padding around the domain on a window lattice (never inside the domain, so

@@ -5,13 +5,17 @@
 // longitude on a global raster, natural ends in latitude).
 #include "raster/bathymetry.hpp"
 
+#include <cpl_virtualmem.h>
 #include <cpl_vsi.h>
 #include <fmt/format.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <future>
 #include <limits>
@@ -181,6 +185,111 @@ void fill_row(const float* p0, const float* p1, const Bathymetry::Columns& cols,
   }
 }
 
+// A streamed raster's file mapped into memory: GDAL's file mapping of an uncompressed band in the
+// machine's byte order (GDALRasterBand::GetVirtualMemAuto, without its copying fallback). The
+// threads read the stored rows where they lie: no read buffer, no copy out of the page cache, no
+// lock around GDAL. Rows a pass is done with are given back (release), so the file's pages never
+// add up in the process's resident memory. Values convert to Float32 as GDAL's RasterIO converts
+// them (Byte, Int16, UInt16: exactly; Float32: as stored); other types are not mapped.
+class FileMap {
+ public:
+  // nullptr when GDAL has no file mapping of the band, or for another data type.
+  static std::unique_ptr<FileMap> open(GDALRasterBand* band, std::int64_t width) {
+    const GDALDataType type = band->GetRasterDataType();
+    if (type != GDT_Byte && type != GDT_Int16 && type != GDT_UInt16 && type != GDT_Float32) return nullptr;
+    int pixel = 0;
+    GIntBig line = 0;
+    char no_fallback[] = "USE_DEFAULT_IMPLEMENTATION=NO";
+    char* options[] = {no_fallback, nullptr};
+    CPLVirtualMem* vm = band->GetVirtualMemAuto(GF_Read, &pixel, &line, options);
+    CPLErrorReset();  // "not available" is no error of the run
+    if (vm == nullptr) return nullptr;
+    auto m = std::unique_ptr<FileMap>(new FileMap(vm, type, pixel, line));
+    const std::int64_t size = GDALGetDataTypeSizeBytes(type);
+    if (CPLVirtualMemIsFileMapping(vm) == 0 || pixel < size || line < pixel * width) return nullptr;
+    return m;
+  }
+  ~FileMap() { CPLVirtualMemFree(vm_); }
+  FileMap(const FileMap&) = delete;
+  FileMap& operator=(const FileMap&) = delete;
+
+  // Stored row y, column x, as RasterIO gives it in Float32.
+  [[nodiscard]] float value(std::int64_t x, std::int64_t y) const {
+    const unsigned char* p = base_ + y * line_ + x * pixel_;
+    switch (type_) {
+      case GDT_Byte:
+        return static_cast<float>(*p);
+      case GDT_Int16: {
+        std::int16_t v = 0;
+        std::memcpy(&v, p, sizeof v);
+        return static_cast<float>(v);
+      }
+      case GDT_UInt16: {
+        std::uint16_t v = 0;
+        std::memcpy(&v, p, sizeof v);
+        return static_cast<float>(v);
+      }
+      default: {
+        float v = 0.0f;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+      }
+    }
+  }
+  // Columns [0, n) of stored row y into out, as RasterIO gives them in Float32.
+  void row(std::int64_t y, std::int64_t n, float* out) const {
+    const unsigned char* p = base_ + y * line_;
+    switch (type_) {
+      case GDT_Byte:
+        return convert<std::uint8_t>(p, n, out);
+      case GDT_Int16:
+        return convert<std::int16_t>(p, n, out);
+      case GDT_UInt16:
+        return convert<std::uint16_t>(p, n, out);
+      default:
+        return convert<float>(p, n, out);
+    }
+  }
+  // Gives back the pages that lie wholly inside stored rows [y0, y1) (they are read again from
+  // the page cache if a later pass needs them).
+  void release(std::int64_t y0, std::int64_t y1) const {
+    static const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    auto a = reinterpret_cast<std::uintptr_t>(base_ + y0 * line_);
+    const auto b = reinterpret_cast<std::uintptr_t>(base_ + y1 * line_) / page * page;
+    a = (a + page - 1) / page * page;
+    if (b > a) (void)madvise(reinterpret_cast<void*>(a), b - a, MADV_DONTNEED);
+  }
+
+ private:
+  FileMap(CPLVirtualMem* vm, GDALDataType type, std::int64_t pixel, std::int64_t line)
+      : vm_(vm),
+        base_(static_cast<const unsigned char*>(CPLVirtualMemGetAddr(vm))),
+        pixel_(pixel),
+        line_(line),
+        type_(type) {}
+  template <typename T>
+  void convert(const unsigned char* p, std::int64_t n, float* out) const {
+    if (pixel_ == static_cast<std::int64_t>(sizeof(T))) {
+      for (std::int64_t c = 0; c < n; ++c) {
+        T v;
+        std::memcpy(&v, p + c * static_cast<std::int64_t>(sizeof(T)), sizeof v);
+        out[c] = static_cast<float>(v);
+      }
+      return;
+    }
+    for (std::int64_t c = 0; c < n; ++c) {
+      T v;
+      std::memcpy(&v, p + c * pixel_, sizeof v);
+      out[c] = static_cast<float>(v);
+    }
+  }
+
+  CPLVirtualMem* vm_;
+  const unsigned char* base_;  // column 0 of stored row 0
+  std::int64_t pixel_, line_;  // bytes from a column to the next, and from a stored row to the next
+  GDALDataType type_;
+};
+
 }  // namespace
 
 struct Bathymetry::Impl {
@@ -211,6 +320,7 @@ struct Bathymetry::Impl {
   bool signed_byte = false;                                  // a Byte band marked PIXELTYPE=SIGNEDBYTE
   float max_abs_m = std::numeric_limits<float>::infinity();  // OpenOptions::max_abs_elevation_m
   int band_number = 1;
+  std::unique_ptr<FileMap> map;  // streamed and mapped (RasterInfo::mapped); freed before ds closes
   mutable std::mutex io;
   mutable std::vector<RowStats> stats_rows;  // streamed: per normalised row, filled by the first pass
   mutable bool stats_done = false;
@@ -225,8 +335,32 @@ struct Bathymetry::Impl {
   // (resized). Records per-row statistics in `stats` (indexed by normalised row) when given.
   void read_stored(std::int64_t y0, std::int64_t y1, float* dst, std::int64_t lo, std::vector<float>& raw,
                    RowStats* stats) const {
+    if (map) {
+      normalise_mapped(y0, y1, dst, lo, stats);
+      return;
+    }
     read_raw(y0, y1, raw);
     normalise_rows(y0, y1, raw.data(), dst, lo, stats, false);
+  }
+
+  // normalise_rows of stored rows [y0, y1) read from the file map, on the OpenMP threads.
+  void normalise_mapped(std::int64_t y0, std::int64_t y1, float* dst, std::int64_t lo, RowStats* stats) const {
+    const std::int64_t h = info.height, nc = held_nc;
+    const bool north_up = info.north_up;
+    const FileMap& m = *map;
+#pragma omp parallel for schedule(static) default(none) shared(y0, y1, dst, lo, stats, h, nc, north_up, m) \
+    if ((y1 - y0) * nc >= (std::int64_t{1} << 16))
+    for (std::int64_t y = y0; y < y1; ++y) {
+      const std::int64_t r = north_up ? h - 1 - y : y;
+      float* out = dst + (r - lo) * nc;
+      m.row(y, nc, out);
+      std::int64_t implausible = 0;
+      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(out[c], implausible);
+      if (stats != nullptr) {
+        stats[r] = row_stats(out, nc);
+        stats[r].implausible = implausible;
+      }
+    }
   }
 
   // Stored rows [y0, y1) as GDAL gives them (Float32) into `raw` (resized). One read at a time.
@@ -289,9 +423,16 @@ struct Bathymetry::Impl {
 
   [[nodiscard]] BandGeometry bands() const { return BandGeometry{info.height, info.band_rows, info.north_up}; }
 
-  // One streamed pass: for every band s with wanted(s) (all bands when `all`), read its buffer
-  // (normalised rows [lo(s), hi(s))) and call work(s, buffer). The next wanted band is read by a
-  // second thread while work runs. Records row statistics when `stats` is given.
+  // One streamed pass: for every band s with wanted(s) (all bands when `stats` is given), its
+  // buffer (normalised rows [lo(s), hi(s))) and then work(s, buffer). Records row statistics when
+  // `stats` is given. Through GDAL, a second thread reads the next band's stored rows while the
+  // OpenMP threads normalise this one's and work on it:
+  //
+  //   reader:  read band k+1 ──────────┐ read band k+2 ...
+  //   team:    normalise k │ work(k)   └> normalise k+1 │ work(k+1) ...
+  //
+  // Through the file map, the team normalises each band straight from the map, and the band's
+  // rows are released after its work.
   template <typename Wanted, typename Work>
   void stream(const Wanted& wanted, const Work& work, RowStats* stats, const ProgressFn& progress,
               std::string_view label) const {
@@ -300,37 +441,50 @@ struct Bathymetry::Impl {
     std::vector<std::int64_t> todo;
     for (std::int64_t s = 0; s < nb; ++s)
       if (stats != nullptr || wanted(s)) todo.push_back(s);
-    std::vector<float> buf[2];
-    std::vector<float> raw[2];
-    for (auto& b : buf) b.resize(static_cast<std::size_t>((g.rows + 1) * nc));
-    // Reads band todo[k] into buf[k % 2]; copies the carried row from band todo[k-1] when that
-    // band is the previous one in storage order (its buffer is only read meanwhile).
-    const auto read = [&](std::size_t k) {
-      const std::int64_t s = todo[k];
-      float* dst = buf[k % 2].data();
-      const std::int64_t lo = g.lo(s);
-      std::int64_t y0 = g.first(s);
-      if (s > 0 && k > 0 && todo[k - 1] == s - 1) {
-        const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
-        const float* prev = buf[(k - 1) % 2].data() + (r - g.lo(s - 1)) * nc;
-        std::copy(prev, prev + nc, dst + (r - lo) * nc);
-        ++y0;
-      }
-      read_stored(y0, g.end(s), dst, lo, raw[k % 2], stats);
-    };
     ++info.passes;
     if (todo.empty()) return;
+    std::vector<float> buf(static_cast<std::size_t>((g.rows + 1) * nc));
+    const auto done = [&](std::size_t k) {
+      if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
+    };
+    if (map) {
+      for (std::size_t k = 0; k < todo.size(); ++k) {
+        const std::int64_t s = todo[k];
+        normalise_mapped(g.first(s), g.end(s), buf.data(), g.lo(s), stats);
+        if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
+        map->release(g.first(s), g.end(s));
+        done(k);
+      }
+      return;
+    }
+    // Band todo[k]'s stored rows go to raw[k % 2], all but its first (the row the band before
+    // ended with) when that band was read just before: that row is moved over in `buf`.
+    const auto carried = [&](std::size_t k) { return k > 0 && todo[k] > 0 && todo[k - 1] == todo[k] - 1; };
+    std::vector<float> raw[2];
+    const auto read = [&](std::size_t k) {
+      const std::int64_t s = todo[k];
+      read_raw(g.first(s) + (carried(k) ? 1 : 0), g.end(s), raw[k % 2]);
+    };
     std::future<void> next = std::async(std::launch::async, read, std::size_t{0});
     for (std::size_t k = 0; k < todo.size(); ++k) {
       next.get();
       if (k + 1 < todo.size()) next = std::async(std::launch::async, read, k + 1);
       try {
-        if (wanted(todo[k])) work(todo[k], static_cast<const float*>(buf[k % 2].data()));
+        const std::int64_t s = todo[k], lo = g.lo(s);
+        std::int64_t y0 = g.first(s);
+        if (carried(k)) {
+          const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
+          std::memmove(buf.data() + (r - lo) * nc, buf.data() + (r - g.lo(s - 1)) * nc,
+                       static_cast<std::size_t>(nc) * sizeof(float));
+          ++y0;
+        }
+        normalise_rows(y0, g.end(s), raw[k % 2].data(), buf.data(), lo, stats, true);
+        if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
       } catch (...) {
         if (next.valid()) next.wait();
         throw;
       }
-      if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
+      done(k);
     }
   }
 
@@ -434,12 +588,13 @@ struct Bathymetry::Impl {
   [[nodiscard]] float read_value(std::int64_t c, std::int64_t r) const {
     float x = 0.0f;
     const std::int64_t y = info.north_up ? info.height - 1 - r : r;
+    std::int64_t implausible = 0;
+    if (map) return normalise(map->value(c, y), implausible);
     const std::lock_guard<std::mutex> lock(io);
     if (band->RasterIO(GF_Read, static_cast<int>(c), static_cast<int>(y), 1, 1, &x, 1, 1, GDT_Float32, 0, 0, nullptr) !=
         CE_None) {
       throw InputError(fmt::format("{}: read error at row {}{}", info.path, y, gdal_message()));
     }
-    std::int64_t implausible = 0;
     return normalise(x, implausible);
   }
 
@@ -618,6 +773,35 @@ void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std
     }
   }
   band = {};
+  if (im->map) {
+    // Through the file map: the four values of each point read where they lie, band after band
+    // (the rows of a band released after it).
+    const FileMap& m = *im->map;
+    const std::int64_t h = im->info.height;
+    const bool north_up = im->info.north_up;
+    ++im->info.passes;
+    for (std::int64_t s = 0; s < nb; ++s) {
+      const std::int64_t k0 = start[static_cast<std::size_t>(s)], k1 = start[static_cast<std::size_t>(s + 1)];
+      if (k1 == k0) continue;
+#pragma omp parallel for default(none) shared(im, m, order, lon_deg, lat_deg, out, k0, k1, h, north_up) \
+    schedule(static) if (k1 - k0 > 20000)
+      for (std::int64_t q = k0; q < k1; ++q) {
+        const std::int64_t k = order[static_cast<std::size_t>(q)];
+        std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+        double t = 0.0, u = 0.0;
+        (void)im->col(lon_deg[k], c0, c1, t);
+        (void)im->row(lat_deg[k], r0, r1, u);
+        const std::int64_t y0 = north_up ? h - 1 - r0 : r0, y1 = north_up ? h - 1 - r1 : r1;
+        std::int64_t implausible = 0;
+        const float a = im->normalise(m.value(c0, y0), implausible), b = im->normalise(m.value(c1, y0), implausible),
+                    c = im->normalise(m.value(c0, y1), implausible), d = im->normalise(m.value(c1, y1), implausible);
+        out[k] = bilinear4(a, b, c, d, t, u);
+      }
+      m.release(g.first(s), g.end(s));
+      if (progress) progress(static_cast<double>(s + 1) / static_cast<double>(nb), "bands of raster rows");
+    }
+    return;
+  }
   const auto wanted = [&start](std::int64_t s) {
     return start[static_cast<std::size_t>(s + 1)] > start[static_cast<std::size_t>(s)];
   };
@@ -1022,8 +1206,15 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
     info.band_rows =
         o.band_rows > 0 ? o.band_rows : std::max(info.block_rows, target / info.block_rows * info.block_rows);
     info.band_rows = std::min(info.band_rows, h);
-    // Two band buffers (with the carried row) and two raw read buffers.
-    info.memory_bytes = 2 * (info.band_rows + 1) * info.ncols * 4 + 2 * info.band_rows * w * 4;
+    if (o.map_file) {
+      im->map = FileMap::open(band, w);
+      info.mapped = im->map != nullptr;
+    }
+    // The band buffer (with the carried row) and, through GDAL, two raw read buffers; through the
+    // file map, one band of the file's rows mapped instead.
+    info.memory_bytes = (info.band_rows + 1) * info.ncols * 4 +
+                        (info.mapped ? info.band_rows * w * GDALGetDataTypeSizeBytes(band->GetRasterDataType())
+                                     : 2 * info.band_rows * w * 4);
     info.min_m = info.max_m = info.mean_m = kNaN;
     info.valid_count = -1;  // known after the first pass
   }

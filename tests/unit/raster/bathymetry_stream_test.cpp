@@ -1,8 +1,10 @@
 // The streamed raster path (issue 9): banded reads must give the whole path's values bit for bit
 // for any band height (1, 7, the file's block height, the default) and thread count, on tiled
-// and striped GeoTIFFs (north-up and south-up, int16 with scale/offset/no-data), and on netCDF4
+// and striped GeoTIFFs (north-up and south-up, int16 with scale/offset/no-data; compressed, and
+// raw ones read through GDAL's memory map of the file and through GDAL reads), and on netCDF4
 // (deflate) files in the GEBCO (pixel-registered `elevation` int16) and SRTM15+
 // (grid-registered `z` with a 360° column) layouts, written here.
+#include <fmt/format.h>
 #include <gdal_priv.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -33,13 +35,15 @@ using aq::test::write_tiff;
 
 fs::path tmpdir() { return aq::test::synthetic_dir(); }
 
-Bathymetry open(const fs::path& p, bool streamed, std::int64_t band_rows = 0, const std::string& var = "") {
+Bathymetry open(const fs::path& p, bool streamed, std::int64_t band_rows = 0, const std::string& var = "",
+                bool map_file = true) {
   OpenOptions o;
   o.path = p.string();
   o.variable = var;
   o.allow_streaming = streamed;
   o.streaming = streamed ? OpenOptions::Streaming::kAlways : OpenOptions::Streaming::kNever;
   o.band_rows = band_rows;
+  o.map_file = map_file;
   return Bathymetry::open(o);
 }
 
@@ -90,34 +94,41 @@ void expect_same_stats(const Bathymetry& a, const Bathymetry& b) {
 struct FileCase {
   const char* name;
   bool north_up, tiled;
+  bool compressed = true;  // raw striped files are mapped (RasterInfo::mapped)
 };
 
 class StreamedTiff : public ::testing::TestWithParam<FileCase> {};
 
 TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
   const FileCase fc = GetParam();
-  const fs::path p = write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled);
+  const fs::path p =
+      write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled, fc.compressed);
   const Bathymetry whole = open(p, false);
   ASSERT_FALSE(whole.info().streamed);
   const auto rows_w = lattice_rows(whole, 0.4);
   const auto pts_w = points(whole);
-  // Band heights 1, 7, the block height (16 rows tiled, 1 striped) and the default.
+  // Band heights 1, 7, the block height (16 rows tiled, 1 striped) and the default; through the
+  // file map when GDAL has one (raw striped files), and through GDAL reads.
   for (const std::int64_t band : {std::int64_t{1}, std::int64_t{7}, std::int64_t{16}, std::int64_t{0}}) {
     for (const int threads : {1, 2}) {
-      aq::test::set_threads(threads);
-      const Bathymetry s = open(p, true, band);
-      ASSERT_TRUE(s.info().streamed);
-      EXPECT_EQ(s.info().block_rows, fc.tiled ? 16 : 1);
-      EXPECT_TRUE(same_bits(lattice_rows(s, 0.4), rows_w)) << "band " << band << ", threads " << threads;
-      expect_same_stats(s, whole);
-      EXPECT_TRUE(same_bits(points(s), pts_w)) << "band " << band << ", threads " << threads;
-      EXPECT_EQ(s.info().passes, 2);
-      // Single values and blocks agree too (pictures, contours).
-      EXPECT_EQ(s.sample(12.34, -56.78), whole.sample(12.34, -56.78));
-      std::vector<float> va(40 * 9), vb(va.size());
-      s.values(700, 40, 300, 9, va.data());  // across the seam
-      whole.values(700, 40, 300, 9, vb.data());
-      EXPECT_TRUE(same_bits(va, vb));
+      for (const bool map_file : {true, false}) {
+        aq::test::set_threads(threads);
+        const Bathymetry s = open(p, true, band, "", map_file);
+        const std::string what = fmt::format("band {}, threads {}, map_file {}", band, threads, map_file);
+        ASSERT_TRUE(s.info().streamed);
+        EXPECT_EQ(s.info().mapped, map_file && !fc.tiled && !fc.compressed) << what;
+        EXPECT_EQ(s.info().block_rows, fc.tiled ? 16 : 1);
+        EXPECT_TRUE(same_bits(lattice_rows(s, 0.4), rows_w)) << what;
+        expect_same_stats(s, whole);
+        EXPECT_TRUE(same_bits(points(s), pts_w)) << what;
+        EXPECT_EQ(s.info().passes, 2);
+        // Single values and blocks agree too (pictures, contours).
+        EXPECT_EQ(s.sample(12.34, -56.78), whole.sample(12.34, -56.78));
+        std::vector<float> va(40 * 9), vb(va.size());
+        s.values(700, 40, 300, 9, va.data());  // across the seam
+        whole.values(700, 40, 300, 9, vb.data());
+        EXPECT_TRUE(same_bits(va, vb)) << what;
+      }
     }
   }
   aq::test::set_threads(2);
@@ -126,7 +137,10 @@ TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
 INSTANTIATE_TEST_SUITE_P(Layouts, StreamedTiff,
                          ::testing::Values(FileCase{"tiled_northup", true, true},
                                            FileCase{"striped_northup", true, false},
-                                           FileCase{"tiled_southup", false, true}),
+                                           FileCase{"tiled_southup", false, true},
+                                           FileCase{"raw_striped_northup", true, false, false},
+                                           FileCase{"raw_striped_southup", false, false, false},
+                                           FileCase{"raw_tiled_northup", true, true, false}),
                          [](const auto& i) { return std::string(i.param.name); });
 
 TEST(StreamedRaster, AutoRuleAndNoData) {
