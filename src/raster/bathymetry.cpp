@@ -25,6 +25,9 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/error.hpp"
 #include "core/input_files.hpp"
@@ -193,22 +196,62 @@ void fill_row(const float* p0, const float* p1, const Bathymetry::Columns& cols,
 // fill_row for a run of lattice rows on one thread, with the horizontal step of bilinear4 (the
 // value along a raster row at each column's weight t) made once per raster row: consecutive
 // lattice rows share a raster row (r1 of one is r0 of the next when the lattice is as fine as
-// the raster), so each is computed once instead of twice. The same products and sums in the same
+// the raster), so each is computed once instead of twice. Columns come in runs: "regular" runs
+// where c1 = c0 + 1 and c0 steps by one raster column with one weight t (a lattice as fine as
+// the raster: every column but the seam's) are computed two at a time (SSE2, the same IEEE
+// operations per lane); the others column by column. The same products and sums in the same
 // order as bilinear4: the same bits.
 class RowFiller {
  public:
   explicit RowFiller(const Bathymetry::Columns& cols)
       : cols_(cols), n_(static_cast<std::int64_t>(cols.c0.size())) {
     for (auto& s : slot_) s.h.resize(static_cast<std::size_t>(n_));
+    constexpr std::int64_t kMinRun = 16;
+    const std::int64_t *c0 = cols.c0.data(), *c1 = cols.c1.data();
+    const double* t = cols.t.data();
+    std::int64_t k = 0;
+    while (k < n_) {
+      std::int64_t e = k;
+      if (c0[k] >= 0 && c1[k] == c0[k] + 1) {
+        e = k + 1;
+        while (e < n_ && c0[e] == c0[e - 1] + 1 && c1[e] == c0[e] + 1 && t[e] == t[k]) ++e;
+      }
+      if (e - k >= kMinRun) {
+        runs_.push_back({k, e, true});
+        k = e;
+      } else {
+        const std::int64_t stop = std::max(e, k + 1);
+        if (!runs_.empty() && !runs_.back().regular && runs_.back().end == k)
+          runs_.back().end = stop;
+        else
+          runs_.push_back({k, stop, false});
+        k = stop;
+      }
+    }
   }
   // fill_row(p0, p1, cols, u, out), p0 and p1 being normalised raster rows r0 and r1.
   void fill(const float* p0, std::int64_t r0, const float* p1, std::int64_t r1, double u, float* out) {
     const double* lo = horizontal(p0, r0, -1);
     const double* hi = u == 0.0 ? lo : horizontal(p1, r1, r0);
     const std::int64_t* c0 = cols_.c0.data();
-    for (std::int64_t k = 0; k < n_; ++k) {
-      const double v = u == 0.0 ? lo[k] : (1.0 - u) * lo[k] + u * hi[k];
-      out[k] = c0[k] < 0 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
+    const double a = 1.0 - u;
+    for (const Run& run : runs_) {
+      std::int64_t k = run.begin;
+      if (run.regular && u != 0.0) {
+#if defined(__SSE2__)
+        const __m128d a2 = _mm_set1_pd(a), u2 = _mm_set1_pd(u);
+        for (; k + 2 <= run.end; k += 2) {
+          const __m128d v = _mm_add_pd(_mm_mul_pd(a2, _mm_loadu_pd(lo + k)), _mm_mul_pd(u2, _mm_loadu_pd(hi + k)));
+          _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), _mm_castps_si128(_mm_cvtpd_ps(v)));
+        }
+#endif
+        for (; k < run.end; ++k) out[k] = static_cast<float>(a * lo[k] + u * hi[k]);
+        continue;
+      }
+      for (; k < run.end; ++k) {
+        const double v = u == 0.0 ? lo[k] : a * lo[k] + u * hi[k];
+        out[k] = c0[k] < 0 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
+      }
     }
   }
 
@@ -216,6 +259,10 @@ class RowFiller {
   struct Slot {
     std::int64_t row = -1;
     std::vector<double> h;
+  };
+  struct Run {
+    std::int64_t begin, end;
+    bool regular;  // c0 = c0[begin] + (k - begin) >= 0, c1 = c0 + 1, one weight t
   };
   // The horizontal values of raster row r (kept in one of two slots; the one holding row `keep`
   // is not overwritten).
@@ -227,13 +274,35 @@ class RowFiller {
     const std::int64_t *c0 = cols_.c0.data(), *c1 = cols_.c1.data();
     const double* t = cols_.t.data();
     double* h = s.h.data();
-    for (std::int64_t k = 0; k < n_; ++k) {
-      if (c0[k] < 0) {
-        h[k] = 0.0;
+    for (const Run& run : runs_) {
+      std::int64_t k = run.begin;
+      if (run.regular) {
+        const double tk = t[k], ak = 1.0 - tk;
+        const float* q = p + (c0[k] - k);  // q[k] = p[c0[k]], q[k + 1] = p[c1[k]]
+        if (tk == 0.0) {
+          for (; k < run.end; ++k) h[k] = q[k];
+          continue;
+        }
+#if defined(__SSE2__)
+        const __m128d a2 = _mm_set1_pd(ak), t2 = _mm_set1_pd(tk);
+        for (; k + 2 <= run.end; k += 2) {
+          const __m128d x = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + k))));
+          const __m128d y =
+              _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + k + 1))));
+          _mm_storeu_pd(h + k, _mm_add_pd(_mm_mul_pd(a2, x), _mm_mul_pd(t2, y)));
+        }
+#endif
+        for (; k < run.end; ++k) h[k] = ak * static_cast<double>(q[k]) + tk * static_cast<double>(q[k + 1]);
         continue;
       }
-      const double a = p[c0[k]];
-      h[k] = t[k] == 0.0 ? a : (1.0 - t[k]) * a + t[k] * static_cast<double>(p[c1[k]]);
+      for (; k < run.end; ++k) {
+        if (c0[k] < 0) {
+          h[k] = 0.0;
+          continue;
+        }
+        const double x = p[c0[k]];
+        h[k] = t[k] == 0.0 ? x : (1.0 - t[k]) * x + t[k] * static_cast<double>(p[c1[k]]);
+      }
     }
     return s.h.data();
   }
@@ -241,6 +310,7 @@ class RowFiller {
   const Bathymetry::Columns& cols_;
   std::int64_t n_;
   Slot slot_[2];
+  std::vector<Run> runs_;
 };
 
 // A streamed raster's file mapped into memory: GDAL's file mapping of an uncompressed band in the
@@ -307,6 +377,10 @@ class FileMap {
       default:
         return convert<float>(p, n, out);
     }
+  }
+  // Stored row y as int16 values side by side (an Int16 band without interleaving), else nullptr.
+  [[nodiscard]] const std::int16_t* int16_row(std::int64_t y) const {
+    return type_ == GDT_Int16 && pixel_ == 2 ? reinterpret_cast<const std::int16_t*>(base_ + y * line_) : nullptr;
   }
   // Gives back the pages that lie wholly inside stored rows [y0, y1) (they are read again from
   // the page cache if a later pass needs them).
@@ -384,6 +458,7 @@ struct Bathymetry::Impl {
   double sgn = 1.0;
   bool signed_byte = false;                                  // a Byte band marked PIXELTYPE=SIGNEDBYTE
   float max_abs_m = std::numeric_limits<float>::infinity();  // OpenOptions::max_abs_elevation_m
+  bool integral_plain = false;  // Byte/Int16/UInt16 values, no scale/offset/sign change (normalise_row)
   int band_number = 1;
   std::unique_ptr<FileMap> map;  // streamed and mapped (RasterInfo::mapped); freed before ds closes
   mutable std::mutex io;
@@ -418,13 +493,152 @@ struct Bathymetry::Impl {
     for (std::int64_t y = y0; y < y1; ++y) {
       const std::int64_t r = north_up ? h - 1 - y : y;
       float* out = dst + (r - lo) * nc;
-      m.row(y, nc, out);
-      std::int64_t implausible = 0;
-      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(out[c], implausible);
-      if (stats != nullptr) {
-        stats[r] = row_stats(out, nc);
-        stats[r].implausible = implausible;
+      const std::int16_t* ints = integral_plain ? m.int16_row(y) : nullptr;
+      if (ints != nullptr) {
+        normalise_int16(ints, nc, out, stats != nullptr ? stats + r : nullptr);
+        continue;
       }
+      m.row(y, nc, out);
+      normalise_row(out, out, nc, stats != nullptr ? stats + r : nullptr);
+    }
+  }
+
+  // normalise_row of int16 values straight from the file (integral_plain), eight at a time with
+  // SSE2: the same values and figures (every step is exact: int16 -> float, the comparisons,
+  // min/max, and integer sums kept below 2^31 per lane).
+  void normalise_int16(const std::int16_t* src, std::int64_t nc, float* out, RowStats* stat) const {
+    const float nd = info.has_nodata ? static_cast<float>(info.nodata) : std::numeric_limits<float>::quiet_NaN();
+    const float lim = max_abs_m, nan = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    float mn = kInf, mx = -kInf;
+    std::int64_t sum = 0, count = 0, implausible = 0, c = 0;
+#if defined(__SSE2__)
+    {
+      const __m128 nd4 = _mm_set1_ps(nd), lim4 = _mm_set1_ps(lim), nan4 = _mm_set1_ps(nan), inf4 = _mm_set1_ps(kInf),
+                   ninf4 = _mm_set1_ps(-kInf), abs4 = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)),
+                   ones4 = _mm_castsi128_ps(_mm_set1_epi32(-1));
+      __m128 mn4 = inf4, mx4 = ninf4;
+      __m128i sum4 = _mm_setzero_si128(), cnt4 = sum4, bad4 = sum4;
+      const auto lanes = [](__m128i x) {
+        alignas(16) std::int32_t a[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(a), x);
+        return static_cast<std::int64_t>(a[0]) + a[1] + a[2] + a[3];
+      };
+      std::int64_t block = 0;  // iterations since sum4 was emptied: at most 2·32768 per lane each
+      for (; c + 8 <= nc; c += 8) {
+        const __m128i eight = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + c));
+        const __m128i halves[2] = {_mm_srai_epi32(_mm_unpacklo_epi16(eight, eight), 16),
+                                   _mm_srai_epi32(_mm_unpackhi_epi16(eight, eight), 16)};
+        for (int k = 0; k < 2; ++k) {
+          const __m128i xi = halves[k];
+          const __m128 x = _mm_cvtepi32_ps(xi);
+          const __m128 missing = _mm_cmpeq_ps(x, nd4);
+          const __m128 ok = _mm_cmple_ps(_mm_and_ps(x, abs4), lim4);
+          const __m128 valid = _mm_andnot_ps(missing, ok);
+          const __m128 bad = _mm_andnot_ps(missing, _mm_xor_ps(ok, ones4));
+          _mm_storeu_ps(out + c + 4 * k, _mm_or_ps(_mm_and_ps(valid, x), _mm_andnot_ps(valid, nan4)));
+          mn4 = _mm_min_ps(mn4, _mm_or_ps(_mm_and_ps(valid, x), _mm_andnot_ps(valid, inf4)));
+          mx4 = _mm_max_ps(mx4, _mm_or_ps(_mm_and_ps(valid, x), _mm_andnot_ps(valid, ninf4)));
+          const __m128i vi = _mm_castps_si128(valid);
+          sum4 = _mm_add_epi32(sum4, _mm_and_si128(vi, xi));
+          cnt4 = _mm_sub_epi32(cnt4, vi);
+          bad4 = _mm_sub_epi32(bad4, _mm_castps_si128(bad));
+        }
+        if (++block == 16384) {
+          sum += lanes(sum4);
+          sum4 = _mm_setzero_si128();
+          block = 0;
+        }
+      }
+      sum += lanes(sum4);
+      count += lanes(cnt4);
+      implausible += lanes(bad4);
+      alignas(16) float a[4], b[4];
+      _mm_store_ps(a, mn4);
+      _mm_store_ps(b, mx4);
+      for (int k = 0; k < 4; ++k) {
+        mn = std::min(mn, a[k]);
+        mx = std::max(mx, b[k]);
+      }
+    }
+#endif
+    for (; c < nc; ++c) {
+      const auto x = static_cast<float>(src[c]);
+      const bool missing = x == nd;
+      const bool bad = !missing && !(std::abs(x) <= lim);
+      const bool valid = !missing && !bad;
+      out[c] = valid ? x : nan;
+      implausible += bad ? 1 : 0;
+      if (valid) {
+        sum += static_cast<std::int64_t>(x);
+        ++count;
+        mn = std::min(mn, x);
+        mx = std::max(mx, x);
+      }
+    }
+    if (stat != nullptr) {
+      stat->mn = count > 0 ? static_cast<double>(mn) : std::numeric_limits<double>::infinity();
+      stat->mx = count > 0 ? static_cast<double>(mx) : -std::numeric_limits<double>::infinity();
+      stat->sum = static_cast<double>(sum);
+      stat->count = count;
+      stat->implausible = implausible;
+    }
+  }
+
+  // normalise() over one row (in place when src == out), and its RowStats when `stat` is given.
+  // Integer values with no scale, offset or sign change (integral_plain: int16 GEBCO, ETOPO) keep
+  // their value or become no-data, and their sum is an integer below 2^53 at every step, so it
+  // is summed as an integer: the same figures as row_stats, in one pass the compiler need not
+  // chain through a double addition per value.
+  void normalise_row(const float* src, float* out, std::int64_t nc, RowStats* stat) const {
+    if (!integral_plain) {
+      std::int64_t implausible = 0;
+      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c], implausible);
+      if (stat != nullptr) {
+        *stat = row_stats(out, nc);
+        stat->implausible = implausible;
+      }
+      return;
+    }
+    const float nd = info.has_nodata ? static_cast<float>(info.nodata) : std::numeric_limits<float>::quiet_NaN();
+    const float lim = max_abs_m, nan = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    // Four independent lanes (min, max and integer sums are exact in any order): no chain of
+    // dependent minimum or addition instructions through the row.
+    constexpr int kLanes = 4;
+    float mns[kLanes] = {kInf, kInf, kInf, kInf}, mxs[kLanes] = {-kInf, -kInf, -kInf, -kInf};
+    std::int64_t sums[kLanes] = {0, 0, 0, 0}, counts[kLanes] = {0, 0, 0, 0};
+    std::int64_t implausible = 0;
+    const auto one = [&](std::int64_t c, int l) {
+      const float x = src[c];
+      const bool missing = x == nd;
+      const bool bad = !missing && !(std::abs(x) <= lim);
+      const bool valid = !missing && !bad;
+      out[c] = valid ? x : nan;
+      implausible += bad ? 1 : 0;
+      sums[l] += valid ? static_cast<std::int64_t>(x) : 0;
+      counts[l] += valid ? 1 : 0;
+      mns[l] = std::min(mns[l], valid ? x : kInf);
+      mxs[l] = std::max(mxs[l], valid ? x : -kInf);
+    };
+    std::int64_t c = 0;
+    for (; c + kLanes <= nc; c += kLanes)
+      for (int l = 0; l < kLanes; ++l) one(c + l, l);
+    for (; c < nc; ++c) one(c, 0);
+    float mn = kInf, mx = -kInf;
+    std::int64_t sum = 0, count = 0;
+    for (int l = 0; l < kLanes; ++l) {
+      mn = std::min(mn, mns[l]);
+      mx = std::max(mx, mxs[l]);
+      sum += sums[l];
+      count += counts[l];
+    }
+    if (stat != nullptr) {
+      stat->mn = count > 0 ? static_cast<double>(mn) : std::numeric_limits<double>::infinity();
+      stat->mx = count > 0 ? static_cast<double>(mx) : -std::numeric_limits<double>::infinity();
+      stat->sum = static_cast<double>(sum);
+      stat->count = count;
+      stat->implausible = implausible;
     }
   }
 
@@ -467,14 +681,7 @@ struct Bathymetry::Impl {
     for (std::int64_t yy = 0; yy < ny; ++yy) {
       const std::int64_t y = y0 + yy;
       const std::int64_t r = north_up ? h - 1 - y : y;
-      const float* src = raw + yy * w;
-      float* out = dst + (r - lo) * nc;
-      std::int64_t implausible = 0;
-      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c], implausible);
-      if (stats != nullptr) {
-        stats[r] = row_stats(out, nc);
-        stats[r].implausible = implausible;
-      }
+      normalise_row(raw + yy * w, dst + (r - lo) * nc, nc, stats != nullptr ? stats + r : nullptr);
     }
   }
 
@@ -1289,6 +1496,11 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   if (has_offset == 0) info.offset = 0.0;
   im->sgn = o.positive_down ? -1.0 : 1.0;
   im->max_abs_m = static_cast<float>(o.max_abs_elevation_m);
+  {
+    const GDALDataType t = band->GetRasterDataType();
+    im->integral_plain = (t == GDT_Int16 || t == GDT_UInt16 || (t == GDT_Byte && !im->signed_byte)) &&
+                         info.scale == 1.0 && info.offset == 0.0 && !o.positive_down;
+  }
   info.max_abs_elevation_m = o.max_abs_elevation_m;
   int bx = 0, by = 0;
   band->GetBlockSize(&bx, &by);

@@ -314,6 +314,82 @@ TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
   }
 }
 
+// sample_rows computes each raster row's interpolation along the row once and reuses it, two
+// columns at a time where the lattice's columns step through the raster's one by one: every
+// value must still be the float of sample() at that vertex, for lattices as fine as the raster
+// (0.5°, the seam column the only irregular one), finer, coarser and unaligned ones.
+TEST(SampledRows, EqualTheSampleOfEveryVertex) {
+  const fs::path p = write_tiff(tmpdir() / "rows_vs_sample.tif", 0.5, true, false, false);
+  for (const bool streamed : {false, true}) {
+    const Bathymetry b = open(p, streamed);
+    for (const double step : {0.5, 0.25, 1.0, 0.4}) {
+      const auto rows = lattice_rows(b, step);
+      const auto nx = static_cast<std::int64_t>(std::lround(360.0 / step));
+      const auto nv = static_cast<std::int64_t>(std::lround(180.0 / step)) + 1;
+      std::int64_t differ = 0;
+      for (std::int64_t j = 0; j < nv; ++j)
+        for (std::int64_t i = 0; i < nx; ++i) {
+          const float want = static_cast<float>(b.sample(-180.0 + static_cast<double>(i) * step,
+                                                         -90.0 + static_cast<double>(j) * step));
+          const float got = rows[static_cast<std::size_t>(j * nx + i)];
+          differ += std::memcmp(&want, &got, sizeof want) != 0 ? 1 : 0;
+        }
+      EXPECT_EQ(differ, 0) << "step " << step << ", streamed " << streamed;
+    }
+  }
+}
+
+// Plain integers (int16 without scale or offset: GEBCO, ETOPO) take a shortcut through
+// normalisation and row statistics (their sum is exact as an integer); the same values as
+// Float32 take the general rule. Both must give the same values and figures bit for bit, with
+// no-data cells and values beyond input.max_abs_elevation_m among them.
+TEST(StreamedRaster, PlainIntegersGiveTheFiguresOfTheGeneralRule) {
+  GDALAllRegister();
+  const double step = 0.5;
+  const int w = 720, h = 360;
+  std::vector<float> v(static_cast<std::size_t>(w) * h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double lon = -180.0 + (c + 0.5) * step, lat = 90.0 - (r + 0.5) * step;
+      float x = static_cast<float>(std::lround(field(lon, lat) + 7.0 * std::sin(3.0 * lat)));
+      if (lon > 20.0 && lon < 23.0 && lat > 5.0 && lat < 8.0) x = -32768.0f;      // no-data
+      if (lon > -50.0 && lon < -48.0 && lat > 30.0 && lat < 31.0) x = 15000.0f;  // implausible
+      v[static_cast<std::size_t>(r) * w + c] = x;
+    }
+  const auto write = [&](const char* name, GDALDataType type) {
+    GDALDataset* mem = GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, 1, type, nullptr);
+    double gt[6] = {-180.0, step, 0.0, 90.0, 0.0, -step};
+    mem->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(4326);
+    mem->SetSpatialRef(&srs);
+    GDALRasterBand* b = mem->GetRasterBand(1);
+    b->SetNoDataValue(-32768.0);
+    EXPECT_EQ(b->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+    const fs::path p = tmpdir() / name;
+    char** opts = CSLSetNameValue(nullptr, "BLOCKYSIZE", "1");
+    GDALClose(GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, opts, nullptr,
+                                                                          nullptr));
+    CSLDestroy(opts);
+    GDALClose(mem);
+    return p;
+  };
+  const fs::path pi = write("plain_int16.tif", GDT_Int16), pf = write("plain_float32.tif", GDT_Float32);
+  for (const bool streamed : {false, true}) {
+    for (const bool map_file : {true, false}) {
+      const Bathymetry bi = open(pi, streamed, 7, "", map_file), bf = open(pf, streamed, 7, "", map_file);
+      EXPECT_EQ(bi.info().data_type, "Int16");
+      EXPECT_EQ(bf.info().data_type, "Float32");
+      EXPECT_TRUE(same_bits(lattice_rows(bi, 0.4), lattice_rows(bf, 0.4))) << streamed << map_file;
+      EXPECT_TRUE(same_bits(points(bi), points(bf))) << streamed << map_file;
+      expect_same_stats(bi, bf);
+      EXPECT_GT(bi.info().implausible_count, 0);
+      EXPECT_EQ(bi.info().implausible_count, bf.info().implausible_count);
+      EXPECT_LT(bi.info().valid_count, std::int64_t{w} * h);
+    }
+  }
+}
+
 }  // namespace
 
 }  // namespace unit_raster_bathymetry_stream_test
