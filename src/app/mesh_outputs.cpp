@@ -347,7 +347,8 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
         if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
       };
       if (o->colour == PreviewColour::kTarget) o->triangle_values = info.target_km;
-      if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget) o->value_range_km = info.size_scale_km;
+      if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget)
+        o->value_range_km = info.size_scale_km;
       plan(
           format, name + ".png",
           [&mesh, &bathy, o, colour](const auto& p) {

@@ -203,8 +203,7 @@ void fill_row(const float* p0, const float* p1, const Bathymetry::Columns& cols,
 // order as bilinear4: the same bits.
 class RowFiller {
  public:
-  explicit RowFiller(const Bathymetry::Columns& cols)
-      : cols_(cols), n_(static_cast<std::int64_t>(cols.c0.size())) {
+  explicit RowFiller(const Bathymetry::Columns& cols) : cols_(cols), n_(static_cast<std::int64_t>(cols.c0.size())) {
     for (auto& s : slot_) s.h.resize(static_cast<std::size_t>(n_));
     constexpr std::int64_t kMinRun = 16;
     const std::int64_t *c0 = cols.c0.data(), *c1 = cols.c1.data();
@@ -488,8 +487,8 @@ struct Bathymetry::Impl {
     const std::int64_t h = info.height, nc = held_nc;
     const bool north_up = info.north_up;
     const FileMap& m = *map;
-#pragma omp parallel for schedule(static) default(none) shared(y0, y1, dst, lo, stats, h, nc, north_up, m) \
-    if ((y1 - y0) * nc >= (std::int64_t{1} << 16))
+#pragma omp parallel for schedule(static) default(none) \
+    shared(y0, y1, dst, lo, stats, h, nc, north_up, m) if ((y1 - y0) * nc >= (std::int64_t{1} << 16))
     for (std::int64_t y = y0; y < y1; ++y) {
       const std::int64_t r = north_up ? h - 1 - y : y;
       float* out = dst + (r - lo) * nc;
@@ -890,8 +889,7 @@ struct Bathymetry::Impl {
   void compute_stats() {
     const std::int64_t nr = row_hi - row_lo;
     std::vector<RowStats> rows(static_cast<std::size_t>(nr));
-    for (std::int64_t r = 0; r < nr; ++r)
-      rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), held_nc);
+    for (std::int64_t r = 0; r < nr; ++r) rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), held_nc);
     finish_stats(rows);
   }
   // The statistics from the held rows' own (rows [row_lo, row_hi) in order), and the memory held.
@@ -1539,8 +1537,8 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
     // A latitude window: the rows covering it and 2 more each side.
     if (!std::isnan(o.lat_min) || !std::isnan(o.lat_max)) {
       const double a = std::isnan(o.lat_min) ? -90.0 : o.lat_min, b = std::isnan(o.lat_max) ? 90.0 : o.lat_max;
-      im->row_lo = std::clamp<std::int64_t>(
-          static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2, 0, info.nrows - 1);
+      im->row_lo = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2,
+                                            0, info.nrows - 1);
       im->row_hi = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil((b - info.lat_first) / info.dlat)) + 3,
                                             im->row_lo + 1, info.nrows);
     }

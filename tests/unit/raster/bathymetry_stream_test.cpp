@@ -101,8 +101,7 @@ class StreamedTiff : public ::testing::TestWithParam<FileCase> {};
 
 TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
   const FileCase fc = GetParam();
-  const fs::path p =
-      write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled, fc.compressed);
+  const fs::path p = write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled, fc.compressed);
   const Bathymetry whole = open(p, false);
   ASSERT_FALSE(whole.info().streamed);
   const auto rows_w = lattice_rows(whole, 0.4);
@@ -329,8 +328,8 @@ TEST(SampledRows, EqualTheSampleOfEveryVertex) {
       std::int64_t differ = 0;
       for (std::int64_t j = 0; j < nv; ++j)
         for (std::int64_t i = 0; i < nx; ++i) {
-          const float want = static_cast<float>(b.sample(-180.0 + static_cast<double>(i) * step,
-                                                         -90.0 + static_cast<double>(j) * step));
+          const float want = static_cast<float>(
+              b.sample(-180.0 + static_cast<double>(i) * step, -90.0 + static_cast<double>(j) * step));
           const float got = rows[static_cast<std::size_t>(j * nx + i)];
           differ += std::memcmp(&want, &got, sizeof want) != 0 ? 1 : 0;
         }
@@ -352,7 +351,7 @@ TEST(StreamedRaster, PlainIntegersGiveTheFiguresOfTheGeneralRule) {
     for (int c = 0; c < w; ++c) {
       const double lon = -180.0 + (c + 0.5) * step, lat = 90.0 - (r + 0.5) * step;
       float x = static_cast<float>(std::lround(field(lon, lat) + 7.0 * std::sin(3.0 * lat)));
-      if (lon > 20.0 && lon < 23.0 && lat > 5.0 && lat < 8.0) x = -32768.0f;      // no-data
+      if (lon > 20.0 && lon < 23.0 && lat > 5.0 && lat < 8.0) x = -32768.0f;     // no-data
       if (lon > -50.0 && lon < -48.0 && lat > 30.0 && lat < 31.0) x = 15000.0f;  // implausible
       v[static_cast<std::size_t>(r) * w + c] = x;
     }
@@ -368,8 +367,8 @@ TEST(StreamedRaster, PlainIntegersGiveTheFiguresOfTheGeneralRule) {
     EXPECT_EQ(b->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
     const fs::path p = tmpdir() / name;
     char** opts = CSLSetNameValue(nullptr, "BLOCKYSIZE", "1");
-    GDALClose(GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, opts, nullptr,
-                                                                          nullptr));
+    GDALClose(
+        GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, opts, nullptr, nullptr));
     CSLDestroy(opts);
     GDALClose(mem);
     return p;
