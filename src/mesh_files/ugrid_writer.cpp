@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 #include <unordered_set>
 #include <vector>
 
@@ -103,25 +104,22 @@ class NcWriter {
     for (const int v : scalars_) check(nc_put_var_int(id_, v, &zero), "write a scalar variable");
   }
 
-  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const double* data) {
+  // Rows [row, row + rows) of `var` (a 1-D variable: cols = 1). Index arrays are made as long
+  // long and written as NC_INT when they fit (index_type): converted here once, a plain copy
+  // instead of netCDF's checked conversion of every value.
+  template <typename T>
+  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const T* data) {
+    if constexpr (std::is_same_v<T, long long>) {
+      if (type_of(var) == NC_INT) {
+        narrow_.resize(static_cast<std::size_t>(rows * cols));  // kept: one allocation for every chunk
+        for (std::size_t k = 0; k < narrow_.size(); ++k) narrow_[k] = static_cast<int>(data[k]);
+        put(var, row, rows, cols, narrow_.data());
+        return;
+      }
+    }
     const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
     const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
-    check(nc_put_vara_double(id_, var, start, count, data), "write data");
-  }
-  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const long long* data) {
-    const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
-    const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
-    check(nc_put_vara_longlong(id_, var, start, count, data), "write data");
-  }
-  void put(int var, std::int64_t row, std::int64_t rows, const short* data) {
-    const std::size_t start[1] = {static_cast<std::size_t>(row)};
-    const std::size_t count[1] = {static_cast<std::size_t>(rows)};
-    check(nc_put_vara_short(id_, var, start, count, data), "write data");
-  }
-  void put(int var, std::int64_t row, std::int64_t rows, const signed char* data) {
-    const std::size_t start[1] = {static_cast<std::size_t>(row)};
-    const std::size_t count[1] = {static_cast<std::size_t>(rows)};
-    check(nc_put_vara_schar(id_, var, start, count, data), "write data");
+    check(put_vara(id_, var, start, count, data), "write data");
   }
   void close() {
     const int id = id_;
@@ -133,10 +131,31 @@ class NcWriter {
 
  private:
   static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
+  [[nodiscard]] nc_type type_of(int var) const {
+    nc_type t = NC_NAT;
+    check(nc_inq_vartype(id_, var, &t), "variable type");
+    return t;
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const double* d) {
+    return nc_put_vara_double(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const long long* d) {
+    return nc_put_vara_longlong(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const int* d) {
+    return nc_put_vara_int(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const short* d) {
+    return nc_put_vara_short(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const signed char* d) {
+    return nc_put_vara_schar(id, v, s, c, d);
+  }
   std::filesystem::path path_;
   int deflate_ = 0;
   std::vector<std::size_t> dim_len_;  ///< length of each defined dimension, by id
   std::vector<int> scalars_;          ///< variables without dimensions (topology, grid mappings)
+  std::vector<int> narrow_;           ///< put's NC_INT copy of long long indices
   int id_ = -1;
 };
 
@@ -171,6 +190,11 @@ class FaceSet {
   int max_nodes_ = 3;
 };
 
+// std::remainder(x, 360) (the representative of x in [-180, 180]): x itself when |x| <= 180
+// (IEEE remainder rounds x / 360 = ±0.5 to the even 0), which is nearly every corner of a face
+// around its centre; the library call only for the faces across the antimeridian.
+double near_zero_remainder(double x) { return std::abs(x) <= 180.0 ? x : std::remainder(x, 360.0); }
+
 std::uint64_t edge_key(NodeId a, NodeId b) {
   return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b);
 }
@@ -183,13 +207,22 @@ std::uint64_t edge_key(NodeId a, NodeId b) {
 class UniqueEdges {
  public:
   UniqueEdges(const mesh::Mesh& mesh, const FaceSet& faces)
-      : mesh_(mesh), faces_(faces), starts_boundary_(static_cast<std::size_t>(mesh.node_count()), false) {
-    boundary_.reserve(mesh.boundary_edges.size() * 2);
-    // Nodes that start a boundary edge: only their half-edges can be boundary edges, so the hash
-    // set is asked for them alone (a few per cent of the nodes of a global mesh).
+      : mesh_(mesh), faces_(faces), next_(static_cast<std::size_t>(mesh.node_count()), kNone) {
+    // The end of the boundary edge that starts at each node (nearly every boundary node starts
+    // one); a node that starts several (a pinch), or any node of a mesh too large for 32-bit
+    // numbers, is marked kSeveral and its edges go to the hash set.
+    const bool small = mesh.node_count() < kSeveral;
     for (const auto& e : mesh.boundary_edges) {
-      boundary_.insert(edge_key(e[0], e[1]));
-      starts_boundary_[static_cast<std::size_t>(e[0])] = true;
+      std::int32_t& x = next_[static_cast<std::size_t>(e[0])];
+      if (small && x == kNone) {
+        x = static_cast<std::int32_t>(e[1]);
+        continue;
+      }
+      if (x != kSeveral) {
+        if (x != kNone) several_.insert(edge_key(e[0], x));
+        x = kSeveral;
+      }
+      several_.insert(edge_key(e[0], e[1]));
     }
     std::int64_t half_edges = 0;
     visit([&](int k) { half_edges += k; }, [&](NodeId, NodeId) { ++count_; });
@@ -231,15 +264,24 @@ class UniqueEdges {
       face(k);
       for (int a = 0; a < k; ++a) {
         const NodeId u = p[a], v = p[(a + 1) % k];
-        if (u < v || (starts_boundary_[static_cast<std::size_t>(u)] && boundary_.count(edge_key(u, v)) > 0)) edge(u, v);
+        if (u < v || boundary(u, v)) edge(u, v);
       }
     }
   }
 
+  [[nodiscard]] bool boundary(NodeId u, NodeId v) const {
+    const std::int32_t x = next_[static_cast<std::size_t>(u)];
+    if (x == kNone) return false;
+    if (x != kSeveral) return x == v;
+    return several_.count(edge_key(u, v)) > 0;
+  }
+
+  static constexpr std::int32_t kNone = -1;
+  static constexpr std::int32_t kSeveral = std::numeric_limits<std::int32_t>::max();
   const mesh::Mesh& mesh_;
   const FaceSet& faces_;
-  std::unordered_set<std::uint64_t> boundary_;
-  std::vector<bool> starts_boundary_;
+  std::vector<std::int32_t> next_;             ///< by node: kNone, the boundary edge's end, or kSeveral
+  std::unordered_set<std::uint64_t> several_;  ///< boundary edges of the kSeveral nodes
   std::int64_t count_ = 0;
 };
 
@@ -367,7 +409,8 @@ void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, 
         for (int a = 0; a < k; ++a) {
           const std::int64_t i = mesh.node_i[p[a]];
           // Global columns (a window lattice's origin added as an integer: the same bits as on the global lattice).
-          si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) + mesh.lattice.i_origin);
+          si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) +
+                                    mesh.lattice.i_origin);
           sj += static_cast<double>(mesh.node_j[p[a]]);
         }
         const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
@@ -387,7 +430,7 @@ void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, 
         const NodeId n = p[std::min(a, k - 1)];
         const std::size_t c = u * static_cast<std::size_t>(w) + static_cast<std::size_t>(a);
         if (a < k) idx[c] = n;
-        bx[c] = lon + std::remainder(mesh.lon_deg[n] - lon, 360.0);
+        bx[c] = lon + near_zero_remainder(mesh.lon_deg[n] - lon);
         by[c] = mesh.lat_deg[n];
       }
     }
@@ -396,11 +439,10 @@ void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, 
     nc.put(v.face_y, f0, rows, 1, cy.data());
     nc.put(v.face_x_bnds, f0, rows, w, bx.data());
     nc.put(v.face_y_bnds, f0, rows, w, by.data());
-    nc.put(v.level, f0, rows, lev.data());
+    nc.put(v.level, f0, rows, 1, lev.data());
   }
-  edges.for_each_chunk(kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) {
-    nc.put(v.edges, e0, rows, 2, pairs);
-  });
+  edges.for_each_chunk(
+      kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) { nc.put(v.edges, e0, rows, 2, pairs); });
 }
 
 }  // namespace
