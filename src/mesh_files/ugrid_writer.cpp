@@ -25,7 +25,9 @@ namespace aq::io {
 
 namespace {
 
-constexpr std::int64_t kChunk = std::int64_t{1} << 20;  // rows per nc_put_vara call
+// Rows per nc_put_vara call. HDF5 places the chunks in the file as its chunk cache flushes them,
+// so this also fixes the file's bytes: another value writes the same data in another layout.
+constexpr std::int64_t kChunk = std::int64_t{1} << 20;
 constexpr char kWgs84Wkt[] =
     "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],PRIMEM[\"Greenwich\",0],"
     "UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
