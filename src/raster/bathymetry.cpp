@@ -196,61 +196,50 @@ void fill_row(const float* p0, const float* p1, const Bathymetry::Columns& cols,
 // fill_row for a run of lattice rows on one thread, with the horizontal step of bilinear4 (the
 // value along a raster row at each column's weight t) made once per raster row: consecutive
 // lattice rows share a raster row (r1 of one is r0 of the next when the lattice is as fine as
-// the raster), so each is computed once instead of twice. Columns come in runs: "regular" runs
-// where c1 = c0 + 1 and c0 steps by one raster column with one weight t (a lattice as fine as
-// the raster: every column but the seam's) are computed two at a time (SSE2, the same IEEE
+// the raster), so each is computed once instead of twice. Columns come in runs: inside the
+// raster (c0 >= 0, the vertical step), and among those the ones where c0 steps by one raster
+// column with c1 = c0 + 1 and t != 0 (the horizontal step; on a lattice as fine as the raster
+// every column but the seam's), both computed two columns at a time (SSE2: the same IEEE
 // operations per lane); the others column by column. The same products and sums in the same
 // order as bilinear4: the same bits.
 class RowFiller {
  public:
   explicit RowFiller(const Bathymetry::Columns& cols) : cols_(cols), n_(static_cast<std::int64_t>(cols.c0.size())) {
     for (auto& s : slot_) s.h.resize(static_cast<std::size_t>(n_));
-    constexpr std::int64_t kMinRun = 16;
     const std::int64_t *c0 = cols.c0.data(), *c1 = cols.c1.data();
     const double* t = cols.t.data();
-    std::int64_t k = 0;
-    while (k < n_) {
-      std::int64_t e = k;
-      if (c0[k] >= 0 && c1[k] == c0[k] + 1) {
-        e = k + 1;
-        while (e < n_ && c0[e] == c0[e - 1] + 1 && c1[e] == c0[e] + 1 && t[e] == t[k]) ++e;
-      }
-      if (e - k >= kMinRun) {
-        runs_.push_back({k, e, true});
-        k = e;
-      } else {
-        const std::int64_t stop = std::max(e, k + 1);
-        if (!runs_.empty() && !runs_.back().regular && runs_.back().end == k)
-          runs_.back().end = stop;
-        else
-          runs_.push_back({k, stop, false});
-        k = stop;
-      }
-    }
+    split([&](std::int64_t k) { return c0[k] >= 0; }, [](std::int64_t) { return true; }, inside_);
+    split([&](std::int64_t k) { return c0[k] >= 0 && c1[k] == c0[k] + 1 && t[k] != 0.0; },
+          [&](std::int64_t k) { return c0[k] == c0[k - 1] + 1; }, steps_);
   }
   // fill_row(p0, p1, cols, u, out), p0 and p1 being normalised raster rows r0 and r1.
   void fill(const float* p0, std::int64_t r0, const float* p1, std::int64_t r1, double u, float* out) {
     const double* lo = horizontal(p0, r0, -1);
     const double* hi = u == 0.0 ? lo : horizontal(p1, r1, r0);
-    const std::int64_t* c0 = cols_.c0.data();
     const double a = 1.0 - u;
-    for (const Run& run : runs_) {
+    for (const Run& run : inside_) {
       std::int64_t k = run.begin;
-      if (run.regular && u != 0.0) {
+      if (!run.fast) {
+        const std::int64_t* c0 = cols_.c0.data();
+        for (; k < run.end; ++k) {
+          const double v = u == 0.0 ? lo[k] : a * lo[k] + u * hi[k];
+          out[k] = c0[k] < 0 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
+        }
+        continue;
+      }
 #if defined(__SSE2__)
+      if (u == 0.0) {
+        for (; k + 2 <= run.end; k += 2)
+          _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), _mm_castps_si128(_mm_cvtpd_ps(_mm_loadu_pd(lo + k))));
+      } else {
         const __m128d a2 = _mm_set1_pd(a), u2 = _mm_set1_pd(u);
         for (; k + 2 <= run.end; k += 2) {
           const __m128d v = _mm_add_pd(_mm_mul_pd(a2, _mm_loadu_pd(lo + k)), _mm_mul_pd(u2, _mm_loadu_pd(hi + k)));
           _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), _mm_castps_si128(_mm_cvtpd_ps(v)));
         }
+      }
 #endif
-        for (; k < run.end; ++k) out[k] = static_cast<float>(a * lo[k] + u * hi[k]);
-        continue;
-      }
-      for (; k < run.end; ++k) {
-        const double v = u == 0.0 ? lo[k] : a * lo[k] + u * hi[k];
-        out[k] = c0[k] < 0 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
-      }
+      for (; k < run.end; ++k) out[k] = static_cast<float>(u == 0.0 ? lo[k] : a * lo[k] + u * hi[k]);
     }
   }
 
@@ -261,8 +250,29 @@ class RowFiller {
   };
   struct Run {
     std::int64_t begin, end;
-    bool regular;  // c0 = c0[begin] + (k - begin) >= 0, c1 = c0 + 1, one weight t
+    bool fast;  // every column of the run has the property (else none has it or the run is short)
   };
+  // Runs of columns with `has` (continuing while `joins` holds for the column after the first)
+  // of at least kMinRun columns, and the runs between them.
+  template <typename Has, typename Joins>
+  void split(const Has& has, const Joins& joins, std::vector<Run>& runs) const {
+    constexpr std::int64_t kMinRun = 16;
+    std::int64_t k = 0;
+    while (k < n_) {
+      std::int64_t e = k;
+      if (has(k)) {
+        e = k + 1;
+        while (e < n_ && has(e) && joins(e)) ++e;
+      }
+      const bool fast = e - k >= kMinRun;
+      const std::int64_t stop = std::max(e, k + 1);
+      if (!fast && !runs.empty() && !runs.back().fast && runs.back().end == k)
+        runs.back().end = stop;
+      else
+        runs.push_back({k, stop, fast});
+      k = stop;
+    }
+  }
   // The horizontal values of raster row r (kept in one of two slots; the one holding row `keep`
   // is not overwritten).
   const double* horizontal(const float* p, std::int64_t r, std::int64_t keep) {
@@ -273,25 +283,21 @@ class RowFiller {
     const std::int64_t *c0 = cols_.c0.data(), *c1 = cols_.c1.data();
     const double* t = cols_.t.data();
     double* h = s.h.data();
-    for (const Run& run : runs_) {
+    for (const Run& run : steps_) {
       std::int64_t k = run.begin;
-      if (run.regular) {
-        const double tk = t[k], ak = 1.0 - tk;
+      if (run.fast) {
         const float* q = p + (c0[k] - k);  // q[k] = p[c0[k]], q[k + 1] = p[c1[k]]
-        if (tk == 0.0) {
-          for (; k < run.end; ++k) h[k] = q[k];
-          continue;
-        }
 #if defined(__SSE2__)
-        const __m128d a2 = _mm_set1_pd(ak), t2 = _mm_set1_pd(tk);
+        const __m128d one = _mm_set1_pd(1.0);
         for (; k + 2 <= run.end; k += 2) {
+          const __m128d tk = _mm_loadu_pd(t + k);
           const __m128d x = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + k))));
           const __m128d y =
               _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + k + 1))));
-          _mm_storeu_pd(h + k, _mm_add_pd(_mm_mul_pd(a2, x), _mm_mul_pd(t2, y)));
+          _mm_storeu_pd(h + k, _mm_add_pd(_mm_mul_pd(_mm_sub_pd(one, tk), x), _mm_mul_pd(tk, y)));
         }
 #endif
-        for (; k < run.end; ++k) h[k] = ak * static_cast<double>(q[k]) + tk * static_cast<double>(q[k + 1]);
+        for (; k < run.end; ++k) h[k] = (1.0 - t[k]) * static_cast<double>(q[k]) + t[k] * static_cast<double>(q[k + 1]);
         continue;
       }
       for (; k < run.end; ++k) {
@@ -309,7 +315,7 @@ class RowFiller {
   const Bathymetry::Columns& cols_;
   std::int64_t n_;
   Slot slot_[2];
-  std::vector<Run> runs_;
+  std::vector<Run> inside_, steps_;
 };
 
 // A streamed raster's file mapped into memory: GDAL's file mapping of an uncompressed band in the

@@ -317,9 +317,36 @@ TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
 // columns at a time where the lattice's columns step through the raster's one by one: every
 // value must still be the float of sample() at that vertex, for lattices as fine as the raster
 // (0.5°, the seam column the only irregular one), finer, coarser and unaligned ones.
+// A regional raster of `w` columns from lon0 (0.5° pixels, 60°S..60°N): a global lattice's
+// columns outside it are NaN, and a narrow one (w < 16) is only short runs of columns.
+fs::path write_regional(const fs::path& p, double lon0, int w) {
+  GDALAllRegister();
+  const double step = 0.5;
+  const int h = 240;
+  GDALDataset* mem = GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, 1, GDT_Float32, nullptr);
+  double gt[6] = {lon0, step, 0.0, 60.0, 0.0, -step};
+  mem->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  mem->SetSpatialRef(&srs);
+  std::vector<float> v(static_cast<std::size_t>(w) * h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      v[static_cast<std::size_t>(r) * w + c] =
+          static_cast<float>(field(lon0 + (c + 0.5) * step, 60.0 - (r + 0.5) * step));
+  EXPECT_EQ(mem->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+  GDALClose(
+      GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, nullptr, nullptr, nullptr));
+  GDALClose(mem);
+  return p;
+}
+
 TEST(SampledRows, EqualTheSampleOfEveryVertex) {
-  const fs::path p = write_tiff(tmpdir() / "rows_vs_sample.tif", 0.5, true, false, false);
-  for (const bool streamed : {false, true}) {
+  const fs::path global = write_tiff(tmpdir() / "rows_vs_sample.tif", 0.5, true, false, false);
+  const fs::path wide = write_regional(tmpdir() / "rows_vs_sample_wide.tif", -30.25, 141);
+  const fs::path narrow = write_regional(tmpdir() / "rows_vs_sample_narrow.tif", 10.0, 7);
+  for (const auto& [p, streamed] :
+       {std::pair{global, false}, std::pair{global, true}, std::pair{wide, false}, std::pair{narrow, false}}) {
     const Bathymetry b = open(p, streamed);
     for (const double step : {0.5, 0.25, 1.0, 0.4}) {
       const auto rows = lattice_rows(b, step);
@@ -333,7 +360,7 @@ TEST(SampledRows, EqualTheSampleOfEveryVertex) {
           const float got = rows[static_cast<std::size_t>(j * nx + i)];
           differ += std::memcmp(&want, &got, sizeof want) != 0 ? 1 : 0;
         }
-      EXPECT_EQ(differ, 0) << "step " << step << ", streamed " << streamed;
+      EXPECT_EQ(differ, 0) << p.filename() << ", step " << step << ", streamed " << streamed;
     }
   }
 }
