@@ -33,6 +33,7 @@
 #include "core/input_files.hpp"
 #include "core/row_progress.hpp"
 #include "core/timer.hpp"
+#include "raster/gdal_handles.hpp"
 #include "raster/netcdf_coordinates.hpp"
 #include "raster/source_stack.hpp"
 #include "raster/spline1d.hpp"
@@ -63,11 +64,6 @@ double snap(double x, double q) {
   const double k = std::round(x / q);
   return std::abs(x / q - k) < 1e-3 ? k * q : x;
 }
-
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(d); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
   // GDAL's virtual file systems (/vsimem/: raster/memory_raster.hpp; /vsizip/, /vsicurl/, ...)
@@ -142,6 +138,13 @@ inline double bilinear4(double a, double b, double c, double d, double t, double
   return (1.0 - u) * lo + u * hi;
 }
 
+}  // namespace
+
+// The types Bathymetry::Impl holds live in a named namespace of this file: in the unity build
+// this file is included by another, and a member of an anonymous namespace's type warns there
+// (-Wsubobject-linkage).
+namespace bathymetry_detail {
+
 // Statistics of one normalised row; combined in row order, so the whole and streamed paths
 // give the same min/max/mean bit for bit.
 struct RowStats {
@@ -149,6 +152,12 @@ struct RowStats {
   std::int64_t count = 0;
   std::int64_t implausible = 0;  // values beyond ±max_abs_elevation_m, made no-data
 };
+
+}  // namespace bathymetry_detail
+
+namespace {
+
+using bathymetry_detail::RowStats;
 
 RowStats row_stats(const float* row, std::int64_t n) {
   RowStats s;
@@ -318,6 +327,10 @@ class RowFiller {
   std::vector<Run> inside_, steps_;
 };
 
+}  // namespace
+
+namespace bathymetry_detail {
+
 // A streamed raster's file mapped into memory: GDAL's file mapping of an uncompressed band in the
 // machine's byte order (GDALRasterBand::GetVirtualMemAuto, without its copying fallback). The
 // threads read the stored rows where they lie: no read buffer, no copy out of the page cache, no
@@ -433,6 +446,12 @@ class FileMap {
   std::int64_t pixel_, line_;  // bytes from a column to the next, and from a stored row to the next
   GDALDataType type_;
 };
+
+}  // namespace bathymetry_detail
+
+namespace {
+
+using bathymetry_detail::FileMap;
 
 }  // namespace
 
