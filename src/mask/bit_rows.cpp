@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/bitmap.hpp"
+
 namespace aq::mask::bits {
 
 namespace {
@@ -112,10 +114,10 @@ std::int64_t count_range(const std::uint64_t* row, std::int64_t a, std::int64_t 
   const std::int64_t wa = word_of(a), wb = word_of(b - 1);
   const std::uint64_t ma = from_bit(bit_of(a));
   const std::uint64_t mb = low_mask(bit_of(b - 1) + 1);
-  if (wa == wb) return std::popcount(row[wa] & ma & mb);
-  std::int64_t n = std::popcount(row[wa] & ma);
-  for (std::int64_t w = wa + 1; w < wb; ++w) n += std::popcount(row[w]);
-  return n + std::popcount(row[wb] & mb);
+  if (wa == wb) return popcount64(row[wa] & ma & mb);
+  std::int64_t n = popcount64(row[wa] & ma);
+  for (std::int64_t w = wa + 1; w < wb; ++w) n += popcount64(row[w]);
+  return n + popcount64(row[wb] & mb);
 }
 
 std::int64_t count_range_and(const std::uint64_t* x, const std::uint64_t* y, std::int64_t a, std::int64_t b) {
@@ -123,10 +125,10 @@ std::int64_t count_range_and(const std::uint64_t* x, const std::uint64_t* y, std
   const std::int64_t wa = word_of(a), wb = word_of(b - 1);
   const std::uint64_t ma = from_bit(bit_of(a));
   const std::uint64_t mb = low_mask(bit_of(b - 1) + 1);
-  if (wa == wb) return std::popcount(x[wa] & y[wa] & ma & mb);
-  std::int64_t n = std::popcount(x[wa] & y[wa] & ma);
-  for (std::int64_t w = wa + 1; w < wb; ++w) n += std::popcount(x[w] & y[w]);
-  return n + std::popcount(x[wb] & y[wb] & mb);
+  if (wa == wb) return popcount64(x[wa] & y[wa] & ma & mb);
+  std::int64_t n = popcount64(x[wa] & y[wa] & ma);
+  for (std::int64_t w = wa + 1; w < wb; ++w) n += popcount64(x[w] & y[w]);
+  return n + popcount64(x[wb] & y[wb] & mb);
 }
 
 void rotate_row(const std::uint64_t* src, std::uint64_t* dst, std::int64_t n, std::int64_t shift, Combine op) {
