@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <type_traits>
 #include <unordered_set>
@@ -17,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
+#include "io/deflate_ahead.hpp"
 #include "io/depth.hpp"
 #include "io/netcdf_file.hpp"
 #include "mesh_files/geographic_mesh.hpp"
@@ -44,6 +46,7 @@ class NcWriter {
     check(nc_create(path_.c_str(), mode, &id_), "cannot create");
     int old = 0;
     check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
+    if (deflate_ > 0) ahead_.emplace();
   }
   ~NcWriter() {
     if (id_ >= 0) nc_abort(id_);
@@ -71,12 +74,14 @@ class NcWriter {
     const std::vector<int> d(dims);
     check(nc_def_var(id_, name.c_str(), type, static_cast<int>(d.size()), d.data(), &v), "define variable " + name);
     if (d.empty()) scalars_.push_back(v);
+    if (static_cast<std::size_t>(v) >= chunk_rows_.size()) chunk_rows_.resize(static_cast<std::size_t>(v) + 1, 0);
     if (deflate_ > 0 && !d.empty()) {
       std::vector<std::size_t> chunk;
       for (const int k : d) chunk.push_back(dim_len_[static_cast<std::size_t>(k)]);
       chunk[0] = std::max<std::size_t>(1, std::min(chunk[0], kChunkRows));
       check(nc_def_var_chunking(id_, v, NC_CHUNKED, chunk.data()), "chunking of " + name);
       check(nc_def_var_deflate(id_, v, 1, 1, deflate_), "compression of " + name);
+      chunk_rows_[static_cast<std::size_t>(v)] = chunk[0];
     }
     return v;
   }
@@ -119,6 +124,12 @@ class NcWriter {
         return;
       }
     }
+    const std::size_t chunk_rows = chunk_rows_[static_cast<std::size_t>(var)];
+    if (ahead_ && ahead_->active() && chunk_rows > 0 && static_cast<std::size_t>(row) % chunk_rows == 0) {
+      const std::size_t row_bytes = static_cast<std::size_t>(cols) * sizeof(T);
+      ahead_->prepare(data, static_cast<std::size_t>(rows) * row_bytes, chunk_rows * row_bytes, sizeof(T), true,
+                      deflate_);
+    }
     const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
     const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
     check(put_vara(id_, var, start, count, data), "write data");
@@ -155,9 +166,13 @@ class NcWriter {
   }
   std::filesystem::path path_;
   int deflate_ = 0;
-  std::vector<std::size_t> dim_len_;  ///< length of each defined dimension, by id
-  std::vector<int> scalars_;          ///< variables without dimensions (topology, grid mappings)
-  std::vector<int> narrow_;           ///< put's NC_INT copy of long long indices
+  std::vector<std::size_t> dim_len_;     ///< length of each defined dimension, by id
+  std::vector<int> scalars_;             ///< variables without dimensions (topology, grid mappings)
+  std::vector<std::size_t> chunk_rows_;  ///< by variable: rows per chunk of a compressed one, else 0
+  // With deflate: the chunks of each put compressed ahead on the OpenMP team
+  // (io/deflate_ahead.hpp: the same bytes); alive until after nc_close / nc_abort.
+  std::optional<DeflateAhead> ahead_;
+  std::vector<int> narrow_;  ///< put's NC_INT copy of long long indices
   int id_ = -1;
 };
 
@@ -589,19 +604,19 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   }
   nc.enddef();
 
-  nc.check(nc_put_var_double(nc.id(), node_x, mesh.lon_deg.data()), "write mesh_node_x");
-  nc.check(nc_put_var_double(nc.id(), node_y, mesh.lat_deg.data()), "write mesh_node_y");
+  nc.put(node_x, 0, n, 1, mesh.lon_deg.data());
+  nc.put(node_y, 0, n, 1, mesh.lat_deg.data());
   if (rotated) {
-    nc.check(nc_put_var_double(nc.id(), node_rlon, mesh.rlon_deg.data()), "write mesh_node_rlon");
-    nc.check(nc_put_var_double(nc.id(), node_rlat, mesh.rlat_deg.data()), "write mesh_node_rlat");
+    nc.put(node_rlon, 0, n, 1, mesh.rlon_deg.data());
+    nc.put(node_rlat, 0, n, 1, mesh.rlat_deg.data());
   }
   {
     std::vector<double> d(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < d.size(); ++a) d[a] = depth_below_datum_m(mesh.depth_m[a]);
-    nc.check(nc_put_var_double(nc.id(), depth, d.data()), "write depth");
+    nc.put(depth, 0, n, 1, d.data());
     std::vector<signed char> fl(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < fl.size(); ++a) fl[a] = static_cast<signed char>(mesh.node_flags[a]);
-    nc.check(nc_put_var_schar(nc.id(), flags, fl.data()), "write node_flags");
+    nc.put(flags, 0, n, 1, fl.data());
   }
   if (nb > 0) {
     std::vector<long long> be(static_cast<std::size_t>(2 * nb));
@@ -612,12 +627,12 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
       if (!mesh.boundary_edge_loop.empty()) loop[e] = mesh.boundary_edge_loop[e];
     }
     nc.put(bnd, 0, nb, 2, be.data());
-    nc.check(nc_put_var_int(nc.id(), bnd_loop, loop.data()), "write mesh_boundary_loop");
+    nc.put(bnd_loop, 0, nb, 1, loop.data());
   }
   if (typed) {
     std::vector<signed char> ty(static_cast<std::size_t>(nb));
     for (std::size_t e = 0; e < ty.size(); ++e) ty[e] = static_cast<signed char>(mesh.boundary_edge_type[e]);
-    nc.check(nc_put_var_schar(nc.id(), bnd_type, ty.data()), "write mesh_boundary_type");
+    nc.put(bnd_type, 0, nb, 1, ty.data());
   }
   WriteStats stats;
   for (std::size_t k = 0; k < sets.size(); ++k) {
