@@ -421,6 +421,7 @@ static Json source_json(const raster::Bathymetry& b) {
               {"min_m", i.min_m},
               {"max_m", i.max_m},
               {"streamed", i.streamed},
+              {"mapped", i.mapped},
               {"memory_bytes", i.memory_bytes}};
 }
 
