@@ -142,13 +142,15 @@ class NcWriter {
     check(status, "close");
   }
 
- private:
-  static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
+  /// The netCDF type of variable `var`.
   [[nodiscard]] nc_type type_of(int var) const {
     nc_type t = NC_NAT;
     check(nc_inq_vartype(id_, var, &t), "variable type");
     return t;
   }
+
+ private:
+  static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
   static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const double* d) {
     return nc_put_vara_double(id, v, s, c, d);
   }
@@ -383,81 +385,104 @@ TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet
   return v;
 }
 
-void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
-                    const UniqueEdges& edges) {
-  const int w = faces.max_nodes();
+// Face centre (lon, lat) of face f with nodes p[0..k).
+std::array<double, 2> face_centre(const mesh::Mesh& mesh, const PoleRotation& rotation,
+                                  const std::array<NodeId, kMaxSquarePolygon>& p, int k) {
   const std::int64_t nx = mesh.lattice.nx;
+  std::int64_t max_i = 0, min_i = 0;
+  bool moved = false;
+  for (int a = 0; a < k; ++a) {
+    max_i = std::max(max_i, mesh.node_i[p[a]]);
+    min_i = std::min(min_i, mesh.node_i[p[a]]);
+    moved = moved || (mesh.node_flags[p[a]] & mesh::kNodeMoved) != 0;
+  }
+  double lon = 0.0, lat = 0.0;
+  if (min_i < 0 || moved) {
+    // A face of a pole cap (io/geographic_mesh.hpp) or with a node moved onto a domain
+    // polygon (mesh/open_snap.hpp): the centre of its nodes on the sphere.
+    std::array<double, 3> c{0.0, 0.0, 0.0};
+    for (int a = 0; a < k; ++a) {
+      const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
+      for (int d = 0; d < 3; ++d) c[d] += u[d];
+    }
+    lon = wrap_lon_deg(std::atan2(c[1], c[0]) * kRadToDeg, mesh.lattice.lon0_deg);
+    lat = std::atan2(c[2], std::hypot(c[0], c[1])) * kRadToDeg;
+  } else {
+    double si = 0.0, sj = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const std::int64_t i = mesh.node_i[p[a]];
+      // Global columns (a window lattice's origin added as an integer: the same bits as on the global lattice).
+      si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) + mesh.lattice.i_origin);
+      sj += static_cast<double>(mesh.node_j[p[a]]);
+    }
+    const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
+    const double rlat = mesh.lattice.lat_of_row(sj / k);
+    lon = rlon;
+    lat = rlat;
+    if (mesh.rotation.enabled) {
+      rotation.to_geographic(rlon, rlat, lon, lat);
+      lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
+    }
+  }
+  return {lon, lat};
+}
+
+// The faces' variables, slab by slab (kChunk faces) and, within a slab, one variable at a time
+// in the netCDF calls' fixed order, each made just before it is written into one of a few
+// reused buffers (at 15" 40 MB instead of 105 MB of slab arrays beside the other writers).
+// Node numbers go out in the variable's own type (NC_INT when they fit).
+template <typename Index>
+void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v) {
+  const int w = faces.max_nodes();
   const PoleRotation rotation =
       mesh.rotation.enabled ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation();
-  std::vector<long long> idx;
-  std::vector<double> cx, cy, bx, by;
+  std::vector<Index> idx;
+  std::vector<double> cx, cy, corners;
   std::vector<short> lev;
   std::array<NodeId, kMaxSquarePolygon> p{};
   for (std::int64_t f0 = 0; f0 < faces.count(); f0 += kChunk) {
     const std::int64_t rows = std::min(kChunk, faces.count() - f0);
-    idx.assign(static_cast<std::size_t>(rows * w), -1);
-    cx.resize(static_cast<std::size_t>(rows));
-    cy.resize(static_cast<std::size_t>(rows));
-    bx.resize(static_cast<std::size_t>(rows * w));
-    by.resize(static_cast<std::size_t>(rows * w));
-    lev.resize(static_cast<std::size_t>(rows));
-    for (std::int64_t r = 0; r < rows; ++r) {
-      const int k = faces.nodes(f0 + r, p);
-      std::int64_t max_i = 0, min_i = 0;
-      bool moved = false;
-      for (int a = 0; a < k; ++a) {
-        max_i = std::max(max_i, mesh.node_i[p[a]]);
-        min_i = std::min(min_i, mesh.node_i[p[a]]);
-        moved = moved || (mesh.node_flags[p[a]] & mesh::kNodeMoved) != 0;
-      }
-      double lon = 0.0, lat = 0.0;
-      if (min_i < 0 || moved) {
-        // A face of a pole cap (io/geographic_mesh.hpp) or with a node moved onto a domain
-        // polygon (mesh/open_snap.hpp): the centre of its nodes on the sphere.
-        std::array<double, 3> c{0.0, 0.0, 0.0};
-        for (int a = 0; a < k; ++a) {
-          const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
-          for (int d = 0; d < 3; ++d) c[d] += u[d];
-        }
-        lon = wrap_lon_deg(std::atan2(c[1], c[0]) * kRadToDeg, mesh.lattice.lon0_deg);
-        lat = std::atan2(c[2], std::hypot(c[0], c[1])) * kRadToDeg;
-      } else {
-        double si = 0.0, sj = 0.0;
-        for (int a = 0; a < k; ++a) {
-          const std::int64_t i = mesh.node_i[p[a]];
-          // Global columns (a window lattice's origin added as an integer: the same bits as on the global lattice).
-          si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) +
-                                    mesh.lattice.i_origin);
-          sj += static_cast<double>(mesh.node_j[p[a]]);
-        }
-        const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
-        const double rlat = mesh.lattice.lat_of_row(sj / k);
-        lon = rlon;
-        lat = rlat;
-        if (mesh.rotation.enabled) {
-          rotation.to_geographic(rlon, rlat, lon, lat);
-          lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
-        }
-      }
-      const auto u = static_cast<std::size_t>(r);
-      cx[u] = lon;
-      cy[u] = lat;
-      lev[u] = static_cast<short>(faces.level(f0 + r));
-      for (int a = 0; a < w; ++a) {
-        const NodeId n = p[std::min(a, k - 1)];
-        const std::size_t c = u * static_cast<std::size_t>(w) + static_cast<std::size_t>(a);
-        if (a < k) idx[c] = n;
-        bx[c] = lon + near_zero_remainder(mesh.lon_deg[n] - lon);
-        by[c] = mesh.lat_deg[n];
-      }
+    const auto ur = static_cast<std::size_t>(rows), uw = static_cast<std::size_t>(w);
+    idx.assign(ur * uw, Index{-1});
+    for (std::size_t r = 0; r < ur; ++r) {
+      const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
+      for (int a = 0; a < k; ++a) idx[r * uw + static_cast<std::size_t>(a)] = static_cast<Index>(p[a]);
     }
     nc.put(v.faces, f0, rows, w, idx.data());
+    cx.resize(ur);
+    cy.resize(ur);
+    for (std::size_t r = 0; r < ur; ++r) {
+      const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
+      const auto c = face_centre(mesh, rotation, p, k);
+      cx[r] = c[0];
+      cy[r] = c[1];
+    }
     nc.put(v.face_x, f0, rows, 1, cx.data());
     nc.put(v.face_y, f0, rows, 1, cy.data());
-    nc.put(v.face_x_bnds, f0, rows, w, bx.data());
-    nc.put(v.face_y_bnds, f0, rows, w, by.data());
+    corners.resize(ur * uw);
+    for (const bool lon : {true, false}) {  // the corners' longitudes (around the centre), then latitudes
+      for (std::size_t r = 0; r < ur; ++r) {
+        const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
+        for (int a = 0; a < w; ++a) {
+          const auto n = static_cast<std::size_t>(p[std::min(a, k - 1)]);
+          corners[r * uw + static_cast<std::size_t>(a)] =
+              lon ? cx[r] + near_zero_remainder(mesh.lon_deg[n] - cx[r]) : mesh.lat_deg[n];
+        }
+      }
+      nc.put(lon ? v.face_x_bnds : v.face_y_bnds, f0, rows, w, corners.data());
+    }
+    lev.resize(ur);
+    for (std::size_t r = 0; r < ur; ++r) lev[r] = static_cast<short>(faces.level(f0 + static_cast<std::int64_t>(r)));
     nc.put(v.level, f0, rows, 1, lev.data());
   }
+}
+
+void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
+                    const UniqueEdges& edges) {
+  if (nc.type_of(v.faces) == NC_INT)
+    write_faces<int>(nc, mesh, faces, v);
+  else
+    write_faces<long long>(nc, mesh, faces, v);
   edges.for_each_chunk(
       kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) { nc.put(v.edges, e0, rows, 2, pairs); });
 }
