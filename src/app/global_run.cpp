@@ -724,6 +724,11 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     if (!run.domain.regional()) run.area.wet = Bitmap();
   }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  // The leaves go with the bitmaps (184 MB at 15", alive at the write stage's peak) unless a file
+  // reads them after the mesh (mesh_run.cpp): the global run file, which keeps the masks, or the
+  // preview's size colours, whose range is taken over the leaves.
+  const bool png = std::find(c.output.formats.begin(), c.output.formats.end(), "png") != c.output.formats.end();
+  if (!keep_masks && !(png && run.size_field.has_grid())) std::vector<quadtree::Leaf>().swap(run.leaves);
   if (run.domain.regional()) type_regional_boundaries(run, log, report);
   if (statistics) check_lattice_mesh(run, log, report);
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
