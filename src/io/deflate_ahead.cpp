@@ -154,6 +154,9 @@ void DeflateAhead::prepare(const void* data, std::size_t bytes, std::size_t chun
   if (!active_ || bytes == 0 || chunk_bytes == 0 || element_bytes == 0 || level < 1 || level > 9) return;
   const auto* src = static_cast<const unsigned char*>(data);
   const auto chunks = static_cast<std::int64_t>((bytes + chunk_bytes - 1) / chunk_bytes);
+  // One chunk has nobody to share it with: zlib compresses it when HDF5 asks, as without a
+  // DeflateAhead (the seed run's variables are one chunk each; waking the team cost more).
+  if (chunks < 2) return;
   std::vector<Key> keys(static_cast<std::size_t>(chunks));
   std::vector<std::vector<unsigned char>> out(keys.size());
   const std::size_t n_el = chunk_bytes / element_bytes;
