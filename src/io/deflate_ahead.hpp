@@ -45,7 +45,8 @@ class DeflateAhead {
   /// Compresses at `level` (1..9) the `bytes` bytes at `data` in chunks of `chunk_bytes`, as
   /// HDF5 will hand them to compress2: the values in the variable's file type (elements of
   /// `element_bytes`), shuffled when `shuffle`; a last chunk shorter than chunk_bytes padded
-  /// with zero bytes. `data` must start at a chunk boundary of the variable.
+  /// with zero bytes. `data` must start at a chunk boundary of the variable. Fewer than 4
+  /// chunks are left to zlib (too little to share).
   void prepare(const void* data, std::size_t bytes, std::size_t chunk_bytes, std::size_t element_bytes, bool shuffle,
                int level);
 

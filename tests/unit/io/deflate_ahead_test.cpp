@@ -73,7 +73,7 @@ std::string bytes_of(const fs::path& p) {
 // A netCDF-4 file with a chunked, shuffled and deflated 2-D double and 1-D int variable, written
 // in slabs as the UGRID writer writes, each slab prepared first when `ahead` is given.
 void write_file(const fs::path& p, DeflateAhead* ahead) {
-  constexpr std::size_t kRows = 300000, kCols = 3, kChunkRows = 65536, kSlab = 131072;
+  constexpr std::size_t kRows = 300000, kCols = 3, kChunkRows = 65536, kSlab = 262144;  // a slab of 4 chunks: prepared
   int id = -1, d0 = -1, d1 = -1, vd = -1, vi = -1;
   ASSERT_EQ(nc_create(p.c_str(), NC_CLOBBER | NC_NETCDF4, &id), NC_NOERR);
   int old = 0;
