@@ -98,8 +98,9 @@ std::int64_t estimate_triangles(const Lattice& l) {
 
 double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
-// Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
-// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
+// Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto,
+// AQ_RASTER_BAND_ROWS = rows per band and AQ_RASTER_MAP = never (streamed through GDAL reads,
+// not the file map), so that tests can compare the streamed and whole paths;
 // AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read);
 // AQ_RASTER_TILES_ABOVE (below) reads them in tiles.
 void apply_test_knobs(raster::OpenOptions& ro) {
@@ -114,6 +115,7 @@ void apply_test_knobs(raster::OpenOptions& ro) {
   // AQ_RASTER_TILES_ABOVE = bytes: read rasters above that size in tiles (tests compare with held).
   if (const char* s = std::getenv("AQ_RASTER_TILES_ABOVE"))
     ro.tiles_above_bytes = std::max<std::int64_t>(0, std::atoll(s));
+  if (const char* s = std::getenv("AQ_RASTER_MAP"); s != nullptr && std::string(s) == "never") ro.map_file = false;
 }
 
 // Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
@@ -480,6 +482,7 @@ static Json source_json(const raster::Bathymetry& b) {
               {"min_m", i.min_m},
               {"max_m", i.max_m},
               {"streamed", i.streamed},
+              {"mapped", i.mapped},
               {"memory_bytes", i.memory_bytes}};
 }
 
@@ -970,6 +973,11 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
+  // The leaves go with the bitmaps (184 MB at 15", alive at the write stage's peak) unless a file
+  // reads them after the mesh (mesh_run.cpp): the global run file, which keeps the masks, or the
+  // preview's size colours, whose range is taken over the leaves.
+  const bool png = std::find(c.output.formats.begin(), c.output.formats.end(), "png") != c.output.formats.end();
+  if (!keep_masks && !(png && run.size_field.has_grid())) std::vector<quadtree::Leaf>().swap(run.leaves);
   if (run.domain.regional()) type_regional_boundaries_dense(run, log, report);
   finish_mesh(run, c, setup, log, report, statistics, keep_masks);
   return run;

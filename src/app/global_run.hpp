@@ -112,7 +112,8 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
 /// With `keep_masks = false` the lattice bitmaps of `area` (wet_vertices, wet, coastal, filled:
 /// 4 bits per pixel, 1.9 GB at 15") are freed as soon as the quadtree has its leaves (`wet` after
 /// a regional run's boundary typing); their counts stay. The mesh, its checks and every file but
-/// the global run file (`tif`) need none of them.
+/// the global run file (`tif`) need none of them. The leaves go too once the mesh is built, unless
+/// a preview colours by the size field (its range is taken over the leaves).
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics = true, bool reuse = false, bool keep_masks = true);
 

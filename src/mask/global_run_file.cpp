@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kFormat[] = "aquatoria global run 1";
-constexpr std::uint8_t kFilled = 1, kWet = 2, kCoastal = 4;
+constexpr std::uint8_t kFilledBit = 1, kWetBit = 2, kCoastalBit = 4;
 constexpr std::uint8_t kNoLevel = 255;
 constexpr char kNotAFile[] = "n/a (not a plain file)";
 
@@ -164,8 +164,8 @@ void write_global_run_file(const fs::path& path, const WetArea& area, const Latt
       const std::int64_t j = ny - 1 - (r0 + r);
       std::uint8_t* out = flags + r * nx;
       for (std::int64_t i = 0; i < nx; ++i) {
-        out[i] = static_cast<std::uint8_t>((f->get(i, j) ? kFilled : 0) | (w->get(i, j) ? kWet : 0) |
-                                           (co->get(i, j) ? kCoastal : 0));
+        out[i] = static_cast<std::uint8_t>((f->get(i, j) ? kFilledBit : 0) | (w->get(i, j) ? kWetBit : 0) |
+                                           (co->get(i, j) ? kCoastalBit : 0));
       }
       std::copy_n(lv + (j - j_low) * nx, nx, level + r * nx);
     }
@@ -220,9 +220,9 @@ GlobalRunFile read_global_run_file(const fs::path& path, const config::GlobalCon
       const std::int64_t j = ny - 1 - (r0 + r);
       const std::uint8_t* row = in + r * nx;
       for (std::int64_t i = 0; i < nx; ++i) {
-        if ((row[i] & kFilled) != 0) pa->filled.set(i, j);
-        if ((row[i] & kWet) != 0) pa->wet.set(i, j);
-        if ((row[i] & kCoastal) != 0) pa->coastal.set(i, j);
+        if ((row[i] & kFilledBit) != 0) pa->filled.set(i, j);
+        if ((row[i] & kWetBit) != 0) pa->wet.set(i, j);
+        if ((row[i] & kCoastalBit) != 0) pa->coastal.set(i, j);
       }
     }
   }

@@ -52,6 +52,10 @@ struct OpenOptions {
   /// above the memory limit; kAlways/kNever force a path (kAlways still needs allow_streaming).
   Streaming streaming = Streaming::kAuto;
   std::int64_t band_rows = 0;  ///< stored rows per band read; 0 = whole blocks, about 64 MB
+  /// A streamed raster GDAL can map into memory (an uncompressed file in the machine's byte
+  /// order, one block per row or a strip layout: GeoTIFF, ENVI, EHdr) is read through the map
+  /// (RasterInfo::mapped); false: through GDAL reads always (tests compare the two).
+  bool map_file = true;
   /// Warn that a raster not covering 360° leaves the rest of the lattice dry (off for a source
   /// above another one, whose uncovered part the sources below fill).
   bool warn_partial_coverage = true;
@@ -98,6 +102,9 @@ struct RasterInfo {
   bool tiled = false;             ///< values read in tiles on demand and cached (OpenOptions::tiles_above_bytes)
   std::int64_t tile_cache_bytes = 0;    ///< tiled: the cache's bound
   mutable std::int64_t tiles_read = 0;  ///< tiled: tiles read so far (with repeats after eviction)
+  /// Streamed through GDAL's memory map of the file (OpenOptions::map_file): the threads read the
+  /// rows where they lie instead of copying them through a read buffer; the same values.
+  bool mapped = false;
   /// Held whole: the window read (OpenOptions lat/lon window), in normalised columns and rows;
   /// the whole raster when no window was asked (held_cols = ncols, held_rows = nrows).
   std::int64_t held_cols = 0, held_rows = 0;
