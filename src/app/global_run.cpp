@@ -450,7 +450,9 @@ static std::string source_line(const raster::Bathymetry& b, std::size_t k) {
   const double lat1 = i.lat_first + static_cast<double>(i.nrows - 1) * i.dlat;
   return fmt::format("source {}{} {}: {} x {}, {:.4g}' x {:.4g}', {} registration, {} ({} MB); {}, {:.4f}..{:.4f}°N",
                      k + 1, k == 0 ? " (highest priority)" : "", i.path, i.ncols, i.nrows, i.dlon * 60.0,
-                     i.dlat * 60.0, i.registration, i.streamed ? "streamed" : "held whole", i.memory_bytes >> 20,
+                     i.dlat * 60.0, i.registration,
+                     i.tiled ? "in tiles on demand, cache" : i.streamed ? "streamed" : "held whole",
+                     i.memory_bytes >> 20,
                      i.global_lon ? std::string("all longitudes") : fmt::format("{:.4f}..{:.4f}°E", i.lon_first, lon1),
                      i.lat_first, lat1);
 }

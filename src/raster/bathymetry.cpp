@@ -1300,7 +1300,8 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
   const bool parallel = n * nc >= (std::int64_t{1} << 16);
   if (!im.info.streamed) {
     RowProgress rp(progress, n, "rows");
-    const bool bilinear = im.interp != Interpolation::kBicubic || im.fx.empty();
+    // A tiled raster has no rows in memory: sample_row reads its tiles (row_ptr is for held rows).
+    const bool bilinear = !im.info.tiled && (im.interp != Interpolation::kBicubic || im.fx.empty());
 #pragma omp parallel default(none) shared(im, cols, lats, n, nc, sink, rp, bilinear) if (parallel)
     {
       std::vector<float> buf(static_cast<std::size_t>(nc));
