@@ -56,7 +56,8 @@ struct WetArea {
 /// when `report` is given, adds those stages and a "mask" section (see wet_area_json).
 /// With a regional `domain` the fill runs on wet ∩ domain from the seeds regional_seeds gives
 /// (`wet` stays the whole classification: the open boundary is where the outside is wet) and
-/// the passage table is not made.
+/// the passage table holds the passages whose box lies inside the domain. Passages named in
+/// options.passages_open are marked carved (the carving itself is mask/carving.hpp's, before).
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                          const config::MaskOptions& options, const Logger& log, Report* report,
                          const Domain* domain = nullptr);

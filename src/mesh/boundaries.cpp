@@ -36,6 +36,26 @@ std::vector<Run> runs_of(const std::vector<char>& o) {
   return out;
 }
 
+// Whether a loop runs anticlockwise in the lattice plane (the water on its left inside it: the
+// outer coast of a part of the mesh, not an island in it), by its signed area over the nodes'
+// lattice vertices (I unwrapped across the seam); false when a node is off the lattice.
+bool anticlockwise(const Mesh& m, const std::vector<NodeId>& nodes) {
+  const std::int64_t nx = m.lattice.nx;
+  double area2 = 0.0, x = 0.0;
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const auto p = static_cast<std::size_t>(nodes[k]), q = static_cast<std::size_t>(nodes[(k + 1) % nodes.size()]);
+    if (m.node_i[p] < 0 || m.node_i[q] < 0) return false;
+    std::int64_t di = m.node_i[q] - m.node_i[p];
+    if (di > nx / 2) di -= nx;
+    if (di < -nx / 2) di += nx;
+    const double y0 = static_cast<double>(m.node_j[p]), y1 = static_cast<double>(m.node_j[q]);
+    const double x1 = x + static_cast<double>(di);
+    area2 += x * y1 - x1 * y0;
+    x = x1;
+  }
+  return area2 > 0.0;
+}
+
 std::string where(const Mesh& m, NodeId n) {
   const auto p = static_cast<std::size_t>(n);
   return fmt::format("{:.4f}°E {:.4f}°N (node {})", m.lon_deg[p], m.lat_deg[p], n + 1);
@@ -71,10 +91,11 @@ BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)
       }
     }
     const std::vector<Run> runs = runs_of(o);
+    // A closed land loop is mainland when it is the outer loop, or the outer coast of another
+    // part of the mesh (a seed's separate sea): anticlockwise around its water.
+    const bool mainland = runs.size() > 1 || m.loops[l].outer || (!m.loops[l].pole && anticlockwise(m, nodes));
     const auto type_of = [&](bool open) {
-      return open ? BoundaryType::kOpen
-             : (runs.size() > 1 || m.loops[l].outer) ? BoundaryType::kMainland
-                                                     : BoundaryType::kIsland;
+      return open ? BoundaryType::kOpen : mainland ? BoundaryType::kMainland : BoundaryType::kIsland;
     };
     for (std::size_t k = 0; k < n; ++k) typed.emplace_back(nodes[k], nodes[(k + 1) % n], type_of(o[k] != 0));
     if (runs.size() == 1) {

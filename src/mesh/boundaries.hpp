@@ -8,7 +8,8 @@
 //     is open all round is split into two open segments (SCHISM refuses a looped open segment).
 //     Each change is logged with its position.
 //   * Land on a loop with open segments is mainland (it touches the domain edge); a loop without
-//     open edges is mainland when it is the outer loop, else an island.
+//     open edges is mainland when it is the outer loop or runs anticlockwise in the lattice plane
+//     (the outer coast of a separate part of the mesh, e.g. a second seed's sea), else an island.
 //   * Segments: every open segment (loop order, each starting where its run starts), then the
 //     land pieces and closed loops (loop order). An open segment and its land neighbours share
 //     their end nodes (ADCIRC's and SCHISM's convention).
