@@ -25,7 +25,8 @@ namespace {
 // Iceland, Newfoundland, Taiwan or Sicily, leave the box). Checked on ETOPO5: every 5' sample
 // point of every side box is water (<= 0 m), and on the ETOPO5 wet pixels at 1.875' every passage
 // is open except the Bosphorus, which ETOPO5 does not have (+2..+6 m across 28.7-29.5°E at
-// 41.08-41.17°N); see tests/integration/mask_etopo5_test.cpp.
+// 41.08-41.17°N), and the Little Belt, whose 5' cells meet only at a corner; see
+// tests/integration/mask_etopo5_test.cpp.
 // clang-format off
 constexpr std::array<Passage, 37> kPassages{{
     {"Gibraltar", "Gulf of Cadiz", "Mediterranean Sea",
