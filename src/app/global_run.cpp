@@ -726,7 +726,30 @@ static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* 
     pi = ((pi % lat.nx) + lat.nx) % lat.nx;
     return !d.contains(pi, pj) && wet.get(pi, pj);
   };
-  const mesh::BoundaryCounts counts = mesh::type_boundaries(m, is_open, &log);
+  // A river inflow: an open edge whose outside pixel's centre lies in the corridor of a channel
+  // line (mask.channels) that crosses the domain's edge there.
+  const raster::ElevationEdits* edits = run.bathy->edits();
+  const PoleRotation& rot = run.setup.rotation;
+  const auto is_river = [&](NodeId a, NodeId b) {
+    if (edits == nullptr) return false;
+    const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
+    const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
+    std::int64_t di = m.node_i[pb] - ia;
+    const std::int64_t dj = m.node_j[pb] - ja;
+    if (di > lat.nx / 2) di -= lat.nx;
+    if (di < -lat.nx / 2) di += lat.nx;
+    std::int64_t pi = ia, pj = ja;  // the pixel on the right of the first unit step, as is_open
+    if (di > 0) pj = ja - 1;
+    if (di < 0) pi = ia - 1;
+    if (dj < 0) {
+      pi = ia - 1;
+      pj = ja - 1;
+    }
+    const mask::LonLat g = mask::lattice_to_geographic(rot, mask::pixel_center_lattice_deg(lat, {pi, pj}));
+    const int k = edits->corridor_at(g.lon_deg, g.lat_deg);
+    return k >= 0 && run.carving.lines[static_cast<std::size_t>(k)].kind == mask::LineKind::kChannel;
+  };
+  const mesh::BoundaryCounts counts = mesh::type_boundaries(m, is_open, &log, is_river);
   if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(m, counts);
   stage.done(mesh::describe(counts));
 }

@@ -206,6 +206,18 @@ double ElevationEdits::apply(double lon_deg, double lat_deg, double z) const {
   return z;
 }
 
+int ElevationEdits::corridor_at(double lon_deg, double lat_deg) const {
+  if (arcs_.empty() || !std::isfinite(lat_deg) || !std::isfinite(lon_deg)) return -1;
+  const std::int64_t cell = cell_of(lon_deg, lat_deg);
+  const V3 p = unit(lon_deg, lat_deg);
+  int best = -1;
+  for (std::int32_t q = cell_start_[static_cast<std::size_t>(cell)]; q < cell_start_[static_cast<std::size_t>(cell) + 1]; ++q) {
+    const Arc& arc = arcs_[static_cast<std::size_t>(cell_arcs_[static_cast<std::size_t>(q)])];
+    if ((best < 0 || arc.corridor < best) && inside(arc, p)) best = arc.corridor;
+  }
+  return best;
+}
+
 void ElevationEdits::apply_row(const double* lon_deg, double lat_deg, float* out, std::int64_t n) const {
   if (!touches_lat(lat_deg)) return;
   for (std::int64_t k = 0; k < n; ++k) {

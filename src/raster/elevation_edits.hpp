@@ -66,6 +66,8 @@ class ElevationEdits {
   [[nodiscard]] double apply(double lon_deg, double lat_deg, double z) const;
   /// out[k] = apply(lon_deg[k], lat_deg, out[k]) for k < n (one latitude: a lattice or raster row).
   void apply_row(const double* lon_deg, double lat_deg, float* out, std::int64_t n) const;
+  /// The index (in corridors()) of the first corridor containing (lon, lat), or -1.
+  [[nodiscard]] int corridor_at(double lon_deg, double lat_deg) const;
   /// Whether some corridor can reach latitude lat (so apply_row may change the row).
   [[nodiscard]] bool touches_lat(double lat_deg) const;
 

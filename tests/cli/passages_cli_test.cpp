@@ -288,6 +288,91 @@ TEST_F(PassagesCli, ASecondSeedsSeparateSeaIsMeshedApartWithItsCoastMainland) {
   fs::remove(tif);
 }
 
+// A 0.25° raster: a basin at 2..28°E × 2..18°N in land (+100 m), a box around it that reaches
+// 30°E, and a river drawn from the basin east out of the box: it is burned in, and where it
+// crosses the box's edge it is a river inflow, typed so in every format that has the notion.
+fs::path basin_with_land_east(const fs::path& where) {
+  const fs::path tif = where.string() + "_basin.tif";
+  GDALAllRegister();
+  const int w = 1440, h = 720;
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
+  double gt[6] = {-180.0, 0.25, 0.0, 90.0, 0.0, -0.25};
+  ds->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  ds->SetSpatialRef(&srs);
+  std::vector<float> buf(static_cast<std::size_t>(w) * h, 100.0F);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double lon = -180.0 + (c + 0.5) * 0.25, lat = 90.0 - (r + 0.5) * 0.25;
+      if (lon > 2.0 && lon < 28.0 && lat > 2.0 && lat < 18.0) buf[static_cast<std::size_t>(r) * w + c] = -800.0F;
+    }
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+  GDALClose(ds);
+  return tif;
+}
+
+TEST_F(PassagesCli, ARiverCrossingTheDomainEdgeIsARiverInflowInEveryFormat) {
+  const fs::path dir = aq::test::fresh_dir("passages", "river");
+  fs::create_directories(dir.parent_path());
+  const fs::path tif = basin_with_land_east(dir);
+  const fs::path river = dir.string() + "_river.geojson";
+  {
+    std::ofstream f(river);
+    f << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "Test River", )"
+      << R"("width_m": 2000, "depth_m": 6}, "geometry": {"type": "LineString", "coordinates": [[25.0, 10.0], [29.0, 10.2], [34.0, 11.0]]}}]})";
+  }
+  const auto r = aq::test::run_aquatoria(
+      "mesh -o " + dir.string() + " --set input.path=" + tif.string() +
+      " --set 'domain.box=[0.0, 30.0, 0.0, 20.0]' --set quadtree.step_deg=1 --set quadtree.levels=2"
+      " --set 'mask.seeds=[[10.0, 10.0]]' --set mask.channels=" + river.string() +
+      " --set output.name=river --set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"ugrid\", \"png\"]'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 river inflow segment(s)"), std::string::npos) << r.err;
+  // fort.14: no elevation boundary; the river a land boundary of IBTYPE 22 on the east edge.
+  const Fort14 f = read_fort14(dir / "river.14");
+  EXPECT_TRUE(f.open.empty());
+  int rivers = 0;
+  for (const auto& [type, nodes] : f.land) {
+    if (type != 22) continue;
+    ++rivers;
+    EXPECT_GE(nodes.size(), 3U);
+    for (const long n : nodes) {
+      EXPECT_NEAR(f.lon[static_cast<std::size_t>(n)], 30.0, 1e-9);
+      EXPECT_NEAR(f.lat[static_cast<std::size_t>(n)], 10.3, 1.6);
+    }
+  }
+  EXPECT_EQ(rivers, 1);
+  EXPECT_TRUE(node_near(f, 29.0, 10.2, 0.2));  // the river's channel through the land
+  // hgrid.gr3: an open (flow) boundary; bctides.in: iettype 0, ifltype 2.
+  const Fort14 g = read_fort14(dir / "river.gr3");
+  ASSERT_EQ(g.open.size(), 1U);
+  for (const long n : g.open[0]) EXPECT_NEAR(g.lon[static_cast<std::size_t>(n)], 30.0, 1e-9);
+  const std::string bct = bytes(dir / "river_bctides.in");
+  EXPECT_NE(bct.find("1 !nope"), std::string::npos) << bct;
+  EXPECT_NE(bct.find(" 0 2 0 0 !open boundary 1"), std::string::npos) << bct;
+  EXPECT_NE(bytes(dir / "river.msh").find("1 6 \"river\""), std::string::npos);
+  const auto rep = aq::test::read_report(dir, "river");
+  EXPECT_EQ(rep["boundaries"]["river_segments"], 1);
+  EXPECT_EQ(rep["boundaries"]["open_segments"], 0);
+  EXPECT_EQ(rep["carving"][0]["kind"], "channel");
+  EXPECT_EQ(rep["carving"][0]["depth_m"], 6.0);
+  // Without the river: no boundary but the coast.
+  const fs::path dir2 = aq::test::fresh_dir("passages", "no_river");
+  const auto r2 = aq::test::run_aquatoria(
+      "mesh -o " + dir2.string() + " --set input.path=" + tif.string() +
+      " --set 'domain.box=[0.0, 30.0, 0.0, 20.0]' --set quadtree.step_deg=1 --set quadtree.levels=2"
+      " --set 'mask.seeds=[[10.0, 10.0]]' --set output.name=river --set 'output.formats=[\"fort14\"]'");
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  const Fort14 f2 = read_fort14(dir2 / "river.14");
+  EXPECT_TRUE(f2.open.empty());
+  ASSERT_EQ(f2.land.size(), 1U);
+  EXPECT_EQ(f2.land[0].first, 20);
+  EXPECT_FALSE(node_near(f2, 29.0, 10.2, 0.2));
+  fs::remove(tif);
+  fs::remove(river);
+}
+
 TEST_F(PassagesCli, CarvingIsTheSameBytesAtOneAndTwoThreads) {
   const fs::path lines = aq::test::fresh_dir("passages", "lines.geojson");
   {
