@@ -63,6 +63,35 @@ struct Run {
   std::int64_t j = 0, a = 0, b = 0;
 };
 
+// Inland waters below sea level (or with beds below it) that a fill from the ocean leaves out,
+// named where no passage names them: a point in each (in its deepest part).
+struct Basin {
+  const char* name;
+  double lon, lat;
+};
+constexpr std::array<Basin, 22> kBasins{{
+    {"Caspian Sea", 51.0, 42.0},        {"Caspian Sea", 51.5, 38.5},       {"Lake Ladoga", 31.3, 61.0},
+    {"Lake Onega", 35.5, 61.7},         {"Qattara Depression", 27.2, 29.7}, {"Dead Sea", 35.5, 31.5},
+    {"Lake Baikal", 108.3, 53.5},       {"Lake Tanganyika", 29.7, -6.5},   {"Lake Malawi", 34.5, -12.0},
+    {"Lake Superior", -87.5, 47.6},     {"Lake Michigan", -87.0, 44.0},    {"Lake Huron", -82.3, 44.8},
+    {"Lake Ontario", -77.8, 43.6},      {"Great Slave Lake", -114.0, 61.7}, {"Great Bear Lake", -121.0, 66.0},
+    {"Lake Vanern", 13.5, 58.9},        {"Lake Vattern", 14.6, 58.3},      {"Lake Eyre", 137.3, -28.4},
+    {"Turpan Depression", 89.3, 42.7},  {"Danakil Depression", 40.3, 14.2}, {"Lake Titicaca", -69.4, -15.9},
+    {"Issyk-Kul", 77.3, 42.4},
+}};
+
+// The pixel under a geographic point, or (-1, -1) off the lattice.
+PixelIJ pixel_under(const Lattice& lat, const PoleRotation& rot, double lon, double la) {
+  double x = 0.0, y = 0.0;
+  deg_to_lattice_xy(lat, geographic_to_lattice(rot, {lon, la}), x, y);
+  if (!on_lattice(lat, x, y)) return {-1, -1};
+  const auto j = static_cast<std::int64_t>(std::floor(y));
+  auto i = static_cast<std::int64_t>(std::floor(x));
+  if (lat.periodic()) i = wrap_index(i, lat.nx);
+  if (j < 0 || j >= lat.ny || i < 0 || i >= lat.nx) return {-1, -1};
+  return {i, j};
+}
+
 // One component while it is flooded.
 struct Component {
   std::int64_t pixels = 0;
@@ -347,6 +376,18 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
           break;
         }
     }
+    if (named.empty() && c.probes.empty())  // no passage side in it: an inland basin of the list?
+      for (const Basin& bs : kBasins) {
+        const PixelIJ p = pixel_under(lattice, rot, bs.lon, bs.lat);
+        const bool in = p.i >= 0 && std::any_of(c.runs.begin(), c.runs.end(), [&p](const Run& r) {
+                          return r.j == p.j && p.i >= r.a && p.i < r.b;
+                        });
+        if (in) {
+          s.name = bs.name;
+          s.inland = true;
+          break;
+        }
+      }
     if (!named.empty()) {
       int side = 0;
       for (const Edge& e : edges)
@@ -405,6 +446,10 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
   }
   // How to keep each one.
   for (DroppedSea& s : seas) {
+    if (s.inland) {
+      s.keep = "it is inland water: a seed in it (mask.seeds) meshes it apart, with its own coast all round";
+      continue;
+    }
     std::vector<std::string> open;
     for (const std::string& p : s.passages)
       if (std::find(s.passages_carved.begin(), s.passages_carved.end(), p) == s.passages_carved.end()) open.push_back(p);
@@ -440,7 +485,8 @@ std::string describe(const DroppedSea& s, int cursor) {
   const std::string area = s.area_km2 >= 1e6 ? fmt::format("{:.3g} million km²", s.area_km2 / 1e6)
                                              : fmt::format("{:.0f} km²", s.area_km2);
   std::string what = s.name.empty() ? fmt::format("wet area around {}", lonlat_text(s.centre))
-                                    : fmt::format("{} (centre {})", s.name, lonlat_text(s.centre));
+                     : s.inland   ? fmt::format("{} (inland, centre {})", s.name, lonlat_text(s.centre))
+                                  : fmt::format("{} (centre {})", s.name, lonlat_text(s.centre));
   std::string why;
   if (!s.passages.empty()) {
     std::string names;
@@ -476,6 +522,7 @@ Json dropped_json(const DroppedSeas& d) {
                         {"area_km2", s.area_km2},
                         {"pixels", s.pixels},
                         {"centre", ll(s.centre)},
+                        {"inland", s.inland},
                         {"passages", s.passages},
                         {"passages_carved", s.passages_carved},
                         {"cut_by_passage", s.cut},

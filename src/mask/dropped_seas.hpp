@@ -10,7 +10,9 @@
 //   centre   the area-weighted mean of its pixel centres' unit vectors, geographic;
 //   name     the side of a passage of the built-in table lying in it (a side is in it when one
 //            of five points of its box, its centre and the centres of its quarters, falls on a
-//            pixel of it), preferring the passage that would join it to the ocean;
+//            pixel of it), preferring the passage that would join it to the ocean; else an
+//            inland basin of a short list (the Caspian, Ladoga, Qattara, Baikal, the Great Lakes,
+//            ...) whose point falls on it;
 //   cause    the chain of the table's passages that would join it to the filled ocean (a
 //            breadth-first search from the filled set over the passages, each an edge between
 //            the components or the filled set its two sides lie in: the Black Sea behind the
@@ -44,7 +46,8 @@ namespace aq::mask {
 inline constexpr int kMaxLandGapPixels = 8;
 
 struct DroppedSea {
-  std::string name;           ///< a passage side's water body, or "" (then the centre names it)
+  std::string name;           ///< a passage side's water body, an inland basin's name, or "" (then the centre names it)
+  bool inland = false;        ///< named after an inland basin (a lake, a depression below sea level)
   std::int64_t pixels = 0;
   double area_km2 = 0.0;
   LonLat centre;              ///< geographic

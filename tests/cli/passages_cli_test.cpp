@@ -154,6 +154,10 @@ TEST_F(PassagesCli, GlobalTidesKeepsTheMediterraneanRedSeaBalticBlackAndWhiteSea
   const std::vector<std::string> names = dropped_names(rep);
   for (const char* sea : {"Mediterranean Sea", "Red Sea", "Baltic Sea", "Black Sea", "White Sea"})
     EXPECT_EQ(std::count(names.begin(), names.end(), sea), 0) << sea;
+  ASSERT_FALSE(names.empty());
+  EXPECT_EQ(names[0], "Caspian Sea");  // the largest: named from the list of inland basins
+  EXPECT_EQ(rep["mask"]["dropped"]["above_threshold"][0]["inland"], true);
+  EXPECT_NE(r.err.find("dropped: Caspian Sea (inland"), std::string::npos);
   double above = 0.0;
   for (const auto& d : rep["mask"]["dropped"]["above_threshold"]) above += d["area_km2"].get<double>();
   EXPECT_LT(above, 0.6e6);  // measured 537 800 km², the Caspian 483 400 of it
