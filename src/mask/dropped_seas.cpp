@@ -180,11 +180,11 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
   const bool regional = domain != nullptr && domain->regional();
   const bool periodic = lattice.periodic();
   // The fill's wet pixels, and the dropped ones.
-  Bitmap wet_in = wet;
-  if (regional)
-    for (std::size_t k = 0; k < wet_in.words().size(); ++k) wet_in.words()[k] &= domain->inside.words()[k];
-  Bitmap rem = wet_in;
-  for (std::size_t k = 0; k < rem.words().size(); ++k) rem.words()[k] &= ~filled.words()[k];
+  // The dropped pixels: one bitmap (the fill's wet pixels are `wet`, or wet ∩ domain, recomputed
+  // for the rare K >= 3 fills below rather than held).
+  Bitmap rem = wet;
+  for (std::size_t k = 0; k < rem.words().size(); ++k)
+    rem.words()[k] &= ~filled.words()[k] & (regional ? domain->inside.words()[k] : ~std::uint64_t{0});
   Bitmap outside_wet;
   if (regional) {
     outside_wet = wet;
@@ -409,6 +409,9 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     bool need = false;
     for (const DroppedSea& s : seas) need = need || (s.connecting_cursor == 1);
     if (!need) break;
+    Bitmap wet_in = wet;
+    if (regional)
+      for (std::size_t k = 0; k < wet_in.words().size(); ++k) wet_in.words()[k] &= domain->inside.words()[k];
     const Bitmap windows = all_wet_windows(wet_in, kk);
     const Bitmap starts = all_wet_windows(filled, kk);
     Bitmap left = windows, reached(nx, ny);
@@ -419,29 +422,36 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     for (std::size_t q = 0; q < seas.size(); ++q)
       if (seas[q].connecting_cursor == 1 && first_hit(large[q].runs, px).i >= 0) seas[q].connecting_cursor = kk;
   }
-  // The land gap of the components that do not touch: 4-dilations of the filled set.
-  bool pending = false;
-  for (const DroppedSea& s : seas) pending = pending || s.contact_pixels == 0;
-  if (pending) {
-    Bitmap d = filled, next;
-    for (int step = 1; step <= kMaxLandGapPixels + 1 && pending; ++step) {
+  // The land gap of each component that does not touch: 4-dilations of the filled set, on the
+  // band of rows that the component and kMaxLandGapPixels + 1 rows around it span (nothing
+  // farther can reach it in as many steps), so a fine lattice holds two band bitmaps, not two
+  // whole ones.
+  constexpr int kSteps = kMaxLandGapPixels + 1;
+  for (std::size_t q = 0; q < seas.size(); ++q) {
+    DroppedSea& s = seas[q];
+    if (s.contact_pixels > 0) continue;
+    std::int64_t jmin = ny, jmax = -1;
+    for (const Run& r : large[q].runs) {
+      jmin = std::min(jmin, r.j);
+      jmax = std::max(jmax, r.j);
+    }
+    const std::int64_t j0 = std::max<std::int64_t>(0, jmin - kSteps), j1 = std::min(ny - 1, jmax + kSteps);
+    Bitmap d(nx, j1 - j0 + 1), next;
+    for (std::int64_t j = j0; j <= j1; ++j) std::copy_n(filled.row(j), filled.words_per_row(), d.row(j - j0));
+    std::vector<Run> runs = large[q].runs;
+    for (Run& r : runs) r.j -= j0;
+    for (int step = 1; step <= kSteps; ++step) {
       dilate4(d, next, periodic);
       std::swap(d, next);
-      pending = false;
-      for (std::size_t q = 0; q < seas.size(); ++q) {
-        DroppedSea& s = seas[q];
-        if (s.contact_pixels > 0 || s.land_gap_pixels >= 0) continue;
-        const PixelIJ hit = first_hit(large[q].runs, d);
-        if (hit.i < 0) {
-          pending = true;
-          continue;
-        }
-        s.land_gap_pixels = step - 1;
-        s.gap_at = centre_of(lattice, rot, hit);
-        const LonLat r = pixel_center_lattice_deg(lattice, hit);
-        const double side = lattice.pixel_deg() * kDegToRad * (lattice.mercator() ? std::cos(r.lat_deg * kDegToRad) : 1.0);
-        s.land_gap_km = static_cast<double>(s.land_gap_pixels) * side * 6371.0088;
-      }
+      PixelIJ hit = first_hit(runs, d);
+      if (hit.i < 0) continue;
+      hit.j += j0;
+      s.land_gap_pixels = step - 1;
+      s.gap_at = centre_of(lattice, rot, hit);
+      const LonLat r = pixel_center_lattice_deg(lattice, hit);
+      const double side = lattice.pixel_deg() * kDegToRad * (lattice.mercator() ? std::cos(r.lat_deg * kDegToRad) : 1.0);
+      s.land_gap_km = static_cast<double>(s.land_gap_pixels) * side * 6371.0088;
+      break;
     }
   }
   // How to keep each one.
