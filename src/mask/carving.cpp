@@ -41,7 +41,9 @@ V3 normalized(const V3& a) {
 LonLat to_lonlat(const V3& v) {
   return {std::atan2(v[1], v[0]) * kRadToDeg, std::asin(std::clamp(v[2], -1.0, 1.0)) * kRadToDeg};
 }
-double arc_deg(const V3& a, const V3& b) { return std::atan2(std::sqrt(dot(cross(a, b), cross(a, b))), dot(a, b)) * kRadToDeg; }
+double arc_deg(const V3& a, const V3& b) {
+  return std::atan2(std::sqrt(dot(cross(a, b), cross(a, b))), dot(a, b)) * kRadToDeg;
+}
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> d(b.size() + 1);
@@ -51,7 +53,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
     d[0] = i;
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t cur = d[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      const bool same =
+          std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
       d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (same ? 0 : 1)});
       prev = cur;
     }
@@ -83,7 +86,8 @@ std::vector<std::size_t> simplify(const std::vector<LonLat>& pts, double tol_deg
     std::size_t at = a;
     for (std::size_t k = a + 1; k < b; ++k) {
       const double px = pts[k].lon_deg * cx, py = pts[k].lat_deg;
-      const double d = len > 0.0 ? std::abs((bx - ax) * (ay - py) - (ax - px) * (by - ay)) / len : std::hypot(px - ax, py - ay);
+      const double d =
+          len > 0.0 ? std::abs((bx - ax) * (ay - py) - (ax - px) * (by - ay)) / len : std::hypot(px - ax, py - ay);
       if (d > worst) {
         worst = d;
         at = k;
@@ -127,7 +131,8 @@ struct Planner {
                                   double min_half_deg) const {
     std::vector<double> r;
     for (std::size_t k = 0; k + 1 < lon.size(); ++k) {
-      const double p = std::max(pixel_arc_deg(lattice, rot, lon[k], lat[k]), pixel_arc_deg(lattice, rot, lon[k + 1], lat[k + 1]));
+      const double p =
+          std::max(pixel_arc_deg(lattice, rot, lon[k], lat[k]), pixel_arc_deg(lattice, rot, lon[k + 1], lat[k + 1]));
       r.push_back(std::max(rpx * p, min_half_deg));
     }
     return r;
@@ -145,7 +150,8 @@ struct Planner {
     line.half_width_km_max = *std::max_element(r.begin(), r.end()) * kKmPerDeg;
     line.length_km = 0.0;
     for (std::size_t k = 0; k + 1 < line.lon_deg.size(); ++k)
-      line.length_km += arc_deg(unit(line.lon_deg[k], line.lat_deg[k]), unit(line.lon_deg[k + 1], line.lat_deg[k + 1])) * kKmPerDeg;
+      line.length_km +=
+          arc_deg(unit(line.lon_deg[k], line.lat_deg[k]), unit(line.lon_deg[k + 1], line.lat_deg[k + 1])) * kKmPerDeg;
     c.half_width_deg = std::move(r);
     corridors.push_back(std::move(c));
     out.lines.push_back(std::move(line));
@@ -186,7 +192,7 @@ struct Planner {
       }
     }
     bathy.sample_points(lon.data(), lat.data(), nx * ny, z.data());
-    std::vector<double> z_box(n, kNaN);  // the core search stays inside the box
+    std::vector<double> z_box(n, kNaN);     // the core search stays inside the box
     std::vector<unsigned char> side(n, 0);  // 1: in the box; 2: in side A; 4: in side B
     bool any = false;
     for (std::size_t c = 0; c < n; ++c) {
@@ -199,12 +205,15 @@ struct Planner {
       if (p.side_b.contains(lon[c], lat[c])) side[c] |= 4;
     }
     if (!any) {
-      out.skipped.push_back(fmt::format("{} (mask.passages_open): its box is outside the raster's coverage; not carved", p.name));
+      out.skipped.push_back(
+          fmt::format("{} (mask.passages_open): its box is outside the raster's coverage; not carved", p.name));
       return;
     }
     const auto cell_of = [&](LonLat q) {
-      const auto i = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q.lon_deg - lon0) / sx)), 0, nx - 1);
-      const auto j = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q.lat_deg - lat0) / sy)), 0, ny - 1);
+      const auto i =
+          std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q.lon_deg - lon0) / sx)), 0, nx - 1);
+      const auto j =
+          std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q.lat_deg - lat0) / sy)), 0, ny - 1);
       return j * nx + i;
     };
     const std::int64_t a = cell_of(ca), t = cell_of(cb);
@@ -224,14 +233,16 @@ struct Planner {
       line.sill = {lon[static_cast<std::size_t>(path[top])], lat[static_cast<std::size_t>(path[top])]};
       if (m <= -h) {
         line.depth_m = std::max(-m, floor_depth);
-        line.depth_from = fmt::format("the raster's sill {:.0f} m at {:.3f}°E {:.3f}°N on the deepest path between the sides",
-                                      -m, line.sill.lon_deg, line.sill.lat_deg);
+        line.depth_from =
+            fmt::format("the raster's sill {:.0f} m at {:.3f}°E {:.3f}°N on the deepest path between the sides", -m,
+                        line.sill.lon_deg, line.sill.lat_deg);
       } else {
         line.depth_m = std::max(p.sill_depth_m, floor_depth);
-        line.depth_from = fmt::format("the table's nominal sill depth: the raster's deepest path between the sides "
-                                      "crosses {} at {:.3f}°E {:.3f}°N",
-                                      m > 0.0 ? fmt::format("land of {:+.0f} m", m) : fmt::format("{:.0f} m, not below -h", m),
-                                      line.sill.lon_deg, line.sill.lat_deg);
+        line.depth_from = fmt::format(
+            "the table's nominal sill depth: the raster's deepest path between the sides "
+            "crosses {} at {:.3f}°E {:.3f}°N",
+            m > 0.0 ? fmt::format("land of {:+.0f} m", m) : fmt::format("{:.0f} m, not below -h", m), line.sill.lon_deg,
+            line.sill.lat_deg);
       }
     } else {
       path = {a, t};  // a straight line between the centres
@@ -244,14 +255,17 @@ struct Planner {
       allow_a[c] = (side[c] & 1) == 0 || (side[c] & 2) != 0 ? 1 : 0;
       allow_b[c] = (side[c] & 1) == 0 || (side[c] & 4) != 0 ? 1 : 0;
     }
-    const std::vector<std::int64_t> ext_a = extend_to_deepest(z, allow_a, nx, ny, a, ca, reach, lon, lat, dx, sy * kKmPerDeg);
-    const std::vector<std::int64_t> ext_b = extend_to_deepest(z, allow_b, nx, ny, t, cb, reach, lon, lat, dx, sy * kKmPerDeg);
+    const std::vector<std::int64_t> ext_a =
+        extend_to_deepest(z, allow_a, nx, ny, a, ca, reach, lon, lat, dx, sy * kKmPerDeg);
+    const std::vector<std::int64_t> ext_b =
+        extend_to_deepest(z, allow_b, nx, ny, t, cb, reach, lon, lat, dx, sy * kKmPerDeg);
     std::vector<std::int64_t> cells(ext_a.rbegin(), ext_a.rend());
     if (!cells.empty()) cells.pop_back();  // the centre of side A starts `path`
     cells.insert(cells.end(), path.begin(), path.end());
     if (!ext_b.empty()) cells.insert(cells.end(), ext_b.begin() + 1, ext_b.end());
     std::vector<LonLat> pts;
-    for (const std::int64_t c : cells) pts.push_back({lon[static_cast<std::size_t>(c)], lat[static_cast<std::size_t>(c)]});
+    for (const std::int64_t c : cells)
+      pts.push_back({lon[static_cast<std::size_t>(c)], lat[static_cast<std::size_t>(c)]});
     for (const std::size_t k : simplify(pts, 0.5 * std::max(sx, sy))) {
       line.lon_deg.push_back(pts[k].lon_deg);
       line.lat_deg.push_back(pts[k].lat_deg);
@@ -337,7 +351,8 @@ struct Planner {
           continue;
         }
         const double fa = std::sin((1.0 - t) * w) / sw, fb = std::sin(t * w) / sw;
-        along.push_back(normalized({fa * v[k][0] + fb * v[k + 1][0], fa * v[k][1] + fb * v[k + 1][1], fa * v[k][2] + fb * v[k + 1][2]}));
+        along.push_back(normalized(
+            {fa * v[k][0] + fb * v[k + 1][0], fa * v[k][1] + fb * v[k + 1][1], fa * v[k][2] + fb * v[k + 1][2]}));
       }
     }
     along.push_back(v.back());
@@ -376,7 +391,8 @@ struct Planner {
     }
     std::vector<double> dxs(static_cast<std::size_t>(ny), dt * kKmPerDeg);
     std::vector<std::int64_t> path;
-    const double m = minimax_path(z, nx, ny, sources, target, dxs, total / static_cast<double>(ny - 1) * kKmPerDeg, &path);
+    const double m =
+        minimax_path(z, nx, ny, sources, target, dxs, total / static_cast<double>(ny - 1) * kKmPerDeg, &path);
     if (std::isfinite(m)) {
       std::size_t top = 0;
       for (std::size_t k = 0; k < path.size(); ++k)
@@ -397,7 +413,8 @@ struct Planner {
     if (l.kind == LineKind::kBlockage) {
       const double top = std::isnan(l.height_m) ? kBlockageHeightM : l.height_m;
       line.height_m = std::max(top, -h + kCarveBelowThresholdM);
-      line.depth_from = std::isnan(l.height_m) ? fmt::format("the default height {} m", kBlockageHeightM) : "stated (height_m)";
+      line.depth_from =
+          std::isnan(l.height_m) ? fmt::format("the default height {} m", kBlockageHeightM) : "stated (height_m)";
       if (line.height_m != top) line.depth_from += fmt::format(", raised above -mask.min_depth_m");
       auto r = half_widths(line.lon_deg, line.lat_deg, rpx_block, 0.0);
       const double e = line.height_m;
@@ -420,14 +437,16 @@ struct Planner {
       line.sill = where;
       if (std::isfinite(m) && m <= -h) {
         line.depth_m = std::max(-m, floor_depth);
-        line.depth_from = fmt::format("the raster's sill {:.0f} m at {:.3f}°E {:.3f}°N on the deepest path along the line",
-                                      -m, where.lon_deg, where.lat_deg);
+        line.depth_from =
+            fmt::format("the raster's sill {:.0f} m at {:.3f}°E {:.3f}°N on the deepest path along the line", -m,
+                        where.lon_deg, where.lat_deg);
       } else {
         line.depth_m = std::max(o.channel_depth_m, floor_depth);
-        line.depth_from = std::isfinite(m)
-                              ? fmt::format("mask.channel_depth_m (the raster closes the line: {:+.0f} m at {:.3f}°E {:.3f}°N)",
-                                            m, where.lon_deg, where.lat_deg)
-                              : std::string("mask.channel_depth_m (no-data cuts the line)");
+        line.depth_from =
+            std::isfinite(m)
+                ? fmt::format("mask.channel_depth_m (the raster closes the line: {:+.0f} m at {:.3f}°E {:.3f}°N)", m,
+                              where.lon_deg, where.lat_deg)
+                : std::string("mask.channel_depth_m (no-data cuts the line)");
       }
     }
     if (!std::isnan(l.depth_m) && line.depth_m > l.depth_m)
@@ -465,9 +484,10 @@ void check_passage_names(const config::MaskOptions& options) {
   for (const Passage& p : critical_passages()) names += fmt::format("{}{}", names.empty() ? "" : ", ", p.name);
   std::string list;
   for (const std::string& b : bad) list += (list.empty() ? "" : ", ") + b;
-  throw ConfigError(fmt::format("mask.passages_open: {} {} not in the table of passages; the names are: {} (a passage "
-                                "elsewhere: draw it in a line file, mask.transects)",
-                                list, bad.size() == 1 ? "is" : "are", names));
+  throw ConfigError(
+      fmt::format("mask.passages_open: {} {} not in the table of passages; the names are: {} (a passage "
+                  "elsewhere: draw it in a line file, mask.transects)",
+                  list, bad.size() == 1 ? "is" : "are", names));
 }
 
 Carving plan_carving(const config::MaskOptions& options, const Lattice& lattice, const PoleRotation& rot,
@@ -609,13 +629,16 @@ Json carving_json(const Carving& c) {
 std::vector<std::string> describe_carving(const Carving& c) {
   std::vector<std::string> out;
   for (const CarvedLine& l : c.lines) {
-    const std::string what = l.kind == LineKind::kBlockage
-                                 ? fmt::format("blockage, land at {:+.0f} m ({})", l.height_m, l.depth_from)
-                                 : fmt::format("{} {:.0f} m deep, from {}", line_kind_name(l.kind), l.depth_m, l.depth_from);
-    const std::string width = std::abs(l.half_width_km_max - l.half_width_km_min) < 0.05 * l.half_width_km_max
-                                  ? fmt::format("{:.3g} km", 2.0 * l.half_width_km_max)
-                                  : fmt::format("{:.3g}-{:.3g} km", 2.0 * l.half_width_km_min, 2.0 * l.half_width_km_max);
-    out.push_back(fmt::format("{} [{}]: {}; corridor {} wide along {:.0f} km", l.name, l.source, what, width, l.length_km));
+    const std::string what =
+        l.kind == LineKind::kBlockage
+            ? fmt::format("blockage, land at {:+.0f} m ({})", l.height_m, l.depth_from)
+            : fmt::format("{} {:.0f} m deep, from {}", line_kind_name(l.kind), l.depth_m, l.depth_from);
+    const std::string width =
+        std::abs(l.half_width_km_max - l.half_width_km_min) < 0.05 * l.half_width_km_max
+            ? fmt::format("{:.3g} km", 2.0 * l.half_width_km_max)
+            : fmt::format("{:.3g}-{:.3g} km", 2.0 * l.half_width_km_min, 2.0 * l.half_width_km_max);
+    out.push_back(
+        fmt::format("{} [{}]: {}; corridor {} wide along {:.0f} km", l.name, l.source, what, width, l.length_km));
   }
   for (const std::string& s : c.skipped) out.push_back(s);
   return out;

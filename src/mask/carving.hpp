@@ -61,10 +61,11 @@ struct CarvedLine {
   std::string name;
   std::string source;  ///< "mask.passages_open", or the line's file/layer/feature
   LineKind kind = LineKind::kPassage;
-  double depth_m = 0.0;     ///< channel/passage: depth of the corridor's bottom (m, positive down)
-  double height_m = 0.0;    ///< blockage: elevation of its top (m)
-  std::string depth_from;   ///< how depth_m was chosen (raster sill, table nominal, stated, key)
-  double raster_sill_m = std::numeric_limits<double>::quiet_NaN();  ///< the raster's sill elevation found (m), NaN = not searched
+  double depth_m = 0.0;    ///< channel/passage: depth of the corridor's bottom (m, positive down)
+  double height_m = 0.0;   ///< blockage: elevation of its top (m)
+  std::string depth_from;  ///< how depth_m was chosen (raster sill, table nominal, stated, key)
+  double raster_sill_m =
+      std::numeric_limits<double>::quiet_NaN();  ///< the raster's sill elevation found (m), NaN = not searched
   LonLat sill{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};  ///< where
   double half_width_km_min = 0.0, half_width_km_max = 0.0;  ///< corridor half-width on the sphere
   double length_km = 0.0;

@@ -70,13 +70,13 @@ struct Basin {
   double lon, lat;
 };
 constexpr std::array<Basin, 22> kBasins{{
-    {"Caspian Sea", 51.0, 42.0},        {"Caspian Sea", 51.5, 38.5},       {"Lake Ladoga", 31.3, 61.0},
-    {"Lake Onega", 35.5, 61.7},         {"Qattara Depression", 27.2, 29.7}, {"Dead Sea", 35.5, 31.5},
-    {"Lake Baikal", 108.3, 53.5},       {"Lake Tanganyika", 29.7, -6.5},   {"Lake Malawi", 34.5, -12.0},
-    {"Lake Superior", -87.5, 47.6},     {"Lake Michigan", -87.0, 44.0},    {"Lake Huron", -82.3, 44.8},
-    {"Lake Ontario", -77.8, 43.6},      {"Great Slave Lake", -114.0, 61.7}, {"Great Bear Lake", -121.0, 66.0},
-    {"Lake Vanern", 13.5, 58.9},        {"Lake Vattern", 14.6, 58.3},      {"Lake Eyre", 137.3, -28.4},
-    {"Turpan Depression", 89.3, 42.7},  {"Danakil Depression", 40.3, 14.2}, {"Lake Titicaca", -69.4, -15.9},
+    {"Caspian Sea", 51.0, 42.0},       {"Caspian Sea", 51.5, 38.5},        {"Lake Ladoga", 31.3, 61.0},
+    {"Lake Onega", 35.5, 61.7},        {"Qattara Depression", 27.2, 29.7}, {"Dead Sea", 35.5, 31.5},
+    {"Lake Baikal", 108.3, 53.5},      {"Lake Tanganyika", 29.7, -6.5},    {"Lake Malawi", 34.5, -12.0},
+    {"Lake Superior", -87.5, 47.6},    {"Lake Michigan", -87.0, 44.0},     {"Lake Huron", -82.3, 44.8},
+    {"Lake Ontario", -77.8, 43.6},     {"Great Slave Lake", -114.0, 61.7}, {"Great Bear Lake", -121.0, 66.0},
+    {"Lake Vanern", 13.5, 58.9},       {"Lake Vattern", 14.6, 58.3},       {"Lake Eyre", 137.3, -28.4},
+    {"Turpan Depression", 89.3, 42.7}, {"Danakil Depression", 40.3, 14.2}, {"Lake Titicaca", -69.4, -15.9},
     {"Issyk-Kul", 77.3, 42.4},
 }};
 
@@ -128,7 +128,8 @@ void dilate4(const Bitmap& src, Bitmap& dst, bool periodic) {
         const bool w1 = ((s[(nx - 2) >> 6] >> ((nx - 2) & 63)) & 1ULL) != 0;
         tmp[0] = (tmp[0] & ~1ULL) | (e0 ? 1ULL : 0ULL);
         const std::uint64_t bit = 1ULL << ((nx - 1) & 63);
-        tmp[static_cast<std::size_t>((nx - 1) >> 6)] = (tmp[static_cast<std::size_t>((nx - 1) >> 6)] & ~bit) | (w1 ? bit : 0ULL);
+        tmp[static_cast<std::size_t>((nx - 1) >> 6)] =
+            (tmp[static_cast<std::size_t>((nx - 1) >> 6)] & ~bit) | (w1 ? bit : 0ULL);
       }
       for (std::int64_t w = 0; w < nw; ++w) {
         std::uint64_t v = tmp[static_cast<std::size_t>(w)];
@@ -167,7 +168,8 @@ double pixel_area_km2(const Lattice& lattice, bool rotated, std::int64_t j) {
   const double rq2 = kA * kA * qp / 2.0;
   const double dl = lattice.pixel_deg() * kDegToRad;
   const double p1 = lattice.lat_of(j), p2 = lattice.lat_of(j + 1);
-  const double ds = rotated ? std::sin(p2 * kDegToRad) - std::sin(p1 * kDegToRad) : (authalic_q(p2) - authalic_q(p1)) / qp;
+  const double ds =
+      rotated ? std::sin(p2 * kDegToRad) - std::sin(p1 * kDegToRad) : (authalic_q(p2) - authalic_q(p1)) / qp;
   return rq2 * dl * ds / 1e6;
 }
 
@@ -234,7 +236,7 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     const double l0 = lattice.lon_at(static_cast<double>(a) + 0.5) * kDegToRad;
     const double half = 0.5 * dl;
     const double f = std::abs(std::sin(half)) > 1e-300 ? std::sin(static_cast<double>(n) * half) / std::sin(half)
-                                                      : static_cast<double>(n);
+                                                       : static_cast<double>(n);
     const double mid = l0 + static_cast<double>(n - 1) * half;
     const double w = row_area[u];
     cur.sum[0] += w * row_cos[u] * f * std::cos(mid);
@@ -260,7 +262,8 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     }
     if (regional && !cur.edge) cur.edge = outside_at(a - 1, j) || outside_at(b, j);
     // Passage sides in this run.
-    auto it = std::lower_bound(probes.begin(), probes.end(), j, [](const Probe& p, std::int64_t jj) { return p.j < jj; });
+    auto it =
+        std::lower_bound(probes.begin(), probes.end(), j, [](const Probe& p, std::int64_t jj) { return p.j < jj; });
     for (; it != probes.end() && it->j == j; ++it)
       if (it->i >= a && it->i < b) cur.probes.push_back(static_cast<std::size_t>(it - probes.begin()));
   };
@@ -284,7 +287,8 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
   {
     std::vector<std::size_t> order(large.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return large[a].area > large[b].area; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return large[a].area > large[b].area; });
     std::vector<Component> l2;
     std::vector<std::int64_t> id2;
     for (const std::size_t k : order) {
@@ -366,7 +370,8 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
       for (const Edge& e : edges)
         if (e.a == id) {
           const char* far = e.side_a == 0 ? passages[e.passage].side_b_name : passages[e.passage].side_a_name;
-          if (s.far_sides.find(far) == std::string::npos) s.far_sides += (s.far_sides.empty() ? "" : ", ") + std::string(far);
+          if (s.far_sides.find(far) == std::string::npos)
+            s.far_sides += (s.far_sides.empty() ? "" : ", ") + std::string(far);
         }
     for (const std::size_t p : named) {
       s.passages.push_back(passages[p].name);
@@ -379,9 +384,8 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     if (named.empty() && c.probes.empty())  // no passage side in it: an inland basin of the list?
       for (const Basin& bs : kBasins) {
         const PixelIJ p = pixel_under(lattice, rot, bs.lon, bs.lat);
-        const bool in = p.i >= 0 && std::any_of(c.runs.begin(), c.runs.end(), [&p](const Run& r) {
-                          return r.j == p.j && p.i >= r.a && p.i < r.b;
-                        });
+        const bool in = p.i >= 0 && std::any_of(c.runs.begin(), c.runs.end(),
+                                                [&p](const Run& r) { return r.j == p.j && p.i >= r.a && p.i < r.b; });
         if (in) {
           s.name = bs.name;
           s.inland = true;
@@ -416,7 +420,8 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     const Bitmap starts = all_wet_windows(filled, kk);
     Bitmap left = windows, reached(nx, ny);
     for (std::int64_t j = 0; j < ny; ++j)
-      for (std::int64_t i = bits::find_first_set(starts.row(j), 0, nx); i < nx; i = bits::find_first_set(starts.row(j), i + 1, nx))
+      for (std::int64_t i = bits::find_first_set(starts.row(j), 0, nx); i < nx;
+           i = bits::find_first_set(starts.row(j), i + 1, nx))
         if (left.get(i, j)) (void)flood_consume(left, {i, j}, &reached);
     const Bitmap px = dilate_windows(reached, kk);
     for (std::size_t q = 0; q < seas.size(); ++q)
@@ -449,7 +454,8 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
       s.land_gap_pixels = step - 1;
       s.gap_at = centre_of(lattice, rot, hit);
       const LonLat r = pixel_center_lattice_deg(lattice, hit);
-      const double side = lattice.pixel_deg() * kDegToRad * (lattice.mercator() ? std::cos(r.lat_deg * kDegToRad) : 1.0);
+      const double side =
+          lattice.pixel_deg() * kDegToRad * (lattice.mercator() ? std::cos(r.lat_deg * kDegToRad) : 1.0);
       s.land_gap_km = static_cast<double>(s.land_gap_pixels) * side * 6371.0088;
       break;
     }
@@ -462,21 +468,25 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     }
     std::vector<std::string> open;
     for (const std::string& p : s.passages)
-      if (std::find(s.passages_carved.begin(), s.passages_carved.end(), p) == s.passages_carved.end()) open.push_back(p);
+      if (std::find(s.passages_carved.begin(), s.passages_carved.end(), p) == s.passages_carved.end())
+        open.push_back(p);
     std::vector<std::string> keys;
     if (s.joined_by_chain && !open.empty())
       keys.push_back(fmt::format("mask.passages_open = [{}] (add to the list)", quoted_list(open)));
     else if (!open.empty())
-      keys.push_back(fmt::format("mask.passages_open = [{}] together with what keeps the water on {} other side ({}, "
-                                 "left out too)",
-                                 quoted_list(open), open.size() == 1 ? "its" : "their", s.far_sides));
+      keys.push_back(
+          fmt::format("mask.passages_open = [{}] together with what keeps the water on {} other side ({}, "
+                      "left out too)",
+                      quoted_list(open), open.size() == 1 ? "its" : "their", s.far_sides));
     else if (s.joined_by_chain)
-      keys.push_back("finer pixels (quadtree.levels) or mask.cursor = 1: the carved channel is there, the water beyond "
-                     "it is narrower than the cursor");
+      keys.push_back(
+          "finer pixels (quadtree.levels) or mask.cursor = 1: the carved channel is there, the water beyond "
+          "it is narrower than the cursor");
     if (s.connecting_cursor > 0)
-      keys.push_back(fmt::format("mask.cursor = {} (every channel that narrow then stays), or a line through {} in "
-                                 "mask.transects",
-                                 s.connecting_cursor, lonlat_text(s.contact)));
+      keys.push_back(
+          fmt::format("mask.cursor = {} (every channel that narrow then stays), or a line through {} in "
+                      "mask.transects",
+                      s.connecting_cursor, lonlat_text(s.contact)));
     else if (!s.joined_by_chain && s.land_gap_pixels >= 0)
       keys.push_back(fmt::format("a line in mask.transects across the land gap at {}", lonlat_text(s.gap_at)));
     else if (!s.joined_by_chain)
@@ -492,33 +502,38 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
 }
 
 std::string describe(const DroppedSea& s, int cursor) {
-  const std::string area = s.area_km2 >= 1e6 ? fmt::format("{:.3g} million km²", s.area_km2 / 1e6)
-                                             : fmt::format("{:.0f} km²", s.area_km2);
+  const std::string area =
+      s.area_km2 >= 1e6 ? fmt::format("{:.3g} million km²", s.area_km2 / 1e6) : fmt::format("{:.0f} km²", s.area_km2);
   std::string what = s.name.empty() ? fmt::format("wet area around {}", lonlat_text(s.centre))
-                     : s.inland   ? fmt::format("{} (inland, centre {})", s.name, lonlat_text(s.centre))
-                                  : fmt::format("{} (centre {})", s.name, lonlat_text(s.centre));
+                     : s.inland     ? fmt::format("{} (inland, centre {})", s.name, lonlat_text(s.centre))
+                                    : fmt::format("{} (centre {})", s.name, lonlat_text(s.centre));
   std::string why;
   if (!s.passages.empty()) {
     std::string names;
     for (const std::string& p : s.passages) names += (names.empty() ? "" : ", ") + p;
-    why = !s.joined_by_chain ? fmt::format("with a side of {} (closed) in it", names)
-          : fmt::format("behind {} ({})", names,
-                        s.passages_carved.size() == s.passages.size()
-                            ? "carved, but the fill does not reach it: the water beyond holds no K-cursor path at this "
-                              "lattice"
-                            : "closed");
+    why = !s.joined_by_chain
+              ? fmt::format("with a side of {} (closed) in it", names)
+              : fmt::format(
+                    "behind {} ({})", names,
+                    s.passages_carved.size() == s.passages.size()
+                        ? "carved, but the fill does not reach it: the water beyond holds no K-cursor path at this "
+                          "lattice"
+                        : "closed");
   }
   std::string how;
   if (s.connecting_cursor > 0)
-    how = fmt::format("wet pixels join it to the filled ocean at {} ({} pixel(s) touch), but no {}-pixel cursor passes; "
-                      "a {}-pixel cursor would",
-                      lonlat_text(s.contact), s.contact_pixels, cursor, s.connecting_cursor);
+    how = fmt::format(
+        "wet pixels join it to the filled ocean at {} ({} pixel(s) touch), but no {}-pixel cursor passes; "
+        "a {}-pixel cursor would",
+        lonlat_text(s.contact), s.contact_pixels, cursor, s.connecting_cursor);
   else if (s.land_gap_pixels >= 0)
-    how = fmt::format("no wet path joins it to the filled ocean: {} pixel(s) (about {:.0f} km) of land or water "
-                      "shallower than h at {}",
-                      s.land_gap_pixels, s.land_gap_km, lonlat_text(s.gap_at));
+    how = fmt::format(
+        "no wet path joins it to the filled ocean: {} pixel(s) (about {:.0f} km) of land or water "
+        "shallower than h at {}",
+        s.land_gap_pixels, s.land_gap_km, lonlat_text(s.gap_at));
   else
-    how = fmt::format("no wet path joins it to the filled ocean (more than {} pixels of land between)", kMaxLandGapPixels);
+    how = fmt::format("no wet path joins it to the filled ocean (more than {} pixels of land between)",
+                      kMaxLandGapPixels);
   if (s.reaches_domain_edge) how += "; it reaches the domain's edge";
   return fmt::format("{}, {}, left out by the fill{}: {}; to keep it: {}", what, area,
                      why.empty() ? std::string() : " " + why, how, s.keep);

@@ -46,27 +46,27 @@ namespace aq::mask {
 inline constexpr int kMaxLandGapPixels = 8;
 
 struct DroppedSea {
-  std::string name;           ///< a passage side's water body, an inland basin's name, or "" (then the centre names it)
-  bool inland = false;        ///< named after an inland basin (a lake, a depression below sea level)
+  std::string name;     ///< a passage side's water body, an inland basin's name, or "" (then the centre names it)
+  bool inland = false;  ///< named after an inland basin (a lake, a depression below sea level)
   std::int64_t pixels = 0;
   double area_km2 = 0.0;
-  LonLat centre;              ///< geographic
+  LonLat centre;  ///< geographic
   /// The passages of the table that would join it to the filled ocean, nearest it first (one
   /// when the other side of that one is filled; several through other dropped seas, e.g. the
   /// Black Sea: Bosphorus, Dardanelles); when none would, the passages with a side in it.
   std::vector<std::string> passages;
-  bool joined_by_chain = false;  ///< `passages` is such a chain
-  std::string far_sides;         ///< not a chain: the water bodies on the passages' other sides
+  bool joined_by_chain = false;              ///< `passages` is such a chain
+  std::string far_sides;                     ///< not a chain: the water bodies on the passages' other sides
   std::vector<std::string> passages_carved;  ///< of those, the ones mask.passages_open carves
-  bool cut = false;           ///< passages[0]'s other side is filled (the passage that cut it off)
-  int connecting_cursor = 0;  ///< the widest cursor K' < K whose fill reaches it; 0: none (no wet path)
-  std::int64_t contact_pixels = 0;  ///< its pixels 4-adjacent to a filled pixel
+  bool cut = false;                          ///< passages[0]'s other side is filled (the passage that cut it off)
+  int connecting_cursor = 0;                 ///< the widest cursor K' < K whose fill reaches it; 0: none (no wet path)
+  std::int64_t contact_pixels = 0;           ///< its pixels 4-adjacent to a filled pixel
   LonLat contact{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
-  int land_gap_pixels = -1;   ///< no contact: pixels between it and the filled set (-1: more than kMaxLandGapPixels)
-  double land_gap_km = 0.0;   ///< that gap's length at its place (pixels × the pixel's side)
+  int land_gap_pixels = -1;  ///< no contact: pixels between it and the filled set (-1: more than kMaxLandGapPixels)
+  double land_gap_km = 0.0;  ///< that gap's length at its place (pixels × the pixel's side)
   LonLat gap_at{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
   bool reaches_domain_edge = false;  ///< regional: it is 4-adjacent to wet pixels outside the domain
-  std::string keep;           ///< the key to set to keep it
+  std::string keep;                  ///< the key to set to keep it
 };
 
 struct DroppedSeas {

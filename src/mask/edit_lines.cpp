@@ -80,24 +80,25 @@ std::vector<EditLine> read_edit_lines(const std::string& path, const std::string
   struct Closer {
     void operator()(void* h) const { GDALClose(h); }
   };
-  std::unique_ptr<void, Closer> ds(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  std::unique_ptr<void, Closer> ds(
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
   if (!ds) {
     const char* m = CPLGetLastErrorMsg();
     throw InputError(fmt::format("{} = \"{}\": GDAL/OGR cannot open it as a vector file{}", key, path,
                                  m != nullptr && *m != '\0' ? fmt::format(" ({})", m) : std::string()));
   }
-  OGRLayerH layer = layer_name.empty() ? GDALDatasetGetLayer(ds.get(), 0)
-                                       : GDALDatasetGetLayerByName(ds.get(), layer_name.c_str());
+  OGRLayerH layer =
+      layer_name.empty() ? GDALDatasetGetLayer(ds.get(), 0) : GDALDatasetGetLayerByName(ds.get(), layer_name.c_str());
   if (layer == nullptr) {
-    throw InputError(layer_name.empty()
-                         ? fmt::format("{} = \"{}\": the file has no layer", key, path)
-                         : fmt::format("{}_layer = \"{}\": no such layer in {}", key, layer_name, path));
+    throw InputError(layer_name.empty() ? fmt::format("{} = \"{}\": the file has no layer", key, path)
+                                        : fmt::format("{}_layer = \"{}\": no such layer in {}", key, layer_name, path));
   }
   const std::string lname = OGR_L_GetName(layer);
   if (OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer); srs != nullptr && OSRIsGeographic(srs) == 0) {
-    throw InputError(fmt::format("{} = \"{}\", layer \"{}\": not in geographic lon/lat coordinates; reproject it "
-                                 "(e.g. ogr2ogr -t_srs EPSG:4326)",
-                                 key, path, lname));
+    throw InputError(
+        fmt::format("{} = \"{}\", layer \"{}\": not in geographic lon/lat coordinates; reproject it "
+                    "(e.g. ogr2ogr -t_srs EPSG:4326)",
+                    key, path, lname));
   }
   OGRFeatureDefnH defn = OGR_L_GetLayerDefn(layer);
   const int f_name = field_index(defn, "name"), f_kind = field_index(defn, "kind");
@@ -125,7 +126,8 @@ std::vector<EditLine> read_edit_lines(const std::string& path, const std::string
     base.width_m = channels ? number_field(f, f_width, where, "width_m") : std::numeric_limits<double>::quiet_NaN();
     base.height_m = number_field(f, f_height, where, "height_m");
     if (!std::isnan(base.depth_m) && !(std::isfinite(base.depth_m) && base.depth_m > 0.0 && base.depth_m <= 12000.0))
-      throw InputError(fmt::format("{}: depth_m = {} is not a depth in (0, 12000] m (positive down)", where, base.depth_m));
+      throw InputError(
+          fmt::format("{}: depth_m = {} is not a depth in (0, 12000] m (positive down)", where, base.depth_m));
     if (!std::isnan(base.width_m) && !(std::isfinite(base.width_m) && base.width_m > 0.0 && base.width_m <= 1e6))
       throw InputError(fmt::format("{}: width_m = {} is not a width in (0, 1000000] m", where, base.width_m));
     if (!std::isnan(base.height_m) && !(std::isfinite(base.height_m) && std::abs(base.height_m) <= 12000.0))

@@ -30,7 +30,7 @@ struct EditLine {
   std::string name;   ///< the `name` attribute, or "<key> feature N"
   std::string where;  ///< "mask.channels = \"file\", layer L, feature N (part P)": for messages
   LineKind kind = LineKind::kPassage;
-  std::vector<double> lon_deg, lat_deg;  ///< >= 2 vertices, geographic degrees
+  std::vector<double> lon_deg, lat_deg;                        ///< >= 2 vertices, geographic degrees
   double depth_m = std::numeric_limits<double>::quiet_NaN();   ///< stated depth (m, positive down), NaN = none
   double width_m = std::numeric_limits<double>::quiet_NaN();   ///< stated width (m), NaN = none
   double height_m = std::numeric_limits<double>::quiet_NaN();  ///< stated blockage height (m), NaN = none

@@ -141,8 +141,10 @@ ElevationEdits::ElevationEdits(std::vector<Corridor> corridors) : corridors_(std
   std::vector<std::int32_t> count(static_cast<std::size_t>(ncell + 1), 0);
   row_used_.assign(static_cast<std::size_t>(kRows), 0);
   const auto for_cells = [&](const Box& bx, auto&& f) {
-    const auto r0 = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((bx.lat_lo + 90.0) / kCellDeg)), 0, kRows - 1);
-    const auto r1 = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((bx.lat_hi + 90.0) / kCellDeg)), 0, kRows - 1);
+    const auto r0 =
+        std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((bx.lat_lo + 90.0) / kCellDeg)), 0, kRows - 1);
+    const auto r1 =
+        std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((bx.lat_hi + 90.0) / kCellDeg)), 0, kRows - 1);
     std::int64_t c0 = static_cast<std::int64_t>(std::floor((bx.lon_lo + 180.0) / kCellDeg));
     std::int64_t c1 = static_cast<std::int64_t>(std::floor((bx.lon_hi + 180.0) / kCellDeg));
     if (c1 - c0 >= kCols - 1) {
@@ -176,7 +178,8 @@ bool ElevationEdits::inside(const Arc& arc, const V3& p) const {
 }
 
 std::int64_t ElevationEdits::cell_of(double lon_deg, double lat_deg) const {
-  const auto r = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_deg + 90.0) / kCellDeg)), 0, kRows - 1);
+  const auto r =
+      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_deg + 90.0) / kCellDeg)), 0, kRows - 1);
   const double x = wrap_lon_deg(lon_deg, -180.0) + 180.0;
   const auto c = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(x / kCellDeg)), 0, kCols - 1);
   return r * kCols + c;
@@ -185,7 +188,8 @@ std::int64_t ElevationEdits::cell_of(double lon_deg, double lat_deg) const {
 double ElevationEdits::apply(double lon_deg, double lat_deg, double z) const {
   if (arcs_.empty() || !std::isfinite(lat_deg) || !std::isfinite(lon_deg)) return z;
   const std::int64_t cell = cell_of(lon_deg, lat_deg);
-  const std::int32_t b = cell_start_[static_cast<std::size_t>(cell)], e = cell_start_[static_cast<std::size_t>(cell) + 1];
+  const std::int32_t b = cell_start_[static_cast<std::size_t>(cell)],
+                     e = cell_start_[static_cast<std::size_t>(cell) + 1];
   if (b == e) return z;
   const V3 p = unit(lon_deg, lat_deg);
   double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
@@ -211,7 +215,8 @@ int ElevationEdits::corridor_at(double lon_deg, double lat_deg) const {
   const std::int64_t cell = cell_of(lon_deg, lat_deg);
   const V3 p = unit(lon_deg, lat_deg);
   int best = -1;
-  for (std::int32_t q = cell_start_[static_cast<std::size_t>(cell)]; q < cell_start_[static_cast<std::size_t>(cell) + 1]; ++q) {
+  for (std::int32_t q = cell_start_[static_cast<std::size_t>(cell)];
+       q < cell_start_[static_cast<std::size_t>(cell) + 1]; ++q) {
     const Arc& arc = arcs_[static_cast<std::size_t>(cell_arcs_[static_cast<std::size_t>(q)])];
     if ((best < 0 || arc.corridor < best) && inside(arc, p)) best = arc.corridor;
   }
@@ -229,7 +234,8 @@ void ElevationEdits::apply_row(const double* lon_deg, double lat_deg, float* out
 
 bool ElevationEdits::touches_lat(double lat_deg) const {
   if (arcs_.empty() || !std::isfinite(lat_deg)) return false;
-  const auto r = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_deg + 90.0) / kCellDeg)), 0, kRows - 1);
+  const auto r =
+      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_deg + 90.0) / kCellDeg)), 0, kRows - 1);
   return row_used_[static_cast<std::size_t>(r)] != 0;
 }
 
@@ -238,8 +244,10 @@ ElevationEdits::Reach ElevationEdits::reach_in_box(double lon_lo, double lon_hi,
   out.channel_min_m = std::numeric_limits<double>::infinity();
   out.blockage_max_m = -std::numeric_limits<double>::infinity();
   if (arcs_.empty()) return out;
-  const auto r0 = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_lo + 90.0) / kCellDeg)), 0, kRows - 1);
-  const auto r1 = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_hi + 90.0) / kCellDeg)), 0, kRows - 1);
+  const auto r0 =
+      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_lo + 90.0) / kCellDeg)), 0, kRows - 1);
+  const auto r1 =
+      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((lat_hi + 90.0) / kCellDeg)), 0, kRows - 1);
   std::int64_t c0 = static_cast<std::int64_t>(std::floor((lon_lo + 180.0) / kCellDeg));
   std::int64_t c1 = static_cast<std::int64_t>(std::floor((lon_hi + 180.0) / kCellDeg));
   if (c1 - c0 >= kCols - 1) {
@@ -264,7 +272,8 @@ ElevationEdits::Reach ElevationEdits::reach_in_box(double lon_lo, double lon_hi,
     for (std::int64_t c = c0; c <= c1; ++c) {
       const auto cell = static_cast<std::size_t>(r * kCols + wrap_index(c, kCols));
       for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q)
-        add(corridors_[static_cast<std::size_t>(arcs_[static_cast<std::size_t>(cell_arcs_[static_cast<std::size_t>(q)])].corridor)]);
+        add(corridors_[static_cast<std::size_t>(
+            arcs_[static_cast<std::size_t>(cell_arcs_[static_cast<std::size_t>(q)])].corridor)]);
     }
   }
   return out;

@@ -39,7 +39,7 @@ enum class EditKind : std::uint8_t {
 struct Corridor {
   std::string name;  ///< for messages and the report
   EditKind kind = EditKind::kChannel;
-  double elevation_m = 0.0;            ///< metres, negative below sea level (a channel's bottom, a blockage's top)
+  double elevation_m = 0.0;  ///< metres, negative below sea level (a channel's bottom, a blockage's top)
   /// Channels only: raster values at or below this elevation (metres) stay as they are (water the
   /// raster already has deep enough, e.g. the wet threshold −h); values above it, and no-data,
   /// become elevation_m. NaN = elevation_m itself (z -> min(z, elevation_m)).
@@ -88,9 +88,9 @@ class ElevationEdits {
  private:
   struct Arc {
     std::array<double, 3> a{}, b{}, n{};  ///< end points and unit normal of their great circle
-    double sin_r = 0.0, cos_r = 1.0;     ///< of the half-width
-    double keep = 0.0;                   ///< channel: values at or below stay (keep_at_or_below_m)
-    bool point = false;                  ///< a disc around a (a == b)
+    double sin_r = 0.0, cos_r = 1.0;      ///< of the half-width
+    double keep = 0.0;                    ///< channel: values at or below stay (keep_at_or_below_m)
+    bool point = false;                   ///< a disc around a (a == b)
     std::int32_t corridor = 0;
   };
   [[nodiscard]] bool inside(const Arc& arc, const std::array<double, 3>& p) const;

@@ -40,8 +40,8 @@ std::string bytes(const fs::path& p) {
 // The nodes and boundary segments of a fort.14.
 struct Fort14 {
   std::vector<double> lon, lat;
-  std::vector<std::vector<long>> open;                    // 0-based node numbers per open segment
-  std::vector<std::pair<int, std::vector<long>>> land;    // IBTYPE, nodes
+  std::vector<std::vector<long>> open;                  // 0-based node numbers per open segment
+  std::vector<std::pair<int, std::vector<long>>> land;  // IBTYPE, nodes
 };
 
 Fort14 read_fort14(const fs::path& p) {
@@ -133,9 +133,14 @@ TEST_F(PassagesCli, GlobalTidesKeepsTheMediterraneanRedSeaBalticBlackAndWhiteSea
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Fort14 f = read_fort14(dir / "global_tides.14");
   ASSERT_GT(f.lon.size(), 300000U);
-  for (const auto& [name, lon, lat] : {std::tuple{"Ionian Sea", 18.0, 35.0}, {"Levantine Sea", 30.0, 33.5},
-                                       {"Red Sea", 38.0, 21.0}, {"Baltic Sea", 19.0, 57.0}, {"Gulf of Bothnia", 20.0, 62.0},
-                                       {"Black Sea", 34.0, 43.5}, {"White Sea", 38.5, 65.5}, {"Persian Gulf", 51.0, 27.0}})
+  for (const auto& [name, lon, lat] : {std::tuple{"Ionian Sea", 18.0, 35.0},
+                                       {"Levantine Sea", 30.0, 33.5},
+                                       {"Red Sea", 38.0, 21.0},
+                                       {"Baltic Sea", 19.0, 57.0},
+                                       {"Gulf of Bothnia", 20.0, 62.0},
+                                       {"Black Sea", 34.0, 43.5},
+                                       {"White Sea", 38.5, 65.5},
+                                       {"Persian Gulf", 51.0, 27.0}})
     EXPECT_TRUE(node_near(f, lon, lat, 0.3)) << name;
   EXPECT_FALSE(node_near(f, 50.7, 42.0, 0.5));  // the Caspian stays out (a lake)
   const auto rep = aq::test::read_report(dir, "global_tides");
@@ -183,8 +188,8 @@ TEST_F(PassagesCli, SeedRunKeepsItsBytesButWarnsOfTheMediterraneanAndCarvesItWit
   EXPECT_FALSE(node_near(before, 18.0, 35.0, 0.3));
   // One key carves it back in.
   const fs::path dir2 = aq::test::fresh_dir("passages", "seed_gib");
-  const auto r2 = aq::test::run_aquatoria("mesh -o " + dir2.string() +
-                                          " --set 'output.formats=[\"fort14\"]' --set 'mask.passages_open=[\"Gibraltar\"]'");
+  const auto r2 = aq::test::run_aquatoria(
+      "mesh -o " + dir2.string() + " --set 'output.formats=[\"fort14\"]' --set 'mask.passages_open=[\"Gibraltar\"]'");
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   const Fort14 after = read_fort14(dir2 / "global_4deg_L3.14");
   EXPECT_TRUE(node_near(after, 18.0, 35.0, 0.3));
@@ -201,15 +206,16 @@ TEST_F(PassagesCli, NorthSeaHasTheChannelAndTheIrishSeaOpenOnTheWestEdge) {
                                          " --set 'output.formats=[\"fort14\"]'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Fort14 f = read_fort14(dir / "north_sea.14");
-  EXPECT_TRUE(node_near(f, -2.0, 50.0, 0.2));   // the English Channel
-  EXPECT_TRUE(node_near(f, 1.6, 51.1, 0.2));    // the Dover Strait
-  EXPECT_TRUE(node_near(f, -4.5, 53.8, 0.2));   // the Irish Sea
-  EXPECT_TRUE(node_near(f, -6.0, 51.5, 0.2));   // the Celtic Sea
+  EXPECT_TRUE(node_near(f, -2.0, 50.0, 0.2));  // the English Channel
+  EXPECT_TRUE(node_near(f, 1.6, 51.1, 0.2));   // the Dover Strait
+  EXPECT_TRUE(node_near(f, -4.5, 53.8, 0.2));  // the Irish Sea
+  EXPECT_TRUE(node_near(f, -6.0, 51.5, 0.2));  // the Celtic Sea
   // The west edge, 8°W, is open from the Celtic Sea south: the Channel's way to the Atlantic.
   long west = 0;
   for (const auto& s : f.open)
     for (const long n : s)
-      if (std::abs(f.lon[static_cast<std::size_t>(n)] + 8.0) < 1e-6 && f.lat[static_cast<std::size_t>(n)] < 51.5) ++west;
+      if (std::abs(f.lon[static_cast<std::size_t>(n)] + 8.0) < 1e-6 && f.lat[static_cast<std::size_t>(n)] < 51.5)
+        ++west;
   EXPECT_GE(west, 15);
   const auto rep = aq::test::read_report(dir, "north_sea");
   const nlohmann::json* dover = passage(rep, "Dover");
@@ -262,7 +268,8 @@ TEST_F(PassagesCli, ASecondSeedsSeparateSeaIsMeshedApartWithItsCoastMainland) {
   const fs::path tif = dir.string() + "_lakes.tif";
   GDALAllRegister();
   const int w = 1440, h = 720;
-  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
+  GDALDataset* ds =
+      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
   double gt[6] = {-180.0, 0.25, 0.0, 90.0, 0.0, -0.25};
   ds->SetGeoTransform(gt);
   OGRSpatialReference srs;
@@ -275,7 +282,8 @@ TEST_F(PassagesCli, ASecondSeedsSeparateSeaIsMeshedApartWithItsCoastMainland) {
       if ((lon > 2.0 && lon < 8.0 && lat > 2.0 && lat < 8.0) || (lon > 12.0 && lon < 18.0 && lat > 2.0 && lat < 8.0))
         buf[static_cast<std::size_t>(r) * w + c] = -500.0F;
     }
-  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr),
+            CE_None);
   GDALClose(ds);
   const auto r = aq::test::run_aquatoria(
       "mesh -o " + dir.string() + " --set input.path=" + tif.string() +
@@ -299,7 +307,8 @@ fs::path basin_with_land_east(const fs::path& where) {
   const fs::path tif = where.string() + "_basin.tif";
   GDALAllRegister();
   const int w = 1440, h = 720;
-  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
+  GDALDataset* ds =
+      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
   double gt[6] = {-180.0, 0.25, 0.0, 90.0, 0.0, -0.25};
   ds->SetGeoTransform(gt);
   OGRSpatialReference srs;
@@ -311,7 +320,8 @@ fs::path basin_with_land_east(const fs::path& where) {
       const double lon = -180.0 + (c + 0.5) * 0.25, lat = 90.0 - (r + 0.5) * 0.25;
       if (lon > 2.0 && lon < 28.0 && lat > 2.0 && lat < 18.0) buf[static_cast<std::size_t>(r) * w + c] = -800.0F;
     }
-  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr),
+            CE_None);
   GDALClose(ds);
   return tif;
 }
@@ -329,7 +339,8 @@ TEST_F(PassagesCli, ARiverCrossingTheDomainEdgeIsARiverInflowInEveryFormat) {
   const auto r = aq::test::run_aquatoria(
       "mesh -o " + dir.string() + " --set input.path=" + tif.string() +
       " --set 'domain.box=[0.0, 30.0, 0.0, 20.0]' --set quadtree.step_deg=1 --set quadtree.levels=2"
-      " --set 'mask.seeds=[[10.0, 10.0]]' --set mask.channels=" + river.string() +
+      " --set 'mask.seeds=[[10.0, 10.0]]' --set mask.channels=" +
+      river.string() +
       " --set output.name=river --set 'output.formats=[\"fort14\", \"schism\", \"msh\", \"ugrid\", \"png\"]'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("1 river inflow segment(s)"), std::string::npos) << r.err;
@@ -390,8 +401,9 @@ TEST_F(PassagesCli, CarvingIsTheSameBytesAtOneAndTwoThreads) {
     const fs::path d = aq::test::fresh_dir("passages", "t" + std::to_string(threads));
     const auto r = aq::test::run_command(
         "OMP_NUM_THREADS=" + std::to_string(threads) + " " + std::string(AQ_BINARY) + " mesh -q -o " + d.string() +
-        " --set 'mask.passages_open=[\"Gibraltar\", \"Bab-el-Mandeb\", \"Hormuz\"]' --set mask.transects=" + lines.string() +
-        " --set mask.channels=" + lines.string() + " --set 'output.formats=[\"msh\", \"ugrid\", \"fort14\", \"png\"]'");
+        " --set 'mask.passages_open=[\"Gibraltar\", \"Bab-el-Mandeb\", \"Hormuz\"]' --set mask.transects=" +
+        lines.string() + " --set mask.channels=" + lines.string() +
+        " --set 'output.formats=[\"msh\", \"ugrid\", \"fort14\", \"png\"]'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     dirs.push_back(d);
   }

@@ -95,7 +95,7 @@ struct MaskRun {
 };
 
 MaskRun run(raster::Bathymetry& b, const config::MaskOptions& o, const Lattice& lat = Lattice::make(4.0, 3, -180.0),
-        const PoleRotation& rot = PoleRotation()) {
+            const PoleRotation& rot = PoleRotation()) {
   MaskRun r{lat, rot, {}, {}};
   b.set_edits(nullptr);
   r.carving = plan_carving(o, lat, rot, b);
@@ -190,9 +190,11 @@ TEST(Carving, RiverSurvivesACursorOfThree) {
   config::MaskOptions o = options(3);
   o.min_depth_m = 2.0;
   EXPECT_FALSE(filled_at(run(b, o), 5.2, 20.0));
-  o.channels = write_lines(dir, "river.geojson", {{{{5.2, 8.0}, {5.2, 18.0}, {7.0, 25.0}}, R"("width_m": 800, "depth_m": 1.5)"}});
+  o.channels = write_lines(dir, "river.geojson",
+                           {{{{5.2, 8.0}, {5.2, 18.0}, {7.0, 25.0}}, R"("width_m": 800, "depth_m": 1.5)"}});
   const MaskRun r = run(b, o);
-  for (const double lat : {12.0, 16.0, 20.0, 23.0}) EXPECT_TRUE(filled_at(r, 5.2 + (lat > 18.0 ? (lat - 18.0) * 1.8 / 7.0 : 0.0), lat)) << lat;
+  for (const double lat : {12.0, 16.0, 20.0, 23.0})
+    EXPECT_TRUE(filled_at(r, 5.2 + (lat > 18.0 ? (lat - 18.0) * 1.8 / 7.0 : 0.0), lat)) << lat;
   ASSERT_EQ(r.carving.lines.size(), 1U);
   const CarvedLine& l = r.carving.lines[0];
   EXPECT_EQ(l.kind, LineKind::kChannel);
@@ -261,9 +263,9 @@ TEST(DroppedSeas, TheWidestNarrowerCursorAndWhereItTouches) {
 
 TEST(Carving, MinimaxPathFindsTheSillAndKeepsToDeepWater) {
   // 5 × 4 grid: two routes from the left column to the right one, sills -20 (row 0) and -5 (row 3).
-  const std::vector<double> z = {-90, -20, -90, -90, -90,   //
-                                 -90, 100, 100, 100, -90,   //
-                                 -90, 100, 100, 100, -90,   //
+  const std::vector<double> z = {-90, -20, -90, -90, -90,  //
+                                 -90, 100, 100, 100, -90,  //
+                                 -90, 100, 100, 100, -90,  //
                                  -90, -5,  -90, -90, -90};
   std::vector<unsigned char> target(z.size(), 0);
   for (int j = 0; j < 4; ++j) target[static_cast<std::size_t>(j * 5 + 4)] = 1;
@@ -320,8 +322,10 @@ TEST(Carving, BadLineFilesAreInputErrorsNamingFileLayerAndFeature) {
   }
   o.channels = (dir / "poly.geojson").string();
   EXPECT_NE(message(o).find("feature 0: the geometry is POLYGON, not a line"), std::string::npos) << message(o);
-  o.channels = write_lines(dir, "bad_width.geojson", {{{{1, 1}, {2, 2}}, ""}, {{{1, 1}, {2, 2}}, R"("width_m": "wide")"}});
-  EXPECT_NE(message(o).find("feature 1: attribute width_m = \"wide\" is not a number"), std::string::npos) << message(o);
+  o.channels =
+      write_lines(dir, "bad_width.geojson", {{{{1, 1}, {2, 2}}, ""}, {{{1, 1}, {2, 2}}, R"("width_m": "wide")"}});
+  EXPECT_NE(message(o).find("feature 1: attribute width_m = \"wide\" is not a number"), std::string::npos)
+      << message(o);
   o.channels = write_lines(dir, "neg.geojson", {{{{1, 1}, {2, 2}}, R"("depth_m": -3)"}});
   EXPECT_NE(message(o).find("depth_m = -3 is not a depth"), std::string::npos) << message(o);
   o.channels = "";

@@ -24,7 +24,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Great-circle distance (degrees), haversine.
 double gc(double lon1, double lat1, double lon2, double lat2) {
   const double p1 = lat1 * kDegToRad, p2 = lat2 * kDegToRad, dp = p2 - p1, dl = (lon2 - lon1) * kDegToRad;
-  const double h = std::sin(dp / 2) * std::sin(dp / 2) + std::cos(p1) * std::cos(p2) * std::sin(dl / 2) * std::sin(dl / 2);
+  const double h =
+      std::sin(dp / 2) * std::sin(dp / 2) + std::cos(p1) * std::cos(p2) * std::sin(dl / 2) * std::sin(dl / 2);
   return 2.0 * std::asin(std::sqrt(std::min(1.0, h))) * kRadToDeg;
 }
 
@@ -95,13 +96,13 @@ TEST(ElevationEdits, ChannelsLowerBlockagesRaiseLandWinsNoDataIsWater) {
   Corridor block = channel({0.0, 2.0}, {1.0, 1.0}, 0.2, 10.0);
   block.kind = EditKind::kBlockage;
   const ElevationEdits e({channel({1.0, 1.0}, {0.0, 2.0}, 0.2, -40.0), block});
-  EXPECT_EQ(e.apply(1.0, 0.5, 3.0), -40.0);    // channel only
-  EXPECT_EQ(e.apply(1.0, 0.5, -100.0), -100.0);  // deeper water stays
-  EXPECT_EQ(e.apply(0.5, 1.0, -100.0), 10.0);  // blockage only
-  EXPECT_EQ(e.apply(1.0, 1.0, -100.0), 10.0);  // both: land wins
-  EXPECT_EQ(e.apply(1.0, 0.5, kNaN), -40.0);   // no-data under a channel is water
+  EXPECT_EQ(e.apply(1.0, 0.5, 3.0), -40.0);          // channel only
+  EXPECT_EQ(e.apply(1.0, 0.5, -100.0), -100.0);      // deeper water stays
+  EXPECT_EQ(e.apply(0.5, 1.0, -100.0), 10.0);        // blockage only
+  EXPECT_EQ(e.apply(1.0, 1.0, -100.0), 10.0);        // both: land wins
+  EXPECT_EQ(e.apply(1.0, 0.5, kNaN), -40.0);         // no-data under a channel is water
   EXPECT_TRUE(std::isnan(e.apply(0.5, 1.0, kNaN)));  // and stays no-data under a blockage
-  EXPECT_EQ(e.apply(5.0, 5.0, 7.0), 7.0);       // far away
+  EXPECT_EQ(e.apply(5.0, 5.0, 7.0), 7.0);            // far away
 }
 
 TEST(ElevationEdits, KeepThresholdLeavesTheRastersOwnWater) {
