@@ -400,9 +400,10 @@ static void carve(GlobalRun& run, const config::GlobalConfig& c, const Logger& l
     channels += l.kind == mask::LineKind::kChannel ? 1 : 0;
     blockages += l.kind == mask::LineKind::kBlockage ? 1 : 0;
   }
-  stage.done(fmt::format("{} passage(s) and {} channel(s) carved open, {} blockage(s) kept dry, before the "
-                         "classification (K = {}, h = {:g} m)",
-                         passages, channels, blockages, m.cursor, m.min_depth_m));
+  stage.done(
+      fmt::format("{} passage(s) and {} channel(s) carved open, {} blockage(s) kept dry, before the "
+                  "classification (K = {}, h = {:g} m)",
+                  passages, channels, blockages, m.cursor, m.min_depth_m));
 }
 
 // Every wet component the fill left out above mask.warn_dropped_km2, named, with its area, what
@@ -417,9 +418,10 @@ static void warn_dropped_seas(GlobalRun& run, const config::GlobalConfig& c, con
   if (report != nullptr) (*report)["mask"]["dropped"] = mask::dropped_json(d);
   double large = 0.0;
   for (const mask::DroppedSea& s : d.large) large += s.area_km2;
-  stage.done(fmt::format("{} wet component(s) left out by the fill, {:.4g} km² in all; {} above mask.warn_dropped_km2 = "
-                         "{:g} km² ({:.4g} km²) named above",
-                         d.components, d.area_km2, d.large.size(), c.mask.warn_dropped_km2, large));
+  stage.done(
+      fmt::format("{} wet component(s) left out by the fill, {:.4g} km² in all; {} above mask.warn_dropped_km2 = "
+                  "{:g} km² ({:.4g} km²) named above",
+                  d.components, d.area_km2, d.large.size(), c.mask.warn_dropped_km2, large));
 }
 
 // A seed whose fill does not join the first seed's: the mesh has separate parts (each typed as a
@@ -430,10 +432,11 @@ static void warn_separate_seeds(GlobalRun& run, const config::GlobalConfig& c, c
   Json parts = Json::array();
   for (const mask::SeedInfo& s : a.seeds) {
     if (s.index == 0 || s.same_fill_as >= 0 || s.windows_reached == 0) continue;
-    log.warn("seeds: mask.seeds[{}] = ({}, {}) fills {} cursor window(s) not connected to the part of mask.seeds[0] "
-             "at K = {}: the mesh has a separate part there (meshed apart, its own coast mainland); if it should join "
-             "the rest, open the passage between them (mask.passages_open, mask.transects) or use a smaller mask.cursor",
-             s.index, s.requested.lon_deg, s.requested.lat_deg, s.windows_reached, c.mask.cursor);
+    log.warn(
+        "seeds: mask.seeds[{}] = ({}, {}) fills {} cursor window(s) not connected to the part of mask.seeds[0] "
+        "at K = {}: the mesh has a separate part there (meshed apart, its own coast mainland); if it should join "
+        "the rest, open the passage between them (mask.passages_open, mask.transects) or use a smaller mask.cursor",
+        s.index, s.requested.lon_deg, s.requested.lat_deg, s.windows_reached, c.mask.cursor);
     parts.push_back(Json{{"seed", s.index}, {"windows", s.windows_reached}});
   }
   if (report != nullptr && !parts.empty()) (*report)["warnings"]["seeds_in_separate_parts"] = parts;

@@ -21,8 +21,8 @@
 #include "mesh/mesh.hpp"
 #include "mesh/statistics.hpp"
 #include "quadtree/leaves.hpp"
-#include "size/size_field.hpp"
 #include "raster/bathymetry.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::app {
 

@@ -45,8 +45,10 @@ struct MaskOptions {
   std::string transects, transects_layer;
   /// GDAL/OGR line file of channels and rivers burned in before the fill; "" = none.
   std::string channels, channels_layer;
-  double channel_width_m = 0.0;   ///< width of a channel line without a width_m attribute (m); 0 = the narrowest kept (K pixels)
-  double channel_depth_m = 10.0;  ///< depth (m, positive down) of a channel line without depth_m, and of a transect the raster closes
+  /// Width (m) of a channel line without a width_m attribute; 0 = the narrowest the fill keeps (K pixels).
+  double channel_width_m = 0.0;
+  /// Depth (m, positive down) of a channel line without depth_m, and of a transect the raster closes.
+  double channel_depth_m = 10.0;
   /// Warn, naming it, for every wet component the fill leaves out whose area exceeds this (km², WGS84).
   double warn_dropped_km2 = 1e4;
 };

@@ -128,8 +128,8 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
   line_file("mask.transects", m.transects, m.transects_layer);
   line_file("mask.channels", m.channels, m.channels_layer);
   if (!m.transects.empty() || !m.channels.empty())
-    items.push_back({"mask.channel_defaults", fmt::format("width {} m, depth {} m", number(m.channel_width_m),
-                                                          number(m.channel_depth_m))});
+    items.push_back({"mask.channel_defaults",
+                     fmt::format("width {} m, depth {} m", number(m.channel_width_m), number(m.channel_depth_m))});
   return items;
 }
 

@@ -29,8 +29,11 @@ Json lonlat_json(LonLat p) { return Json::array({p.lon_deg, p.lat_deg}); }
 // Whether the pixels under the box's corners and centre are all inside the domain.
 bool box_in_domain(const GeoBox& b, const Domain& d, const Lattice& lat, const PoleRotation& rot) {
   const double cx = 0.5 * (b.lon_min_deg + b.lon_max_deg), cy = 0.5 * (b.lat_min_deg + b.lat_max_deg);
-  for (const auto& [x, y] : {std::pair{b.lon_min_deg, b.lat_min_deg}, {b.lon_max_deg, b.lat_min_deg},
-                             {b.lon_min_deg, b.lat_max_deg}, {b.lon_max_deg, b.lat_max_deg}, {cx, cy}}) {
+  for (const auto& [x, y] : {std::pair{b.lon_min_deg, b.lat_min_deg},
+                             {b.lon_max_deg, b.lat_min_deg},
+                             {b.lon_min_deg, b.lat_max_deg},
+                             {b.lon_max_deg, b.lat_max_deg},
+                             {cx, cy}}) {
     double px = 0.0, py = 0.0;
     deg_to_lattice_xy(lat, geographic_to_lattice(rot, {x, y}), px, py);
     if (!on_lattice(lat, px, py)) return false;

@@ -90,7 +90,8 @@ BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)
       if (runs.size() < 2) break;
       for (std::size_t q = 0; q < runs.size(); ++q) {
         const Run& r = runs[q];
-        if (r.cls != (gap_pass ? kLand : kOpenEdge) || static_cast<std::int64_t>(r.length) >= kMinSegmentEdges) continue;
+        if (r.cls != (gap_pass ? kLand : kOpenEdge) || static_cast<std::int64_t>(r.length) >= kMinSegmentEdges)
+          continue;
         const char before = runs[(q + runs.size() - 1) % runs.size()].cls, after = runs[(q + 1) % runs.size()].cls;
         char to = kLand;
         if (gap_pass) {
@@ -105,7 +106,7 @@ BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)
           log->info("boundaries: {} {} edge(s) from {} to {} (shorter than {} edges) made {}",
                     gap_pass ? "land gap of" : "open segment of", r.length, where(m, nodes[r.start]),
                     where(m, nodes[(r.start + r.length) % n]), kMinSegmentEdges,
-                    gap_pass ? "open: the open segments around it merge"
+                    gap_pass           ? "open: the open segments around it merge"
                     : to == kRiverEdge ? "part of the river inflow beside it"
                                        : "land");
       }
@@ -196,9 +197,10 @@ BoundaryCounts boundary_counts(const Mesh& m) {
 }
 
 std::string describe(const BoundaryCounts& c) {
-  return fmt::format("{} open segment(s) ({} nodes, {} edges), {} mainland piece(s) ({} edges), {} island(s) ({} edges)",
-                     c.open_segments, c.open_nodes, c.open_edges, c.mainland_segments, c.mainland_edges, c.islands,
-                     c.island_edges) +
+  return fmt::format(
+             "{} open segment(s) ({} nodes, {} edges), {} mainland piece(s) ({} edges), {} island(s) ({} edges)",
+             c.open_segments, c.open_nodes, c.open_edges, c.mainland_segments, c.mainland_edges, c.islands,
+             c.island_edges) +
          (c.river_segments > 0 ? fmt::format(", {} river inflow segment(s) ({} nodes, {} edges)", c.river_segments,
                                              c.river_nodes, c.river_edges)
                                : std::string()) +
@@ -218,15 +220,14 @@ Json boundaries_json(const Mesh& m, const BoundaryCounts& c) {
   for (const BoundarySegment& s : m.segments) {
     if (s.type != BoundaryType::kRiver) continue;
     const auto a = static_cast<std::size_t>(s.nodes.front()), b = static_cast<std::size_t>(s.nodes.back());
-    rivers.push_back(Json{{"nodes", s.nodes.size()},
-                          {"from", {m.lon_deg[a], m.lat_deg[a]}},
-                          {"to", {m.lon_deg[b], m.lat_deg[b]}}});
+    rivers.push_back(
+        Json{{"nodes", s.nodes.size()}, {"from", {m.lon_deg[a], m.lat_deg[a]}}, {"to", {m.lon_deg[b], m.lat_deg[b]}}});
   }
-  return Json{{"open_segments", c.open_segments}, {"open_nodes", c.open_nodes},   {"open_edges", c.open_edges},
-              {"river_segments", c.river_segments}, {"river_nodes", c.river_nodes}, {"rivers", rivers},
-              {"mainland_segments", c.mainland_segments}, {"mainland_edges", c.mainland_edges},
-              {"islands", c.islands},             {"island_edges", c.island_edges}, {"retyped_short_pieces", c.merged},
-              {"open", open}};
+  return Json{
+      {"open_segments", c.open_segments},         {"open_nodes", c.open_nodes},         {"open_edges", c.open_edges},
+      {"river_segments", c.river_segments},       {"river_nodes", c.river_nodes},       {"rivers", rivers},
+      {"mainland_segments", c.mainland_segments}, {"mainland_edges", c.mainland_edges}, {"islands", c.islands},
+      {"island_edges", c.island_edges},           {"retyped_short_pieces", c.merged},   {"open", open}};
 }
 
 BoundaryCounts type_like(Mesh& derived, const Mesh& typed) {

@@ -81,8 +81,14 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
       if (in_open_list(sg)) continue;
       const bool island = sg.type == mesh::BoundaryType::kIsland, river = sg.type == mesh::BoundaryType::kRiver;
       f.print("{} {} ! land boundary {} ({})\n", sg.nodes.size() + (sg.closed ? 1 : 0),
-              river ? options.river_type : island ? options.island_type : options.mainland_type, ++k,
-              river ? "river inflow: specified normal flux" : island ? "island" : sg.closed ? "mainland, closed" : "mainland");
+              river    ? options.river_type
+              : island ? options.island_type
+                       : options.mainland_type,
+              ++k,
+              river       ? "river inflow: specified normal flux"
+              : island    ? "island"
+              : sg.closed ? "mainland, closed"
+                          : "mainland");
       for (const NodeId n : sg.nodes) {
         fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
         f.maybe_flush();

@@ -42,9 +42,10 @@ WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::p
   std::int64_t k = 0;
   for (const auto& s : mesh.segments) {
     if (s.type == mesh::BoundaryType::kRiver) {  // in hgrid.gr3's order: the open list holds both
-      f.print("{} 0 2 0 0 !open boundary {}: # of nodes, iettype 0, ifltype 2 (river inflow: constant discharge), "
-              "T and S none\n0. !discharge [m^3/s], negative into the domain: set the river's flow\n",
-              s.nodes.size(), ++k);
+      f.print(
+          "{} 0 2 0 0 !open boundary {}: # of nodes, iettype 0, ifltype 2 (river inflow: constant discharge), "
+          "T and S none\n0. !discharge [m^3/s], negative into the domain: set the river's flow\n",
+          s.nodes.size(), ++k);
       continue;
     }
     if (s.type != mesh::BoundaryType::kOpen) continue;

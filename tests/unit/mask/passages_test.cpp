@@ -247,12 +247,13 @@ TEST(Passages, TableHasTheNamedStraitsWithSidesInsideTheirBoxes) {
     const bool lat_apart = p.side_a.lat_max_deg <= p.side_b.lat_min_deg || p.side_b.lat_max_deg <= p.side_a.lat_min_deg;
     EXPECT_TRUE(lon_apart || lat_apart) << p.name;
   }
-  for (const char* n : {"Gibraltar",      "Bosphorus", "Bering",  "Bab-el-Mandeb", "Hormuz",     "Malacca/Singapore",
-                        "Lombok",         "Torres",    "Bass",    "Fram",          "Nares",      "Davis",
-                        "Belle Isle",     "Florida",   "Yucatan", "Drake",         "Denmark",    "Dover",
-                        "Danish straits", "Kerch",     "Tsugaru", "Korea",         "La Perouse", "Taiwan",
-                        "Messina",        "Sicily",    "Luzon",   "Hudson",        "Barrow",     "Juan de Fuca",
-                        "Dardanelles",    "Oresund",   "Great Belt", "Little Belt", "Chesapeake", "Delaware", "Gorlo"})
+  for (const char* n : {"Gibraltar",      "Bosphorus", "Bering",     "Bab-el-Mandeb", "Hormuz",     "Malacca/Singapore",
+                        "Lombok",         "Torres",    "Bass",       "Fram",          "Nares",      "Davis",
+                        "Belle Isle",     "Florida",   "Yucatan",    "Drake",         "Denmark",    "Dover",
+                        "Danish straits", "Kerch",     "Tsugaru",    "Korea",         "La Perouse", "Taiwan",
+                        "Messina",        "Sicily",    "Luzon",      "Hudson",        "Barrow",     "Juan de Fuca",
+                        "Dardanelles",    "Oresund",   "Great Belt", "Little Belt",   "Chesapeake", "Delaware",
+                        "Gorlo"})
     EXPECT_EQ(names.count(n), 1U) << n;
   // Every strait has a nominal sill depth for the carving (mask/carving.hpp).
   for (const Passage& p : t) {
