@@ -232,6 +232,14 @@ TEST_F(PassagesCli, NorthSeaHasTheChannelAndTheIrishSeaOpenOnTheWestEdge) {
   EXPECT_FALSE(node_near(read_fort14(dir2 / "north_sea.14"), -2.0, 50.0, 0.2));
   EXPECT_NE(r2.err.find("warning: dropped: English Channel"), std::string::npos) << r2.err;
   EXPECT_NE(r2.err.find("mask.passages_open = [\"Dover\"]"), std::string::npos);
+  // The Channel meets the domain's west edge: a seed would mesh it with its own open boundary.
+  const auto rep2 = aq::test::read_report(dir2, "north_sea");
+  ASSERT_FALSE(rep2["mask"]["dropped"]["above_threshold"].empty());
+  const auto& channel = rep2["mask"]["dropped"]["above_threshold"][0];
+  EXPECT_EQ(channel["name"], "English Channel");
+  EXPECT_EQ(channel["reaches_domain_edge"], true);
+  EXPECT_EQ(channel["connecting_cursor"], 1);  // wet pixels join it through the Dover Strait
+  EXPECT_NE(channel["keep"].get<std::string>().find("its own open boundary"), std::string::npos);
 }
 
 TEST_F(PassagesCli, BadNamesAndFilesFailClearlyWithoutOutputs) {
