@@ -30,6 +30,11 @@ std::string one_of(const std::string& v, std::initializer_list<const char*> allo
   return fmt::format("\"{}\" is not one of {}", v, list);
 }
 
+// mask.min_depth_m's lowest value: a floodplain up to 100 m above the datum. Surge meshes reach
+// +10 to +20 m, tsunami inundation tens of metres; land higher than that is no floodplain (and a
+// typo such as -5000 for 5000 would mesh the continents).
+constexpr double kMinDepthLowest = -100.0;
+
 std::string in_range(double v, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi) return fmt::format("{} is outside [{}, {}]", v, lo, hi);
   return {};
@@ -238,7 +243,7 @@ const S& schema() {
     // [mask]
     t.add<double>(
         "mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },
-        [](const double& v) { return in_range(v, -10000.0, 12000.0); }, "h");
+        [](const double& v) { return in_range(v, kMinDepthLowest, 12000.0); }, "h");
     t.add<int>(
         "mask", "cursor", [](GlobalConfig& c) -> int& { return c.mask.cursor; },
         [](const int& v) { return in_range(v, 1, 64); }, "K");
@@ -376,6 +381,14 @@ const S& schema() {
     size_num("size.slope", "filter", [](GlobalConfig& c) -> double& { return c.size.slope.filter; }, 0.0, 100.0);
     size_num("size.slope", "filter_max_km", [](GlobalConfig& c) -> double& { return c.size.slope.filter_max_km; },
              0.0, 1e4);
+    size_num(
+        "size.inland", "h0_km", [](GlobalConfig& c) -> double& { return c.size.inland.h0_km; }, 0.0, 1e5);
+    size_num(
+        "size.inland", "alpha", [](GlobalConfig& c) -> double& { return c.size.inland.alpha; }, 0.0, 10.0);
+    size_num(
+        "size.elevation", "h0_km", [](GlobalConfig& c) -> double& { return c.size.elevation.h0_km; }, 0.0, 1e5);
+    size_num(
+        "size.elevation", "km_per_m", [](GlobalConfig& c) -> double& { return c.size.elevation.km_per_m; }, 0.0, 1e3);
     size_num("size.cfl", "dt_s", [](GlobalConfig& c) -> double& { return c.size.cfl.dt_s; }, 0.0, 1e6);
     size_num("size.cfl", "courant_max", [](GlobalConfig& c) -> double& { return c.size.cfl.courant_max; }, 1e-3,
              100.0);
@@ -492,7 +505,7 @@ const S& schema() {
     t.add<std::string>(
         "output", "png_color", [](GlobalConfig& c) -> std::string& { return c.output.png_color; },
         [](const std::string& v) {
-          return one_of(v, {"level", "angle", "size", "target"});
+          return one_of(v, {"level", "angle", "size", "target", "elevation"});
         },
         "");
     t.add<std::vector<double>>(
@@ -595,6 +608,14 @@ void cross_check(GlobalConfig& c, Problems& p) {
                         "of one raster); use \"bilinear\"");
   check_rule_levels(c.quadtree.depth_rules, "quadtree.depth_rules", c.quadtree.levels, p);
   check_rule_levels(c.quadtree.box_rules, "quadtree.box_rules", c.quadtree.levels, p);
+  // The floodplain terms size land above the datum: without a floodplain they would size nothing.
+  for (const auto& [key, on] : {std::pair{"size.inland.h0_km", c.size.inland.h0_km > 0.0},
+                                std::pair{"size.elevation.h0_km", c.size.elevation.h0_km > 0.0}})
+    if (on && !(c.mask.min_depth_m < 0.0))
+      p.add_plain(999999, fmt::format("{} sizes the floodplain (land above the datum inside the mesh), but "
+                                      "mask.min_depth_m = {} >= 0 meshes none: set mask.min_depth_m = -z to reach "
+                                      "land up to z m above the datum, or remove {}",
+                                      key, c.mask.min_depth_m, key));
 }
 
 }  // namespace

@@ -40,9 +40,10 @@ void threshold_row(const T* values, std::int64_t n, double threshold, std::uint6
 // Lattices with fewer samples than this are classified by one thread.
 constexpr std::int64_t kParallelMinSamples = std::int64_t{1} << 16;
 
+// The range of mask.min_depth_m is the configuration's (config/global_config.cpp); negative values
+// are a floodplain above the datum. Only a value no comparison can use is refused here.
 void check_depth(double h) {
-  if (!std::isfinite(h) || h < 0.0)
-    throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number >= 0", h));
+  if (!std::isfinite(h)) throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", h));
 }
 
 // The rotated vertex rule works on units of vertices [I0, I1) × [J0, J1) within one bitmap word

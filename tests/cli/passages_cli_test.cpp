@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -210,13 +211,26 @@ TEST_F(PassagesCli, NorthSeaHasTheChannelAndTheIrishSeaOpenOnTheWestEdge) {
   EXPECT_TRUE(node_near(f, 1.6, 51.1, 0.2));   // the Dover Strait
   EXPECT_TRUE(node_near(f, -4.5, 53.8, 0.2));  // the Irish Sea
   EXPECT_TRUE(node_near(f, -6.0, 51.5, 0.2));  // the Celtic Sea
-  // The west edge, 8°W, is open from the Celtic Sea south: the Channel's way to the Atlantic.
-  long west = 0;
-  for (const auto& s : f.open)
+  // The west edge, 8°W, is open from the Celtic Sea south to 48°N: the Channel's way to the
+  // Atlantic, in one segment (its nodes as coarse as the size field there: 1° apart in deep water).
+  long segments = 0;
+  for (const auto& s : f.open) {
+    double lo = 90.0, hi = -90.0;
     for (const long n : s)
-      if (std::abs(f.lon[static_cast<std::size_t>(n)] + 8.0) < 1e-6 && f.lat[static_cast<std::size_t>(n)] < 51.5)
-        ++west;
-  EXPECT_GE(west, 15);
+      if (std::abs(f.lon[static_cast<std::size_t>(n)] + 8.0) < 1e-6 && f.lat[static_cast<std::size_t>(n)] < 52.0) {
+        lo = std::min(lo, f.lat[static_cast<std::size_t>(n)]);
+        hi = std::max(hi, f.lat[static_cast<std::size_t>(n)]);
+      }
+    if (lo <= 48.0 + 1e-6 && hi >= 51.5 - 1e-6) ++segments;
+  }
+  EXPECT_EQ(segments, 1);
+  // No land on that stretch of the edge.
+  for (const auto& [type, nodes] : f.land)
+    for (const long n : nodes) {
+      const double lat = f.lat[static_cast<std::size_t>(n)];
+      EXPECT_FALSE(std::abs(f.lon[static_cast<std::size_t>(n)] + 8.0) < 1e-6 && lat > 48.0 + 1e-6 && lat < 51.5)
+          << "land node at 8°W " << lat << "°N";
+    }
   const auto rep = aq::test::read_report(dir, "north_sea");
   const nlohmann::json* dover = passage(rep, "Dover");
   ASSERT_NE(dover, nullptr);  // the regional run's table holds the passages inside its box

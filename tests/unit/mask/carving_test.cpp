@@ -209,6 +209,35 @@ TEST(Carving, RiverSurvivesACursorOfThree) {
   EXPECT_DOUBLE_EQ(w.carving.lines[0].depth_m, o.channel_depth_m);
 }
 
+// A floodplain (h < 0): a carved passage is sea at the datum (at least 1 m below 0 m, whatever
+// the line states), so the basin behind it is reached through sea, not across land; a blockage
+// stays above the floodplain's top.
+TEST(Carving, FloodplainKeepsPassagesBelowTheDatumAndBlockagesAboveItsTop) {
+  Scratch dir;
+  raster::Bathymetry b = world(Strait::kNone);
+  config::MaskOptions o = options(2);
+  o.min_depth_m = -20.0;  // land up to +20 m; the +50 m land stays dry
+  EXPECT_FALSE(filled_at(run(b, o), 17.0, 5.0));
+  o.transects = write_lines(dir, "t.geojson", {{{{7.0, 5.25}, {15.0, 5.25}}, R"("depth_m": 0.5)"}});
+  const MaskRun r = run(b, o);
+  EXPECT_TRUE(filled_at(r, 17.0, 5.0));
+  ASSERT_EQ(r.carving.lines.size(), 1U);
+  EXPECT_DOUBLE_EQ(r.carving.lines[0].depth_m, 1.0);  // 0.5 m stated, deepened to 1 m below max(h, 0)
+  EXPECT_EQ(b.sample(11.0, 5.25), -1.0);
+  EXPECT_GT(r.area.datum_wet_pixels, 0);
+  EXPECT_EQ(r.area.inland_sea_pixels, 0);  // the east basin is reached through sea at the datum
+  // A blockage across the carved passage: above the floodplain's top (+20 m), so it cuts it.
+  o.transects = write_lines(dir, "tb.geojson",
+                            {{{{7.0, 5.25}, {15.0, 5.25}}, ""}, {{{11.1, 1.0}, {11.1, 9.5}}, R"("kind": "blockage")"}});
+  const MaskRun cut = run(b, o);
+  EXPECT_FALSE(filled_at(cut, 17.0, 5.0));
+  ASSERT_EQ(cut.carving.lines.size(), 2U);
+  const CarvedLine& dam = cut.carving.lines[cut.carving.lines[0].kind == LineKind::kBlockage ? 0 : 1];
+  EXPECT_EQ(dam.kind, LineKind::kBlockage);
+  EXPECT_DOUBLE_EQ(dam.height_m, 21.0);  // the default 10 m raised to 1 m above -h
+  EXPECT_EQ(b.sample(11.1, 5.25), 21.0);
+}
+
 TEST(DroppedSeas, AreaContactAndLandGapOfTheEastBasin) {
   raster::Bathymetry b = world(Strait::kNone);
   const MaskRun r = run(b, options(2));

@@ -282,7 +282,7 @@ TEST(PixelClasses, ProgressReachesOneAndBadOptionsThrow) {
   (void)classify_pixels(b, l, PoleRotation(), o);
   EXPECT_DOUBLE_EQ(last, 1.0);
   EXPECT_GT(calls, 10);
-  o.min_depth_m = -1.0;
+  o.min_depth_m = std::nan("");  // a negative h is a floodplain; no number is refused
   EXPECT_THROW((void)classify_pixels(b, l, PoleRotation(), o), ConfigError);
   EXPECT_THROW((void)parse_sampling("nearest"), ConfigError);
   EXPECT_EQ(parse_sampling("area"), Sampling::kArea);
