@@ -340,6 +340,22 @@ const S& schema() {
           return one_of(v, {"lonlat", "mercator"});
         },
         "");
+    t.add_custom(
+        "quadtree", "engine",
+        [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          std::string x;
+          if (auto err = detail::convert(v, x)) return p.add(o, "quadtree.engine", *err);
+          std::string list;
+          for (const auto& n : kQuadtreeEngineNames) {
+            if (x == n.name) {
+              c.quadtree.engine = n.value;
+              return;
+            }
+            list += fmt::format("{}\"{}\" ({})", list.empty() ? "" : ", ", n.name, n.help);
+          }
+          p.add(o, "quadtree.engine", fmt::format("\"{}\" is not one of {}", x, list));
+        },
+        [](const GlobalConfig& c) { return Json(engine_name(c.quadtree.engine)); }, "");
     t.add<double>(
         "quadtree", "mercator_lat_max_deg", [](GlobalConfig& c) -> double& { return c.quadtree.mercator_lat_max_deg; },
         [](const double& v) { return in_range(v, 1.0, 89.5); }, "");
@@ -651,9 +667,11 @@ RunName default_run_name(const GlobalConfig& c) {
   const Json now = schema().echo(c), def = schema().echo(d);
   for (const auto& [sec, keys] : now.items()) {
     if (sec == "output" || sec == "blocks") continue;
-    for (const auto& [key, value] : keys.items())
+    for (const auto& [key, value] : keys.items()) {
+      if (sec == "quadtree" && key == "engine") continue;  // both engines write the same files
       if (!def.contains(sec) || !def[sec].contains(key) || def[sec][key] != value)
         out.changed.push_back(fmt::format("{}.{} = {}", sec, key, value.dump()));
+    }
   }
   if (out.changed.empty()) {
     out.name = "seed_4deg_L3";

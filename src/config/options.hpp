@@ -72,6 +72,28 @@ struct BoxRule {
   double size_km = 0.0;  ///< > 0: square size target (km) instead of a level; 0 = the level form
 };
 
+/// quadtree.engine: what holds the quadtree (README "The forest engine"). Both write the same
+/// files; the forest needs the AQ_MPI build.
+enum class QuadtreeEngine {
+  kDense,   ///< bitmaps over every pixel of the lattice, in one process (the default)
+  kForest,  ///< a p4est forest of the level-0 squares: leaves only, on one or many MPI ranks
+};
+struct QuadtreeEngineName {
+  QuadtreeEngine value;
+  const char* name;
+  const char* help;
+};
+inline constexpr std::array<QuadtreeEngineName, 2> kQuadtreeEngineNames{{
+    {QuadtreeEngine::kDense, "dense", "bitmaps over every pixel of the lattice, in one process"},
+    {QuadtreeEngine::kForest, "forest", "a p4est forest of the level-0 squares on one or many MPI ranks"},
+}};
+/// The name of `e` in kQuadtreeEngineNames.
+[[nodiscard]] constexpr const char* engine_name(QuadtreeEngine e) {
+  for (const auto& n : kQuadtreeEngineNames)
+    if (n.value == e) return n.name;
+  return "?";
+}
+
 struct QuadtreeOptions {
   double step_deg = 4.0;               ///< Δ0, must divide 180 (in whole arc-seconds)
   int levels = 3;                      ///< L
@@ -84,6 +106,7 @@ struct QuadtreeOptions {
   double coast_size_km = 0.0;          ///< coastal-band square size target (km); 0 = band to level L
   std::vector<DepthRule> depth_rules;
   std::vector<BoxRule> box_rules;
+  QuadtreeEngine engine = QuadtreeEngine::kDense;  ///< what holds the quadtree
 };
 
 // The target size field h(x) in km (ARCHITECTURE §4.10, src/size): terms combined by minimum,

@@ -71,6 +71,11 @@ struct WetArea {
   }
 };
 
+/// The pixels a regional run classifies on an unrotated lattice (README "Regional FE meshes"):
+/// the domain's box and one level-0 square around it (clamped to a window lattice); outside it no
+/// vertex is sampled and every pixel is dry.
+PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
+
 /// Runs the mask stage. Validates `options` first (ConfigError naming the mask.* key: min_depth_m
 /// finite (its range is the configuration's; negative = a floodplain), cursor 1..64, sampling
 /// "vertex"/"area", seeds non-empty and valid, seed_radius_deg finite >= 0) and the lattice/bitmap sizes; seeds as in
