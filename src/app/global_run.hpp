@@ -16,12 +16,13 @@
 #include "core/log.hpp"
 #include "core/report.hpp"
 #include "core/rotation.hpp"
+#include "mask/carving.hpp"
 #include "mask/wet_area.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/statistics.hpp"
 #include "quadtree/leaves.hpp"
-#include "size/size_field.hpp"
 #include "raster/bathymetry.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::app {
 
@@ -72,6 +73,7 @@ void log_memory_estimate(const GlobalSetup& s, const Logger& log);
 struct GlobalRun {
   GlobalSetup setup;
   std::optional<raster::Bathymetry> bathy;
+  mask::Carving carving;  ///< passages, channels and blockages carved into `bathy` (mask/carving.hpp)
   mask::Domain domain;  ///< the meshed region (global: nothing inside)
   mask::WetArea area;
   std::string area_file;          ///< the global run file `area` was read from; "" = computed by the mask stage

@@ -339,7 +339,8 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             });
       }
       bool open = false;
-      for (const auto& sg : g.segments) open = open || sg.type == mesh::BoundaryType::kOpen;
+      for (const auto& sg : g.segments)
+        open = open || sg.type == mesh::BoundaryType::kOpen || sg.type == mesh::BoundaryType::kRiver;
       if (open) {
         plan(
             format, name + "_bctides.in",

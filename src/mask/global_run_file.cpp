@@ -106,6 +106,30 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
   // Listed only when not the default (12000 m), so files written before the key existed still match.
   if (c.input.max_abs_elevation_m != config::InputOptions{}.max_abs_elevation_m)
     items.insert(items.begin() + 7, {"input.max_abs_elevation_m", number(c.input.max_abs_elevation_m)});
+  // The carving (mask/carving.hpp), listed only when asked, so files written before it still match:
+  // the names, the line files by path, size and time, and the defaults they take.
+  const config::MaskOptions& m = c.mask;
+  if (!m.passages_open.empty()) {
+    std::string names;
+    for (const std::string& n : m.passages_open) names += (names.empty() ? "" : ", ") + n;
+    items.push_back({"mask.passages_open", "[" + names + "]"});
+  }
+  const auto line_file = [&](const char* key, const std::string& path, const std::string& layer) {
+    if (path.empty()) return;
+    const fs::path f = fs::absolute(path).lexically_normal();
+    std::string entry = f.string() + " " + kNotAFile;
+    if (fs::is_regular_file(f, ec)) {
+      const auto bytes = fs::file_size(f, ec);
+      const auto time = fs::last_write_time(f, ec);
+      if (!ec) entry = fmt::format("{} {} bytes, mtime {}", f.string(), bytes, time.time_since_epoch().count());
+    }
+    items.push_back({key, entry + (layer.empty() ? std::string() : ", layer " + layer)});
+  };
+  line_file("mask.transects", m.transects, m.transects_layer);
+  line_file("mask.channels", m.channels, m.channels_layer);
+  if (!m.transects.empty() || !m.channels.empty())
+    items.push_back({"mask.channel_defaults",
+                     fmt::format("width {} m, depth {} m", number(m.channel_width_m), number(m.channel_depth_m))});
   return items;
 }
 

@@ -630,9 +630,13 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   if (typed) {
     bnd_type = nc.var("mesh_boundary_type", NC_BYTE, {bnd_dim});
     nc.text(bnd_type, "long_name", "Type of each boundary edge");
-    const signed char values[3] = {0, 1, 2};
-    nc.check(nc_put_att_schar(nc.id(), bnd_type, "flag_values", NC_BYTE, 3, values), "attribute flag_values");
-    nc.text(bnd_type, "flag_meanings", "mainland island open");
+    // The river flag only in a mesh that has river inflows (earlier files keep their bytes).
+    const bool rivers = std::find(mesh.boundary_edge_type.begin(), mesh.boundary_edge_type.end(),
+                                  mesh::BoundaryType::kRiver) != mesh.boundary_edge_type.end();
+    const signed char values[4] = {0, 1, 2, 3};
+    nc.check(nc_put_att_schar(nc.id(), bnd_type, "flag_values", NC_BYTE, rivers ? 4 : 3, values),
+             "attribute flag_values");
+    nc.text(bnd_type, "flag_meanings", rivers ? "mainland island open river" : "mainland island open");
   }
   nc.enddef();
 

@@ -1069,8 +1069,18 @@ bool Bathymetry::samples_bilinear() const {
   return impl_->info.streamed || !(impl_->interp == Interpolation::kBicubic && !impl_->fx.empty());
 }
 double Bathymetry::sample(double lon_deg, double lat_deg) const {
-  if (stack_) return stack_->sample(lon_deg, lat_deg);
-  return impl_->sample(lon_deg, lat_deg);
+  const double z = stack_ ? stack_->sample(lon_deg, lat_deg) : impl_->sample(lon_deg, lat_deg);
+  return edits_ ? edits_->apply(lon_deg, lat_deg, z) : z;
+}
+
+void Bathymetry::set_edits(std::shared_ptr<const ElevationEdits> edits) {
+  edits_ = edits && !edits->empty() ? std::move(edits) : nullptr;
+}
+
+void Bathymetry::point_lonlat(std::int64_t c, std::int64_t r, double& lon_deg, double& lat_deg) const {
+  const auto& i = impl_->info;
+  lon_deg = i.lon_first + static_cast<double>(c) * i.dlon;
+  lat_deg = i.lat_first + static_cast<double>(r) * i.dlat;
 }
 
 namespace {
@@ -1085,10 +1095,21 @@ float Bathymetry::value(std::int64_t c, std::int64_t r) const {
   if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
   if (c < 0 || c >= i.ncols || r < impl_->row_lo || r >= (i.streamed ? i.nrows : impl_->row_hi))
     return std::numeric_limits<float>::quiet_NaN();
-  if (i.streamed) return impl_->read_value(c, r);
-  if (i.tiled) return impl_->tile_value(c, r);
-  c = impl_->local_col(c);
-  return c < 0 ? std::numeric_limits<float>::quiet_NaN() : impl_->v[impl_->idx(c, r)];
+  float z = 0.0F;
+  if (i.streamed) {
+    z = impl_->read_value(c, r);
+  } else if (i.tiled) {
+    z = impl_->tile_value(c, r);
+  } else {
+    const std::int64_t l = impl_->local_col(c);
+    z = l < 0 ? std::numeric_limits<float>::quiet_NaN() : impl_->v[impl_->idx(l, r)];
+  }
+  if (edits_) {
+    double lon = 0.0, lat = 0.0;
+    point_lonlat(c, r, lon, lat);
+    z = static_cast<float>(edits_->apply(lon, lat, static_cast<double>(z)));
+  }
+  return z;
 }
 
 void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const {
@@ -1097,8 +1118,7 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
   const auto& i = im.info;
   std::fill(out, out + nc * nr, std::numeric_limits<float>::quiet_NaN());
   const std::int64_t a = std::max(r_lo, im.row_lo), b = std::min(r_lo + nr, i.streamed ? i.nrows : im.row_hi);
-  if (a >= b) return;
-  if (i.tiled) {  // tile by tile: one lock per tile and row piece
+  if (i.tiled && a < b) {  // tile by tile: one lock per tile and row piece
     for (std::int64_t k0 = 0; k0 < nc;) {
       std::int64_t c = c_lo + k0;
       if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
@@ -1115,14 +1135,14 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
       }
       k0 += run;
     }
-    return;
   }
   std::vector<float> rows;
-  if (i.streamed) {
+  const std::int64_t b_rows = i.tiled ? a : b;  // tiled: read above, tile by tile; the edits below still apply
+  if (i.streamed && a < b) {
     rows.resize(static_cast<std::size_t>((b - a) * i.ncols));
     im.read_rows(a, b - a, rows.data());
   }
-  for (std::int64_t r = a; r < b; ++r) {
+  for (std::int64_t r = a; r < b_rows; ++r) {
     const float* src = i.streamed ? rows.data() + (r - a) * i.ncols : im.row_ptr(r);
     float* dst = out + (r - r_lo) * nc;
     if (c_lo >= 0 && c_lo + nc <= i.ncols && !im.col_window()) {  // no wrap and nothing outside: one copy
@@ -1136,10 +1156,31 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
       if (c >= 0 && c < i.ncols) dst[k] = src[c];
     }
   }
+  if (edits_) {  // at the raster points' positions (columns as asked: unwrapped longitudes are fine)
+    std::vector<double> lons(static_cast<std::size_t>(nc));
+    for (std::int64_t k = 0; k < nc; ++k) {
+      double lat = 0.0;
+      point_lonlat(c_lo + k, 0, lons[static_cast<std::size_t>(k)], lat);
+    }
+    for (std::int64_t r = r_lo; r < r_lo + nr; ++r) {
+      double lon = 0.0, lat = 0.0;
+      point_lonlat(0, r, lon, lat);
+      edits_->apply_row(lons.data(), lat, out + (r - r_lo) * nc, nc);
+    }
+  }
 }
 
 void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
                                const ProgressFn& progress) const {
+  raw_points(lon_deg, lat_deg, n, out, progress);
+  if (!edits_) return;
+  const ElevationEdits* ed = edits_.get();
+#pragma omp parallel for default(none) shared(ed, lon_deg, lat_deg, n, out) schedule(static) if (n > 20000)
+  for (std::int64_t k = 0; k < n; ++k) out[k] = ed->apply(lon_deg[k], lat_deg[k], out[k]);
+}
+
+void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                            const ProgressFn& progress) const {
   if (stack_) return stack_->sample_points(lon_deg, lat_deg, n, out, nullptr);
   const Impl* im = impl_.get();
   if (!im->info.streamed) {
@@ -1252,6 +1293,11 @@ Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t
 }
 
 void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) const {
+  raw_row(cols, lat_deg, out);
+  if (edits_) edits_->apply_row(cols.lon.data(), lat_deg, out, static_cast<std::int64_t>(cols.lon.size()));
+}
+
+void Bathymetry::raw_row(const Columns& cols, double lat_deg, float* out) const {
   if (stack_) return stack_->sample_row(cols, lat_deg, out);
   const Impl& im = *impl_;
   std::int64_t r0 = 0, r1 = 0;
@@ -1294,6 +1340,22 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
 
 void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
                              const ProgressFn& progress) const {
+  if (!edits_) return raw_rows(cols, lats, n, sink, progress);
+  const ElevationEdits* ed = edits_.get();
+  const auto nc = static_cast<std::int64_t>(cols.lon.size());
+  raw_rows(
+      cols, lats, n,
+      [&](std::int64_t k, const float* values) {
+        if (!ed->touches_lat(lats[k])) return sink(k, values);
+        std::vector<float> row(values, values + nc);
+        ed->apply_row(cols.lon.data(), lats[k], row.data(), nc);
+        sink(k, row.data());
+      },
+      progress);
+}
+
+void Bathymetry::raw_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
+                          const ProgressFn& progress) const {
   if (stack_) return stack_->sample_rows(cols, lats, n, sink, progress);
   const Impl& im = *impl_;
   const auto nc = static_cast<std::int64_t>(cols.c0.size());
@@ -1312,7 +1374,7 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
         std::int64_t r0 = 0, r1 = 0;
         double u = 0.0;
         if (!bilinear) {
-          sample_row(cols, lats[k], buf.data());
+          raw_row(cols, lats[k], buf.data());
         } else if (im.row(lats[k], r0, r1, u)) {
           filler->fill(im.row_ptr(r0), r0, im.row_ptr(r1), r1, u, buf.data());
         } else {
