@@ -56,7 +56,7 @@ def mesh(config=None, overrides=None, *, raster=None, lon=None, lat=None, thread
     return Run(core, mem)
 
 
-_TYPES = ("mainland", "island", "open")
+_TYPES = ("mainland", "island", "open", "river")
 
 
 class Mesh:
@@ -152,13 +152,13 @@ class Mesh:
     @property
     def boundary_edge_type(self):
         """(b,) uint8 or None: type of each boundary edge of a regional mesh, 0 mainland, 1 island,
-        2 open (the UGRID file's mesh_boundary_type); None for a global mesh."""
+        2 open, 3 river inflow (the UGRID file's mesh_boundary_type); None for a global mesh."""
         return self._a.get("boundary_edge_type")
 
     @property
     def boundaries(self):
         """The boundary as a list of dicts, each with ``nodes`` (int64, water on the left, a
-        closed loop's first node not repeated), ``type`` ("open", "mainland" or "island"),
+        closed loop's first node not repeated), ``type`` ("open", "mainland", "island" or "river"),
         ``closed`` (a whole loop), ``loop`` (its loop id) and ``pole`` (the lattice pole line).
         A regional mesh ([domain]): its typed segments, the open ones first, each open segment
         sharing its end nodes with the land pieces beside it. A global mesh: one entry per loop,
@@ -201,9 +201,10 @@ class ModelMesh:
         datum (m); 0 otherwise.
     boundaries : list of dict
         The files' boundary lists in their order (fort.14 / hgrid.gr3: the NOPE open segments, then
-        the NBOU / NLAND land boundaries): ``type`` ("open", "mainland", "island"), ``flag``
-        (fort.14 IBTYPE: 0 / 1 on a global mesh, 20 / 21 on a regional one; SCHISM's land flag
-        0 / 1; 0 for an open segment), ``closed``, ``nodes`` (int64 as listed: a closed boundary
+        the NBOU / NLAND land boundaries): ``type`` ("open", "mainland", "island", "river"), ``open``
+        (in the open list: an open segment, or a river inflow of hgrid.gr3), ``flag`` (fort.14
+        IBTYPE: 0 / 1 on a global mesh, 20 / 21 / 22 (river) on a regional one; SCHISM's land flag
+        0 / 1; 0 for an open list's entry), ``closed``, ``nodes`` (int64 as listed: a closed boundary
         repeats its first node at the end) and ``comment`` (the header line's text). FESOM2's
         files list only the open-boundary nodes (``open_nodes``) and flag the boundary nodes
         (``boundary_flag``); its ``boundaries`` are the same lists of the same mesh.
@@ -226,8 +227,8 @@ class ModelMesh:
         self.depth = arrays["depth"]
         self.floodplain_top_m = arrays["floodplain_top_m"]
         self.boundaries = arrays["boundaries"]
-        self.open_segments = [b for b in self.boundaries if b["type"] == "open"]
-        self.land_segments = [b for b in self.boundaries if b["type"] != "open"]
+        self.open_segments = [b for b in self.boundaries if b["open"]]
+        self.land_segments = [b for b in self.boundaries if not b["open"]]
         self.geographic_node = arrays["geographic_node"] if geographic_is_triangles else None
         self.geographic_triangle = arrays["geographic_triangle"] if geographic_is_triangles else None
         self.boundary_flag = arrays.get("boundary_flag")

@@ -28,6 +28,8 @@ const char* type_name(mesh::BoundaryType t) {
       return "island";
     case mesh::BoundaryType::kMainland:
       return "mainland";
+    case mesh::BoundaryType::kRiver:
+      return "river";
   }
   return "mainland";
 }
@@ -189,6 +191,7 @@ py::dict model_dict(const mesh::ModelMesh& model, const mesh::Mesh& geographic, 
     for (const auto& l : *group) {
       py::dict b;
       b["type"] = type_name(l.type);
+      b["open"] = group == &lists.open;  // a river is in the open list of hgrid.gr3, the land list of fort.14
       b["flag"] = l.flag;
       b["closed"] = l.closed;
       b["nodes"] = owned(l.nodes);

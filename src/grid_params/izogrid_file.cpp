@@ -25,7 +25,7 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::string lower(std::string_view s) {
+std::string lowercase(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
@@ -71,7 +71,7 @@ bool parse_int(std::string_view s, int& out) {
 }
 
 bool parse_bool(std::string_view s, bool& out) {
-  const std::string v = lower(s);
+  const std::string v = lowercase(s);
   if (v == "true" || v == "yes" || v == "1" || v == "on") {
     out = true;
     return true;
@@ -160,7 +160,7 @@ const std::map<std::string, Setter>& setters() {
       {"spline_type", integer(&RegionalParams::spline_type)},
       {"param",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lower(v);
+         const std::string s = lowercase(v);
          if (s == "index") {
            p.param = Parametrisation::kIndex;
          } else if (s == "arclength" || s == "arc_length") {
@@ -172,7 +172,7 @@ const std::map<std::string, Setter>& setters() {
        }},
       {"points",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lower(v);
+         const std::string s = lowercase(v);
          if (s == "plane") {
            p.points_lonlat = false;
          } else if (s == "lonlat") {
@@ -188,7 +188,7 @@ const std::map<std::string, Setter>& setters() {
       {"schedule",
        [](RegionalParams& p, std::string_view v) -> std::string {
          try {
-           p.schedule = parse_inner_schedule(lower(v));
+           p.schedule = parse_inner_schedule(lowercase(v));
          } catch (const ConfigError&) {
            return "is neither 'exponential' nor 'sqrt'";
          }
@@ -197,7 +197,7 @@ const std::map<std::string, Setter>& setters() {
       {"tolerance", real(&RegionalParams::tolerance)},
       {"method",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         return parse_grid_method(lower(v), p.method)
+         return parse_grid_method(lowercase(v), p.method)
                     ? std::string()
                     : std::string("is not one of conformal, bvp, tfi, star, ed2, rl, best");
        }},
@@ -218,7 +218,7 @@ const std::map<std::string, Setter>& setters() {
       {"elliptic_iterations", integer(&RegionalParams::elliptic_iterations)},
       {"best_final",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         return parse_grid_method(lower(v), p.best_final) ? std::string() : std::string("is neither ed2 nor rl");
+         return parse_grid_method(lowercase(v), p.best_final) ? std::string() : std::string("is neither ed2 nor rl");
        }},
       {"max_outer", integer(&RegionalParams::max_outer)},
       {"max_inner", integer(&RegionalParams::max_inner)},
@@ -227,7 +227,7 @@ const std::map<std::string, Setter>& setters() {
       {"anderson", integer(&RegionalParams::anderson)},
       {"solver",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lower(v);
+         const std::string s = lowercase(v);
          if (s == "dst") {
            p.solver = LaplaceSolver::kDst;
          } else if (s == "sor") {
@@ -240,7 +240,7 @@ const std::map<std::string, Setter>& setters() {
       {"xygrid", text(&RegionalParams::xygrid)},
       {"surface",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lower(v);
+         const std::string s = lowercase(v);
          if (s == "plane") {
            p.surface = RegionalSurface::kPlane;
          } else if (s == "sphere") {
@@ -253,7 +253,7 @@ const std::map<std::string, Setter>& setters() {
       {"bvp_iterations", integer(&RegionalParams::bvp_iterations)},
       {"bvp_interpolation",
        [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lower(v);
+         const std::string s = lowercase(v);
          if (s == "linear") {
            p.bvp_interpolation = LevelInterpolation::kLinear;
          } else if (s == "cubic") {
@@ -273,7 +273,7 @@ const std::map<std::string, Setter>& setters() {
 // Corner label: 0 = none, 1 = SE, 2 = NE, 3 = NW, 4 = '<' without a recognised name,
 // -1 = "south-west" (only allowed on the first point).
 int corner_label(std::string_view label) {
-  std::string s = lower(trim(label));
+  std::string s = lowercase(trim(label));
   const bool arrow = !s.empty() && s.front() == '<';
   if (arrow) s = std::string(trim(std::string_view(s).substr(1)));
   auto starts = [&](const char* name) { return s.rfind(name, 0) == 0; };
@@ -334,7 +334,7 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
               fmt::format("{}: '{}' is not key=value (or the end-of-preamble line '---' is missing)", where, tok));
           continue;
         }
-        const std::string key = lower(tok.substr(0, eq));
+        const std::string key = lowercase(tok.substr(0, eq));
         const std::string_view value = tok.substr(eq + 1);
         const auto it = setters().find(key);
         if (it == setters().end()) {

@@ -31,6 +31,23 @@ nc_type nc_type_of(DataType t) {
 
 int nc_var_of(int var) { return var == DatasetSink::kGlobal ? NC_GLOBAL : var; }
 
+// netCDF's typed nc_put_vara for each value type of DatasetSink::put.
+int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const double* d) {
+  return nc_put_vara_double(id, v, s, c, d);
+}
+int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const long long* d) {
+  return nc_put_vara_longlong(id, v, s, c, d);
+}
+int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const int* d) {
+  return nc_put_vara_int(id, v, s, c, d);
+}
+int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const short* d) {
+  return nc_put_vara_short(id, v, s, c, d);
+}
+int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const signed char* d) {
+  return nc_put_vara_schar(id, v, s, c, d);
+}
+
 }  // namespace
 
 NetcdfDataset::NetcdfDataset(std::filesystem::path path, int deflate) : path_(std::move(path)), deflate_(deflate) {
@@ -54,6 +71,7 @@ void NetcdfDataset::start(bool large_indices) {
   check(nc_create(path_.c_str(), mode, &id_), "cannot create");
   int old = 0;
   check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
+  if (deflate_ > 0) ahead_.emplace();
 }
 
 int NetcdfDataset::dim(const std::string& name, std::int64_t length) {
@@ -68,12 +86,16 @@ int NetcdfDataset::var(const std::string& name, DataType type, const std::vector
   int v = -1;
   check(nc_def_var(id_, name.c_str(), nc_type_of(type), static_cast<int>(dims.size()), dims.data(), &v),
         "define variable " + name);
-  if (static_cast<std::size_t>(v) >= var_dims_.size()) {
-    var_dims_.resize(static_cast<std::size_t>(v) + 1);
-    var_names_.resize(static_cast<std::size_t>(v) + 1);
+  const auto uv = static_cast<std::size_t>(v);
+  if (uv >= var_dims_.size()) {
+    var_dims_.resize(uv + 1);
+    var_names_.resize(uv + 1);
+    var_types_.resize(uv + 1, DataType::kDouble);
+    chunk_rows_.resize(uv + 1, 0);
   }
-  var_dims_[static_cast<std::size_t>(v)] = dims;
-  var_names_[static_cast<std::size_t>(v)] = name;
+  var_dims_[uv] = dims;
+  var_names_[uv] = name;
+  var_types_[uv] = type;
   if (dims.empty()) scalars_.push_back(v);
   if (deflate_ > 0 && !dims.empty()) {
     std::vector<std::size_t> chunk;
@@ -81,6 +103,7 @@ int NetcdfDataset::var(const std::string& name, DataType type, const std::vector
     chunk[0] = std::max<std::size_t>(1, std::min(chunk[0], kChunkRows));
     check(nc_def_var_chunking(id_, v, NC_CHUNKED, chunk.data()), "chunking of " + name);
     check(nc_def_var_deflate(id_, v, 1, 1, deflate_), "compression of " + name);
+    chunk_rows_[uv] = chunk[0];
   }
   return v;
 }
@@ -141,34 +164,44 @@ void NetcdfDataset::extent(int var, std::int64_t row, std::int64_t rows, std::ve
   }
 }
 
-void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const double* values) {
+template <typename T>
+void NetcdfDataset::put_rows(int var, std::int64_t row, std::int64_t rows, const T* values) {
+  const auto uv = static_cast<std::size_t>(var);
   std::vector<std::size_t> s, c;
   extent(var, row, rows, s, c);
-  check(nc_put_vara_double(id_, var, s.data(), c.data(), values),
-        "write " + var_names_.at(static_cast<std::size_t>(var)));
+  const std::size_t chunk_rows = chunk_rows_.at(uv);
+  if (ahead_ && ahead_->active() && chunk_rows > 0 && static_cast<std::size_t>(row) % chunk_rows == 0) {
+    std::size_t row_bytes = sizeof(T);
+    for (std::size_t k = 1; k < c.size(); ++k) row_bytes *= c[k];
+    ahead_->prepare(values, static_cast<std::size_t>(rows) * row_bytes, chunk_rows * row_bytes, sizeof(T), true,
+                    deflate_);
+  }
+  check(put_vara(id_, var, s.data(), c.data(), values), "write " + var_names_[uv]);
+}
+
+void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const double* values) {
+  put_rows(var, row, rows, values);
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const long long* values) {
-  std::vector<std::size_t> s, c;
-  extent(var, row, rows, s, c);
-  check(nc_put_vara_longlong(id_, var, s.data(), c.data(), values),
-        "write " + var_names_.at(static_cast<std::size_t>(var)));
+  if (var_types_.at(static_cast<std::size_t>(var)) == DataType::kInt) {
+    std::size_t n = static_cast<std::size_t>(rows);
+    const std::vector<int>& dims = var_dims_[static_cast<std::size_t>(var)];
+    for (std::size_t k = 1; k < dims.size(); ++k) n *= dim_len_[static_cast<std::size_t>(dims[k])];
+    narrow_.resize(n);  // kept: one allocation for every block
+    for (std::size_t k = 0; k < n; ++k) narrow_[k] = static_cast<int>(values[k]);
+    put_rows(var, row, rows, narrow_.data());
+    return;
+  }
+  put_rows(var, row, rows, values);
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const int* values) {
-  std::vector<std::size_t> s, c;
-  extent(var, row, rows, s, c);
-  check(nc_put_vara_int(id_, var, s.data(), c.data(), values), "write " + var_names_.at(static_cast<std::size_t>(var)));
+  put_rows(var, row, rows, values);
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const short* values) {
-  std::vector<std::size_t> s, c;
-  extent(var, row, rows, s, c);
-  check(nc_put_vara_short(id_, var, s.data(), c.data(), values),
-        "write " + var_names_.at(static_cast<std::size_t>(var)));
+  put_rows(var, row, rows, values);
 }
 void NetcdfDataset::put(int var, std::int64_t row, std::int64_t rows, const signed char* values) {
-  std::vector<std::size_t> s, c;
-  extent(var, row, rows, s, c);
-  check(nc_put_vara_schar(id_, var, s.data(), c.data(), values),
-        "write " + var_names_.at(static_cast<std::size_t>(var)));
+  put_rows(var, row, rows, values);
 }
 
 void NetcdfDataset::close() {

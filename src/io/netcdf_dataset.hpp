@@ -5,13 +5,22 @@
 // every value must be put; scalar variables get 0 at end_definitions(). Every call is checked and a
 // failure throws OutputError naming the file (with write_failure_note: a full disk says so). The
 // destructor aborts, and so deletes, a file that was not closed.
+//
+// With deflate, the chunks of each put that starts on a chunk boundary are compressed ahead on the
+// OpenMP team (io/deflate_ahead.hpp: the same bytes, HDF5 still writes them in its own order), so
+// a writer that wants the time saved puts whole chunks' worth of rows at a time, each variable's
+// rows made just before its put. 64-bit indices put into an NC_INT variable are narrowed here
+// once (a plain copy, not netCDF's checked conversion of every value; also what the cache must
+// see: the values in the file's type).
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/dataset.hpp"
+#include "io/deflate_ahead.hpp"
 
 namespace aq::io {
 
@@ -44,6 +53,9 @@ class NetcdfDataset final : public DatasetSink {
   // start[] and count[] of rows [row, row + rows) of `var`.
   void extent(int var, std::int64_t row, std::int64_t rows, std::vector<std::size_t>& start,
               std::vector<std::size_t>& count) const;
+  // Rows [row, row + rows) of `var` from `values`, compressed ahead first where they start a chunk.
+  template <typename T>
+  void put_rows(int var, std::int64_t row, std::int64_t rows, const T* values);
 
   static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
   std::filesystem::path path_;
@@ -53,6 +65,12 @@ class NetcdfDataset final : public DatasetSink {
   std::vector<std::vector<int>> var_dims_;  ///< dimensions of each defined variable, by id
   std::vector<std::string> var_names_;      ///< and its name
   std::vector<int> scalars_;                ///< variables without dimensions (topology, grid mappings)
+  std::vector<DataType> var_types_;         ///< type of each defined variable, by id
+  std::vector<std::size_t> chunk_rows_;     ///< by variable: rows per chunk of a compressed one, else 0
+  std::vector<int> narrow_;                 ///< put's int copy of 64-bit indices for an NC_INT variable
+  // With deflate: the chunks of each put compressed ahead on the OpenMP team; alive until after
+  // nc_close / nc_abort (declared last: destroyed first, after the destructor's nc_abort).
+  std::optional<DeflateAhead> ahead_;
 };
 
 }  // namespace aq::io

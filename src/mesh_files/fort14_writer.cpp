@@ -80,15 +80,18 @@ Fort14Boundaries fort14_boundaries(const mesh::Mesh& mesh, const Fort14Options& 
       l.closed = sg.closed;
       l.nodes = sg.nodes;
       if (sg.closed) l.nodes.push_back(sg.nodes.front());
-      if (sg.type == mesh::BoundaryType::kOpen) {
-        l.comment = fmt::format("open boundary {}", b.open.size() + 1);
+      const bool river = sg.type == mesh::BoundaryType::kRiver;
+      if (sg.type == mesh::BoundaryType::kOpen || (options.rivers_open && river)) {
+        l.comment = river ? fmt::format("open boundary {} (river inflow)", b.open.size() + 1)
+                          : fmt::format("open boundary {}", b.open.size() + 1);
         b.open.push_back(std::move(l));
         continue;
       }
       const bool island = sg.type == mesh::BoundaryType::kIsland;
-      l.flag = island ? options.island_type : options.mainland_type;
+      l.flag = river ? options.river_type : island ? options.island_type : options.mainland_type;
       l.comment = fmt::format("land boundary {} ({})", b.land.size() + 1,
-                              island      ? "island"
+                              river       ? "river inflow: specified normal flux"
+                              : island    ? "island"
                               : sg.closed ? "mainland, closed"
                                           : "mainland");
       b.land.push_back(std::move(l));

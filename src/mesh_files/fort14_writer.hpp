@@ -50,12 +50,18 @@ struct Fort14Options {
   /// Regional meshes (Mesh::typed): the land boundary types of mainland pieces and islands
   /// (ADCIRC IBTYPE 20 / 21; SCHISM's land flag 0 / 1).
   int mainland_type = 20, island_type = 21;
+  /// River inflows (mesh::BoundaryType::kRiver): in the land list with this IBTYPE (ADCIRC 22:
+  /// specified normal flux, essential, free tangential slip; fort.15 then needs NFFR and a flux per
+  /// node), or, with rivers_open, in the open list (SCHISM: a flow boundary is an open boundary,
+  /// its ifltype set in bctides.in).
+  int river_type = 22;
+  bool rivers_open = false;
 };
 
 /// One boundary list of the file (an open segment, a land boundary), as the file lists it.
 struct Fort14Boundary {
   mesh::BoundaryType type = mesh::BoundaryType::kMainland;
-  /// Land: IBTYPE (fort.14; Fort14Options::mainland_type / island_type on a typed mesh, 0 for the
+  /// Land: IBTYPE (fort.14; Fort14Options::mainland_type / island_type / river_type on a typed mesh, 0 for the
   /// outer loop and 1 for the others on an untyped one); open: 0, written after the node count.
   int flag = 0;
   bool closed = false;        ///< a whole loop: the first node is listed again at the end

@@ -52,6 +52,10 @@
 
 namespace aq::io {
 
+/// Radius (km) of WGS84's authalic sphere (the sphere of the same area): sizes and areas on the
+/// unit sphere in km.
+inline constexpr double kAuthalicRadiusKm = 6371.0072;
+
 /// What was done at one pole.
 struct PoleChange {
   bool north = true;

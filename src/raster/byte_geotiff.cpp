@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "core/error.hpp"
+#include "raster/gdal_handles.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -22,21 +23,6 @@ namespace aq::raster {
 namespace {
 
 constexpr int kTile = 512;
-
-void gdal_register() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-std::string last_gdal_error() {
-  const char* m = CPLGetLastErrorMsg();
-  return (m != nullptr && *m != '\0') ? std::string(": ") + m : std::string();
-}
-
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 // PAM (the .aux.xml sidecar) off for this thread while the object lives.
 class NoSidecar {

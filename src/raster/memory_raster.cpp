@@ -16,20 +16,11 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "raster/gdal_handles.hpp"
 
 namespace aq::raster {
 
 namespace {
-
-void gdal_register() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-std::string last_gdal_error() {
-  const char* m = CPLGetLastErrorMsg();
-  return (m != nullptr && *m != '\0') ? std::string(": ") + m : std::string();
-}
 
 // The step of equally spaced coordinates (negative when descending); InputError otherwise.
 double regular_step(const double* v, std::int64_t n, const char* name) {

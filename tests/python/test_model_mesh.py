@@ -209,3 +209,34 @@ def test_model_mesh_refuses_what_it_cannot_give(seed_run):
     squares = aq.mesh(None, {"mesh.elements": "squares", "output.formats": ["msh"]})
     with pytest.raises(aq.ConfigError, match='mesh.elements = "squares"'):
         squares.model_mesh("fort14")
+
+
+def test_a_river_inflow_is_a_land_boundary_of_fort14_and_an_open_one_of_hgrid(tmp_path):
+    # A basin at 2..28°E × 2..18°N in land, a box to 30°E around it, and a river drawn from the
+    # basin east out of the box: where it crosses the box's edge it is a river inflow (IBTYPE 22
+    # in fort.14's land list; an open (flow) boundary in hgrid.gr3's open list).
+    lon = -180.0 + (np.arange(1440) + 0.5) * 0.25
+    lat = -90.0 + (np.arange(720) + 0.5) * 0.25
+    z = np.full((720, 1440), 100.0, dtype=np.float32)
+    z[np.ix_((lat > 2.0) & (lat < 18.0), (lon > 2.0) & (lon < 28.0))] = -800.0
+    river = tmp_path / "river.geojson"
+    river.write_text('{"type": "FeatureCollection", "features": [{"type": "Feature", "properties": '
+                     '{"name": "Test River", "width_m": 2000, "depth_m": 6}, "geometry": {"type": "LineString", '
+                     '"coordinates": [[25.0, 10.0], [29.0, 10.2], [34.0, 11.0]]}}]}')
+    run = aq.mesh(None, {"domain.box": [0.0, 30.0, 0.0, 20.0], "quadtree.step_deg": 1, "quadtree.levels": 2,
+                         "mask.seeds": [[10.0, 10.0]], "mask.channels": str(river),
+                         "output.formats": ["fort14", "schism", "ugrid"]}, raster=z, lon=lon, lat=lat)
+    assert 3 in set(run.geographic_mesh.boundary_edge_type.tolist())
+    assert [s["type"] for s in run.boundaries].count("river") == 1
+    f14 = run.model_mesh("fort14")
+    assert f14.open_segments == []
+    rivers = [s for s in f14.land_segments if s["type"] == "river"]
+    assert len(rivers) == 1 and rivers[0]["flag"] == 22 and not rivers[0]["open"]
+    assert "river inflow" in rivers[0]["comment"] and len(rivers[0]["nodes"]) >= 3
+    np.testing.assert_array_equal(f14.nodes[rivers[0]["nodes"], 0], 30.0)
+    gr3 = run.model_mesh("schism")
+    assert [s["type"] for s in gr3.open_segments] == ["river"]
+    assert gr3.open_segments[0]["open"] and gr3.open_segments[0]["flag"] == 0
+    assert gr3.open_segments[0]["comment"] == "open boundary 1 (river inflow)"
+    np.testing.assert_array_equal(gr3.open_segments[0]["nodes"], rivers[0]["nodes"])
+    assert all(s["type"] in ("mainland", "island") for s in gr3.land_segments)
