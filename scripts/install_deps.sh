@@ -15,8 +15,10 @@ PACKAGES=(
   libfftw3-dev
   ferret-datasets
   gmsh cdo python3-vtk9 python3-netcdf4 python3-numpy
-  # the Python package (python/, scripts/install_python.sh) and its tests and README picture
+  # the Python package (python/, pyproject.toml: pip install --no-build-isolation . in a venv;
+  # scripts/install_python.sh) and its tests and README picture
   python3-dev pybind11-dev python3-xarray python3-pytest python3-matplotlib
+  python3-pip python3-venv python3-setuptools python3-wheel
   # the ADCIRC and ROMS client tests (../shared/clients/adcirc and roms build the models with these)
   gfortran libnetcdff-dev make perl patch xz-utils python3
   # the forest engine (quadtree.engine = "forest": p4est's forest of quadtrees on MPI ranks) and the

@@ -5,8 +5,10 @@ and run in the calling process::
 
     import aquatoria as aq
     run = aq.mesh("configs/global_mercator.toml", {"quadtree.size_km": 110})
-    run.nodes, run.triangles, run.depth, run.level, run.boundaries, run.report
-    ds = run.to_xarray()                       # UGRID-1.0 / CF dataset
+    run.nodes, run.triangles, run.depth, run.level, run.boundaries, run.report  # the UGRID file's mesh
+    m = run.model_mesh("fort14")               # the mesh the .14 file holds, node for node
+    m.nodes, m.triangles, m.depth, m.open_segments, m.land_segments
+    ds = run.to_xarray()                       # UGRID-1.0 / CF dataset, made in memory
     run.write("out/gm", formats=["msh", "fort14"])
     m = aq.mask("configs/global_mercator.toml")  # classes, filled area, levels; no mesh
     g = aq.regional("configs/black_sea.toml")     # g.lon_rho, g.pm, g.check()
@@ -17,10 +19,16 @@ overrides with the keys of ``aquatoria mesh --set`` (``{"quadtree.size_km": 110}
 :class:`InputError`, :class:`OutputError`, ... with the command line's messages.
 
 The C++ work runs with the GIL released and uses OpenMP threads (``OMP_NUM_THREADS``, or
-``threads=`` per call); calls from several Python threads run one after another.
+``threads=`` per call); calls from several Python threads run one after another. Ctrl-C stops a
+long call with KeyboardInterrupt and leaves no file behind.
 """
 
-from ._core import (
+from ._import_check import check_interpreter as _check_interpreter
+
+_check_interpreter()  # numpy and the interpreter the module was built for, with one clear message
+del _check_interpreter
+
+from ._core import (  # noqa: E402 (after the check)
     ConfigError,
     Error,
     InputError,
@@ -30,7 +38,7 @@ from ._core import (
     __version__,
 )
 from ._config import AquatoriaWarning
-from ._mesh import Run, mesh
+from ._mesh import Mesh, ModelMesh, Run, mesh
 from ._mask import Mask, mask
 from ._regional import Grid, regional
 
@@ -46,6 +54,8 @@ __all__ = [
     "mesh",
     "mask",
     "Run",
+    "Mesh",
+    "ModelMesh",
     "Mask",
     "regional",
     "Grid",

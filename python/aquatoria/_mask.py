@@ -2,6 +2,7 @@
 
 from . import _core
 from ._config import emit_warnings, prepare, threads_arg
+from ._interrupt import call
 
 #: Values of Mask.classes.
 DRY, COASTAL, WET = 0, 1, 2
@@ -26,7 +27,7 @@ def mask(config=None, overrides=None, *, raster=None, lon=None, lat=None, thread
         As :func:`aquatoria.mesh`.
     """
     config, sets, mem = prepare(config, overrides, raster, lon, lat)
-    core = _core.MaskRun(config, sets, bool(verbose), threads_arg(threads))
+    core = call(_core.MaskRun, config, sets, bool(verbose), threads_arg(threads))
     emit_warnings(core.take_log())
     return Mask(core, mem)
 
@@ -42,6 +43,10 @@ class Mask:
         0 dry (all 4 pixel corners above -h), 1 coastal, 2 wet (all 4 corners at or below -h).
     filled : numpy.ndarray of bool
         The K-cursor fill from the seeds (the area the mesh covers).
+    floodplain : numpy.ndarray of bool
+        With mask.min_depth_m < 0 (a storm-surge mesh): the filled pixels that are not wet at the
+        datum, land up to -min_depth_m above it (the report's mask.floodplain.floodplain_pixels);
+        all False otherwise.
     levels : numpy.ndarray of uint8
         Quadtree level of the leaf holding each pixel, 255 where there is none.
     lon, lat : numpy.ndarray of float64
@@ -55,9 +60,10 @@ class Mask:
     def __init__(self, core, memory_raster=None):
         self._core = core
         self._memory_raster = memory_raster
-        self.classes = core.classes()
-        self.filled = core.filled()
-        self.levels = core.levels()
+        self.classes = call(core.classes)
+        self.filled = call(core.filled)
+        self.floodplain = call(core.floodplain)
+        self.levels = call(core.levels)
         self.lon = core.lon
         self.lat = core.lat
         self.lon_edges = core.lon_edges
@@ -80,7 +86,7 @@ class Mask:
         return self._core.report()
 
     def to_xarray(self):
-        """classes, filled and levels as an xarray.Dataset on (lat, lon) pixel centres, with the
+        """classes, filled, floodplain and levels as an xarray.Dataset on (lat, lon) pixel centres, with the
         pixel edges as lon_bnds / lat_bnds and the lattice as attributes."""
         import numpy as np
         import xarray as xr
@@ -94,6 +100,8 @@ class Mask:
                             {"long_name": "pixel class", "flag_values": np.array([0, 1, 2], np.uint8),
                              "flag_meanings": "dry coastal wet"}),
                 "filled": (("lat", "lon"), self.filled, {"long_name": "K-cursor fill (the meshed area)"}),
+                "floodplain": (("lat", "lon"), self.floodplain,
+                               {"long_name": "filled pixels above the datum (mask.min_depth_m < 0)"}),
                 "levels": (("lat", "lon"), self.levels,
                            {"long_name": "quadtree level of the leaf holding the pixel", "_FillValue": NO_LEVEL}),
                 "lon_bnds": (("lon", "nv"), lon_b),

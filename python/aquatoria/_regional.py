@@ -4,6 +4,7 @@ import os
 
 from . import _core
 from ._config import emit_warnings, override_strings, threads_arg
+from ._interrupt import call
 
 _ARRAYS = ("lon_rho", "lat_rho", "lon_u", "lat_u", "lon_v", "lat_v", "lon_psi", "lat_psi",
            "pm", "pn", "dndx", "dmde", "angle", "f", "x_plane", "y_plane")
@@ -34,7 +35,7 @@ def regional(config, overrides=None, *, threads=None, verbose=False):
         With the command line's messages. A refinement grid ([nesting] refine_factor) is refused
         with ConfigError: it is made by ``aquatoria regional``.
     """
-    core = _core.RegionalRun(os.fspath(config), override_strings(overrides), bool(verbose), threads_arg(threads))
+    core = call(_core.RegionalRun, os.fspath(config), override_strings(overrides), bool(verbose), threads_arg(threads))
     emit_warnings(core.take_log())
     return Grid(core)
 
@@ -67,7 +68,7 @@ class Grid:
         (50), (52), isotropy (51), Laplace residual and the seed-004 criteria f1-f4, each with
         worst, average, rms and the worst cell; ``passed`` is False when a criterion is not finite
         or a cell is not convex."""
-        return self._core.check(threads_arg(threads))
+        return call(self._core.check, threads_arg(threads))
 
     @property
     def report(self):

@@ -13,6 +13,7 @@
 #include <pybind11/stl.h>
 
 #include <fmt/format.h>
+#include <netcdf.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -27,13 +28,18 @@
 #include "app/mesh_outputs.hpp"
 #include "app/mesh_run.hpp"
 #include "config/load.hpp"
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
-#include "io/depth.hpp"
+#include "core/timer.hpp"
+#include "io/memory_dataset.hpp"
+#include "mesh/model_cleaning.hpp"
+#include "mesh_arrays.hpp"
 #include "mesh_files/element_kinds.hpp"
 #include "mesh_files/geographic_mesh.hpp"
+#include "mesh_files/ugrid_writer.hpp"
 #include "python_common.hpp"
 #include "quadtree/leaf_levels.hpp"
 #include "raster/memory_raster.hpp"
@@ -71,8 +77,9 @@ void add_bitmap(const Bitmap& b, std::uint8_t one, std::uint8_t* out) {
 
 }  // namespace
 
-/// One global mesh run: the configuration, the pipeline's result, the geographic mesh the files
-/// hold (built when first asked for) and the report.
+/// One global mesh run: the configuration, the pipeline's result (the lattice mesh), and made when
+/// first asked for: the geographic mesh the UGRID, VTU and text files hold, the geographic
+/// triangles cleaned for the models (what fort14, fesom and schism write), and the report.
 class MeshRun {
  public:
   MeshRun(const std::optional<std::string>& config_path, const std::vector<std::string>& overrides, bool verbose,
@@ -93,32 +100,59 @@ class MeshRun {
     kinds_ = io::parse_element_kinds(c.mesh.elements);
   }
 
-  /// The mesh in geographic coordinates, as the UGRID, fort.14, text, VTU files hold it.
-  const mesh::Mesh& geographic(int threads) {
+  /// The mesh in geographic coordinates with the configuration's elements, as the UGRID, VTU and
+  /// text files hold it. Call under a WorkScope.
+  const mesh::Mesh& geographic() {
     if (!geo_) {
-      WorkScope work(threads);
-      const raster::Bathymetry& bathy = *run_.bathy;
-      const io::ElevationSampler elevation = [&bathy](const std::vector<double>& lon, const std::vector<double>& lat,
-                                                      std::vector<double>& out) {
-        out.resize(lon.size());
-        bathy.sample_points(lon.data(), lat.data(), static_cast<std::int64_t>(lon.size()), out.data());
-      };
-      geo_.emplace(run_.mesh, kinds_, elevation);
-      const mesh::Mesh& g = geo_->mesh();
-      lonlat_.resize(2 * g.lon_deg.size());
-      depth_.resize(g.depth_m.size());
-      for (std::size_t k = 0; k < g.lon_deg.size(); ++k) {
-        lonlat_[2 * k] = g.lon_deg[k];
-        lonlat_[2 * k + 1] = g.lat_deg[k];
-        depth_[k] = io::depth_below_datum_m(g.depth_m[k]);
-      }
+      geo_.emplace(run_.mesh, kinds_, elevation_sampler());
+      geo_columns_.emplace(geo_->mesh());
     }
     return geo_->mesh();
+  }
+
+  /// The geographic triangles cleaned for the models (mesh_outputs.cpp's order of making them:
+  /// the geographic mesh of triangles, then the cleaning; its log lines and report section are the
+  /// command's). Call under a WorkScope.
+  const mesh::ModelMesh& model() {
+    if (!model_) {
+      const mesh::Mesh& g = geographic_triangles();
+      const Timer timer;
+      model_.emplace(g);
+      io::ModelMeshNotes notes = io::model_mesh_notes(*model_, timer.wall_s());
+      for (const auto& line : notes.lines) log_.log(line.level, line.text);
+      cleaning_ = std::move(notes.cleaning);
+    }
+    return *model_;
+  }
+  /// What the "fesom" format logs of the model mesh (the floodplain a FESOM2 mesh cannot keep dry),
+  /// once per run.
+  void fesom_notes() {
+    if (fesom_noted_) return;
+    fesom_noted_ = true;
+    if (const auto w = io::fesom_floodplain_warning(model().mesh())) log_.log(LogLevel::kWarning, *w);
+  }
+  /// The mesh model() cleaned: the geographic mesh when the elements are triangles.
+  const mesh::Mesh& geographic_triangles() {
+    if (kinds_ == io::ElementKinds::kTriangles) return geographic();
+    if (!geo_triangles_) geo_triangles_.emplace(run_.mesh, io::ElementKinds::kTriangles, elevation_sampler());
+    return geo_triangles_->mesh();
+  }
+
+  /// The UGRID dataset write(..., ["ugrid"]) would put into its file, in memory. Call under a WorkScope.
+  std::shared_ptr<io::MemoryDataset> ugrid() {
+    const mesh::Mesh& g = geographic();
+    io::MeshOutputInfo info;
+    info.elements = kinds_;
+    info.source = app::global_mesh_source(*run_.bathy);
+    auto ds = std::make_shared<io::MemoryDataset>();
+    io::ugrid_dataset(g, io::ugrid_options(loaded_.options.output, info), *ds);
+    return ds;
   }
 
   py::object report() const {
     Json r = report_.root();
     if (geo_) r["geographic_mesh"] = geo_->json();
+    if (model_) r["cleaning"] = cleaning_;
     return json_to_python(r);
   }
 
@@ -141,6 +175,7 @@ class MeshRun {
     stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
     report.finish();
     const std::string report_name = app::write_global_report(c, report, out);
+    throw_if_cancelled();  // the last moment: after the commit the files are there
     out.commit();
     std::vector<std::string> paths;
     for (const auto& f : files) paths.push_back(f.path.string());
@@ -151,19 +186,34 @@ class MeshRun {
   std::vector<std::pair<int, std::string>> take_log() { return lines_->take(); }
 
   const app::GlobalRun& run() const { return run_; }
-  const std::vector<double>& lonlat() const { return lonlat_; }
-  const std::vector<double>& depth() const { return depth_; }
   const config::GlobalConfig& options() const { return loaded_.options; }
+  io::ElementKinds kinds() const { return kinds_; }
+  const NodeColumns& geographic_columns() const { return *geo_columns_; }
+  const NodeColumns& lattice_columns() {
+    if (!lattice_columns_) lattice_columns_.emplace(run_.mesh);
+    return *lattice_columns_;
+  }
 
  private:
+  io::ElevationSampler elevation_sampler() const {
+    const raster::Bathymetry& bathy = *run_.bathy;
+    return [&bathy](const std::vector<double>& lon, const std::vector<double>& lat, std::vector<double>& out) {
+      out.resize(lon.size());
+      bathy.sample_points(lon.data(), lat.data(), static_cast<std::int64_t>(lon.size()), out.data());
+    };
+  }
+
   std::shared_ptr<LogLines> lines_;
   Logger log_;
+  bool fesom_noted_ = false;
   config::Loaded<config::GlobalConfig> loaded_;
   Report report_;
   app::GlobalRun run_;
   io::ElementKinds kinds_ = io::ElementKinds::kTriangles;
-  std::optional<io::GeographicMesh> geo_;
-  std::vector<double> lonlat_, depth_;
+  std::optional<io::GeographicMesh> geo_, geo_triangles_;
+  std::optional<NodeColumns> geo_columns_, lattice_columns_;
+  std::optional<mesh::ModelMesh> model_;
+  Json cleaning_;
 };
 
 /// The mask stage and the quadtree levels of a run, without a mesh.
@@ -259,8 +309,12 @@ void bind_regional(py::module_& m);
 PYBIND11_MODULE(_core, m) {
   using aq::python::MaskRun;
   using aq::python::MeshRun;
-  using aq::python::view;
   m.doc() = "aquatoria's compiled core (use the package `aquatoria`, not this module)";
+  // netCDF (and HDF5 under it) initialised on the importing thread, as when the work ran there:
+  // HDF5's automatic error printing is switched off per thread by netCDF's first initialisation,
+  // and the work now runs on worker threads (_interrupt.py), so the user's own netCDF reads on
+  // the main thread (netCDF4, xarray) would otherwise print HDF5-DIAG stacks for every probe.
+  nc_initialize();
   m.attr("__version__") = AQ_VERSION;
 
   static py::exception<aq::Error> error(m, "Error", PyExc_RuntimeError);
@@ -272,6 +326,8 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const aq::Cancelled& e) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     } catch (const aq::ConfigError& e) {
       config_error(e.what());
     } catch (const aq::InputError& e) {
@@ -289,66 +345,80 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("default_threads", &aq::python::default_threads, "OpenMP threads a call uses by default");
 
+  // Ctrl-C (python/aquatoria/_interrupt.py): a call made through call_with_token stops, with
+  // KeyboardInterrupt, at the pipeline's next look at its token (core/cancel.hpp) after
+  // token.request().
+  py::class_<aq::CancelToken>(m, "CancelToken")
+      .def(py::init<>())
+      .def("request", &aq::CancelToken::request, "Asks the call made with this token to stop")
+      .def_property_readonly("requested", &aq::CancelToken::requested);
+  m.def(
+      "call_with_token",
+      [](const aq::CancelToken& token, const py::function& fn, const py::args& args, const py::kwargs& kwargs) {
+        const aq::CancelToken*& slot = aq::python::call_token();
+        const aq::CancelToken* before = slot;
+        slot = &token;
+        struct Restore {
+          const aq::CancelToken*& slot;
+          const aq::CancelToken* before;
+          ~Restore() { slot = before; }
+        } restore{slot, before};
+        return fn(*args, **kwargs);
+      },
+      py::arg("token"), py::arg("fn"), "fn(*args, **kwargs) with `token` as the stop request of its C++ work");
+
   py::class_<MeshRun>(m, "MeshRun")
       .def(py::init<const std::optional<std::string>&, const std::vector<std::string>&, bool, int>(), py::arg("config"),
            py::arg("overrides"), py::arg("verbose"), py::arg("threads"))
       .def(
-          "prepare_geographic", [](MeshRun& r, int threads) { r.geographic(threads); }, py::arg("threads"))
-      .def_property_readonly("nodes",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               r.geographic(0);
-                               const auto n = static_cast<py::ssize_t>(r.lonlat().size() / 2);
-                               return view(r.lonlat().data(), {n, 2}, self);
-                             })
-      .def_property_readonly("depth",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               r.geographic(0);
-                               return view(r.depth().data(), {static_cast<py::ssize_t>(r.depth().size())}, self);
-                             })
-      .def_property_readonly("elevation",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               const auto& g = r.geographic(0);
-                               return view(g.depth_m.data(), {static_cast<py::ssize_t>(g.depth_m.size())}, self);
-                             })
-      .def_property_readonly("node_flags",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               const auto& g = r.geographic(0);
-                               return view(g.node_flags.data(), {static_cast<py::ssize_t>(g.node_flags.size())}, self);
-                             })
-      .def_property_readonly("triangles",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               const auto& g = r.geographic(0);
-                               const auto n = static_cast<py::ssize_t>(g.triangles.size());
-                               static_assert(sizeof(g.triangles[0]) == 3 * sizeof(std::int64_t));
-                               return view(reinterpret_cast<const std::int64_t*>(g.triangles.data()), {n, 3}, self);
-                             })
-      .def_property_readonly("level",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               const auto& g = r.geographic(0);
-                               return view(g.triangle_level.data(), {static_cast<py::ssize_t>(g.triangle_level.size())},
-                                           self);
-                             })
-      .def_property_readonly("boundary_loops",
-                             [](py::object self) {
-                               MeshRun& r = self.cast<MeshRun&>();
-                               const auto& g = r.geographic(0);
-                               py::list out;
-                               for (const auto& loop : g.loops) {
-                                 py::dict d;
-                                 d["nodes"] =
-                                     view(loop.nodes.data(), {static_cast<py::ssize_t>(loop.nodes.size())}, self);
-                                 d["outer"] = loop.outer;
-                                 d["pole"] = loop.pole;
-                                 out.append(d);
-                               }
-                               return out;
-                             })
+          "geographic_mesh",
+          [](py::object self, int threads) {
+            MeshRun& r = self.cast<MeshRun&>();
+            const aq::mesh::Mesh* g = nullptr;
+            {
+              aq::python::WorkScope work(threads);
+              g = &r.geographic();
+            }
+            return aq::python::mesh_dict(*g, r.geographic_columns(), self);
+          },
+          py::arg("threads"))
+      .def("lattice_mesh",
+           [](py::object self) {
+             MeshRun& r = self.cast<MeshRun&>();
+             return aq::python::mesh_dict(r.run().mesh, r.lattice_columns(), self);
+           })
+      .def(
+          "model_mesh",
+          [](py::object self, const std::string& format, int threads) {
+            MeshRun& r = self.cast<MeshRun&>();
+            const auto f = aq::python::parse_model_format(format);
+            if (!aq::io::has_triangles(r.kinds()))
+              throw aq::ConfigError(fmt::format(
+                  "model_mesh(\"{}\"): the model formats are triangle meshes, but mesh.elements = \"squares\" (use "
+                  "\"triangles\" or \"both\")",
+                  format));
+            const aq::mesh::ModelMesh* model = nullptr;
+            const aq::mesh::Mesh* geo = nullptr;
+            {
+              aq::python::WorkScope work(threads);
+              model = &r.model();
+              geo = &r.geographic_triangles();
+            }
+            if (f == aq::python::ModelFormat::kFesom) r.fesom_notes();
+            return aq::python::model_dict(*model, *geo, f, r.options().output.fesom_levels, self);
+          },
+          py::arg("format"), py::arg("threads"))
+      .def(
+          "ugrid_dataset",
+          [](MeshRun& r, int threads) {
+            std::shared_ptr<aq::io::MemoryDataset> ds;
+            {
+              aq::python::WorkScope work(threads);
+              ds = r.ugrid();
+            }
+            return aq::python::dataset_dict(std::move(ds));
+          },
+          py::arg("threads"))
       .def_property_readonly(
           "lattice", [](const MeshRun& r) { return aq::python::lattice_dict(r.run().setup.lattice, r.options()); })
       .def("report", &MeshRun::report)
@@ -382,6 +452,24 @@ PYBIND11_MODULE(_core, m) {
                py::gil_scoped_release release;
                std::fill(o, o + nx * ny, std::uint8_t{0});
                aq::python::add_bitmap(a.filled, 1, o);
+             }
+             return out.attr("view")("bool");
+           })
+      .def("floodplain",
+           [](const MaskRun& r) {
+             // mask.min_depth_m < 0: the filled pixels not wet at the datum (WetArea::sea is the rest)
+             const auto& a = r.run().area;
+             const auto nx = a.filled.nx(), ny = a.filled.ny();
+             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
+             std::uint8_t* o = out.mutable_data();
+             {
+               py::gil_scoped_release release;
+               std::fill(o, o + nx * ny, std::uint8_t{0});
+               if (a.sea.nx() == nx && a.sea.ny() == ny) {
+                 aq::python::add_bitmap(a.filled, 1, o);
+                 aq::python::add_bitmap(a.sea, 1, o);  // sea ⊂ filled: 2 = sea, 1 = floodplain
+                 for (std::int64_t k = 0; k < nx * ny; ++k) o[k] = o[k] == 1 ? 1 : 0;
+               }
              }
              return out.attr("view")("bool");
            })

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancel.hpp"
 #include "core/log.hpp"
 #include "core/report.hpp"
 
@@ -75,15 +76,32 @@ class MmapThresholdScope {
   MmapThresholdScope& operator=(const MmapThresholdScope&) = delete;
 };
 
+// The stop request of the call the calling thread makes (python/aquatoria/_interrupt.py makes the
+// call on a worker thread with a token of its own, CancelToken in Python, and requests the stop
+// when the main thread gets KeyboardInterrupt); null: the call cannot be stopped.
+inline const CancelToken*& call_token() {
+  thread_local const CancelToken* token = nullptr;
+  return token;
+}
+
 // The C++ work of one call: GIL released, the process-wide lock held, the thread count and the
-// heap threshold set.
+// heap threshold set, the call's stop request (core/cancel.hpp) the one the pipeline looks at.
+// Throws Cancelled at once when the stop was requested while the call waited for the lock.
 class WorkScope {
  public:
-  explicit WorkScope(int threads) : lock_(run_mutex()), threads_(threads) {}
+  explicit WorkScope(int threads)
+      : lock_(run_mutex()), cancel_(call_token() != nullptr ? *call_token() : no_token()), threads_(threads) {
+    throw_if_cancelled();
+  }
 
  private:
+  static const CancelToken& no_token() {
+    static const CancelToken never;
+    return never;
+  }
   py::gil_scoped_release release_;  // declared first: released before the lock is taken
   std::lock_guard<std::mutex> lock_;
+  CancelScope cancel_;
   ThreadScope threads_;
   MmapThresholdScope heap_;
 };
@@ -116,9 +134,15 @@ inline Logger make_logger(const std::shared_ptr<LogLines>& lines, bool verbose) 
   return log;
 }
 
-// A read-only numpy view of `data` kept alive by `owner`.
+// A read-only numpy view of `data` kept alive by `owner` (an empty array when there is nothing
+// to view: an empty std::vector's data() may be null).
 template <typename T>
 py::array view(const T* data, std::vector<py::ssize_t> shape, py::handle owner) {
+  if (data == nullptr) {  // an empty vector: its first dimension is 0
+    py::array_t<T> empty(shape);
+    empty.attr("setflags")(py::arg("write") = false);
+    return empty;
+  }
   std::vector<py::ssize_t> strides(shape.size());
   py::ssize_t s = static_cast<py::ssize_t>(sizeof(T));
   for (std::size_t k = shape.size(); k-- > 0;) {

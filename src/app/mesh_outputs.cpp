@@ -50,6 +50,50 @@ std::vector<std::string> requested_formats(const config::OutputOptions& o) {
 
 const std::vector<std::string>& known_output_formats() { return config::output_format_names(); }
 
+UgridOptions ugrid_options(const config::OutputOptions& options, const MeshOutputInfo& info) {
+  UgridOptions o;
+  o.elements = info.elements;
+  o.source = info.source;
+  o.history = fmt::format("written by aquatoria ({})", info.source);
+  o.deflate = options.ugrid_deflate;
+  return o;
+}
+
+ModelMeshNotes model_mesh_notes(const mesh::ModelMesh& model, double seconds) {
+  ModelMeshNotes notes;
+  notes.lines.push_back({LogLevel::kInfo, fmt::format("mesh cleaning: {} ({:.3f} s)", model.describe(), seconds)});
+  const mesh::Mesh& c = model.mesh();
+  notes.cleaning = model.json();
+  if (!c.lattice.mercator()) {
+    constexpr double kObtuseDeg = 120.0;
+    const ObtuseTriangles o = obtuse_triangles(c, kObtuseDeg);
+    notes.cleaning["angle_above_120_deg_triangles"] = o.count;
+    if (o.count > 0) {
+      notes.cleaning["angle_above_120_deg_from_lat_deg"] = std::round(o.from_lattice_lat_deg * 100.0) / 100.0;
+      notes.lines.push_back(
+          {LogLevel::kWarning,
+           fmt::format("model formats: {} triangles have an angle above {:g}° on the sphere (up to {:.1f}°), "
+                       "poleward of {:.1f}° {}latitude: the lon-lat lattice's squares narrow as cos φ there. "
+                       "FESOM2's SSH solver needed 26-60 times the iterations on such meshes; use the Mercator "
+                       "lattice (quadtree.lattice = \"mercator\", as in configs/global_mercator.toml)",
+                       o.count, kObtuseDeg, o.max_angle_deg, o.from_lattice_lat_deg,
+                       c.rotation.enabled ? "rotated " : "")});
+    }
+  }
+  return notes;
+}
+
+std::optional<std::string> fesom_floodplain_warning(const mesh::Mesh& model) {
+  if (model.floodplain_top_m <= 0.0) return std::nullopt;  // FESOM2 has no wetting and drying
+  const auto above = std::count_if(model.depth_m.begin(), model.depth_m.end(), [](double e) { return e > 0.0; });
+  if (above == 0) return std::nullopt;
+  return fmt::format(
+      "fesom: FESOM2 has no wetting and drying: aux3d.out writes the {} nodes of the floodplain "
+      "(above the datum, up to {} m) at 0 m, and FESOM2 deepens them to its 5th level, water; "
+      "mesh a surge domain for ADCIRC or SCHISM (fort14, schism), or set mask.min_depth_m >= 0",
+      above, model.floodplain_top_m);
+}
+
 void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elements) {
   const auto& known = known_output_formats();
   for (const auto& f : o.formats) {
@@ -121,26 +165,10 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
     const Timer timer;
     model.emplace(g);
-    hold(LogLevel::kInfo, fmt::format("mesh cleaning: {} ({:.3f} s)", model->describe(), timer.wall_s()));
-    const mesh::Mesh& c = model->mesh();
-    Json cleaning = model->json();
-    if (!c.lattice.mercator()) {
-      constexpr double kObtuseDeg = 120.0;
-      const ObtuseTriangles o = obtuse_triangles(c, kObtuseDeg);
-      cleaning["angle_above_120_deg_triangles"] = o.count;
-      if (o.count > 0) {
-        cleaning["angle_above_120_deg_from_lat_deg"] = std::round(o.from_lattice_lat_deg * 100.0) / 100.0;
-        hold(LogLevel::kWarning,
-             fmt::format("model formats: {} triangles have an angle above {:g}° on the sphere (up to {:.1f}°), "
-                         "poleward of {:.1f}° {}latitude: the lon-lat lattice's squares narrow as cos φ there. "
-                         "FESOM2's SSH solver needed 26-60 times the iterations on such meshes; use the Mercator "
-                         "lattice (quadtree.lattice = \"mercator\", as in configs/global_mercator.toml)",
-                         o.count, kObtuseDeg, o.max_angle_deg, o.from_lattice_lat_deg,
-                         c.rotation.enabled ? "rotated " : ""));
-      }
-    }
-    if (report != nullptr) (*report)["cleaning"] = cleaning;
-    return c;
+    ModelMeshNotes notes = model_mesh_notes(*model, timer.wall_s());
+    for (auto& line : notes.lines) hold(line.level, std::move(line.text));
+    if (report != nullptr) (*report)["cleaning"] = std::move(notes.cleaning);
+    return model->mesh();
   };
 
   // Shape quality on the sphere of the triangles as the geographic files hold them; its
@@ -227,11 +255,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}, {"seam duplicates", s.seam_duplicates}};
           });
     } else if (format == "ugrid") {
-      UgridOptions o;
-      o.elements = info.elements;
-      o.source = info.source;
-      o.history = fmt::format("written by aquatoria ({})", info.source);
-      o.deflate = options.ugrid_deflate;
+      const UgridOptions o = ugrid_options(options, info);
       // The only writer that uses netCDF/HDF5 (neither is thread-safe): it may run beside the
       // others when nothing else can call netCDF meanwhile (see the header).
       plan(
@@ -296,15 +320,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
               return Facts{{"open-boundary nodes", s.nodes}};
             });
       }
-      if (g.floodplain_top_m > 0.0) {  // FESOM2 has no wetting and drying
-        const auto above = std::count_if(g.depth_m.begin(), g.depth_m.end(), [](double e) { return e > 0.0; });
-        if (above > 0)
-          hold(LogLevel::kWarning,
-               fmt::format("fesom: FESOM2 has no wetting and drying: aux3d.out writes the {} nodes of the floodplain "
-                           "(above the datum, up to {} m) at 0 m, and FESOM2 deepens them to its 5th level, water; "
-                           "mesh a surge domain for ADCIRC or SCHISM (fort14, schism), or set mask.min_depth_m >= 0",
-                           above, g.floodplain_top_m));
-      }
+      if (const auto w = fesom_floodplain_warning(g)) hold(LogLevel::kWarning, *w);
       const FesomRotation r = fesom_rotation(mesh.rotation);
       hold(LogLevel::kInfo,
            fmt::format("FESOM namelist.config &geometry: {} ({})", r.namelist(),

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,7 +41,9 @@
 #include "core/report.hpp"
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/model_cleaning.hpp"
 #include "mesh_files/element_kinds.hpp"
+#include "mesh_files/ugrid_writer.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::io {
@@ -62,6 +65,25 @@ struct MeshOutputInfo {
   /// both pictures of a run share one scale; empty = each picture's own values.
   std::vector<double> size_scale_km;
 };
+
+/// The UGRID writer's options of the "ugrid" format (the Python package's to_xarray describes the
+/// same dataset with them).
+UgridOptions ugrid_options(const config::OutputOptions& options, const MeshOutputInfo& info);
+
+/// What the cleaning for the models did (the mesh fort14, fesom and schism write), as
+/// write_mesh_outputs logs and reports it: the "mesh cleaning: ..." line (with `seconds`, the time
+/// the cleaning took), a warning when a lon-lat lattice leaves triangles with an angle above 120°,
+/// and the "cleaning" report section. The Python package's Run.model_mesh says the same.
+struct ModelMeshNotes {
+  std::vector<LogLine> lines;
+  Json cleaning;
+};
+ModelMeshNotes model_mesh_notes(const mesh::ModelMesh& model, double seconds);
+
+/// The warning the "fesom" format gives for a floodplain mesh (floodplain_top_m > 0) of the
+/// cleaned model mesh `model` with nodes above the datum (FESOM2 has no wetting and drying: aux3d.out
+/// writes them at 0 m); nullopt otherwise. The Python package's Run.model_mesh("fesom") says the same.
+std::optional<std::string> fesom_floodplain_warning(const mesh::Mesh& model);
 
 /// The formats write_mesh_outputs knows, in its order.
 const std::vector<std::string>& known_output_formats();

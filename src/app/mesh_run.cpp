@@ -20,13 +20,17 @@
 
 namespace aq::app {
 
+std::string global_mesh_source(const raster::Bathymetry& bathy) {
+  return fmt::format("aquatoria {} from {}", AQ_VERSION, bathy.info().path);
+}
+
 std::vector<io::WrittenFile> write_global_mesh_files(const config::GlobalConfig& c, const GlobalRun& run,
                                                      OutputSet& out, const Logger& log, Report& report) {
   const raster::Bathymetry& bathy = *run.bathy;
   const Lattice& lat = run.setup.lattice;
   io::MeshOutputInfo oinfo;
   oinfo.elements = io::parse_element_kinds(c.mesh.elements);
-  oinfo.source = fmt::format("aquatoria {} from {}", AQ_VERSION, bathy.info().path);
+  oinfo.source = global_mesh_source(bathy);
   oinfo.global_run_file = [&](const std::filesystem::path& p) {
     const quadtree::LeafLevels levels(run.leaves, lat);
     mask::write_global_run_file(p, run.area, lat, c,

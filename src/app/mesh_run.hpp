@@ -14,8 +14,12 @@
 #include "core/output_files.hpp"
 #include "core/report.hpp"
 #include "mesh/mesh.hpp"
+#include "raster/bathymetry.hpp"
 
 namespace aq::app {
+
+/// The files' "source" (program, version and input raster): MeshOutputInfo::source of the run.
+std::string global_mesh_source(const raster::Bathymetry& bathy);
 
 /// Writes every format of c.output.formats for `run` (after run_global_pipeline) into `out` (not
 /// committed), the global run file ("tif") included, and sets report["outputs"] (file, format,

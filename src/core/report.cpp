@@ -37,6 +37,7 @@ void StageScope::done(const std::string& summary) {
   const double cpu = timer_.cpu_s();
   log_.info("{}: done {} ({:.3f} s)", name_, summary, wall);
   if (report_ != nullptr) report_->add_stage(name_, wall, cpu, summary);
+  throw_if_cancelled();
 }
 
 }  // namespace aq

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "core/cancel.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
 
@@ -35,9 +36,12 @@ class Report {
 /// Times one stage; on done() logs "stage: done <summary> (t s)" and adds it to the report.
 class StageScope {
  public:
-  StageScope(std::string name, Report* report, const Logger& log)
-      : name_(std::move(name)), report_(report), log_(log) {}
-  /// Ends the stage with a one-line summary of what it produced.
+  /// Starts a stage; throws Cancelled when the run has been asked to stop (core/cancel.hpp).
+  StageScope(std::string name, Report* report, const Logger& log) : name_(std::move(name)), report_(report), log_(log) {
+    throw_if_cancelled();
+  }
+  /// Ends the stage with a one-line summary of what it produced; then throws Cancelled when the
+  /// run has been asked to stop meanwhile.
   void done(const std::string& summary);
   [[nodiscard]] double wall_s() const { return timer_.wall_s(); }
 

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 
 namespace aq::io {
@@ -49,6 +50,7 @@ void FileWriter::wait() {
 }
 
 void FileWriter::flush() {
+  throw_if_cancelled();  // a Python caller's Ctrl-C (core/cancel.hpp): the OutputSet removes the file
   wait();
   if (buf_.size() == 0) return;
   std::swap(buf_, writing_);

@@ -13,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/row_progress.hpp"
 #include "mask/bit_rows.hpp"
@@ -139,12 +140,14 @@ void sample_rotated(const raster::Bathymetry& bathy, const Lattice& lattice, con
     std::vector<double> lon(64), lat(64), val(64);
 #pragma omp for schedule(static, 1)
     for (std::int64_t ty = 0; ty < nty; ++ty) {
+      if (cancel_requested()) continue;  // a stop request (core/cancel.hpp): the rest is skipped, thrown below
       const std::int64_t J0 = ty * rows0, J1 = std::min(nv, J0 + rows0);
       for (std::int64_t tx = 0; tx < ntx; ++tx)
         sampler.unit(0, tx * 64, std::min(nx, tx * 64 + 64), J0, J1, lon, lat, val);
       rp.row_done();
     }
   }
+  throw_if_cancelled();
   rp.finish();
 }
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "core/types.hpp"
@@ -93,6 +94,7 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   Timer t_nodes;
   quadtree::QuadNodes qn = quadtree::build_nodes(leaves, lat, quadtree::NodeOptions{triangles});
   const double nodes_s = t_nodes.wall_s();
+  throw_if_cancelled();  // between the steps (core/cancel.hpp)
   return build_mesh(leaves, std::move(qn), nodes_s, lat, rotation, bathy, options, log, report, stage);
 }
 
@@ -156,9 +158,11 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, quadtree::QuadNodes q
     }
   }
   const double coords_s = t_coords.wall_s();
+  throw_if_cancelled();
   Timer t_depth;
   bathy.sample_points(mesh.lon_deg.data(), mesh.lat_deg.data(), n, mesh.depth_m.data(), log.progress("depths"));
   const double depth_s = t_depth.wall_s();
+  throw_if_cancelled();
 
   // Squares and triangles.
   Timer t_tri;

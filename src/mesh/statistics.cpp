@@ -15,6 +15,7 @@
 #include <limits>
 #include <span>
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/finite.hpp"
 #include "core/rotation.hpp"
@@ -332,6 +333,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     }
   }
 
+  throw_if_cancelled();  // between the passes (core/cancel.hpp)
   // Edges: half-edges bucketed by their smaller node (stable counting sort, mesh/buckets.hpp), each
   // bucket sorted by the other node; a group of 1 is a boundary edge, of 2 (opposite directions) an
   // interior one. Edges are numbered by (smaller node, larger node).
@@ -378,6 +380,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   // runs from the larger node to the smaller.
   if (per_edge_areas && s.edges >= (std::int64_t{1} << 31)) throw InternalError("mesh statistics: 2^31 edges or more");
   FillVector<std::int32_t> face_edge(per_edge_areas ? half.values.size() : 0);
+  throw_if_cancelled();  // between the passes (core/cancel.hpp)
   // Components of the faces joined by interior edges: union–find, the larger root linked under the
   // smaller by compare-and-swap (parents only decrease, so no cycles form), so that the buckets can
   // be walked in parallel; the number of roots does not depend on the order of the unions.
@@ -501,6 +504,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   if (!options.geodesic) return s;
   s.geodesic = true;
 
+  throw_if_cancelled();  // between the passes (core/cancel.hpp)
   // Filled area of the squares on WGS84. Without rotation a lattice cell between geodetic
   // latitudes φ1, φ2 has the exact area Rq²·Δλ·(sin ξ2 − sin ξ1), ξ the authalic latitude and Rq
   // the authalic radius. With rotation the cell lies between parallels and meridians of the
@@ -629,6 +633,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   for (const double a : square_m2) filled_m2 += a;  // serial: the same sum for any thread count
   s.filled_area_km2 = filled_m2 * 1e-6;
 
+  throw_if_cancelled();  // between the passes (core/cancel.hpp)
   // The tolerance of |triangle area − filled area|, from the error it bounds. Interior edges are
   // one geodesic for both neighbouring triangles and cancel, and the squares tile the filled set
   // exactly, so the two areas differ by the lenses between each boundary edge's geodesic and the
@@ -722,6 +727,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
     return polygon_area_m2(lat, rot, ui, uj, n);
   };
 
+  throw_if_cancelled();  // between the passes (core/cancel.hpp)
   // Element areas.
   FillVector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
   FillVector<double> area(static_cast<std::size_t>(nfaces));

@@ -12,6 +12,7 @@
 #include "core/types.hpp"
 #include "io/file_writer.hpp"
 #include "mesh_files/element_kinds.hpp"
+#include "mesh_files/model_columns.hpp"
 
 namespace aq::io {
 
@@ -65,14 +66,33 @@ std::string FesomRotation::namelist() const {
                      force_rotation ? ".true." : ".false.", alpha_deg, beta_deg, gamma_deg);
 }
 
-WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path& path) {
-  check_triangles(mesh, path);
-  const std::int64_t np = mesh.node_count();
-  std::vector<char> boundary(static_cast<std::size_t>(np), 0);
+std::vector<std::uint8_t> fesom_boundary_flags(const mesh::Mesh& mesh) {
+  std::vector<std::uint8_t> boundary(static_cast<std::size_t>(mesh.node_count()), 0);
   for (const auto& e : mesh.boundary_edges) {
     boundary[static_cast<std::size_t>(e[0])] = 1;
     boundary[static_cast<std::size_t>(e[1])] = 1;
   }
+  return boundary;
+}
+
+std::vector<NodeId> fesom_open_boundary_nodes(const mesh::Mesh& mesh) {
+  std::vector<NodeId> nodes;
+  std::vector<char> seen(static_cast<std::size_t>(mesh.node_count()), 0);
+  for (const auto& s : mesh.segments) {
+    if (s.type != mesh::BoundaryType::kOpen) continue;
+    for (const NodeId n : s.nodes) {
+      if (seen[static_cast<std::size_t>(n)] != 0) continue;
+      seen[static_cast<std::size_t>(n)] = 1;
+      nodes.push_back(n);
+    }
+  }
+  return nodes;
+}
+
+WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path& path) {
+  check_triangles(mesh, path);
+  const std::int64_t np = mesh.node_count();
+  const std::vector<std::uint8_t> boundary = fesom_boundary_flags(mesh);
   FileWriter f(path);
   auto& buf = f.buffer();
   f.print("{}\n", np);
@@ -80,7 +100,7 @@ WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path
   for (NodeId n = 0; n < np; ++n) {
     const int flag = boundary[static_cast<std::size_t>(n)];
     flagged += flag;
-    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {}\n"), n + 1, wrap_lon_deg(mesh.lon_deg[n], -180.0),
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {}\n"), n + 1, model_lon_deg(mesh.lon_deg[n]),
                    mesh.lat_deg[n], flag);
     f.maybe_flush();
   }
@@ -92,16 +112,7 @@ WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path
 }
 
 WriteStats write_fesom_open_boundary(const mesh::Mesh& mesh, const std::filesystem::path& path) {
-  std::vector<NodeId> nodes;
-  std::vector<char> seen(static_cast<std::size_t>(mesh.node_count()), 0);
-  for (const auto& s : mesh.segments) {
-    if (s.type != mesh::BoundaryType::kOpen) continue;
-    for (const NodeId n : s.nodes) {
-      if (seen[static_cast<std::size_t>(n)] != 0) continue;
-      seen[static_cast<std::size_t>(n)] = 1;
-      nodes.push_back(n);
-    }
-  }
+  const std::vector<NodeId> nodes = fesom_open_boundary_nodes(mesh);
   if (!mesh.typed || nodes.empty()) throw InternalError("FESOM open-boundary file: the mesh has no open boundary");
   FileWriter f(path);
   f.print("{}\n", nodes.size());
@@ -118,8 +129,8 @@ WriteStats write_fesom_elem2d(const mesh::Mesh& mesh, const std::filesystem::pat
   auto& buf = f.buffer();
   f.print("{}\n", mesh.triangle_count());
   for (const auto& t : mesh.triangles) {
-    // Mesh triangles are anticlockwise: n1 n3 n2 is clockwise.
-    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {}\n"), t[0] + 1, t[2] + 1, t[1] + 1);
+    const auto c = fesom_triangle(t);  // clockwise
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {}\n"), c[0] + 1, c[1] + 1, c[2] + 1);
     f.maybe_flush();
   }
   WriteStats stats;
@@ -142,7 +153,7 @@ WriteStats write_fesom_aux3d(const mesh::Mesh& mesh, const std::filesystem::path
   f.print("{}\n", levels_m.size());
   for (const double z : levels_m) f.print("{}\n", negated(z));
   for (const double e : mesh.depth_m) {
-    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), e < 0.0 ? e : 0.0);
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), fesom_bottom_m(e));
     f.maybe_flush();
   }
   WriteStats stats;

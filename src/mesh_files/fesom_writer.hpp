@@ -33,10 +33,12 @@
 // with angles 0, 0, 0 also runs an unrotated mesh (the model pole on the polar island).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "core/types.hpp"
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
 
@@ -53,6 +55,12 @@ struct FesomRotation {
   [[nodiscard]] std::string namelist() const;
 };
 FesomRotation fesom_rotation(const mesh::RotationInfo& rotation);
+
+/// nod2d.out's flag of every node: 1 on a boundary edge (coast, open boundary, polar island), 0 inside.
+std::vector<std::uint8_t> fesom_boundary_flags(const mesh::Mesh& mesh);
+/// The open-boundary file's nodes (0-based): the nodes of the open segments in their order, each
+/// once; empty for a mesh without open segments.
+std::vector<NodeId> fesom_open_boundary_nodes(const mesh::Mesh& mesh);
 
 /// nod2d.out of the triangles' nodes. WriteStats::boundary_edges counts the nodes flagged 1.
 WriteStats write_fesom_nod2d(const mesh::Mesh& mesh, const std::filesystem::path& path);

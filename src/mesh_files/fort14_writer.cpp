@@ -9,9 +9,9 @@
 
 #include "core/error.hpp"
 #include "core/types.hpp"
-#include "io/depth.hpp"
 #include "io/file_writer.hpp"
 #include "mesh_files/element_kinds.hpp"
+#include "mesh_files/model_columns.hpp"
 
 namespace aq::io {
 
@@ -28,8 +28,8 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
   const std::int64_t np = mesh.node_count(), ne = mesh.triangle_count();
   f.print("{}\n{} {}\n", title, ne, np);
   for (NodeId n = 0; n < np; ++n) {
-    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {}\n"), n + 1, wrap_lon_deg(mesh.lon_deg[n], -180.0),
-                   mesh.lat_deg[n], depth_below_datum_m(mesh.depth_m[n]));
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{} {} {} {}\n"), n + 1, model_lon_deg(mesh.lon_deg[n]),
+                   mesh.lat_deg[n], fort14_depth_m(mesh.depth_m[n]));
     f.maybe_flush();
   }
   for (std::int64_t e = 0; e < ne; ++e) {
@@ -38,88 +38,78 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
     f.maybe_flush();
   }
 
-  const auto finish = [&](std::int64_t boundary_edges) {
-    WriteStats stats;
-    stats.bytes = f.close();
-    stats.nodes = np;
-    stats.elements = ne;
-    stats.boundary_edges = boundary_edges;
-    return stats;
-  };
-  if (mesh.typed) {
-    std::int64_t nope = 0, neta = 0, nbou = 0, nvel = 0, edges = 0;
-    const auto in_open_list = [&options](const mesh::BoundarySegment& sg) {
-      return sg.type == mesh::BoundaryType::kOpen || (options.rivers_open && sg.type == mesh::BoundaryType::kRiver);
-    };
-    for (const auto& sg : mesh.segments) {
-      if (in_open_list(sg)) {
-        ++nope;
-        neta += static_cast<std::int64_t>(sg.nodes.size());
-      } else {
-        ++nbou;
-        nvel += static_cast<std::int64_t>(sg.nodes.size()) + (sg.closed ? 1 : 0);
-        edges += static_cast<std::int64_t>(sg.nodes.size()) - (sg.closed ? 0 : 1);
-      }
-    }
-    f.print("{} ! NOPE = number of open boundaries\n{} ! NETA = total number of open boundary nodes\n", nope, neta);
-    std::int64_t k = 0;
-    for (const auto& sg : mesh.segments) {
-      if (!in_open_list(sg)) continue;
-      if (sg.type == mesh::BoundaryType::kRiver)
-        f.print("{} 0 ! open boundary {} (river inflow)\n", sg.nodes.size(), ++k);
-      else
-        f.print("{} 0 ! open boundary {}\n", sg.nodes.size(), ++k);
-      for (const NodeId n : sg.nodes) {
-        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
-        f.maybe_flush();
-      }
-    }
-    f.print("{} ! {} = number of land boundaries\n{} ! NVEL = total number of land boundary nodes\n", nbou,
-            options.land_count_name, nvel);
-    k = 0;
-    for (const auto& sg : mesh.segments) {
-      if (in_open_list(sg)) continue;
-      const bool island = sg.type == mesh::BoundaryType::kIsland, river = sg.type == mesh::BoundaryType::kRiver;
-      f.print("{} {} ! land boundary {} ({})\n", sg.nodes.size() + (sg.closed ? 1 : 0),
-              river    ? options.river_type
-              : island ? options.island_type
-                       : options.mainland_type,
-              ++k,
-              river       ? "river inflow: specified normal flux"
-              : island    ? "island"
-              : sg.closed ? "mainland, closed"
-                          : "mainland");
-      for (const NodeId n : sg.nodes) {
-        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
-        f.maybe_flush();
-      }
-      if (sg.closed) f.print("{}\n", sg.nodes.front() + 1);
-    }
-    return finish(edges);
+  const Fort14Boundaries b = fort14_boundaries(mesh, options);
+  std::int64_t neta = 0, nvel = 0, edges = 0;
+  for (const auto& o : b.open) neta += static_cast<std::int64_t>(o.nodes.size());
+  for (const auto& l : b.land) {
+    nvel += static_cast<std::int64_t>(l.nodes.size());
+    edges += static_cast<std::int64_t>(l.nodes.size()) - 1;
   }
-
-  std::int64_t nvel = 0, edges = 0;
-  for (const auto& loop : mesh.loops) {
-    if (loop.nodes.empty()) continue;
-    nvel += static_cast<std::int64_t>(loop.nodes.size()) + 1;
-    edges += static_cast<std::int64_t>(loop.nodes.size());
-  }
-  const auto nbou = std::count_if(mesh.loops.begin(), mesh.loops.end(), [](const auto& l) { return !l.nodes.empty(); });
-  f.print("0 ! NOPE = number of open boundaries\n0 ! NETA = total number of open boundary nodes\n");
-  f.print("{} ! {} = number of land boundaries\n{} ! NVEL = total number of land boundary nodes\n", nbou,
-          options.land_count_name, nvel);
-  std::int64_t k = 0;
-  for (const auto& loop : mesh.loops) {
-    if (loop.nodes.empty()) continue;
-    const int ibtype = loop.outer ? 0 : 1;
-    f.print("{} {} ! boundary {} ({})\n", loop.nodes.size() + 1, ibtype, ++k, loop.outer ? "mainland" : "island");
-    for (const NodeId n : loop.nodes) {
+  f.print("{} ! NOPE = number of open boundaries\n{} ! NETA = total number of open boundary nodes\n", b.open.size(),
+          neta);
+  for (const auto& o : b.open) {
+    f.print("{} {} ! {}\n", o.nodes.size(), o.flag, o.comment);
+    for (const NodeId n : o.nodes) {
       fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
       f.maybe_flush();
     }
-    f.print("{}\n", loop.nodes.front() + 1);
   }
-  return finish(edges);
+  f.print("{} ! {} = number of land boundaries\n{} ! NVEL = total number of land boundary nodes\n", b.land.size(),
+          options.land_count_name, nvel);
+  for (const auto& l : b.land) {
+    f.print("{} {} ! {}\n", l.nodes.size(), l.flag, l.comment);
+    for (const NodeId n : l.nodes) {
+      fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
+      f.maybe_flush();
+    }
+  }
+  WriteStats stats;
+  stats.bytes = f.close();
+  stats.nodes = np;
+  stats.elements = ne;
+  stats.boundary_edges = edges;
+  return stats;
+}
+
+Fort14Boundaries fort14_boundaries(const mesh::Mesh& mesh, const Fort14Options& options) {
+  Fort14Boundaries b;
+  if (mesh.typed) {
+    for (const auto& sg : mesh.segments) {
+      Fort14Boundary l;
+      l.type = sg.type;
+      l.closed = sg.closed;
+      l.nodes = sg.nodes;
+      if (sg.closed) l.nodes.push_back(sg.nodes.front());
+      const bool river = sg.type == mesh::BoundaryType::kRiver;
+      if (sg.type == mesh::BoundaryType::kOpen || (options.rivers_open && river)) {
+        l.comment = river ? fmt::format("open boundary {} (river inflow)", b.open.size() + 1)
+                          : fmt::format("open boundary {}", b.open.size() + 1);
+        b.open.push_back(std::move(l));
+        continue;
+      }
+      const bool island = sg.type == mesh::BoundaryType::kIsland;
+      l.flag = river ? options.river_type : island ? options.island_type : options.mainland_type;
+      l.comment = fmt::format("land boundary {} ({})", b.land.size() + 1,
+                              river       ? "river inflow: specified normal flux"
+                              : island    ? "island"
+                              : sg.closed ? "mainland, closed"
+                                          : "mainland");
+      b.land.push_back(std::move(l));
+    }
+    return b;
+  }
+  for (const auto& loop : mesh.loops) {
+    if (loop.nodes.empty()) continue;
+    Fort14Boundary l;
+    l.type = loop.outer ? mesh::BoundaryType::kMainland : mesh::BoundaryType::kIsland;
+    l.flag = loop.outer ? 0 : 1;
+    l.closed = true;
+    l.nodes = loop.nodes;
+    l.nodes.push_back(loop.nodes.front());
+    l.comment = fmt::format("boundary {} ({})", b.land.size() + 1, loop.outer ? "mainland" : "island");
+    b.land.push_back(std::move(l));
+  }
+  return b;
 }
 
 }  // namespace aq::io

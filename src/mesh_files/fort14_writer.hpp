@@ -34,7 +34,9 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include "core/types.hpp"
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
 
@@ -55,6 +57,25 @@ struct Fort14Options {
   int river_type = 22;
   bool rivers_open = false;
 };
+
+/// One boundary list of the file (an open segment, a land boundary), as the file lists it.
+struct Fort14Boundary {
+  mesh::BoundaryType type = mesh::BoundaryType::kMainland;
+  /// Land: IBTYPE (fort.14; Fort14Options::mainland_type / island_type / river_type on a typed mesh, 0 for the
+  /// outer loop and 1 for the others on an untyped one); open: 0, written after the node count.
+  int flag = 0;
+  bool closed = false;        ///< a whole loop: the first node is listed again at the end
+  std::vector<NodeId> nodes;  ///< 0-based node ids in the file's order (the closing repeat included)
+  std::string comment;        ///< the text after "!" on the list's header line
+};
+
+/// The boundary lists of `mesh` in the file's order: the open segments (NOPE of them), then the
+/// land boundaries (NBOU). write_fort14 writes exactly these (its NETA and NVEL are their node
+/// counts). An untyped mesh: no open segment, one land boundary per non-empty loop.
+struct Fort14Boundaries {
+  std::vector<Fort14Boundary> open, land;
+};
+Fort14Boundaries fort14_boundaries(const mesh::Mesh& mesh, const Fort14Options& options = {});
 
 /// Writes the triangles of `mesh` to `path` (a temporary path of an OutputSet). Throws
 /// OutputError naming the path on any write failure, InternalError when the mesh has no

@@ -15,14 +15,18 @@
 
 namespace aq::io {
 
-WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::path& path, const SchismOptions& options) {
+Fort14Options schism_hgrid_layout(const SchismOptions& options) {
   Fort14Options o;
   o.title = options.title;
   o.land_count_name = "NLAND";
   o.mainland_type = 0;  // SCHISM's land flag: 0 land, 1 island
   o.island_type = 1;
   o.rivers_open = true;  // SCHISM: a river is an open (flow) boundary; bctides.in sets its ifltype
-  return write_fort14(mesh, path, o);
+  return o;
+}
+
+WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::path& path, const SchismOptions& options) {
+  return write_fort14(mesh, path, schism_hgrid_layout(options));
 }
 
 WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::path& path, const std::string& title) {

@@ -30,6 +30,7 @@
 
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh_files/fort14_writer.hpp"
 
 namespace aq::io {
 
@@ -70,5 +71,8 @@ WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::p
 
 WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::path& path,
                               const SchismOptions& options = {});
+/// The fort.14 writer's options write_schism_hgrid writes with: SCHISM's names (NLAND) and land
+/// flags (0 land, 1 island); fort14_boundaries() with them gives the file's boundary lists.
+Fort14Options schism_hgrid_layout(const SchismOptions& options = {});
 
 }  // namespace aq::io

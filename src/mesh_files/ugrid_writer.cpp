@@ -1,182 +1,36 @@
-// UGRID-1.0 netCDF writer (see ugrid_writer.hpp for the file layout).
+// UGRID-1.0 netCDF writer (see ugrid_writer.hpp for the file layout): the dataset is described
+// once, through io::DatasetSink, into a netCDF file or into memory.
 #include "mesh_files/ugrid_writer.hpp"
 
 #include <fmt/format.h>
-#include <netcdf.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <optional>
-#include <string_view>
-#include <type_traits>
 #include <unordered_set>
 #include <vector>
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
-#include "io/deflate_ahead.hpp"
 #include "io/depth.hpp"
-#include "io/netcdf_file.hpp"
+#include "io/netcdf_dataset.hpp"
 #include "mesh_files/geographic_mesh.hpp"
 
 namespace aq::io {
 
 namespace {
 
-// Rows per nc_put_vara call. HDF5 places the chunks in the file as its chunk cache flushes them,
-// so this also fixes the file's bytes: another value writes the same data in another layout.
+// Rows per put (one block of a netCDF write). HDF5 places the chunks in the file as its chunk cache
+// flushes them, so this also fixes the file's bytes: another value writes the same data in another
+// layout.
 constexpr std::int64_t kChunk = std::int64_t{1} << 20;
 constexpr char kWgs84Wkt[] =
     "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],PRIMEM[\"Greenwich\",0],"
     "UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
-
-// A netCDF file being created; every call is checked and a failure throws OutputError naming the
-// file. The destructor aborts (and so deletes) a file that was not closed.
-class NcWriter {
- public:
-  // deflate 1..9: netCDF-4 with every array chunked and compressed at that level; 0: no compression.
-  NcWriter(std::filesystem::path path, bool netcdf4, int deflate) : path_(std::move(path)), deflate_(deflate) {
-    if (deflate_ < 0 || deflate_ > 9)
-      throw ConfigError(fmt::format("output.ugrid_deflate = {}: must be 0 (classic, uncompressed) .. 9", deflate_));
-    const int mode = NC_CLOBBER | (netcdf4 || deflate_ > 0 ? NC_NETCDF4 : NC_64BIT_OFFSET);
-    check(nc_create(path_.c_str(), mode, &id_), "cannot create");
-    int old = 0;
-    check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
-    if (deflate_ > 0) ahead_.emplace();
-  }
-  ~NcWriter() {
-    if (id_ >= 0) nc_abort(id_);
-  }
-  NcWriter(const NcWriter&) = delete;
-  NcWriter& operator=(const NcWriter&) = delete;
-
-  void check(int status, std::string_view what) const {
-    if (status != NC_NOERR) {
-      throw OutputError(
-          fmt::format("{}: netCDF {}: {}{}", path_.string(), what, nc_strerror(status), io::write_failure_note(path_)));
-    }
-  }
-  [[nodiscard]] int id() const { return id_; }
-
-  int dim(const std::string& name, std::int64_t len) {
-    int d = -1;
-    check(nc_def_dim(id_, name.c_str(), static_cast<std::size_t>(len), &d), "define dimension " + name);
-    if (static_cast<std::size_t>(d) >= dim_len_.size()) dim_len_.resize(static_cast<std::size_t>(d) + 1, 0);
-    dim_len_[static_cast<std::size_t>(d)] = static_cast<std::size_t>(len);
-    return d;
-  }
-  int var(const std::string& name, nc_type type, std::initializer_list<int> dims) {
-    int v = -1;
-    const std::vector<int> d(dims);
-    check(nc_def_var(id_, name.c_str(), type, static_cast<int>(d.size()), d.data(), &v), "define variable " + name);
-    if (d.empty()) scalars_.push_back(v);
-    if (static_cast<std::size_t>(v) >= chunk_rows_.size()) chunk_rows_.resize(static_cast<std::size_t>(v) + 1, 0);
-    if (deflate_ > 0 && !d.empty()) {
-      std::vector<std::size_t> chunk;
-      for (const int k : d) chunk.push_back(dim_len_[static_cast<std::size_t>(k)]);
-      chunk[0] = std::max<std::size_t>(1, std::min(chunk[0], kChunkRows));
-      check(nc_def_var_chunking(id_, v, NC_CHUNKED, chunk.data()), "chunking of " + name);
-      check(nc_def_var_deflate(id_, v, 1, 1, deflate_), "compression of " + name);
-      chunk_rows_[static_cast<std::size_t>(v)] = chunk[0];
-    }
-    return v;
-  }
-  void text(int var, const char* name, std::string_view value) {
-    check(nc_put_att_text(id_, var, name, value.size(), value.data()), std::string("attribute ") + name);
-  }
-  void number(int var, const char* name, double value) {
-    check(nc_put_att_double(id_, var, name, NC_DOUBLE, 1, &value), std::string("attribute ") + name);
-  }
-  void integer(int var, const char* name, int value) {
-    check(nc_put_att_int(id_, var, name, NC_INT, 1, &value), std::string("attribute ") + name);
-  }
-  void index_fill(int var, nc_type type) {
-    if (type == NC_INT) {
-      const int fill = -1;
-      check(nc_put_att_int(id_, var, "_FillValue", NC_INT, 1, &fill), "attribute _FillValue");
-    } else {
-      const long long fill = -1;
-      check(nc_put_att_longlong(id_, var, "_FillValue", NC_INT64, 1, &fill), "attribute _FillValue");
-    }
-  }
-  // Ends the definitions and writes 0 into the scalar (container) variables: with NC_NOFILL an
-  // unwritten netCDF-4 scalar would hold whatever the memory held, and the bytes would vary.
-  void enddef() {
-    check(nc_enddef(id_), "end of definitions");
-    const int zero = 0;
-    for (const int v : scalars_) check(nc_put_var_int(id_, v, &zero), "write a scalar variable");
-  }
-
-  // Rows [row, row + rows) of `var` (a 1-D variable: cols = 1). Index arrays are made as long
-  // long and written as NC_INT when they fit (index_type): converted here once, a plain copy
-  // instead of netCDF's checked conversion of every value.
-  template <typename T>
-  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const T* data) {
-    if constexpr (std::is_same_v<T, long long>) {
-      if (type_of(var) == NC_INT) {
-        narrow_.resize(static_cast<std::size_t>(rows * cols));  // kept: one allocation for every chunk
-        for (std::size_t k = 0; k < narrow_.size(); ++k) narrow_[k] = static_cast<int>(data[k]);
-        put(var, row, rows, cols, narrow_.data());
-        return;
-      }
-    }
-    const std::size_t chunk_rows = chunk_rows_[static_cast<std::size_t>(var)];
-    if (ahead_ && ahead_->active() && chunk_rows > 0 && static_cast<std::size_t>(row) % chunk_rows == 0) {
-      const std::size_t row_bytes = static_cast<std::size_t>(cols) * sizeof(T);
-      ahead_->prepare(data, static_cast<std::size_t>(rows) * row_bytes, chunk_rows * row_bytes, sizeof(T), true,
-                      deflate_);
-    }
-    const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
-    const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
-    check(put_vara(id_, var, start, count, data), "write data");
-  }
-  void close() {
-    const int id = id_;
-    id_ = -1;
-    const int status = nc_close(id);
-    if (status != NC_NOERR) nc_abort(id);  // nothing of the file stays open for HDF5's exit handler
-    check(status, "close");
-  }
-
-  /// The netCDF type of variable `var`.
-  [[nodiscard]] nc_type type_of(int var) const {
-    nc_type t = NC_NAT;
-    check(nc_inq_vartype(id_, var, &t), "variable type");
-    return t;
-  }
-
- private:
-  static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
-  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const double* d) {
-    return nc_put_vara_double(id, v, s, c, d);
-  }
-  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const long long* d) {
-    return nc_put_vara_longlong(id, v, s, c, d);
-  }
-  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const int* d) {
-    return nc_put_vara_int(id, v, s, c, d);
-  }
-  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const short* d) {
-    return nc_put_vara_short(id, v, s, c, d);
-  }
-  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const signed char* d) {
-    return nc_put_vara_schar(id, v, s, c, d);
-  }
-  std::filesystem::path path_;
-  int deflate_ = 0;
-  std::vector<std::size_t> dim_len_;     ///< length of each defined dimension, by id
-  std::vector<int> scalars_;             ///< variables without dimensions (topology, grid mappings)
-  std::vector<std::size_t> chunk_rows_;  ///< by variable: rows per chunk of a compressed one, else 0
-  // With deflate: the chunks of each put compressed ahead on the OpenMP team
-  // (io/deflate_ahead.hpp: the same bytes); alive until after nc_close / nc_abort.
-  std::optional<DeflateAhead> ahead_;
-  std::vector<int> narrow_;  ///< put's NC_INT copy of long long indices
-  int id_ = -1;
-};
 
 // The faces of one topology: triangles, or square polygons with their hanging nodes.
 class FaceSet {
@@ -326,19 +180,19 @@ struct TopologyVars {
 };
 
 // Defines one topology's variables (the nodes and boundary are shared, defined by the caller).
-TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count,
-                             int two, nc_type index_type, bool with_boundary, const std::string& node_coordinates) {
+TopologyVars define_topology(DatasetSink& nc, const TopologyNames& n, const FaceSet& faces, std::int64_t edge_count,
+                             int two, DataType index_type, bool with_boundary, const std::string& node_coordinates) {
   TopologyVars v;
   const int face_dim = nc.dim(n.face_dim, faces.count());
   const int edge_dim = nc.dim(n.edge_dim, edge_count);
   const int max_dim = nc.dim(n.max_dim, faces.max_nodes());
 
-  const int topo = nc.var(n.mesh, NC_INT, {});
+  const int topo = nc.var(n.mesh, DataType::kInt, {});
   nc.text(topo, "cf_role", "mesh_topology");
   nc.text(topo, "long_name",
           n.mesh == "mesh" ? "Topology of the ocean mesh"
                            : "Topology of the quadtree squares (polygons with hanging nodes)");
-  nc.integer(topo, "topology_dimension", 2);
+  nc.number(topo, "topology_dimension", DataType::kInt, 2);
   nc.text(topo, "node_coordinates", node_coordinates);
   nc.text(topo, "face_node_connectivity", n.faces);
   nc.text(topo, "face_dimension", n.face_dim);
@@ -350,32 +204,32 @@ TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet
   v.faces = nc.var(n.faces, index_type, {face_dim, max_dim});
   nc.text(v.faces, "cf_role", "face_node_connectivity");
   nc.text(v.faces, "long_name", "Nodes of each face, anticlockwise");
-  nc.integer(v.faces, "start_index", 0);
-  if (faces.max_nodes() > 3) nc.index_fill(v.faces, index_type);
+  nc.number(v.faces, "start_index", DataType::kInt, 0);
+  if (faces.max_nodes() > 3) nc.number(v.faces, "_FillValue", index_type, -1);
 
   v.edges = nc.var(n.edges, index_type, {edge_dim, two});
   nc.text(v.edges, "cf_role", "edge_node_connectivity");
   nc.text(v.edges, "long_name", "Nodes of each edge (every edge once)");
-  nc.integer(v.edges, "start_index", 0);
+  nc.number(v.edges, "start_index", DataType::kInt, 0);
 
-  v.face_x = nc.var(n.face_x, NC_DOUBLE, {face_dim});
+  v.face_x = nc.var(n.face_x, DataType::kDouble, {face_dim});
   nc.text(v.face_x, "standard_name", "longitude");
   nc.text(v.face_x, "long_name", "Longitude of the face centre");
   nc.text(v.face_x, "units", "degrees_east");
   nc.text(v.face_x, "bounds", n.face_x + "_bnds");
-  v.face_y = nc.var(n.face_y, NC_DOUBLE, {face_dim});
+  v.face_y = nc.var(n.face_y, DataType::kDouble, {face_dim});
   nc.text(v.face_y, "standard_name", "latitude");
   nc.text(v.face_y, "long_name", "Latitude of the face centre");
   nc.text(v.face_y, "units", "degrees_north");
   nc.text(v.face_y, "bounds", n.face_y + "_bnds");
-  v.face_x_bnds = nc.var(n.face_x + "_bnds", NC_DOUBLE, {face_dim, max_dim});
+  v.face_x_bnds = nc.var(n.face_x + "_bnds", DataType::kDouble, {face_dim, max_dim});
   nc.text(v.face_x_bnds, "long_name", "Longitudes of the face corners, continuous around the face centre");
   nc.text(v.face_x_bnds, "units", "degrees_east");
-  v.face_y_bnds = nc.var(n.face_y + "_bnds", NC_DOUBLE, {face_dim, max_dim});
+  v.face_y_bnds = nc.var(n.face_y + "_bnds", DataType::kDouble, {face_dim, max_dim});
   nc.text(v.face_y_bnds, "long_name", "Latitudes of the face corners");
   nc.text(v.face_y_bnds, "units", "degrees_north");
 
-  v.level = nc.var(n.level, NC_SHORT, {face_dim});
+  v.level = nc.var(n.level, DataType::kShort, {face_dim});
   nc.text(v.level, "long_name", "Quadtree level of the face (0 = coarsest)");
   nc.text(v.level, "units", "1");
   nc.text(v.level, "mesh", n.mesh);
@@ -430,9 +284,9 @@ std::array<double, 2> face_centre(const mesh::Mesh& mesh, const PoleRotation& ro
 // The faces' variables, slab by slab (kChunk faces) and, within a slab, one variable at a time
 // in the netCDF calls' fixed order, each made just before it is written into one of a few
 // reused buffers (at 15" 40 MB instead of 105 MB of slab arrays beside the other writers).
-// Node numbers go out in the variable's own type (NC_INT when they fit).
+// Node numbers go out in the variable's own type (int when they fit: index_type DataType::kInt).
 template <typename Index>
-void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v) {
+void write_faces(DatasetSink& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v) {
   const int w = faces.max_nodes();
   const PoleRotation rotation =
       mesh.rotation.enabled ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation();
@@ -441,6 +295,7 @@ void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, con
   std::vector<short> lev;
   std::array<NodeId, kMaxSquarePolygon> p{};
   for (std::int64_t f0 = 0; f0 < faces.count(); f0 += kChunk) {
+    throw_if_cancelled();  // between blocks (core/cancel.hpp)
     const std::int64_t rows = std::min(kChunk, faces.count() - f0);
     const auto ur = static_cast<std::size_t>(rows), uw = static_cast<std::size_t>(w);
     idx.assign(ur * uw, Index{-1});
@@ -448,7 +303,7 @@ void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, con
       const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
       for (int a = 0; a < k; ++a) idx[r * uw + static_cast<std::size_t>(a)] = static_cast<Index>(p[a]);
     }
-    nc.put(v.faces, f0, rows, w, idx.data());
+    nc.put(v.faces, f0, rows, idx.data());
     cx.resize(ur);
     cy.resize(ur);
     for (std::size_t r = 0; r < ur; ++r) {
@@ -457,8 +312,8 @@ void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, con
       cx[r] = c[0];
       cy[r] = c[1];
     }
-    nc.put(v.face_x, f0, rows, 1, cx.data());
-    nc.put(v.face_y, f0, rows, 1, cy.data());
+    nc.put(v.face_x, f0, rows, cx.data());
+    nc.put(v.face_y, f0, rows, cy.data());
     corners.resize(ur * uw);
     for (const bool lon : {true, false}) {  // the corners' longitudes (around the centre), then latitudes
       for (std::size_t r = 0; r < ur; ++r) {
@@ -469,27 +324,29 @@ void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, con
               lon ? cx[r] + near_zero_remainder(mesh.lon_deg[n] - cx[r]) : mesh.lat_deg[n];
         }
       }
-      nc.put(lon ? v.face_x_bnds : v.face_y_bnds, f0, rows, w, corners.data());
+      nc.put(lon ? v.face_x_bnds : v.face_y_bnds, f0, rows, corners.data());
     }
     lev.resize(ur);
     for (std::size_t r = 0; r < ur; ++r) lev[r] = static_cast<short>(faces.level(f0 + static_cast<std::int64_t>(r)));
-    nc.put(v.level, f0, rows, 1, lev.data());
+    nc.put(v.level, f0, rows, lev.data());
   }
 }
 
-void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
-                    const UniqueEdges& edges) {
-  if (nc.type_of(v.faces) == NC_INT)
+void write_topology(DatasetSink& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
+                    const UniqueEdges& edges, DataType index_type) {
+  if (index_type == DataType::kInt)
     write_faces<int>(nc, mesh, faces, v);
   else
     write_faces<long long>(nc, mesh, faces, v);
-  edges.for_each_chunk(
-      kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) { nc.put(v.edges, e0, rows, 2, pairs); });
+  edges.for_each_chunk(kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) {
+    throw_if_cancelled();
+    nc.put(v.edges, e0, rows, pairs);
+  });
 }
 
 }  // namespace
 
-WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path, const UgridOptions& options) {
+UgridCounts ugrid_dataset(const mesh::Mesh& mesh, const UgridOptions& options, DatasetSink& nc) {
   check_elements(mesh, options.elements);
   const std::int64_t n = mesh.node_count();
   const bool tri = has_triangles(options.elements), sq = has_squares(options.elements);
@@ -498,7 +355,7 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   if (sq) sets.emplace_back(mesh, true);
   for (const auto& s : sets) {
     if (n == 0 || s.count() == 0)
-      throw InternalError(fmt::format("UGRID writer: the mesh is empty ({})", path.string()));
+      throw InternalError(fmt::format("UGRID writer: the mesh is empty ({})", options.what));
   }
   std::vector<UniqueEdges> edges;
   edges.reserve(sets.size());  // they refer to sets[k]: no reallocation of either
@@ -508,12 +365,12 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
     largest = std::max({largest, s.count(), edges.back().count()});
   }
   const bool big = largest > std::numeric_limits<std::int32_t>::max();
-  const nc_type index_type = big ? NC_INT64 : NC_INT;
+  const DataType index_type = big ? DataType::kInt64 : DataType::kInt;
   const auto nb = static_cast<std::int64_t>(mesh.boundary_edges.size());
   const bool rotated = mesh.rotation.enabled;
 
-  NcWriter nc(path, big, options.deflate);
-  const int g = NC_GLOBAL;
+  nc.start(big);
+  const int g = DatasetSink::kGlobal;
   nc.text(g, "Conventions", "CF-1.8 UGRID-1.0");
   nc.text(g, "title", options.title);
   nc.text(g, "institution", "aquatoria");
@@ -524,12 +381,12 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
           "+-180 deg: draw them with the *_face_x_bnds corners (continuous around each face centre) or in 3-D. "
           "Depth is positive down. Pole-row nodes are distinct nodes at the same point.");
   nc.text(g, "aquatoria_elements", element_kinds_name(options.elements));
-  nc.number(g, "aquatoria_lattice_lon0_deg", mesh.lattice.lon0_deg);
-  nc.number(g, "aquatoria_lattice_step0_deg", mesh.lattice.step0_deg);
-  nc.integer(g, "aquatoria_lattice_levels", mesh.lattice.levels);
+  nc.number(g, "aquatoria_lattice_lon0_deg", DataType::kDouble, mesh.lattice.lon0_deg);
+  nc.number(g, "aquatoria_lattice_step0_deg", DataType::kDouble, mesh.lattice.step0_deg);
+  nc.number(g, "aquatoria_lattice_levels", DataType::kInt, mesh.lattice.levels);
   if (mesh.lattice.mercator()) {  // the lon-lat lattice's files stay as they were
     nc.text(g, "aquatoria_lattice_kind", "mercator");
-    nc.number(g, "aquatoria_lattice_y0_deg", mesh.lattice.y0_deg);
+    nc.number(g, "aquatoria_lattice_y0_deg", DataType::kDouble, mesh.lattice.y0_deg);
   }
 
   const int node_dim = nc.dim("nMesh_node", n);
@@ -547,23 +404,23 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
                                  edges[k].count(), two, index_type, nb > 0, node_coords));
   }
 
-  const int crs = nc.var("crs", NC_INT, {});
+  const int crs = nc.var("crs", DataType::kInt, {});
   nc.text(crs, "grid_mapping_name", "latitude_longitude");
-  nc.number(crs, "semi_major_axis", 6378137.0);
-  nc.number(crs, "inverse_flattening", 298.257223563);
-  nc.number(crs, "longitude_of_prime_meridian", 0.0);
+  nc.number(crs, "semi_major_axis", DataType::kDouble, 6378137.0);
+  nc.number(crs, "inverse_flattening", DataType::kDouble, 298.257223563);
+  nc.number(crs, "longitude_of_prime_meridian", DataType::kDouble, 0.0);
   nc.text(crs, "crs_wkt", kWgs84Wkt);
   nc.text(crs, "epsg_code", "EPSG:4326");
   if (rotated) {
-    const int rp = nc.var("rotated_pole", NC_INT, {});
+    const int rp = nc.var("rotated_pole", DataType::kInt, {});
     nc.text(rp, "grid_mapping_name", "rotated_latitude_longitude");
-    nc.number(rp, "grid_north_pole_latitude", mesh.rotation.pole_lat_deg);
-    nc.number(rp, "grid_north_pole_longitude", mesh.rotation.pole_lon_deg);
-    nc.number(rp, "north_pole_grid_longitude", 180.0);
+    nc.number(rp, "grid_north_pole_latitude", DataType::kDouble, mesh.rotation.pole_lat_deg);
+    nc.number(rp, "grid_north_pole_longitude", DataType::kDouble, mesh.rotation.pole_lon_deg);
+    nc.number(rp, "north_pole_grid_longitude", DataType::kDouble, 180.0);
   }
 
   auto coord = [&](const char* name, const char* standard, const char* long_name, const char* units) {
-    const int v = nc.var(name, NC_DOUBLE, {node_dim});
+    const int v = nc.var(name, DataType::kDouble, {node_dim});
     nc.text(v, "standard_name", standard);
     nc.text(v, "long_name", long_name);
     nc.text(v, "units", units);
@@ -577,7 +434,7 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
     node_rlat = coord("mesh_node_rlat", "grid_latitude", "Rotated latitude of the mesh nodes", "degrees");
   }
 
-  const int depth = nc.var("depth", NC_DOUBLE, {node_dim});
+  const int depth = nc.var("depth", DataType::kDouble, {node_dim});
   nc.text(depth, "standard_name", "sea_floor_depth_below_geoid");
   // Positive down by its standard name. No `positive` attribute: CF gives it to vertical
   // coordinates only, and CDO then takes `depth` for one and skips it as data.
@@ -590,7 +447,7 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   // A node without data (a pole-cap node over a raster's no-data) holds NaN: declared then, and
   // only then, so files of meshes without one keep their bytes.
   if (std::any_of(mesh.depth_m.begin(), mesh.depth_m.end(), [](double d) { return std::isnan(d); }))
-    nc.number(depth, "_FillValue", std::numeric_limits<double>::quiet_NaN());
+    nc.number(depth, "_FillValue", DataType::kDouble, std::numeric_limits<double>::quiet_NaN());
   // A floodplain mesh (mask.min_depth_m < 0) says what its negative depths are (only then: the
   // files of other meshes keep their bytes).
   if (mesh.floodplain_top_m > 0.0)
@@ -599,12 +456,13 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
                         "datum that is connected to the ocean (dry at rest; a model with wetting and drying floods it)",
                         mesh.floodplain_top_m));
 
-  const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
+  const int flags = nc.var("node_flags", DataType::kByte, {node_dim});
   nc.text(flags, "long_name", "Node flags");
   // The moved-node flag only where there is one (the files of other runs keep their bytes).
   const bool moved = mesh.has_moved_nodes();
-  const signed char masks[7] = {1, 2, 4, 8, 16, 32, 64};
-  nc.check(nc_put_att_schar(nc.id(), flags, "flag_masks", NC_BYTE, moved ? 7 : 6, masks), "attribute flag_masks");
+  std::vector<double> masks{1, 2, 4, 8, 16, 32, 64};
+  if (!moved) masks.pop_back();
+  nc.numbers(flags, "flag_masks", DataType::kByte, masks);
   nc.text(flags, "flag_meanings",
           std::string("boundary midside_hanging_node centre_node pole seam pole_cap_node") +
               (moved ? " open_boundary_node_moved_onto_polygon" : ""));
@@ -617,42 +475,41 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
     bnd = nc.var("mesh_boundary_nodes", index_type, {bnd_dim, two});
     nc.text(bnd, "cf_role", "boundary_node_connectivity");
     nc.text(bnd, "long_name", "Boundary (coast) edges a -> b with the wet area on the left");
-    nc.integer(bnd, "start_index", 0);
-    bnd_loop = nc.var("mesh_boundary_loop", NC_INT, {bnd_dim});
+    nc.number(bnd, "start_index", DataType::kInt, 0);
+    bnd_loop = nc.var("mesh_boundary_loop", DataType::kInt, {bnd_dim});
     nc.text(bnd_loop, "long_name", "Boundary loop of each boundary edge (0-based)");
     int outer = -1;
     for (std::size_t l = 0; l < mesh.loops.size(); ++l)
       if (mesh.loops[l].outer) outer = static_cast<int>(l);
-    nc.integer(bnd_loop, "outer_loop", outer);
+    nc.number(bnd_loop, "outer_loop", DataType::kInt, outer);
   }
   int bnd_type = -1;  // regional meshes: the type of each boundary edge (README "Regional FE meshes")
   const bool typed = nb > 0 && mesh.typed && mesh.boundary_edge_type.size() == static_cast<std::size_t>(nb);
   if (typed) {
-    bnd_type = nc.var("mesh_boundary_type", NC_BYTE, {bnd_dim});
+    bnd_type = nc.var("mesh_boundary_type", DataType::kByte, {bnd_dim});
     nc.text(bnd_type, "long_name", "Type of each boundary edge");
     // The river flag only in a mesh that has river inflows (earlier files keep their bytes).
     const bool rivers = std::find(mesh.boundary_edge_type.begin(), mesh.boundary_edge_type.end(),
                                   mesh::BoundaryType::kRiver) != mesh.boundary_edge_type.end();
-    const signed char values[4] = {0, 1, 2, 3};
-    nc.check(nc_put_att_schar(nc.id(), bnd_type, "flag_values", NC_BYTE, rivers ? 4 : 3, values),
-             "attribute flag_values");
+    nc.numbers(bnd_type, "flag_values", DataType::kByte,
+               rivers ? std::vector<double>{0, 1, 2, 3} : std::vector<double>{0, 1, 2});
     nc.text(bnd_type, "flag_meanings", rivers ? "mainland island open river" : "mainland island open");
   }
-  nc.enddef();
+  nc.end_definitions();
 
-  nc.put(node_x, 0, n, 1, mesh.lon_deg.data());
-  nc.put(node_y, 0, n, 1, mesh.lat_deg.data());
+  nc.put(node_x, 0, n, mesh.lon_deg.data());
+  nc.put(node_y, 0, n, mesh.lat_deg.data());
   if (rotated) {
-    nc.put(node_rlon, 0, n, 1, mesh.rlon_deg.data());
-    nc.put(node_rlat, 0, n, 1, mesh.rlat_deg.data());
+    nc.put(node_rlon, 0, n, mesh.rlon_deg.data());
+    nc.put(node_rlat, 0, n, mesh.rlat_deg.data());
   }
   {
     std::vector<double> d(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < d.size(); ++a) d[a] = depth_below_datum_m(mesh.depth_m[a]);
-    nc.put(depth, 0, n, 1, d.data());
+    nc.put(depth, 0, n, d.data());
     std::vector<signed char> fl(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < fl.size(); ++a) fl[a] = static_cast<signed char>(mesh.node_flags[a]);
-    nc.put(flags, 0, n, 1, fl.data());
+    nc.put(flags, 0, n, fl.data());
   }
   if (nb > 0) {
     std::vector<long long> be(static_cast<std::size_t>(2 * nb));
@@ -662,24 +519,35 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
       be[2 * e + 1] = mesh.boundary_edges[e][1];
       if (!mesh.boundary_edge_loop.empty()) loop[e] = mesh.boundary_edge_loop[e];
     }
-    nc.put(bnd, 0, nb, 2, be.data());
-    nc.put(bnd_loop, 0, nb, 1, loop.data());
+    nc.put(bnd, 0, nb, be.data());
+    nc.put(bnd_loop, 0, nb, loop.data());
   }
   if (typed) {
     std::vector<signed char> ty(static_cast<std::size_t>(nb));
     for (std::size_t e = 0; e < ty.size(); ++e) ty[e] = static_cast<signed char>(mesh.boundary_edge_type[e]);
-    nc.put(bnd_type, 0, nb, 1, ty.data());
+    nc.put(bnd_type, 0, nb, ty.data());
   }
-  WriteStats stats;
+  UgridCounts counts;
   for (std::size_t k = 0; k < sets.size(); ++k) {
-    write_topology(nc, mesh, sets[k], tv[k], edges[k]);
-    stats.elements += sets[k].count();
+    write_topology(nc, mesh, sets[k], tv[k], edges[k], index_type);
+    counts.faces += sets[k].count();
   }
-  nc.close();
+  counts.nodes = n;
+  counts.boundary_edges = nb;
+  return counts;
+}
 
+WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path, const UgridOptions& options) {
+  NetcdfDataset nc(path, options.deflate);
+  UgridOptions o = options;
+  o.what = path.string();
+  const UgridCounts counts = ugrid_dataset(mesh, o, nc);
+  nc.close();
+  WriteStats stats;
   stats.bytes = static_cast<std::int64_t>(std::filesystem::file_size(path));
-  stats.nodes = n;
-  stats.boundary_edges = nb;
+  stats.nodes = counts.nodes;
+  stats.elements = counts.faces;
+  stats.boundary_edges = counts.boundary_edges;
   return stats;
 }
 

@@ -44,9 +44,11 @@
 // mesh_face_x_bnds or in 3-D. Pole-row nodes are kept as distinct nodes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
+#include "io/dataset.hpp"
 #include "io/write_stats.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh_files/element_kinds.hpp"
@@ -59,7 +61,20 @@ struct UgridOptions {
   std::string history = "written by aquatoria";  ///< no timestamp: outputs are reproducible
   std::string source = "aquatoria";              ///< e.g. program version and input raster
   int deflate = 1;  ///< 0 = classic 64-bit offset, uncompressed; 1..9 = netCDF-4, shuffle + deflate level
+  std::string what = "in memory";  ///< where the dataset goes, for messages (write_ugrid: the path)
 };
+
+/// What ugrid_dataset described.
+struct UgridCounts {
+  std::int64_t nodes = 0, faces = 0, boundary_edges = 0;
+};
+
+/// Describes the UGRID dataset of `mesh` into `sink` (io/dataset.hpp): the dimensions, variables,
+/// attributes and values write_ugrid puts into its file, in the same order, so a MemoryDataset
+/// holds the file's contents (the Python package's to_xarray). Throws InternalError on an empty or
+/// inconsistent mesh, Cancelled between blocks of faces when the run is asked to stop
+/// (core/cancel.hpp), and what the sink throws.
+UgridCounts ugrid_dataset(const mesh::Mesh& mesh, const UgridOptions& options, DatasetSink& sink);
 
 /// Writes `mesh` to `path` (a temporary path of an OutputSet). Throws OutputError naming the path
 /// on any netCDF failure (including a full disk), InternalError on an empty or inconsistent mesh.

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/load.hpp"
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "quadtree/balance.hpp"
@@ -112,6 +113,7 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   if (options.coast_band != 0 && options.coast_size_km == 0.0) apply_coast_band(masks, options.coast_band);
   const std::vector<std::int64_t> banded = count_leaves_per_level(masks);
   const double masks_s = t_masks.wall_s();
+  throw_if_cancelled();  // between the steps (core/cancel.hpp)
 
   Timer t_rules;
   apply_refinement_rules(masks, lat, options, rotation, bathy);
@@ -128,15 +130,18 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   if (field != nullptr) grade = grade_levels(masks, lat, *field);
   const std::vector<std::int64_t> refined = count_leaves_per_level(masks);
   const double rules_s = t_rules.wall_s();
+  throw_if_cancelled();
 
   Timer t_balance;
   const BalanceStats bstats = balance(masks, mode);
   const std::vector<std::int64_t> balanced = count_leaves_per_level(masks);
   const double balance_s = t_balance.wall_s();
+  throw_if_cancelled();
 
   Timer t_extract;
   std::vector<Leaf> leaves = extract_leaves(masks, lat);
   const double extract_s = t_extract.wall_s();
+  throw_if_cancelled();
   masks = LevelMasks{};
 
   Timer t_check;

@@ -22,8 +22,8 @@
 #include <limits>
 #include <list>
 #include <mutex>
-#include <unordered_map>
 #include <optional>
+#include <unordered_map>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -32,6 +32,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "core/cancel.hpp"
 #include "core/error.hpp"
 #include "core/input_files.hpp"
 #include "core/row_progress.hpp"
@@ -826,6 +827,7 @@ struct Bathymetry::Impl {
     if (map) {
       if (!todo.empty()) map->prefetch(g.first(todo[0]), g.end(todo[0]));
       for (std::size_t k = 0; k < todo.size(); ++k) {
+        throw_if_cancelled();  // between bands (core/cancel.hpp)
         const std::int64_t s = todo[k];
         if (k + 1 < todo.size()) map->prefetch(g.first(todo[k + 1]), g.end(todo[k + 1]));
         normalise_mapped(g.first(s), g.end(s), buf.data(), g.lo(s), stats);
@@ -848,6 +850,7 @@ struct Bathymetry::Impl {
       next.get();
       if (k + 1 < todo.size()) next = std::async(std::launch::async, read, k + 1);
       try {
+        throw_if_cancelled();  // between bands (core/cancel.hpp)
         const std::int64_t s = todo[k], lo = g.lo(s);
         std::int64_t y0 = g.first(s);
         if (carried(k)) {
@@ -1371,6 +1374,7 @@ void Bathymetry::raw_rows(const Columns& cols, const double* lats, std::int64_t 
       if (bilinear) filler.emplace(cols);
 #pragma omp for schedule(static)
       for (std::int64_t k = 0; k < n; ++k) {
+        if (cancel_requested()) continue;  // a stop request (core/cancel.hpp): skipped, thrown below
         std::int64_t r0 = 0, r1 = 0;
         double u = 0.0;
         if (!bilinear) {
@@ -1384,6 +1388,7 @@ void Bathymetry::raw_rows(const Columns& cols, const double* lats, std::int64_t 
         rp.row_done();
       }
     }
+    throw_if_cancelled();
     rp.finish();
     return;
   }
@@ -1918,6 +1923,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
     try {
       im->normalise_rows(y0, y1, raw[k % 2].data(), im->v.data(), im->row_lo, rows.data(), true);
       if (progress) progress(static_cast<double>(y1 - y_lo) / static_cast<double>(y_hi - y_lo), "rows");
+      throw_if_cancelled();  // between chunks (core/cancel.hpp)
     } catch (...) {
       if (next.valid()) next.wait();
       throw;

@@ -1,7 +1,9 @@
 """Fixtures of the Python interface's tests: the command line's files for the same runs.
 
-Run through ctest (label python), which sets PYTHONPATH to the built package and AQ_BINARY to the
-aquatoria executable; by hand:
+Run through ctest (label python), which first installs the package with pip into a virtual
+environment in the build tree (make_venv.py) and runs pytest with that environment's python
+(AQ_PYTHON_VENV names it: the tests then insist on importing the installed copy), with AQ_BINARY
+naming the aquatoria executable; by hand, on the package assembled in the build tree:
     PYTHONPATH=build/python AQ_BINARY=build/aquatoria /usr/bin/python3 -m pytest tests/python
 """
 
@@ -9,6 +11,19 @@ import os
 import subprocess
 
 import pytest
+
+#: The virtual environment ctest installed the package into (None: whatever `import aquatoria` finds).
+VENV = os.environ.get("AQ_PYTHON_VENV")
+
+
+def pytest_sessionstart(session):
+    if VENV:
+        import aquatoria
+
+        where = os.path.realpath(aquatoria.__file__)
+        if not where.startswith(os.path.realpath(VENV) + os.sep):
+            pytest.exit("AQ_PYTHON_VENV=%s, but `import aquatoria` gives %s: the tests must run on the "
+                        "installed package" % (VENV, where), returncode=3)
 
 SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 ETOPO_DIR = "/usr/share/ferret-vis/data"
@@ -69,6 +84,28 @@ def seed_cli(tmp_path_factory):
 def mercator_cli(tmp_path_factory):
     """`aquatoria mesh -c configs/global_mercator.toml` with every format."""
     return _cli_run(tmp_path_factory, "mercator", os.path.join(SOURCE_DIR, "configs", "global_mercator.toml"), [])
+
+
+#: The North Sea regional mesh (open, mainland and island boundaries): every format it can write.
+REGIONAL_FORMATS = [f for f in FORMATS if f != "tif"]
+NORTH_SEA = os.path.join(SOURCE_DIR, "configs", "north_sea.toml")
+
+
+@pytest.fixture(scope="session")
+def north_sea_cli(tmp_path_factory):
+    """`aquatoria mesh -c configs/north_sea.toml` with every format of a regional mesh."""
+    folder = str(tmp_path_factory.mktemp("cli_north_sea"))
+    args = ["mesh", "-q", "-c", NORTH_SEA, "-o", folder, "--set", "output.name=north_sea",
+            "--set", "output.formats=[%s]" % ", ".join('"%s"' % f for f in REGIONAL_FORMATS)]
+    code, err = cli(args, folder)
+    assert code == 0, err
+    return CliRun(folder, "north_sea", NORTH_SEA, [])
+
+
+@pytest.fixture(scope="session")
+def north_sea_run():
+    import aquatoria as aq
+    return aq.mesh(NORTH_SEA, {"output.formats": REGIONAL_FORMATS})
 
 
 @pytest.fixture(scope="session")

@@ -1,5 +1,6 @@
-"""aquatoria.mesh: the arrays equal the command line's files, write() gives its bytes, to_xarray()
-equals its UGRID file and round-trips through netCDF (seed run and Mercator run)."""
+"""aquatoria.mesh: the geographic mesh's arrays equal the command line's UGRID file, write() gives
+its bytes, to_xarray() (made in memory) equals the UGRID file as xarray reads it and round-trips
+through netCDF (seed run and Mercator run). The model formats' meshes: test_model_mesh.py."""
 
 import filecmp
 import json
@@ -53,34 +54,6 @@ def test_arrays_equal_the_ugrid_file(pair):
     assert sum(l["type"] == "mainland" for l in loops) == 1
 
 
-def test_arrays_equal_fort14(pair):
-    """The ADCIRC file holds the mesh cleaned for the models (no triangle hanging on one edge, no
-    pinch): its nodes and triangles are the arrays' less what the report's "cleaning" removed,
-    with the coordinates as fort.14 rounds them."""
-    cli_run, run = pair
-    with open(cli_run.path("_report.json")) as f:
-        cleaning = json.load(f)["cleaning"]  # made while the model formats are written
-    with open(cli_run.path(".14")) as f:
-        f.readline()
-        ne, nn = (int(v) for v in f.readline().split()[:2])
-        assert (nn, ne) == (cleaning["nodes"], cleaning["triangles"])
-        assert len(run.nodes) - nn == cleaning["nodes_removed"]
-        assert len(run.triangles) - ne == (cleaning["one_neighbour_triangles_removed"]
-                                           + cleaning["pinch_triangles_removed"])
-        xyz = np.array([f.readline().split()[1:4] for _ in range(nn)], dtype=np.float64)
-        tri = np.array([f.readline().split()[2:5] for _ in range(ne)], dtype=np.int64) - 1
-    lon = (run.nodes[:, 0] + 180.0) % 360.0 - 180.0
-    index = {(round(x, 5), round(y, 5)): k for k, (x, y) in enumerate(zip(lon, run.nodes[:, 1]))}
-    to_run = np.array([index[(round(x, 5), round(y, 5))] for x, y in xyz[:, :2]], dtype=np.int64)
-    np.testing.assert_allclose(xyz[:, 0], lon[to_run], atol=1e-6)
-    np.testing.assert_allclose(xyz[:, 1], run.nodes[to_run, 1], atol=1e-6)
-    np.testing.assert_allclose(xyz[:, 2], run.depth[to_run], atol=1e-3)
-    # every written triangle is one of the arrays' triangles, with the same orientation
-    ours = {tuple(np.roll(t, -int(np.argmin(t)))) for t in run.triangles.tolist()}
-    for t in to_run[tri].tolist():
-        assert tuple(np.roll(t, -int(np.argmin(t)))) in ours
-
-
 def test_counts_and_checksums_equal_the_cli_report(pair):
     cli_run, run = pair
     with open(cli_run.path("_report.json")) as f:
@@ -128,6 +101,8 @@ def same_attrs(a, b, where):
 def test_to_xarray_equals_the_ugrid_file_and_round_trips(pair, tmp_path):
     cli_run, run = pair
     ds = run.to_xarray()
+    # made in memory: no file of the call anywhere (the former route wrote one to a temporary folder)
+    assert all(not v.encoding.get("source") for v in ds.variables.values())
     mesh = ds["mesh"].attrs
     assert mesh["cf_role"] == "mesh_topology" and mesh["topology_dimension"] == 2
     assert ds["mesh_face_nodes"].attrs["start_index"] == 0
@@ -135,10 +110,15 @@ def test_to_xarray_equals_the_ugrid_file_and_round_trips(pair, tmp_path):
     assert ds["mesh_face_nodes"].attrs.get("_FillValue", -1) == -1
     assert "crs" in ds and ds["mesh_node_x"].attrs["standard_name"] == "longitude"
     with xr.open_dataset(cli_run.path(".nc"), mask_and_scale=False) as f:
-        assert set(ds.variables) == set(f.variables)
+        assert list(ds.variables) == list(f.variables) and dict(ds.dims) == dict(f.dims)
+        assert set(ds.coords) == set(f.coords)
         for name in f.variables:
+            assert ds[name].dims == f[name].dims and ds[name].dtype == f[name].dtype, name
             np.testing.assert_array_equal(ds[name].values, f[name].values, err_msg=name)
             same_attrs(ds[name].attrs, f[name].attrs, name)
+            for k, v in f[name].attrs.items():
+                assert type(ds[name].attrs[k]) == type(v), (name, k)
+            assert ds[name].encoding.get("coordinates") == f[name].encoding.get("coordinates"), name
         same_attrs(ds.attrs, f.attrs, "global")
     out = tmp_path / "round.nc"
     ds.to_netcdf(out)
