@@ -199,7 +199,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   Json list = Json::array();
   io::PreviewOptions overview;
   overview.width_px = c.output.png_width;
-  overview.elements = io::parse_element_kinds(c.mesh.elements);
+  overview.elements = c.mesh.elements;
   overview.title = fmt::format("aquatoria blocks: the {} best of {} coastal block{}", count, ranked.size(),
                                ranked.size() == 1 ? "" : "s");
   std::vector<std::string> table;
@@ -290,7 +290,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
                         {"filled_pixels", b.filled_pixels},
                         {"wet_fraction", b.wet_fraction},
                         {"ny", b.suggested_ny},
-                        {"projection", curvilinear::projection_code(p.kind)},
+                        {"projection", std::string(name_of(p.kind))},
                         {"rota_deg", p.rota_deg},
                         {"uscale", p.uscale},
                         {"shrink_to_wet", c.blocks.shrink_to_wet},
@@ -299,7 +299,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
                         {"contour", out.final_path(name + ".izogrid").string()}});
     table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6.1f} {:>5}  {} ({:.4g}, {:.4g})", k + 1, name,
                                 b.describe(), box_text(b.box), b.coastal_pixels, 100.0 * b.wet_fraction, b.suggested_ny,
-                                curvilinear::projection_code(p.kind), g.lon_deg, g.lat_deg));
+                                std::string(name_of(p.kind)), g.lon_deg, g.lat_deg));
   }
   io::write_preview_png(run.mesh, *run.bathy, out.temp_path("blocks.png"), overview);
   write_stage.done(fmt::format("{} blocks (config, contour, picture) + blocks.png in {}", count, dir.string()));

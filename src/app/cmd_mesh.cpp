@@ -100,7 +100,7 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
                       "set output.name (or -o DIR) to keep both", log);
 
   // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
-  const bool tif = std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end();
+  const bool tif = c.output.writes(config::OutputFormat::kTif);
   const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif});
   const Lattice& lat = setup.lattice;
   log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",

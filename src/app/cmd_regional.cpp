@@ -171,12 +171,22 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
                c.name, loaded.source);
   }
 
-  std::string stop = !a.stop_after.empty() ? a.stop_after : c.stop_after;
-  const curvilinear::Stage stage =
-      stop.empty() ? curvilinear::stage_from_mode(c.params.mode) : curvilinear::parse_stage(stop);
-  if (stop.empty() && stage != curvilinear::Stage::kGrid) {
+  std::optional<curvilinear::Stage> cli_stage;
+  if (!a.stop_after.empty()) {
+    cli_stage = parse_name<curvilinear::Stage>(a.stop_after);
+    if (!cli_stage)
+      throw ConfigError(fmt::format("--stop-after: {} (or the seed's mode 0..5)",
+                                    unknown_name_message<curvilinear::Stage>(a.stop_after)));
+  }
+  const curvilinear::Stage stage = config::stop_stage(c, cli_stage);
+  if (cli_stage) {
+    std::string why;
+    for (const config::KeyProblem& bad : config::stop_stage_problems(c, stage)) why += "; " + bad.text;
+    if (!why.empty()) throw ConfigError(fmt::format("--stop-after {}: {}", a.stop_after, why.substr(2)));
+  }
+  if (!cli_stage && !c.stop_after && stage != curvilinear::Stage::kGrid) {
     log.info("{}: mode={} stops after the {} stage (the seed's modes); --stop-after grid builds the grid", path,
-             c.params.mode, curvilinear::stage_name(stage));
+             c.params.mode, std::string(name_of(stage)));
   }
 
   Report report;
@@ -190,11 +200,6 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   std::optional<RefinedGrid> refined;
   curvilinear::RegionalResult built;
   if (c.nesting.refinement()) {
-    if (stage != curvilinear::Stage::kGrid)
-      throw ConfigError(
-          fmt::format("{}: a refinement grid (nesting.refine_factor = {}) is cut from its parent in one "
-                      "step; stopping after the {} stage does not apply",
-                      path, c.nesting.refine_factor, curvilinear::stage_name(stage)));
     if (!c.params.x.empty() || !c.contour_file.empty())
       log.warn(
           "{}: a refinement grid is cut from nesting.parent; the contour (regional.control_points{}) is not "
@@ -217,7 +222,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   // Coastline from the bathymetry's contour at coast_level_m.
   io::RegionalPictureOptions po;
   po.line_width = c.params.lwidth;
-  po.title = fmt::format("{}: {}", c.name, curvilinear::stage_name(result.completed));
+  po.title = fmt::format("{}: {}", c.name, std::string(name_of(result.completed)));
   if (!a.no_coastline && !c.input.path.empty() && result.projection) {
     StageScope cs("coastline", &report, log);
     const auto box = picture_box(result);
@@ -235,7 +240,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   }
 
   Json outputs = Json::array();
-  const std::string png = fmt::format("{}_{}.png", c.name, curvilinear::stage_name(result.completed));
+  const std::string png = fmt::format("{}_{}.png", c.name, std::string(name_of(result.completed)));
   if (c.params.mode != 5 || stage != curvilinear::Stage::kGrid) {
     StageScope ps("picture", &report, log);
     io::write_regional_png(out.temp_path(png), result, result.completed, po);
@@ -315,7 +320,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   }
   out.commit();
   log.info("regional {}: stopped after {}; {} files + {} in {}/ ({:.2f} s)", c.name,
-           curvilinear::stage_name(result.completed), outputs.size(), report_name, c.output_dir, total.wall_s());
+           std::string(name_of(result.completed)), outputs.size(), report_name, c.output_dir, total.wall_s());
   return 0;
 }
 
@@ -330,7 +335,9 @@ void add_regional_command(CLI::App& app, Context& ctx) {
       "refine_factor, parent_box)");
   cmd->add_option("file", args->file, "A seed-format .izogrid file (or a .toml config)");
   cmd->add_option("-c,--config", args->config, "Configuration file (TOML); see configs/example_regional.toml");
-  cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or the seed's mode 0..5; 4 and 5 are grid)");
+  cmd->add_option(
+      "--stop-after", args->stop_after,
+      fmt::format("Stop after: {} (or the seed's mode 0..5; 4 and 5 are grid)", name_list<curvilinear::Stage>("")));
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
   cmd->add_flag("--no-coastline", args->no_coastline, "Do not draw the bathymetry's coastline on the pictures");

@@ -182,7 +182,7 @@ static double model_bytes(const GlobalSetup& s, double mesh_bytes) {
 GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
   GlobalSetup s;
   s.masks_kept = o.keep_masks;
-  s.lattice = c.quadtree.lattice == "mercator"
+  s.lattice = c.quadtree.lattice == LatticeKind::kMercator
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
@@ -221,7 +221,7 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   // (its distance field is computed over the whole raster grid).
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
-  if (c.domain.regional() && c.input.interpolation == "bilinear" &&
+  if (c.domain.regional() && c.input.interpolation == config::Interpolation::kBilinear &&
       (s.rotation.identity() || c.domain.resolved == config::DomainKind::kBox)) {
     // The window lattice's extent (the domain and its padding, which the classification samples)
     // and two pixels more; on the global lattice (AQ_GLOBAL_LATTICE=1) the domain's extent and
@@ -243,8 +243,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   for (std::size_t k = 0; k < paths.size(); ++k) {
     raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
     ro.path = paths[k];
-    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty() &&
-                         !c.domain.regional();
+    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == config::Sampling::kVertex &&
+                         c.quadtree.depth_rules.empty() && !c.domain.regional();
     if (!std::isnan(window[2]) && !(c.input.blend_km > 0.0 && k + 1 < paths.size())) {
       ro.lon_min = window[0];
       ro.lon_max = window[1];
@@ -279,11 +279,12 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
     std::string why;
     if (!s.raster.streamed && s.raster.bytes > raster::kStreamAboveBytes) {
-      why = !s.rotation.identity()                ? " (rotation.enabled = true holds the raster whole)"
-            : c.mask.sampling != "vertex"         ? " (mask.sampling = \"area\" holds the raster whole)"
-            : !c.quadtree.depth_rules.empty()     ? " (quadtree.depth_rules hold the raster whole)"
-            : c.input.interpolation != "bilinear" ? " (input.interpolation = \"bicubic\" holds the raster whole)"
-                                                  : "";
+      why = !s.rotation.identity()                         ? " (rotation.enabled = true holds the raster whole)"
+            : c.mask.sampling != config::Sampling::kVertex ? " (mask.sampling = \"area\" holds the raster whole)"
+            : !c.quadtree.depth_rules.empty()              ? " (quadtree.depth_rules hold the raster whole)"
+            : c.input.interpolation != config::Interpolation::kBilinear
+                ? " (input.interpolation = \"bicubic\" holds the raster whole)"
+                : "";
     }
     throw ConfigError(fmt::format(
         "the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, lattice bitmaps {:.2f} GB, mesh {:.2f} GB), "
@@ -326,8 +327,7 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
   ro.band = input.band;
   ro.positive_down = input.positive_down;
   ro.max_abs_elevation_m = input.max_abs_elevation_m;
-  ro.interpolation =
-      input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
+  ro.interpolation = input.interpolation;
   ro.max_memory_bytes = max_memory_bytes;
   return ro;
 }
@@ -674,7 +674,7 @@ static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* 
 static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfig& c, const Logger& log,
                                        Report* report) {
   StageScope stage("open_snap", report, log);
-  if (io::parse_element_kinds(c.mesh.elements) != io::ElementKinds::kTriangles) {
+  if (c.mesh.elements != config::ElementKinds::kTriangles) {
     stage.done(fmt::format("the open boundary stays on the lattice: mesh.elements = \"{}\" writes squares",
                            c.mesh.elements));
     return;

@@ -2,6 +2,7 @@
 #include "app/mesh_outputs.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -35,43 +36,27 @@ PreviewOptions preview_options(const config::OutputOptions& o, ElementKinds elem
   p.elements = elements;
   p.zoom = o.png_zoom;
   p.title = fmt::format("aquatoria mesh '{}'", o.name);
-  p.colour = parse_preview_colour(o.png_color);
+  p.colour = o.png_color;
   return p;
 }
 
-std::vector<std::string> requested_formats(const config::OutputOptions& o) {
-  std::vector<std::string> out;
-  for (const auto& f : o.formats)
+// output.formats without repeats, in the order given.
+std::vector<config::OutputFormat> requested_formats(const config::OutputOptions& o) {
+  std::vector<config::OutputFormat> out;
+  for (const config::OutputFormat f : o.formats)
     if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
   return out;
 }
 
 }  // namespace
 
-const std::vector<std::string>& known_output_formats() { return config::output_format_names(); }
-
 void check_mesh_output_options(const config::OutputOptions& o, ElementKinds elements) {
-  const auto& known = known_output_formats();
-  for (const auto& f : o.formats) {
-    if (std::find(known.begin(), known.end(), f) == known.end()) {
-      throw ConfigError(fmt::format("output.formats: unknown format \"{}\" (known: {})", f, fmt::join(known, ", ")));
-    }
-    if ((f == "fort14" || f == "fesom" || f == "schism") && !has_triangles(elements)) {
-      throw ConfigError(
-          fmt::format("output.formats: \"{}\" needs triangles but mesh.elements = \"squares\" (the model's meshes are "
-                      "triangular; use mesh.elements = \"both\" or drop {})",
-                      f, f));
-    }
-  }
-  if (o.png_color != "level" && !has_triangles(elements)) {
-    throw ConfigError(fmt::format(
-        "output.png_color = \"{}\" colours triangles but mesh.elements = \"squares\" (use \"level\")", o.png_color));
-  }
-  if (o.name.empty() || o.name.find('/') != std::string::npos || o.name == "." || o.name == "..") {
-    throw ConfigError(fmt::format("output.name = \"{}\": must be a plain file name (no '/')", o.name));
-  }
-  parse_vtu_coordinates(o.vtu_coordinates);
-  check_preview_options(preview_options(o, elements));
+  std::string why;
+  if (const std::string bad = config::output_name_problem(o.name); !bad.empty())
+    why += fmt::format("\n  output.name = \"{}\": {}", o.name, bad);
+  for (const config::KeyProblem& bad : config::output_problems(o, elements))
+    why += fmt::format("\n  {}: {}", fmt::join(bad.keys, ", "), bad.text);
+  if (!why.empty()) throw ConfigError("output options:" + why);
 }
 
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
@@ -80,7 +65,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
   check_mesh_output_options(options, info.elements);
   check_elements(mesh, info.elements);
   const auto formats = requested_formats(options);
-  if (std::find(formats.begin(), formats.end(), "tif") != formats.end() && !info.global_run_file)
+  if (options.writes(config::OutputFormat::kTif) && !info.global_run_file)
     throw ConfigError("output.formats: \"tif\" (the global run file) is written by `aquatoria mesh` only");
 
   // Every file is planned first, on this thread: its temporary path reserved, the meshes it
@@ -152,8 +137,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
     const Timer geo_timer;
     const mesh::Mesh& g = geographic(ElementKinds::kTriangles);
     const double geo_s = geo_timer.wall_s();
-    const bool png = std::find(formats.begin(), formats.end(), "png") != formats.end();
-    const PreviewColour colour = png ? parse_preview_colour(options.png_color) : PreviewColour::kLevel;
+    const PreviewColour colour = options.writes(config::OutputFormat::kPng) ? options.png_color : PreviewColour::kLevel;
     OutputJob quality;
     quality.format = "quality";
     quality.step = [&g, &shapes, report, geo_s, colour] {
@@ -214,8 +198,10 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
   };
   const std::string& name = options.name;
 
-  auto plan_format = [&](const std::string& format) {
-    if (format == "msh") {
+  auto plan_format = [&](const config::OutputFormat kind) {
+    using F = config::OutputFormat;
+    const std::string format(name_of(kind));
+    if (kind == F::kMsh) {
       MshOptions o;
       o.binary = options.msh_binary;
       o.elements = info.elements;
@@ -224,7 +210,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}, {"seam duplicates", s.seam_duplicates}};
           });
-    } else if (format == "ugrid") {
+    } else if (kind == F::kUgrid) {
       UgridOptions o;
       o.elements = info.elements;
       o.source = info.source;
@@ -238,9 +224,9 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             return Facts{{"nodes", s.nodes}, {"faces", s.elements}};
           },
           true);
-    } else if (format == "vtu") {
+    } else if (kind == F::kVtu) {
       VtuOptions o;
-      o.coordinates = parse_vtu_coordinates(options.vtu_coordinates);
+      o.coordinates = options.vtu_coordinates;
       o.elements = info.elements;
       plan(
           format, name + ".vtu", [&g = geographic(info.elements), o](const auto& p) { return write_vtu(g, p, o); },
@@ -250,7 +236,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
                          {"merged pole nodes", s.merged_pole_nodes},
                          {"dropped degenerate cells", s.dropped_elements}};
           });
-    } else if (format == "fort14") {
+    } else if (kind == F::kFort14) {
       Fort14Options o;
       o.title = fmt::format("aquatoria mesh {} ({})", name, info.source);
       plan(
@@ -258,7 +244,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"triangles", s.elements}, {"land boundary edges", s.boundary_edges}};
           });
-    } else if (format == "text") {
+    } else if (kind == F::kText) {
       TextOptions o;
       o.elements = info.elements;
       plan(
@@ -266,7 +252,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
           [](const WriteStats& s) {
             return Facts{{"nodes", s.nodes}, {"elements", s.elements}};
           });
-    } else if (format == "fesom") {
+    } else if (kind == F::kFesom) {
       const std::vector<double>& levels =
           options.fesom_levels.empty() ? default_fesom_levels_m() : options.fesom_levels;
       const mesh::Mesh& g = model_mesh();
@@ -307,7 +293,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
                                   {"gammaEuler", r.gamma_deg},
                                   {"levels_m", levels}};
       }
-    } else if (format == "schism") {
+    } else if (kind == F::kSchism) {
       SchismOptions o;
       o.title = fmt::format("aquatoria mesh {} ({}), lon/lat: SCHISM ics = 2", name, info.source);
       const mesh::Mesh& g = model_mesh();
@@ -337,7 +323,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
               return Facts{{"open boundaries", s.boundary_edges}, {"open nodes", s.nodes}};
             });
       }
-    } else if (format == "png") {
+    } else if (kind == F::kPng) {
       // The colours by angle or size come from the quality step, which runs before this job.
       auto o = std::make_shared<PreviewOptions>(preview_options(options, info.elements));
       auto colour = [o, &shapes, lattice_values] {
@@ -345,7 +331,8 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
         if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
       };
       if (o->colour == PreviewColour::kTarget) o->triangle_values = info.target_km;
-      if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget) o->value_range_km = info.size_scale_km;
+      if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget)
+        o->value_range_km = info.size_scale_km;
       plan(
           format, name + ".png",
           [&mesh, &bathy, o, colour](const auto& p) {
@@ -361,7 +348,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
             [&mesh, &bathy, o](const auto& p) { return write_preview_zoom_png(mesh, bathy, p, *o); },
             [](const WriteStats&) { return Facts{}; });
       }
-    } else if (format == "tif") {
+    } else if (kind == F::kTif) {
       plan(format, name + ".tif", info.global_run_file, [](const WriteStats& s) {
         return Facts{{"pixels", s.nodes}, {"filled pixels", s.elements}};
       });
@@ -374,7 +361,7 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
       // As if written one after another: the files before it are written and logged, then this
       // error (a geographic mesh that cannot be built, a streamed raster that cannot be read).
       OutputJob failing;
-      failing.format = format;
+      failing.format = std::string(name_of(format));
       failing.writer = [e = std::current_exception()](const std::filesystem::path&) -> WriteStats {
         std::rethrow_exception(e);
       };

@@ -33,11 +33,16 @@ std::string box_text(const curvilinear::RefineBox& b) {
 // plane centred on the box (any conformal plane keeps the grid orthogonal; the parent's own one
 // makes the fine grid's plane coordinates the parent's).
 curvilinear::RegionalParams parent_plane(const curvilinear::RegionalParams& base, const io::RomsGridFields& p,
-                                         const curvilinear::RefineBox& b, double radius_m, std::string& source) {
+                                         const curvilinear::RefineBox& b, double radius_m, const std::string& path,
+                                         std::string& source) {
   curvilinear::RegionalParams q = base;
   if (!p.proj.empty() && std::isfinite(p.rlat) && std::isfinite(p.rlon) && std::isfinite(p.rota) &&
       std::isfinite(p.uscale)) {
-    q.proj = curvilinear::parse_projection_kind(p.proj);
+    const auto kind = parse_name_any_case<curvilinear::ProjectionKind>(p.proj);
+    if (!kind)
+      throw InputError(
+          fmt::format("{}: attribute proj: {}", path, unknown_name_message<curvilinear::ProjectionKind>(p.proj)));
+    q.proj = *kind;
     q.rlat = p.rlat;
     q.rlon = p.rlon;
     q.rota = p.rota;
@@ -127,7 +132,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
                                   box_text(g.box), n.parent, bad));
 
   curvilinear::RegionalResult& r = g.result;
-  r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, g.projection_source);
+  r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, n.parent, g.projection_source);
   const curvilinear::Projection proj(curvilinear::projection_params(r.params));
   g.parent_plane = parent_supergrid(g.parent, proj, n.parent);
   g.padded = curvilinear::refine_supergrid(g.parent_plane, g.box, kRefinePad);

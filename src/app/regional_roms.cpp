@@ -123,7 +123,7 @@ std::string rx1_grid_text() {
 curvilinear::CGridOptions roms_cgrid_options(const config::RegionalConfig& c) {
   curvilinear::CGridOptions co;
   co.earth_radius_m = c.roms.earth_radius_m;
-  co.distances = curvilinear::parse_distance_model(c.roms.distances, "roms.distances");
+  co.distances = c.roms.distances;
   return co;
 }
 
@@ -139,7 +139,8 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
     throw named(e);
   }
   config::GlobalConfig& g = r.loaded.options;
-  if (g.mesh.elements == "squares") g.mesh.elements = "triangles";  // the nesting weights live on triangles
+  if (g.mesh.elements == config::ElementKinds::kSquares)
+    g.mesh.elements = config::ElementKinds::kTriangles;  // the nesting weights live on triangles
   GlobalSetup setup;
   try {
     setup = prepare_global_run(g, {.allow_window = false});  // the nesting locates grid points on the global lattice
@@ -198,12 +199,11 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       mask::sample_elevations(bathy, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), nr);
   std::vector<double> corner_lon, corner_lat;
   curvilinear::rho_cell_corners(cg, corner_lon, corner_lat);
-  const mask::CellElevations cells =
-      mask::cell_elevations(bathy, corner_lon.data(), corner_lat.data(), ni, nj, point_elevation.data(),
-                            mask::parse_cell_statistic(c.roms.depth_statistic, "roms.depth_statistic"));
+  const mask::CellElevations cells = mask::cell_elevations(bathy, corner_lon.data(), corner_lat.data(), ni, nj,
+                                                           point_elevation.data(), c.roms.depth_statistic);
   const std::vector<double>& elevation = cells.elevation_m;
   log.info("roms: depth statistic {} ({} of roms.depth_statistic = \"{}\"; median {} raster points per ρ cell{})",
-           mask::cell_statistic_name(cells.used),
+           cells.used,
            cells.used == mask::CellStatistic::kPoint ? "interpolated at ρ," : "over the raster points in each ρ cell,",
            c.roms.depth_statistic, cells.median_points_per_cell,
            cells.point_cells > 0 ? fmt::format(", {} cells without one keep the point sample", cells.point_cells) : "");
@@ -269,7 +269,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       {"grid_name", c.name},
       {"regional_config", config_source},
       {"aquatoria_config", report["config"].dump()},
-      {"proj", curvilinear::projection_code(p.proj)},
+      {"proj", std::string(name_of(p.proj))},
       {"rlat", p.rlat},
       {"rlon", p.rlon},
       {"rota", p.rota},
@@ -291,14 +291,14 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                    "counter-clockwise from east; dndx, dmde: centred differences, one-sided on the boundary",
                    distances == curvilinear::DistanceModel::kWgs84 ? "WGS84 geodesics, GeographicLib"
                                                                    : "great circles on the sphere")},
-      {"distances", std::string(curvilinear::distance_model_name(distances))},
+      {"distances", std::string(std::string(name_of(distances)))},
       {"earth_radius_m", c.roms.earth_radius_m},
       {"earth_rotation_rate_per_s", curvilinear::kEarthOmega},
       {"xy_metres_per_plane_unit", cg.xy_metres_per_unit},
       {"global_config", global.loaded.source},
       {"bathymetry", g.input.path},
-      {"bathymetry_sampling", g.input.interpolation},
-      {"depth_statistic", std::string(mask::cell_statistic_name(cells.used))},
+      {"bathymetry_sampling", std::string(name_of(g.input.interpolation))},
+      {"depth_statistic", std::string(name_of(cells.used))},
       {"depth_statistic_rule",
        std::string("hraw and the mask's elevation at rho: point = the bathymetry sampled at rho; mean/median/min = "
                    "over the raster sample points inside the rho cell (the psi quadrilateral, extrapolated on the "
@@ -425,7 +425,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                       {"wet_u", ms.wet_u},
                                       {"wet_v", ms.wet_v},
                                       {"wet_psi", ms.wet_psi}}},
-                        {"metrics", Json{{"distances", curvilinear::distance_model_name(distances)},
+                        {"metrics", Json{{"distances", std::string(name_of(distances))},
                                          {"earth_radius_m", c.roms.earth_radius_m},
                                          {"pm_min", st.pm_min},
                                          {"pm_max", st.pm_max},
@@ -445,7 +445,7 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
                                          {"angle_max_rad", st.angle_max},
                                          {"xl_m", cg.xl_m},
                                          {"el_m", cg.el_m}}},
-                        {"depth", Json{{"statistic", mask::cell_statistic_name(cells.used)},
+                        {"depth", Json{{"statistic", std::string(name_of(cells.used))},
                                        {"statistic_requested", c.roms.depth_statistic},
                                        {"median_raster_points_per_cell", cells.median_points_per_cell},
                                        {"cells_with_point_sample", cells.point_cells},

@@ -86,7 +86,7 @@ std::vector<std::pair<std::string, std::string>> regional_params_problems(const 
         num(p.elliptic_criteria_tolerance), "must be within (0, 1)");
   check(p.elliptic_iterations >= 1, "elliptic_iterations", std::to_string(p.elliptic_iterations), "must be >= 1");
   check(p.best_final == GridMethod::kEd2 || p.best_final == GridMethod::kRl, "best_final",
-        grid_method_name(p.best_final), "must be ed2 or rl");
+        std::string(name_of(p.best_final)), "must be ed2 or rl");
   for (const auto& [key, q, list] :
        {std::tuple{"sections", "q1", &p.sections}, std::tuple{"sections_eta", "q2", &p.sections_eta}}) {
     for (std::size_t k = 0; k < list->size(); ++k) {

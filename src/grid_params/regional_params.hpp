@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "grid_params/control_function.hpp"
 #include "grid_params/grid_kinds.hpp"
 
 namespace aq::curvilinear {
@@ -130,8 +131,8 @@ struct RegionalParams {
   /// (seed 003: θ, η equations, nodes at level-line intersections), tfi, star, ed2, rl, best (seed 004).
   GridMethod method = GridMethod::kConformal;
   /// [weight] control function w(x, y) ≥ 1 of the boundary nodes, sections, STAR rows and ED2, a
-  /// formula in plane coordinates (control_function.hpp); "1" = uniform.
-  std::string weight = "1";
+  /// formula in plane coordinates (control_function.hpp), parsed where it is read; "1" = uniform.
+  ControlFunction weight;
   /// [weight_depth] a ≥ 0 of w = weight · (1 + a·|∇h|/max|∇h|) from the [input] bathymetry (app
   /// only; 0 = off).
   double weight_depth = 0.0;

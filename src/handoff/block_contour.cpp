@@ -248,7 +248,7 @@ BlockContour block_contour(const BoxFrame& frame, const SideInsets& insets, int 
       const auto q = proj.forward(g.lon_deg, g.lat_deg);
       if (!std::isfinite(q.x) || !std::isfinite(q.y)) {
         throw InputError(fmt::format("block contour point ({}, {}) is at a singularity of the {} projection", g.lon_deg,
-                                     g.lat_deg, curvilinear::projection_code(c.projection.kind)));
+                                     g.lat_deg, std::string(name_of(c.projection.kind))));
       }
       c.x.push_back(q.x);
       c.y.push_back(q.y);

@@ -48,9 +48,8 @@ struct WetArea {
   std::vector<PassageResult> passages;  ///< empty unless mask.passages
 };
 
-/// Runs the mask stage. Validates `options` first (ConfigError naming the mask.* key: min_depth_m
-/// finite >= 0, cursor 1..64, sampling "vertex"/"area", seeds non-empty and valid, seed_radius_deg
-/// finite >= 0) and the lattice/bitmap sizes; seeds as in place_seeds (ConfigError when no
+/// Runs the mask stage on `options` as validated at load (config/global_config.cpp: every mask.*
+/// key's range); seeds as in place_seeds (ConfigError when no
 /// all-wet window is within the radius). Logs "classify: done ...", "fill: done ...",
 /// "pinches: done ...", "passages: done ..." stage lines (and a progress bar on a terminal);
 /// when `report` is given, adds those stages and a "mask" section (see wet_area_json).

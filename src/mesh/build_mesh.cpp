@@ -25,15 +25,6 @@ namespace {
 
 double round3(double x) { return std::round(x * 1000.0) / 1000.0; }
 
-enum class Elements { kTriangles, kSquares, kBoth };
-
-Elements parse_elements(const std::string& text) {
-  if (text == "triangles") return Elements::kTriangles;
-  if (text == "squares") return Elements::kSquares;
-  if (text == "both") return Elements::kBoth;
-  throw ConfigError(fmt::format("mesh.elements = \"{}\": must be \"triangles\", \"squares\" or \"both\"", text));
-}
-
 }  // namespace
 
 void emit_triangles(const std::vector<quadtree::Leaf>& leaves, const std::vector<std::uint8_t>& codes,
@@ -85,9 +76,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
                 const raster::Bathymetry& bathy, const config::MeshOptions& options, const Logger& log,
                 Report* report) {
   StageScope stage("mesh", report, log);
-  const Elements elements = parse_elements(options.elements);
-  const Diagonal diagonal = parse_diagonal(options.diagonal);
-  const bool triangles = elements != Elements::kSquares;
+  const Diagonal diagonal = options.diagonal;
+  const bool triangles = config::has_triangles(options.elements);
 
   Timer t_nodes;
   quadtree::QuadNodes qn = quadtree::build_nodes(leaves, lat, quadtree::NodeOptions{triangles});
@@ -208,7 +198,7 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   }
   if (report != nullptr) {
     Json& j = (*report)["mesh"];
-    j["elements"] = options.elements;
+    j["elements"] = std::string(name_of(options.elements));
     j["diagonal"] = options.diagonal;
     j["nodes"] = n;
     j["corner_nodes"] = n - centres;

@@ -51,10 +51,7 @@ struct PreviewOutline {
 /// ("size": classes 1–2–5–10… km wide on a log scale, spanning the values, fine = yellow), or the
 /// target size field at its centre ("target", the same classes). With value_range_km the classes
 /// span that range instead, so "size" and "target" pictures of one run share a scale.
-enum class PreviewColour { kLevel, kAngle, kSize, kTarget };
-
-/// Parses output.png_color; throws ConfigError naming it and the value.
-PreviewColour parse_preview_colour(std::string_view value);
+using config::PreviewColour;
 
 struct PreviewOptions {
   int width_px = 2400;  ///< picture width, 200..20000
@@ -73,9 +70,9 @@ struct PreviewOptions {
   bool exact_background = false;
 };
 
-/// Throws ConfigError naming output.png_width / output.png_zoom when they are unusable: width
-/// outside 200..20000, zoom not 4 numbers, lon_min >= lon_max, lat_min >= lat_max, latitudes
-/// outside [-90, 90], or a longitude span over 360°.
+/// The preconditions of the writers below (output.png_width and output.png_zoom are validated at
+/// load; InternalError otherwise): width 200..20000; zoom empty or 4 finite numbers with
+/// lon_min < lon_max <= lon_min + 360 and -90 <= lat_min < lat_max <= 90.
 void check_preview_options(const PreviewOptions& options);
 
 /// Draws the whole map (with the zoom box outlined) to `path`. Throws OutputError naming the

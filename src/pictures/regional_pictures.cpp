@@ -155,10 +155,10 @@ GeoBox geo_box(const RegionalResult& r, const Box& plane) {
 void write_regional_png(const std::filesystem::path& path, const RegionalResult& r, Stage stage,
                         const RegionalPictureOptions& options) {
   if (static_cast<int>(stage) > static_cast<int>(r.completed) || !r.projection)
-    throw ConfigError(fmt::format("regional picture of stage '{}' requested, but the run stopped after '{}'",
-                                  curvilinear::stage_name(stage), curvilinear::stage_name(r.completed)));
+    throw InternalError(
+        fmt::format("regional picture of stage '{}' requested, but the run stopped after '{}'", stage, r.completed));
   if (options.width_px < 200 || options.width_px > 20000 || !(options.line_width > 0.0) || options.max_grid_lines < 2)
-    throw ConfigError(
+    throw InternalError(
         fmt::format("regional picture: width {} px (200..20000), line width {} (> 0), max grid lines "
                     "{} (>= 2)",
                     options.width_px, options.line_width, options.max_grid_lines));
@@ -351,10 +351,10 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   // Title.
   std::string title = options.title;
   if (title.empty()) {
-    title = fmt::format("{}: {}", r.params.source, curvilinear::stage_name(stage));
+    title = fmt::format("{}: {}", r.params.source, std::string(name_of(stage)));
     if (stage == Stage::kMap)
-      title += fmt::format(" ({} centred at {}N {}E, rota {})", curvilinear::projection_code(r.params.proj),
-                           r.params.rlat, r.params.rlon, r.params.rota);
+      title += fmt::format(" ({} centred at {}N {}E, rota {})", std::string(name_of(r.params.proj)), r.params.rlat,
+                           r.params.rlon, r.params.rota);
     if (stage == Stage::kUniform || stage == Stage::kConformal) {
       const auto& n = stage == Stage::kUniform ? r.uniform_nodes : r.nodes;
       title += fmt::format(" ({} x {} boundary nodes)", n.nx_pts, n.ny_pts);

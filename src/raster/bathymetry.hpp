@@ -16,11 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "config/kinds.hpp"
 #include "core/log.hpp"
 
 namespace aq::raster {
 
-enum class Interpolation { kBilinear, kBicubic };
+/// input.interpolation (config/kinds.hpp): the seed's bilinear rule or a C2 bicubic spline.
+using config::Interpolation;
 
 struct OpenOptions {
   std::string path;

@@ -88,9 +88,9 @@ struct SizeFieldStats {
 /// Builds the field of `c.size` and the size rules of `c.quadtree` (size_km, coast_size_km) over
 /// the filled set. An inactive field (no term set) when nothing asks a size. `bathy` is sampled at
 /// the cell centres (mapped through `rotation`) when a depth term is on. Logs a "size" stage line
-/// and writes the report's "size" section when `report` is given. Throws ConfigError for
-/// inconsistent options (h_min > h_max) and InputError for a size raster that cannot be read or
-/// holds a value <= 0.
+/// and writes the report's "size" section when `report` is given. `c` is as validated at load
+/// (config/global_config.cpp: ranges, h_min <= h_max). Throws InputError for a size raster that
+/// cannot be read or holds a value <= 0.
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report);

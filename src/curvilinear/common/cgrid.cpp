@@ -40,22 +40,14 @@ double wgs84_distance(double lon1, double lat1, double lon2, double lat2) {
 
 }  // namespace
 
-DistanceModel parse_distance_model(const std::string& text, const std::string& key) {
-  if (text == "sphere") return DistanceModel::kSphere;
-  if (text == "wgs84") return DistanceModel::kWgs84;
-  throw ConfigError(fmt::format("{} = \"{}\" is not one of \"sphere\", \"wgs84\"", key, text));
-}
-
-const char* distance_model_name(DistanceModel m) { return m == DistanceModel::kWgs84 ? "wgs84" : "sphere"; }
-
 double great_circle_m(double lon1_deg, double lat1_deg, double lon2_deg, double lat2_deg, double radius_m) {
   return sphere_distance(lon1_deg, lat1_deg, lon2_deg, lat2_deg, radius_m);
 }
 
 CGrid build_cgrid(const Grid2D& g, const Projection& projection, const CGridOptions& options) {
+  // roms.earth_radius_m is validated at load: a bad radius here is a bug.
   if (!(options.earth_radius_m > 0.0) || !std::isfinite(options.earth_radius_m))
-    throw ConfigError(
-        fmt::format("roms.earth_radius_m = {} must be a positive number of metres", options.earth_radius_m));
+    throw InternalError(fmt::format("build_cgrid: earth radius {} m", options.earth_radius_m));
   if (g.nx_pts < 5 || g.ny_pts < 5 || g.nx_pts % 2 == 0 || g.ny_pts % 2 == 0 || g.x.size() != g.at(0, g.ny_pts) ||
       g.y.size() != g.x.size())
     throw InputError(fmt::format(

@@ -62,15 +62,6 @@ namespace aq::curvilinear {
 /// Earth's rotation rate used for f, s⁻¹ (sidereal, 7.2921e-5 rounded as in most ROMS tools).
 inline constexpr double kEarthOmega = 7.2921e-5;
 
-enum class DistanceModel {
-  kSphere,  ///< great circles on a sphere of radius CGridOptions::earth_radius_m
-  kWgs84,   ///< geodesics on the WGS84 ellipsoid (GeographicLib)
-};
-
-/// "sphere" or "wgs84"; ConfigError naming `key` and the value otherwise.
-DistanceModel parse_distance_model(const std::string& text, const std::string& key = "distances");
-const char* distance_model_name(DistanceModel m);
-
 struct CGridOptions {
   /// Sphere radius, metres, > 0: pm, pn, xl, el with kSphere; x_*, y_* always.
   double earth_radius_m = 6371000.0;
@@ -115,7 +106,7 @@ struct CGridStats {
 /// Builds the C-grid of `supergrid` (plane coordinates of `projection`). Preconditions:
 /// nx_pts and ny_pts odd and ≥ 5 (L, M ≥ 2), coordinates finite. Throws InputError naming the
 /// size for an even or too small supergrid, InputError for points where the inverse projection is
-/// not finite, ConfigError for a non-positive or non-finite earth_radius_m, NumericalError when
+/// not finite, InternalError for a non-positive or non-finite earth_radius_m, NumericalError when
 /// two neighbouring supergrid points coincide on the Earth (pm or pn would be infinite).
 /// Parallel over rows with OpenMP; results do not depend on the thread count.
 CGrid build_cgrid(const Grid2D& supergrid, const Projection& projection, const CGridOptions& options = {});

@@ -270,7 +270,7 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
             "inverse problem (mode 3) did not converge in {} outer iterations: residual {:.3e} reached, tolerance "
             "{:.1e} (inner schedule '{}', IZ89 {}converged in the last iteration, max angle {:.2e}); raise the "
             "iteration limit or smooth the contour",
-            m, meas.residual, tol, inner_schedule_name(options.schedule), iz.converged ? "" : "not ",
+            m, meas.residual, tol, std::string(name_of(options.schedule)), iz.converged ? "" : "not ",
             res.iz89_angle.back()));
       break;
     }

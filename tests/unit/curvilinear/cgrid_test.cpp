@@ -150,8 +150,8 @@ TEST(CGrid, Wgs84GeodesicsDifferFromTheSphereByTheFlattening) {
     EXPECT_GT(rel, 1e-5);                       // but not the same model
     EXPECT_NEAR(w.angle[k], s.angle[k], 2e-3);  // geodetic vs spherical azimuths at 60°N
   }
-  EXPECT_EQ(parse_distance_model("wgs84"), DistanceModel::kWgs84);
-  EXPECT_THROW(parse_distance_model("ellipsoid", "roms.distances"), ConfigError);
+  EXPECT_EQ(parse_name<DistanceModel>("wgs84"), DistanceModel::kWgs84);
+  EXPECT_FALSE(parse_name<DistanceModel>("ellipsoid").has_value());
 }
 
 TEST(CGrid, AngleFollowsTheBearingOfXiLines) {
@@ -246,7 +246,7 @@ TEST(CGrid, BadInputIsRefused) {
   EXPECT_THROW(build_cgrid(rectangle(1, 3, 10, 10), pr), InputError);  // L = 1
   CGridOptions o;
   o.earth_radius_m = -1.0;
-  EXPECT_THROW(build_cgrid(rectangle(3, 3, 10, 10), pr, o), ConfigError);
+  EXPECT_THROW(build_cgrid(rectangle(3, 3, 10, 10), pr, o), InternalError);
   Grid2D same = rectangle(3, 3, 10, 10);
   same.x[same.at(1, 2)] = same.x[same.at(2, 2)];  // u and ρ coincide
   same.y[same.at(1, 2)] = same.y[same.at(2, 2)];

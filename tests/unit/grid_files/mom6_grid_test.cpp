@@ -113,17 +113,17 @@ TEST(Mom6Grid, CheckReadsRomsAndMom6FilesAsOrthogonalGrids) {
   write_roms_grid(dir / "x_grd.nc", data);
 
   const AnyGrid roms = read_any_grid(dir / "x_grd.nc");
-  EXPECT_EQ(roms.kind, "roms");
+  EXPECT_EQ(roms.kind, GridFileKind::kRoms);
   EXPECT_EQ(roms.xy.grid.nx_pts, f.super.nx_pts);
   EXPECT_EQ(roms.xy.grid.ny_pts, f.super.ny_pts);
   const AnyGrid mom6 = read_any_grid(dir / "h.nc");
-  EXPECT_EQ(mom6.kind, "mom6");
+  EXPECT_EQ(mom6.kind, GridFileKind::kMom6);
   EXPECT_EQ(mom6.xy.grid.nx_pts, f.super.nx_pts - 2);
   // The source grid is conformal, so the checks see orthogonal cells on the sphere too.
   for (const AnyGrid* g : {&roms, &mom6}) {
     const curvilinear::GridQuality q = curvilinear::check_grid(g->xy.grid, {});
     EXPECT_TRUE(q.non_finite.empty());
-    EXPECT_LT(q.ortho_50.worst, 1e-3) << g->kind;
+    EXPECT_LT(q.ortho_50.worst, 1e-3) << name_of(g->kind);
   }
   EXPECT_THROW(read_any_grid(dir / "t.nc"), InputError);  // a topography is not a grid
 }
