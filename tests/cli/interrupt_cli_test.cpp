@@ -98,6 +98,35 @@ TEST(CliInterrupt, SigpipeWhileWritingLeavesNothingAndExits141) {
   expect_clean(interrupt_run(SIGPIPE), 141, "SIGPIPE");
 }
 
+// Issue 33: a signal that arrived while the process was still starting (the shared libraries'
+// constructors, before main) killed it without a word. The handlers are installed before those
+// constructors run: a preloaded library whose constructor sleeps holds the process there while
+// SIGTERM arrives, and the run ends with the handler's line and 143, having written nothing.
+TEST(CliInterrupt, SigtermWhileStartingIsHandled) {
+  aq::testing::TempDir dir;
+  const fs::path out = dir / "out", err = dir / "stderr.txt";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (std::freopen(err.c_str(), "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
+      ::_exit(99);
+    for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}) std::signal(s, SIG_DFL);
+    ::setenv("LD_PRELOAD", AQ_SLOW_START_LIB, 1);
+    ::setenv("AQ_SLOW_START_MS", "5000", 1);
+    ::setenv("ASAN_OPTIONS", "verify_asan_link_order=0", 1);  // the sanitizer build: the preload comes first
+    ::execl(AQ_BINARY, AQ_BINARY, "mesh", "-o", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(98);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // inside the 5 s constructor
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  const std::string e = aq::test::slurp(err);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status) << " without the handler: " << e;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << e;
+  EXPECT_EQ(e, "aquatoria: interrupted by SIGTERM; 0 temporary file(s) removed\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
 
 }  // namespace cli_interrupt_cli_test
