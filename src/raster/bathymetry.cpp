@@ -21,6 +21,7 @@
 #include "core/input_files.hpp"
 #include "core/row_progress.hpp"
 #include "core/timer.hpp"
+#include "raster/gdal_common.hpp"
 #include "raster/netcdf_coordinates.hpp"
 #include "raster/source_stack.hpp"
 #include "raster/spline1d.hpp"
@@ -33,31 +34,11 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The smallest pixel (degrees) a lon/lat raster may have: 1e-9° is 0.1 mm on the Earth.
 constexpr double kMinPixelDeg = 1e-9;
 
-void gdal_init() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);  // GDAL errors become exceptions with the message
-    // A small block cache: rows are copied into our array once, so GDAL need not keep them too.
-    if (CPLGetConfigOption("GDAL_CACHEMAX", nullptr) == nullptr) GDALSetCacheMax64(64LL << 20);
-  });
-}
-
-std::string gdal_message() {
-  const char* m = CPLGetLastErrorMsg();
-  return (m != nullptr && *m != '\0') ? std::string(": ") + m : std::string();
-}
-
 // Snaps x to the nearest multiple of q when within 1e-3·q (float32 coordinate noise).
 double snap(double x, double q) {
   const double k = std::round(x / q);
   return std::abs(x / q - k) < 1e-3 ? k * q : x;
 }
-
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(d); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr open_dataset(const OpenOptions& o, std::string& used_name) {
   // GDAL's virtual file systems (/vsimem/: raster/memory_raster.hpp; /vsizip/, /vsicurl/, ...)
