@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "support/uniform_grid.hpp"
 
 namespace aq::curvilinear::unit_curvilinear_cgrid_test {
 namespace {
@@ -28,15 +29,7 @@ double initial_bearing(double lon1, double lat1, double lon2, double lat2) {
 }
 
 // A plane rectangle [-ax, ax] x [-ay, ay] as a (2nx+1) x (2ny+1) supergrid with uniform steps.
-Grid2D rectangle(int nx, int ny, double ax, double ay) {
-  Grid2D g(2 * nx + 1, 2 * ny + 1);
-  for (int j = 0; j < g.ny_pts; ++j)
-    for (int i = 0; i < g.nx_pts; ++i) {
-      g.x[g.at(i, j)] = -ax + 2.0 * ax * i / (g.nx_pts - 1);
-      g.y[g.at(i, j)] = -ay + 2.0 * ay * j / (g.ny_pts - 1);
-    }
-  return g;
-}
+Grid2D rectangle(int nx, int ny, double ax, double ay) { return aq::testing::uniform_supergrid(nx, ny, ax, ay); }
 
 Projection mercator(double rlat, double rlon, double rota) {
   ProjectionParams p;
