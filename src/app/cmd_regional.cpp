@@ -133,7 +133,7 @@ std::array<double, 4> picture_box(const curvilinear::RegionalResult& r) {
     const auto g = r.projection->inverse(x, y);
     if (!std::isfinite(g.lon_deg) || !std::isfinite(g.lat_deg)) return;
     double lon = g.lon_deg;
-    if (lon < p.rlon - 180.0) lon += 360.0;
+    if (lon < p.projection.rlon_deg - 180.0) lon += 360.0;
     w = std::min(w, lon);
     e = std::max(e, lon);
     s = std::min(s, g.lat_deg);
@@ -267,14 +267,14 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     xy.history = fmt::format("aquatoria regional {}", loaded.source);
     xy.residual_history = result.inverse.residual_history;
     const auto& p = result.params;
-    xy.attributes = {{"proj", std::string(p.proj == curvilinear::ProjectionKind::kMercator       ? "ME"
-                                          : p.proj == curvilinear::ProjectionKind::kLambertConic ? "LC"
-                                                                                                 : "ST")},
-                     {"rlat", p.rlat},
-                     {"rlon", p.rlon},
-                     {"rota", p.rota},
-                     {"uscale", p.uscale},
-                     {"radius", p.radius},
+    xy.attributes = {{"proj", std::string(p.projection.kind == curvilinear::ProjectionKind::kMercator       ? "ME"
+                                          : p.projection.kind == curvilinear::ProjectionKind::kLambertConic ? "LC"
+                                                                                                            : "ST")},
+                     {"rlat", p.projection.rlat_deg},
+                     {"rlon", p.projection.rlon_deg},
+                     {"rota", p.projection.rota_deg},
+                     {"uscale", p.projection.uscale},
+                     {"radius", p.projection.radius_m},
                      {"spline_type", static_cast<std::int64_t>(p.spline_type)},
                      {"nx", static_cast<std::int64_t>(result.nx)},
                      {"ny", static_cast<std::int64_t>(result.ny)},

@@ -42,26 +42,26 @@ curvilinear::RegionalParams parent_plane(const curvilinear::RegionalParams& base
     if (!kind)
       throw InputError(
           fmt::format("{}: attribute proj: {}", path, unknown_name_message<curvilinear::ProjectionKind>(p.proj)));
-    q.proj = *kind;
-    q.rlat = p.rlat;
-    q.rlon = p.rlon;
-    q.rota = p.rota;
-    q.uscale = p.uscale;
-    q.lat1 = p.lat1;
-    q.lat2 = p.lat2;
-    q.radius = std::isfinite(p.radius) ? p.radius : radius_m;
+    q.projection.kind = *kind;
+    q.projection.rlat_deg = p.rlat;
+    q.projection.rlon_deg = p.rlon;
+    q.projection.rota_deg = p.rota;
+    q.projection.uscale = p.uscale;
+    q.projection.lat1_deg = p.lat1;
+    q.projection.lat2_deg = p.lat2;
+    q.projection.radius_m = std::isfinite(p.radius) ? p.radius : radius_m;
     source = fmt::format("the parent's projection ({} rlat {} rlon {} rota {})", p.proj, p.rlat, p.rlon, p.rota);
     return q;
   }
   const int k = (b.i_left + b.i_right) / 2 - 1, l = (b.j_bottom + b.j_top) / 2 - 1;  // ψ file indices
   const std::size_t c = static_cast<std::size_t>(l) * static_cast<std::size_t>(p.L) + static_cast<std::size_t>(k);
-  q.proj = curvilinear::ProjectionKind::kStereographic;
-  q.rlat = p.lat_psi[c];
-  q.rlon = p.lon_psi[c];
-  q.rota = 0.0;
-  q.radius = radius_m;
-  source = fmt::format("a stereographic plane centred at {:.4f}E {:.4f}N (the parent file names no projection)", q.rlon,
-                       q.rlat);
+  q.projection.kind = curvilinear::ProjectionKind::kStereographic;
+  q.projection.rlat_deg = p.lat_psi[c];
+  q.projection.rlon_deg = p.lon_psi[c];
+  q.projection.rota_deg = 0.0;
+  q.projection.radius_m = radius_m;
+  source = fmt::format("a stereographic plane centred at {:.4f}E {:.4f}N (the parent file names no projection)",
+                       q.projection.rlon_deg, q.projection.rlat_deg);
   return q;
 }
 
@@ -133,7 +133,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
 
   curvilinear::RegionalResult& r = g.result;
   r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, n.parent, g.projection_source);
-  const curvilinear::Projection proj(curvilinear::projection_params(r.params));
+  const curvilinear::Projection proj(r.params.projection);
   g.parent_plane = parent_supergrid(g.parent, proj, n.parent);
   g.padded = curvilinear::refine_supergrid(g.parent_plane, g.box, kRefinePad);
   r.projection.emplace(proj);

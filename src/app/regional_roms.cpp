@@ -179,9 +179,9 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   if (!c.input.path.empty() && c.input.path != g.input.path)
     log.warn("roms: depth and mask come from the global run's bathymetry {} ({}), not from [input] path {}",
              g.input.path, global.loaded.source, c.input.path);
-  if (c.params.radius != c.roms.earth_radius_m)
+  if (c.params.projection.radius_m != c.roms.earth_radius_m)
     log.warn("roms: regional.radius = {} m but roms.earth_radius_m = {} m; the ROMS file uses roms.earth_radius_m",
-             c.params.radius, c.roms.earth_radius_m);
+             c.params.projection.radius_m, c.roms.earth_radius_m);
   const raster::Bathymetry& bathy = *global.run.bathy;
   if (bathy.source_count() > 1)
     throw ConfigError(fmt::format(
@@ -269,14 +269,14 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
       {"grid_name", c.name},
       {"regional_config", config_source},
       {"aquatoria_config", report["config"].dump()},
-      {"proj", std::string(name_of(p.proj))},
-      {"rlat", p.rlat},
-      {"rlon", p.rlon},
-      {"rota", p.rota},
-      {"uscale", p.uscale},
-      {"lat1", std::isnan(p.lat1) ? p.rlat : p.lat1},
-      {"lat2", std::isnan(p.lat2) ? p.rlat : p.lat2},
-      {"radius", p.radius},
+      {"proj", std::string(name_of(p.projection.kind))},
+      {"rlat", p.projection.rlat_deg},
+      {"rlon", p.projection.rlon_deg},
+      {"rota", p.projection.rota_deg},
+      {"uscale", p.projection.uscale},
+      {"lat1", std::isnan(p.projection.lat1_deg) ? p.projection.rlat_deg : p.projection.lat1_deg},
+      {"lat2", std::isnan(p.projection.lat2_deg) ? p.projection.rlat_deg : p.projection.lat2_deg},
+      {"radius", p.projection.radius_m},
       {"spline_type", static_cast<std::int64_t>(p.spline_type)},
       {"izogrid_nx", static_cast<std::int64_t>(result.nx)},
       {"izogrid_ny", static_cast<std::int64_t>(result.ny)},

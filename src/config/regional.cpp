@@ -199,7 +199,7 @@ const S& schema() {
     t.add<double>(
         "roms", "hmin_m", [](RegionalConfig& c) -> double& { return c.roms.hmin_m; },
         [](const double& v) {
-          return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a depth > 0 (m)");
+          return (v > 0.0 && v <= 12000.0) ? std::string() : std::string("must be a depth in (0, 12000] (m)");
         },
         "");
     t.add<double>(
@@ -275,11 +275,11 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "mode") return p.mode;
   if (key == "npass") return p.npass;
   if (key == "gshhs_data") return p.gshhs_data;
-  if (key == "rlat") return p.rlat;
-  if (key == "rlon") return p.rlon;
-  if (key == "rota") return p.rota;
-  if (key == "uscale") return p.uscale;
-  if (key == "radius") return p.radius;
+  if (key == "rlat") return p.projection.rlat_deg;
+  if (key == "rlon") return p.projection.rlon_deg;
+  if (key == "rota") return p.projection.rota_deg;
+  if (key == "uscale") return p.projection.uscale;
+  if (key == "radius") return p.projection.radius_m;
   if (key == "latlongrid") return p.latlongrid;
   if (key == "spline_type") return p.spline_type;
   if (key == "nx") return p.nx;
@@ -314,13 +314,13 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "points")
     return name(p.points_lonlat ? curvilinear::PointUnits::kLonLat : curvilinear::PointUnits::kPlane);
   auto num = [](double v) { return std::isnan(v) ? Json("auto") : Json(v); };
-  if (key == "lat1") return num(p.lat1);
-  if (key == "lat2") return num(p.lat2);
+  if (key == "lat1") return num(p.projection.lat1_deg);
+  if (key == "lat2") return num(p.projection.lat2_deg);
   if (key == "west_edge") return num(p.west_edge);
   if (key == "east_edge") return num(p.east_edge);
   if (key == "south_edge") return num(p.south_edge);
   if (key == "north_edge") return num(p.north_edge);
-  if (key == "proj") return name(p.proj);
+  if (key == "proj") return name(p.projection.kind);
   return nullptr;
 }
 

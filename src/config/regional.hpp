@@ -26,7 +26,7 @@ struct RomsOptions {
   /// XXH64 (file_checksum) of global_config as `aquatoria blocks` wrote it beside this block's
   /// config; a run refuses when the file now differs. "" = not checked (hand-written configs).
   std::string global_config_checksum;
-  double hmin_m = 10.0;               ///< minimum depth h is clipped to (m, > 0)
+  double hmin_m = 10.0;  ///< minimum depth h is clipped to (m, (0, 12000])
   /// r-factor bound of the depth smoothing, [0, 1); 0 = none. The default 0.2 gives the rx0 ≤ 0.2
   /// ROMS users expect of a model-ready grid.
   double rmax = 0.2;

@@ -12,19 +12,6 @@
 
 namespace aq::curvilinear {
 
-ProjectionParams projection_params(const RegionalParams& p) {
-  ProjectionParams q;
-  q.kind = p.proj;
-  q.rlat_deg = p.rlat;
-  q.rlon_deg = p.rlon;
-  q.rota_deg = p.rota;
-  q.lat1_deg = p.lat1;
-  q.lat2_deg = p.lat2;
-  q.uscale = p.uscale;
-  q.radius_m = p.radius;
-  return q;
-}
-
 std::vector<PlanePoint> RegionalResult::node_points(const BoundaryNodes& n) const {
   std::vector<PlanePoint> out;
   if (!contour) return out;
@@ -318,11 +305,11 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
   if (report != nullptr) {
     section = &(*report)["regional"];
     *section = Json{{"source", p.source},
-                    {"proj", std::string(name_of(p.proj))},
-                    {"rlat", p.rlat},
-                    {"rlon", p.rlon},
-                    {"rota", p.rota},
-                    {"uscale", p.uscale},
+                    {"proj", std::string(name_of(p.projection.kind))},
+                    {"rlat", p.projection.rlat_deg},
+                    {"rlon", p.projection.rlon_deg},
+                    {"rota", p.projection.rota_deg},
+                    {"uscale", p.projection.uscale},
                     {"spline_type", p.spline_type},
                     {"param", std::string(name_of(p.param))},
                     {"npass", p.npass},
@@ -340,14 +327,14 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
   {
     StageScope scope("regional map", report, log);
     const Timer t;
-    r.projection.emplace(projection_params(p));
+    r.projection.emplace(p.projection);
     r.control_corner = p.corner;
     if (p.points_lonlat) {
       for (std::size_t k = 0; k < p.x.size(); ++k) {
         const PlanePoint q = r.projection->forward(p.x[k], p.y[k]);
         if (!std::isfinite(q.x) || !std::isfinite(q.y))
           throw InputError(fmt::format("{}: control point {} ({}, {}) lies where the {} projection is singular",
-                                       p.source, k + 1, p.x[k], p.y[k], std::string(name_of(p.proj))));
+                                       p.source, k + 1, p.x[k], p.y[k], std::string(name_of(p.projection.kind))));
         r.control_x.push_back(q.x);
         r.control_y.push_back(q.y);
       }
@@ -359,7 +346,8 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
     r.completed = Stage::kMap;
     // (lon, lat) as in the blocks table: longitude first.
     scope.done(fmt::format("{} projection centred at lon {}, lat {}, rota {}, {} control points",
-                           std::string(name_of(p.proj)), p.rlon, p.rlat, p.rota, r.control_x.size()));
+                           std::string(name_of(p.projection.kind)), p.projection.rlon_deg, p.projection.rlat_deg,
+                           p.projection.rota_deg, r.control_x.size()));
   }
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kMap) return r;

@@ -26,9 +26,6 @@
 
 namespace aq::curvilinear {
 
-/// The map of a run: its projection fields of RegionalParams.
-ProjectionParams projection_params(const RegionalParams& p);
-
 struct RegionalResult {
   Stage completed = Stage::kMap;  ///< the last stage run
   RegionalParams params;          ///< the parameters used

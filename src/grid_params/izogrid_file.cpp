@@ -107,6 +107,15 @@ Setter real(double RegionalParams::*field) {
     return {};
   };
 }
+// A number of the projection (RegionalParams::projection).
+Setter map_real(double ProjectionParams::*field) {
+  return [field](RegionalParams& p, std::string_view v) -> std::string {
+    double d = 0.0;
+    if (!parse_double(v, d)) return "is not a number";
+    p.projection.*field = d;
+    return {};
+  };
+}
 Setter integer(int RegionalParams::*field) {
   return [field](RegionalParams& p, std::string_view v) -> std::string {
     int d = 0;
@@ -164,14 +173,21 @@ const std::map<std::string, KeySetter>& setters() {
       {"mode", integer(&RegionalParams::mode)},
       {"npass", integer(&RegionalParams::npass)},
       {"gshhs_data", text(&RegionalParams::gshhs_data)},
-      {"proj", named(&RegionalParams::proj)},
-      {"rlat", real(&RegionalParams::rlat)},
-      {"rlon", real(&RegionalParams::rlon)},
-      {"rota", real(&RegionalParams::rota)},
-      {"lat1", real(&RegionalParams::lat1)},
-      {"lat2", real(&RegionalParams::lat2)},
-      {"uscale", real(&RegionalParams::uscale)},
-      {"radius", real(&RegionalParams::radius)},
+      {"proj",
+       {[](RegionalParams& p, std::string_view v) -> std::string {
+          const std::optional<ProjectionKind> k = parse_name_any_case<ProjectionKind>(v);
+          if (!k) return "is not one of " + name_list<ProjectionKind>();
+          p.projection.kind = *k;
+          return {};
+        },
+        names_without_aliases<ProjectionKind>()}},
+      {"rlat", map_real(&ProjectionParams::rlat_deg)},
+      {"rlon", map_real(&ProjectionParams::rlon_deg)},
+      {"rota", map_real(&ProjectionParams::rota_deg)},
+      {"lat1", map_real(&ProjectionParams::lat1_deg)},
+      {"lat2", map_real(&ProjectionParams::lat2_deg)},
+      {"uscale", map_real(&ProjectionParams::uscale)},
+      {"radius", map_real(&ProjectionParams::radius_m)},
       {"west_edge", real(&RegionalParams::west_edge)},
       {"east_edge", real(&RegionalParams::east_edge)},
       {"south_edge", real(&RegionalParams::south_edge)},

@@ -12,6 +12,7 @@
 
 #include "grid_params/control_function.hpp"
 #include "grid_params/grid_kinds.hpp"
+#include "grid_params/projection_params.hpp"
 
 namespace aq::curvilinear {
 
@@ -27,28 +28,18 @@ struct RegionalParams {
   int npass = 4;
 
   // --- map (mode 0) --------------------------------------------------------------------------
-  /// [proj] conformal projection: ME (rotated Mercator), LC (Lambert conic), ST (stereographic).
-  ProjectionKind proj = ProjectionKind::kMercator;
-  /// [rlat] latitude of the projection centre = plane origin, degrees, [-90, 90] (not ±90 for ME).
-  double rlat = 0.0;
-  /// [rlon] longitude of the projection centre (LC: central meridian), degrees.
-  double rlon = 0.0;
-  /// [rota] azimuth of the plane's +y axis, degrees clockwise from north at the centre.
-  double rota = 0.0;
-  /// [lat1], [lat2] LC standard parallels, degrees in (-90, 90); NaN = rlat (tangent cone).
-  double lat1 = kAuto;
-  double lat2 = kAuto;
-  /// [uscale] plane units are unit-sphere radians divided by uscale; > 0 (seed: 0.001).
-  double uscale = 0.001;
-  /// [radius] sphere radius, metres, > 0.
-  double radius = 6371000.0;
+  /// [proj], [rlat], [rlon], [rota], [lat1], [lat2], [uscale], [radius]: the conformal projection
+  /// of the map (projection_params.hpp documents each field and its range).
+  ProjectionParams projection;
   /// [west_edge], [east_edge], [south_edge], [north_edge] geographic limits of the pictures
-  /// only, degrees; NaN = fit the contour. They never change the grid.
+  /// only, degrees (longitudes within ±360, latitudes within ±90); NaN = fit the contour. They
+  /// never change the grid.
   double west_edge = kAuto;
   double east_edge = kAuto;
   double south_edge = kAuto;
   double north_edge = kAuto;
-  /// [latlongrid] graticule spacing of the pictures, degrees, > 0.
+  /// [latlongrid] graticule spacing of the pictures, degrees, > 0 (coarsened tenfold until at most 200
+  /// lines cross the map each way).
   double latlongrid = 2.0;
   /// [gshhs_data] the seed's coastline source (a GSHHS file or c/l/i/h/f). aquatoria draws the
   /// coastline from the bathymetry; accepted and echoed only.

@@ -130,7 +130,7 @@ GeoBox geo_box(const RegionalResult& r, const Box& plane) {
       std::isfinite(p.north_edge))
     return {p.west_edge, p.east_edge, p.south_edge, p.north_edge};
   GeoBox g{1e300, -1e300, 1e300, -1e300};
-  const double lon_ref = p.rlon;
+  const double lon_ref = p.projection.rlon_deg;
   for (int i = 0; i <= 100; ++i) {
     const double t = i / 100.0;
     for (const auto& [x, y] : {std::pair{plane.x0 + t * (plane.x1 - plane.x0), plane.y0},
@@ -219,7 +219,10 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   // Background: graticule (map) or graph paper (other stages).
   if (stage == Stage::kMap) {
     const GeoBox g = geo_box(r, box);
-    const double step = r.params.latlongrid;
+    // regional.latlongrid, coarsened tenfold until at most 200 lines cross the map each way (a
+    // spacing of 1e-6° once drew lines for minutes).
+    double step = r.params.latlongrid;
+    while ((g.e - g.w) / step > 200.0 || (g.n - g.s) / step > 200.0) step *= 10.0;
     paint.style(0.6, 0.6, 0.6, 0.8);
     const int nsamp = 240;
     for (double lon = std::ceil(g.w / step) * step; lon <= g.e + 1e-9; lon += step) {
@@ -353,8 +356,8 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   if (title.empty()) {
     title = fmt::format("{}: {}", r.params.source, std::string(name_of(stage)));
     if (stage == Stage::kMap)
-      title += fmt::format(" ({} centred at {}N {}E, rota {})", std::string(name_of(r.params.proj)), r.params.rlat,
-                           r.params.rlon, r.params.rota);
+      title += fmt::format(" ({} centred at {}N {}E, rota {})", std::string(name_of(r.params.projection.kind)),
+                           r.params.projection.rlat_deg, r.params.projection.rlon_deg, r.params.projection.rota_deg);
     if (stage == Stage::kUniform || stage == Stage::kConformal) {
       const auto& n = stage == Stage::kUniform ? r.uniform_nodes : r.nodes;
       title += fmt::format(" ({} x {} boundary nodes)", n.nx_pts, n.ny_pts);

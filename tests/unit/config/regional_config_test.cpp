@@ -57,8 +57,8 @@ TEST(RegionalConfig, TomlAndIzogridFileAgree) {
   EXPECT_EQ(a.y, b.y);
   EXPECT_EQ(a.corner, b.corner);
   EXPECT_EQ(a.ny, 50);
-  EXPECT_DOUBLE_EQ(b.rlat, 43.75);
-  EXPECT_DOUBLE_EQ(b.uscale, 0.001);
+  EXPECT_DOUBLE_EQ(b.projection.rlat_deg, 43.75);
+  EXPECT_DOUBLE_EQ(b.projection.uscale, 0.001);
   EXPECT_EQ(a.mode, 1);  // the seed's file stops after the contour
   EXPECT_EQ(from_toml.options.stop_after, aq::curvilinear::Stage::kGrid);
   EXPECT_EQ(from_toml.echo["regional"]["stop_after"], "grid");
@@ -143,6 +143,30 @@ TEST(RegionalConfig, EveryBadValueIsReportedWithItsPosition) {
     EXPECT_THAT(m, HasSubstr("--set regional.interp_points=9: regional.interp_points: interp_points = 9: must be "
                              "within 2..8"));
   }
+}
+
+// The projection's checks (once made when the map was drawn) are made at load: a Lambert conic
+// whose standard parallels give a cylinder, a parallel at a pole.
+TEST(RegionalConfig, ProjectionProblemsAreReportedAtLoad) {
+  const auto p = write_temp("lc.toml", "[regional]\nproj = \"LC\"\nrlat = 40.0\nlat1 = 30.0\nlat2 = -30.0\n");
+  try {
+    (void)load_regional(p.string(), {"regional.rota=nan"});
+    FAIL() << "expected ConfigError";
+  } catch (const aq::ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("lc.toml:4:8: regional.lat1: lat1 = 30, lat2 = -30: the LC standard parallels give "
+                                    "a cylinder"));
+    EXPECT_THAT(e.what(), HasSubstr("--set regional.rota=nan: regional.rota: rota = nan: must be a finite angle"));
+  }
+  EXPECT_THAT(
+      [&] {
+        try {
+          (void)load_regional(p.string(), {"regional.lat2=90"});
+        } catch (const aq::ConfigError& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }(),
+      HasSubstr("regional.lat2: lat2 = 90: an LC standard parallel must be inside (-90, 90)"));
 }
 
 // A bad value of the seed-format contour file is reported at its line there; a value of that file

@@ -223,7 +223,7 @@ TEST(InverseTest, StagesStopWhereAsked) {
 
 TEST(InverseTest, GeographicControlPointsAreProjectedFirst) {
   RegionalParams p = black_sea_params();
-  const Projection proj(projection_params(p));
+  const Projection proj(p.projection);
   for (std::size_t k = 0; k < p.x.size(); ++k) {
     const GeoPoint g = proj.inverse(p.x[k], p.y[k]);
     p.x[k] = g.lon_deg;
