@@ -211,7 +211,8 @@ curvilinear::ProjectionParams choose_projection(const BoxFrame& frame) {
 }
 
 BlockContour block_contour(const BoxFrame& frame, const SideInsets& insets, int points_per_side) {
-  if (points_per_side < 2) throw ConfigError(fmt::format("blocks.points_per_side = {}: must be >= 2", points_per_side));
+  if (points_per_side < 2)  // blocks.points_per_side is validated at load
+    throw InternalError(fmt::format("block contour: {} points per side (>= 2)", points_per_side));
   BlockContour c;
   c.projection = choose_projection(frame);
   c.insets = insets;

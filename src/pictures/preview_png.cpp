@@ -736,7 +736,7 @@ WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& b
 WriteStats write_preview_zoom_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
                                   const std::filesystem::path& path, const PreviewOptions& options) {
   check_preview_options(options);
-  if (options.zoom.size() != 4) throw ConfigError("output.png_zoom: no zoom box given");
+  if (options.zoom.size() != 4) throw InternalError("write_preview_zoom_png: no zoom box given");
   const auto& z = options.zoom;
   const double lat_lo = std::max(z[2], -mesh.lattice.lat_max_deg()),
                lat_hi = std::min(z[3], mesh.lattice.lat_max_deg());
