@@ -48,10 +48,14 @@ constexpr std::array<RuleField<BoxRule>, 4> kBoxRuleFields{{{"lon_min_deg", &Box
 std::string depth_range_problem(const DepthRule& r) {
   return r.min_depth_m < r.max_depth_m ? std::string() : "needs min_depth_m < max_depth_m";
 }
+// A longitude of the configuration: finite and within ±360° (any wider value names no place).
+bool lon_ok(double v) { return v >= -360.0 && v <= 360.0; }
+
 std::string box_range_problem(const BoxRule& r) {
-  if (r.lon_min_deg < r.lon_max_deg && r.lat_min_deg < r.lat_max_deg && r.lat_min_deg >= -90 && r.lat_max_deg <= 90)
+  if (r.lon_min_deg < r.lon_max_deg && lon_ok(r.lon_min_deg) && lon_ok(r.lon_max_deg) &&
+      r.lat_min_deg < r.lat_max_deg && r.lat_min_deg >= -90 && r.lat_max_deg <= 90)
     return {};
-  return "needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg <= 90";
+  return "needs -360 <= lon_min_deg < lon_max_deg <= 360 and -90 <= lat_min_deg < lat_max_deg <= 90";
 }
 
 // Reads the array of rule tables `key` (quadtree.depth_rules / box_rules): the number fields
@@ -237,9 +241,9 @@ const S& schema() {
         [](const std::vector<std::array<double, 2>>& v) {
           if (v.empty()) return std::string("at least one seed [lon, lat] is needed");
           for (std::size_t k = 0; k < v.size(); ++k)
-            if (!std::isfinite(v[k][0]) || !(v[k][1] >= -90 && v[k][1] <= 90))
-              return fmt::format("seed {} = [{}, {}]: expected a finite longitude and a latitude in [-90, 90]", k,
-                                 v[k][0], v[k][1]);
+            if (!lon_ok(v[k][0]) || !(v[k][1] >= -90 && v[k][1] <= 90))
+              return fmt::format("seed {} = [{}, {}]: expected a longitude in [-360, 360] and a latitude in [-90, 90]",
+                                 k, v[k][0], v[k][1]);
           return std::string();
         },
         "");
@@ -304,6 +308,9 @@ const S& schema() {
           std::filesystem::path path(text);
           if (!text.empty() && path.is_relative()) path = o.base_dir / path;
           c.size.raster = text.empty() ? text : path.lexically_normal().string();
+          // A FIFO or a directory is refused before GDAL opens it (a FIFO would block it).
+          if (const std::string bad = detail::input_path_problem(c.size.raster); !text.empty() && !bad.empty())
+            p.add(o, "size.raster", bad);
         },
         [](const GlobalConfig& c) { return Json(c.size.raster); }, "");
     size_num("size.coast", "h0_km", [](GlobalConfig& c) -> double& { return c.size.coast.h0_km; }, 0.0, 1e5);
@@ -360,6 +367,11 @@ const S& schema() {
           std::filesystem::path path(text);
           if (!text.empty() && path.is_relative()) path = o.base_dir / path;
           c.domain.polygon = text.empty() ? text : path.lexically_normal().string();
+          // A FIFO would block OGR for ever (a shapefile's folder is a directory OGR reads: allowed).
+          std::error_code ec;
+          if (!text.empty() && !std::filesystem::is_directory(c.domain.polygon, ec))
+            if (const std::string bad = detail::input_path_problem(c.domain.polygon); !bad.empty())
+              p.add(o, "domain.polygon", bad);
         },
         [](const GlobalConfig& c) { return Json(c.domain.polygon); }, "");
     t.add<std::string>(
@@ -411,11 +423,11 @@ const S& schema() {
         [](const std::vector<double>& v) {
           if (v.empty()) return std::string();
           const bool finite = std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
-          if (v.size() != 4 || !finite || !(v[0] < v[1]) || v[1] - v[0] > 360.0 || !(v[2] < v[3]) || v[2] < -90 ||
-              v[3] > 90)
+          if (v.size() != 4 || !finite || !lon_ok(v[0]) || !lon_ok(v[1]) || !(v[0] < v[1]) || v[1] - v[0] > 360.0 ||
+              !(v[2] < v[3]) || v[2] < -90 || v[3] > 90)
             return std::string(
-                "expected 4 finite numbers [lon_min, lon_max, lat_min, lat_max] with lon_min < lon_max <= lon_min + "
-                "360 and -90 <= lat_min < lat_max <= 90");
+                "expected 4 finite numbers [lon_min, lon_max, lat_min, lat_max] with -360 <= lon_min < lon_max <= "
+                "lon_min + 360, lon_max <= 360 and -90 <= lat_min < lat_max <= 90");
           return std::string();
         },
         "");
@@ -446,11 +458,11 @@ const S& schema() {
         [](const std::vector<std::array<double, 4>>& v) {
           for (std::size_t k = 0; k < v.size(); ++k) {
             const auto& b = v[k];
-            if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !(b[0] < b[1]) || b[1] - b[0] > 180.0 ||
-                !(b[2] < b[3]) || b[2] < -90.0 || b[3] > 90.0)
+            if (!lon_ok(b[0]) || !lon_ok(b[1]) || !(b[0] < b[1]) || b[1] - b[0] > 180.0 || !(b[2] < b[3]) ||
+                b[2] < -90.0 || b[3] > 90.0)
               return fmt::format(
                   "box {} = [{}, {}, {}, {}]: expected [lon_min, lon_max, lat_min, lat_max] with "
-                  "lon_min < lon_max <= lon_min + 180 and -90 <= lat_min < lat_max <= 90",
+                  "-360 <= lon_min < lon_max <= lon_min + 180, lon_max <= 360 and -90 <= lat_min < lat_max <= 90",
                   k, b[0], b[1], b[2], b[3]);
           }
           return std::string();

@@ -164,6 +164,25 @@ TEST(RobustMessages, TheBadInputsOfIssue33AreRefused) {
   EXPECT_THAT(fs::exists(dir / "huge") ? std::distance(fs::directory_iterator(dir / "huge"), {}) : 0, 0);
 }
 
+// Found by probing as a new user (issue 33): a graticule spacing of 1e-6° drew lines for minutes
+// (now coarsened to at most 200 lines a way), a picture edge at -1e300° reached the coastline
+// stage as an empty window naming no key, a FIFO as domain.polygon blocked OGR for ever.
+TEST(RobustMessages, ProbedRegionalAndDomainValuesAreHandled) {
+  aq::testing::TempDir dir;
+  CommandResult r = aq_run("regional -q -c " + kConfigs + "black_sea.toml --set regional.latlongrid=1e-6 " +
+                               "--stop-after map -o " + (dir / "map").string(),
+                           30);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "map" / "black_sea_map.png"));
+  r = aq_run("regional -q -c " + kConfigs + "black_sea.toml --set regional.west_edge=-1e300 --stop-after map");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("regional.west_edge: west_edge = -1e+300: must be a longitude within [-360, 360]"));
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
+  r = aq_run("mesh -q --set domain.polygon=" + (dir / "fifo").string() + " -o " + (dir / "out").string(), 30);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("domain.polygon: " + (dir / "fifo").string() + " is a FIFO"));
+}
+
 // A 1" lattice at L = 12 printed "memory: estimate -9223188109.45 GB" and died with bad_alloc;
 // max_memory_gb = 1e-10 meant "no limit".
 TEST(RobustSizes, HugeLatticesAndTinyLimitsAreRefusedBeforeAnyWork) {

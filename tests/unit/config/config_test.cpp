@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -167,7 +169,7 @@ TEST(Config, EveryBadValueIsReportedWithItsPositionInOneMessage) {
       f + ":4:15: mask.min_depth_m: -5 is outside [0, 12000]",
       f + ":5:10: mask.cursor: 0 is outside [1, 64]",
       f + ":6:12: mask.sampling: \"bilinear\" is not one of \"vertex\", \"area\"",
-      f + ":7:9: mask.seeds: seed 0 = [0, nan]: expected a finite longitude and a latitude in [-90, 90]",
+      f + ":7:9: mask.seeds: seed 0 = [0, nan]: expected a longitude in [-360, 360] and a latitude in [-90, 90]",
       f + ":9:12: quadtree.step_deg: 7: ",
       f + ":11:11: quadtree.balance: \"edge\" is not one of \"face\", \"corner\"",
       f + ":12:13: quadtree.box_rules[0].level, quadtree.levels: level 4 exceeds quadtree.levels = 2",
@@ -201,6 +203,30 @@ TEST(Config, ACrossKeyProblemNamesWhereItsKeysWereSet) {
               HasSubstr("--set mesh.elements=\"squares\": output.formats, mesh.elements: \"fort14\" needs triangles"));
   EXPECT_THAT(error_of(std::nullopt, {"domain.kind=\"box\""}),
               HasSubstr("--set domain.kind=\"box\": domain.kind: \"box\" needs domain.box"));
+}
+
+// Found by probing (issue 33): a seed at longitude 1e300 meshed from wherever it landed, a box
+// rule at 1e15° applied nowhere, a zoom at 1000° drew nothing; a FIFO as domain.polygon blocked
+// OGR for ever and one as size.raster was refused only when the run reached the size stage.
+TEST(Config, LongitudesAreWithin360AndInputFilesAreFilesAtLoad) {
+  EXPECT_THAT(error_of(std::nullopt, {"mask.seeds=[[1e300, 0]]"}),
+              HasSubstr("mask.seeds: seed 0 = [1e+300, 0]: expected a longitude in [-360, 360]"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.box_rules=[{lon_min_deg = 1e15, lon_max_deg = 2e15, lat_min_deg = "
+                                      "0, lat_max_deg = 10, level = 1}]"}),
+              HasSubstr("quadtree.box_rules[0]: needs -360 <= lon_min_deg < lon_max_deg <= 360"));
+  EXPECT_THAT(error_of(std::nullopt, {"output.png_zoom=[1000, 1100, 0, 10]"}), HasSubstr("output.png_zoom: expected"));
+  EXPECT_THAT(error_of(std::nullopt, {"blocks.boxes=[[400, 410, 0, 10]]"}), HasSubstr("blocks.boxes: box 0"));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"mask.seeds=[[350, -50]]", "output.png_zoom=[150, 210, 0, 10]"}));
+  const fs::path dir = fs::temp_directory_path() / "aq_config_test";
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(error_of(std::nullopt, {"domain.polygon=\"" + fifo.string() + "\""}),
+              HasSubstr("domain.polygon: " + fifo.string() + " is a FIFO (named pipe), not a regular file"));
+  EXPECT_THAT(error_of(std::nullopt, {"size.raster=\"" + fifo.string() + "\""}),
+              HasSubstr("size.raster: " + fifo.string() + " is a FIFO (named pipe), not a regular file"));
+  fs::remove(fifo);
 }
 
 // Issue 33: `domain.box = [10, -5, 49, 61]` (meant as [-5, 10, ...]) meshed a 345° band of the
@@ -284,9 +310,10 @@ TEST(Config, SizeTargetsAndRuleRangesAreCheckedAtLoad) {
               HasSubstr("quadtree.coast_band: -1 is outside [0, 64]"));
   EXPECT_THAT(error_of(std::nullopt, {"quadtree.depth_rules=[{min_depth_m = 100, max_depth_m = 50, level = 1}]"}),
               HasSubstr("quadtree.depth_rules[0]: needs min_depth_m < max_depth_m"));
-  EXPECT_THAT(error_of(std::nullopt, {"quadtree.box_rules=[{lon_min_deg = 0, lon_max_deg = 10, lat_min_deg = 20, "
-                                      "lat_max_deg = 10, level = 1}]"}),
-              HasSubstr("quadtree.box_rules[0]: needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg"));
+  EXPECT_THAT(
+      error_of(std::nullopt, {"quadtree.box_rules=[{lon_min_deg = 0, lon_max_deg = 10, lat_min_deg = 20, "
+                              "lat_max_deg = 10, level = 1}]"}),
+      HasSubstr("quadtree.box_rules[0]: needs -360 <= lon_min_deg < lon_max_deg <= 360 and -90 <= lat_min_deg"));
   EXPECT_THAT(error_of(std::nullopt, {"quadtree.depth_rules=[{min_depth_m = 0, max_depth_m = 50, level = 9}]"}),
               HasSubstr("quadtree.depth_rules[0].level, quadtree.levels: level 9 exceeds quadtree.levels = 3"));
 }
