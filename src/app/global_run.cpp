@@ -636,35 +636,11 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
   }
 }
 
-// Open = the pixel on the right of the edge's first lattice step (outside the wet area) is wet
-// and outside the domain; everything else is land (mesh/boundaries.hpp).
+// Open boundary where the domain cuts the sea, the rest mainland or island (mesh/boundaries.hpp).
 static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* report) {
   StageScope stage("boundaries", report, log);
-  mesh::Mesh& m = run.mesh;
-  const Lattice& lat = m.lattice;
-  const mask::Domain& d = run.domain;
-  const Bitmap& wet = run.area.wet;
-  const auto is_open = [&](NodeId a, NodeId b) {
-    const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
-    const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
-    std::int64_t di = m.node_i[pb] - ia;
-    const std::int64_t dj = m.node_j[pb] - ja;
-    if (di > lat.nx / 2) di -= lat.nx;
-    if (di < -lat.nx / 2) di += lat.nx;
-    if ((di != 0) == (dj != 0)) return false;  // a diagonal (after cleaning) or a degenerate edge
-    std::int64_t pi = ia, pj = ja;             // the pixel on the right of the first unit step
-    if (di > 0) pj = ja - 1;
-    if (di < 0) pi = ia - 1;
-    if (dj < 0) {
-      pi = ia - 1;
-      pj = ja - 1;
-    }
-    if (pj < 0 || pj >= lat.ny) return false;
-    pi = ((pi % lat.nx) + lat.nx) % lat.nx;
-    return !d.contains(pi, pj) && wet.get(pi, pj);
-  };
-  const mesh::BoundaryCounts counts = mesh::type_boundaries(m, is_open, &log);
-  if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(m, counts);
+  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, run.domain, run.area.wet, &log);
+  if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(run.mesh, counts);
   stage.done(mesh::describe(counts));
 }
 

@@ -1,8 +1,9 @@
 // Boundary typing of regional meshes (README "Regional FE meshes"): every boundary edge is
 // open, mainland or island, and the loops are cut into the segments the model formats write.
 //
-//   * An edge is open when the caller's predicate says so (app: the pixel on its right, outside
-//     the wet area, is wet and outside the domain).
+//   * An edge is open when the caller's predicate says so; for a regional domain
+//     (type_domain_boundaries) when the pixel on its right, outside the wet area, is wet and
+//     outside the domain.
 //   * A land gap shorter than kMinSegmentEdges edges between two open runs becomes open (the two
 //     segments merge); then an open run shorter than kMinSegmentEdges becomes land. A loop that
 //     is open all round is split into two open segments (SCHISM refuses a looped open segment).
@@ -18,8 +19,10 @@
 #include <functional>
 #include <string>
 
+#include "core/bitmap.hpp"
 #include "core/log.hpp"
 #include "core/report.hpp"
+#include "mask/domain.hpp"
 #include "mesh/mesh.hpp"
 
 namespace aq::mesh {
@@ -37,6 +40,11 @@ struct BoundaryCounts {
 /// tells whether the edge a -> b (wet on the left) is on the open boundary. Logs each merge
 /// when `log` is given.
 BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)>& is_open, const Logger* log);
+
+/// type_boundaries() for the mesh of a regional `domain` (mask/domain.hpp): the edge a -> b is
+/// open when the pixel on the right of its first lattice step (outside the wet area) is `wet` and
+/// outside the domain; diagonals (after the model cleaning) and degenerate edges are land.
+BoundaryCounts type_domain_boundaries(Mesh& m, const mask::Domain& domain, const Bitmap& wet, const Logger* log);
 
 /// Counts of a typed mesh.
 BoundaryCounts boundary_counts(const Mesh& m);
