@@ -78,7 +78,8 @@ void read_rules(std::vector<R>& out, const toml::value& v, const Origin& o, Prob
     }
     R r;
     bool has_level = false, has_size = false, good = true;
-    for (const auto& [name, x] : items[k].as_table()) {
+    for (const auto& [field_name, x] : items[k].as_table()) {
+      const std::string& name = field_name;  // clang before 16 cannot capture a structured binding
       const auto f = std::find_if(fields.begin(), fields.end(), [&](const RuleField<R>& g) { return name == g.name; });
       std::optional<std::string> err;
       if (f != fields.end())

@@ -134,8 +134,12 @@ const S& schema() {
     t.add<int>(
         "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
     using Sections = std::vector<std::vector<double>>;
-    for (const auto& [name, member] : {std::pair{"sections", &curvilinear::RegionalParams::sections},
-                                       std::pair{"sections_eta", &curvilinear::RegionalParams::sections_eta}}) {
+    for (const auto& [section_name, section_member] :
+         {std::pair{"sections", &curvilinear::RegionalParams::sections},
+          std::pair{"sections_eta", &curvilinear::RegionalParams::sections_eta}}) {
+      // Copies: clang before 16 cannot capture a structured binding.
+      const char* name = section_name;
+      const auto member = section_member;
       const std::string key = std::string("regional.") + name;
       t.add_custom(
           "regional", name,
