@@ -13,12 +13,13 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/key_list.hpp"
 #include "app/provenance.hpp"
 #include "app/regional_nesting.hpp"
 #include "app/regional_refine.hpp"
 #include "app/regional_roms.hpp"
-#include "config/regional.hpp"
 #include "config/load.hpp"
+#include "config/regional.hpp"
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
@@ -43,6 +44,7 @@ struct RegionalArgs {
   std::string out_dir;
   bool no_coastline = false;
   bool force = false;  // --force: build although an input changed since the earlier outputs
+  bool keys = false;   // --keys: list the configuration keys and exit
 };
 
 // The files this run reads that another aquatoria run may have written, with their checksums and
@@ -344,7 +346,14 @@ void add_regional_command(CLI::App& app, Context& ctx) {
   cmd->add_flag("--force", args->force,
                 "Cut a refinement grid from nesting.parent although the parent changed since this grid's earlier "
                 "outputs were cut from it");
-  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_regional_cmd(*args, ctx.log); }; });
+  cmd->add_flag("--keys", args->keys, "List every configuration key with its default and values, and exit");
+  cmd->callback([&ctx, args] {
+    ctx.run = [&ctx, args] {
+      if (!args->keys) return run_regional_cmd(*args, ctx.log);
+      print_keys(config::regional_key_info(), stdout);
+      return 0;
+    };
+  });
 }
 
 }  // namespace aq::app
