@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <toml.hpp>
 #include <tuple>
 #include <type_traits>
@@ -118,6 +121,31 @@ inline bool is_plain_text(const std::string& s) {
     i += static_cast<std::size_t>(extra) + 1;
   }
   return true;
+}
+
+/// Where `text` is not UTF-8 ("line L, column C" of the first bad byte, columns counted in bytes),
+/// or "". TOML is UTF-8, and toml11 (3.7) reads past the end of its buffer on some invalid bytes
+/// inside a literal string: text must pass this before it reaches the parser.
+inline std::string utf8_problem(std::string_view text) {
+  std::size_t i = 0, line = 1, line_start = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) {
+      if (c == '\n') {
+        ++line;
+        line_start = i + 1;
+      }
+      ++i;
+      continue;
+    }
+    const int extra = (c & 0xe0) == 0xc0 ? 1 : (c & 0xf0) == 0xe0 ? 2 : (c & 0xf8) == 0xf0 ? 3 : -1;
+    bool ok = extra > 0 && c != 0xc0 && c != 0xc1 && c <= 0xf4 && text.size() - i > static_cast<std::size_t>(extra);
+    for (int k = 1; ok && k <= extra; ++k)
+      ok = (static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]) & 0xc0) == 0x80;
+    if (!ok) return fmt::format("line {}, column {}", line, i - line_start + 1);
+    i += static_cast<std::size_t>(extra) + 1;
+  }
+  return {};
 }
 
 /// `s` for a message: when it is not plain text, bytes other than printable ASCII as \xNN.
@@ -371,6 +399,10 @@ class Schema {
       return;
     }
     const std::string raw = text.substr(eq + 1);
+    if (!utf8_problem(raw).empty()) {
+      p.add(o, printable(path), "value is neither TOML nor plain text (not UTF-8)");
+      return;
+    }
     toml::value value;
     try {
       std::istringstream in("v = " + raw);
@@ -385,6 +417,22 @@ class Schema {
     }
     p.set_at(path, o);
     k->set(t, value, o, p);
+  }
+
+  /// Every key as "section.key", in table order.
+  [[nodiscard]] std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& k : keys_) out.push_back(k.section + "." + k.name);
+    return out;
+  }
+  /// Every key as Info{"section.key", its default as the echo has it, help, names}, in table order.
+  template <typename Info>
+  [[nodiscard]] std::vector<Info> infos() const {
+    const Json defaults = echo(T{});
+    std::vector<Info> out;
+    for (const auto& k : keys_)
+      out.push_back({k.section + "." + k.name, defaults[k.section][k.name], k.help, k.values});
+    return out;
   }
 
   /// The effective configuration as JSON: {section: {key: value}} in table order.
@@ -448,8 +496,14 @@ inline toml::value parse_file(const std::filesystem::path& path) {
     throw ConfigError(fmt::format(
         "{}: {}", path.string(),
         problem == "no such file" ? std::string("no such configuration file") : "configuration file " + problem));
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw ConfigError(fmt::format("{}: cannot read", path.string()));
+  if (const std::string where = utf8_problem(text); !where.empty())
+    throw ConfigError(fmt::format("{}: {}: not UTF-8 text (a TOML file is UTF-8)", path.string(), where));
   try {
-    return toml::parse(path.string());
+    std::istringstream stream(text);
+    return toml::parse(stream, path.string());
   } catch (const toml::syntax_error& e) {
     throw ConfigError(fmt::format("{}: TOML syntax error:\n{}", path.string(), e.what()));
   } catch (const std::runtime_error& e) {

@@ -318,6 +318,15 @@ TEST(Config, SizeTargetsAndRuleRangesAreCheckedAtLoad) {
               HasSubstr("quadtree.depth_rules[0].level, quadtree.levels: level 9 exceeds quadtree.levels = 3"));
 }
 
+// Found by fuzzing (issue 33): toml11 read past its buffer on an invalid UTF-8 byte inside a
+// literal string. A configuration file or --set value that is not UTF-8 is refused first.
+TEST(Config, TextThatIsNotUtf8IsRefusedWithItsPosition) {
+  const auto p = write_temp("latin1.toml", "[output]\nname = 'Caf\xe9'\n");
+  EXPECT_THAT(error_of(p.string()), HasSubstr("latin1.toml: line 2, column 12: not UTF-8 text"));
+  EXPECT_THAT(error_of(std::nullopt, {"output.name='\xff'"}), HasSubstr("value is neither TOML nor plain text"));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"output.name='Café'"}));
+}
+
 TEST(Config, WrongTypeIsReported) {
   const auto p = write_temp("type.toml", "[quadtree]\nlevels = \"three\"\n");
   EXPECT_THAT(error_of(p.string()), HasSubstr("expected an integer"));
