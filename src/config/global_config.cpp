@@ -645,18 +645,8 @@ RunName default_run_name(const GlobalConfig& c) {
   return out;
 }
 
-std::vector<std::string> global_keys() {
-  std::vector<std::string> k;
-  for (const auto& key : schema().keys()) k.push_back(key.section + "." + key.name);
-  return k;
-}
+std::vector<std::string> global_keys() { return schema().names(); }
 
-std::vector<KeyInfo> global_key_info() {
-  const Json defaults = schema().echo(GlobalConfig{});
-  std::vector<KeyInfo> out;
-  for (const auto& key : schema().keys())
-    out.push_back({key.section + "." + key.name, defaults[key.section][key.name], key.help, key.values});
-  return out;
-}
+std::vector<KeyInfo> global_key_info() { return schema().infos<KeyInfo>(); }
 
 }  // namespace aq::config

@@ -431,18 +431,8 @@ std::vector<KeyProblem> stop_stage_problems(const RegionalConfig& c, curvilinear
   return out;
 }
 
-std::vector<KeyInfo> regional_key_info() {
-  const Json defaults = schema().echo(RegionalConfig{});
-  std::vector<KeyInfo> out;
-  for (const auto& key : schema().keys())
-    out.push_back({key.section + "." + key.name, defaults[key.section][key.name], key.help, key.values});
-  return out;
-}
+std::vector<KeyInfo> regional_key_info() { return schema().infos<KeyInfo>(); }
 
-std::vector<std::string> regional_keys() {
-  std::vector<std::string> k;
-  for (const auto& key : schema().keys()) k.push_back(key.section + "." + key.name);
-  return k;
-}
+std::vector<std::string> regional_keys() { return schema().names(); }
 
 }  // namespace aq::config

@@ -158,14 +158,18 @@ std::vector<std::string> names_without_aliases() {
 }
 
 template <NamedEnum E>
-KeySetter named(E RegionalParams::*field) {
+KeySetter named(std::function<E&(RegionalParams&)> field) {
   return {[field](RegionalParams& p, std::string_view v) -> std::string {
             const std::optional<E> e = parse_name_any_case<E>(v);
             if (!e) return "is not one of " + name_list<E>();
-            p.*field = *e;
+            field(p) = *e;
             return {};
           },
           names_without_aliases<E>()};
+}
+template <NamedEnum E>
+KeySetter named(E RegionalParams::*member) {
+  return named<E>([member](RegionalParams& p) -> E& { return p.*member; });
 }
 
 const std::map<std::string, KeySetter>& setters() {
@@ -173,14 +177,7 @@ const std::map<std::string, KeySetter>& setters() {
       {"mode", integer(&RegionalParams::mode)},
       {"npass", integer(&RegionalParams::npass)},
       {"gshhs_data", text(&RegionalParams::gshhs_data)},
-      {"proj",
-       {[](RegionalParams& p, std::string_view v) -> std::string {
-          const std::optional<ProjectionKind> k = parse_name_any_case<ProjectionKind>(v);
-          if (!k) return "is not one of " + name_list<ProjectionKind>();
-          p.projection.kind = *k;
-          return {};
-        },
-        names_without_aliases<ProjectionKind>()}},
+      {"proj", named<ProjectionKind>([](RegionalParams& p) -> ProjectionKind& { return p.projection.kind; })},
       {"rlat", map_real(&ProjectionParams::rlat_deg)},
       {"rlon", map_real(&ProjectionParams::rlon_deg)},
       {"rota", map_real(&ProjectionParams::rota_deg)},
