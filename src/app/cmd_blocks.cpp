@@ -147,6 +147,11 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   report["config"]["output"]["dir"] = c.output.dir;
   report["config"]["blocks"]["top"] = c.blocks.top;
 
+  if (c.mask.min_depth_m < 0.0)  // the blocks become ROMS grids nested in this run (app/regional_roms.cpp)
+    throw ConfigError(fmt::format(
+        "{}: mask.min_depth_m = {} meshes a floodplain above the datum; the blocks' regional ROMS grids share this "
+        "run's land mask and cannot hold it: run `aquatoria blocks` with mask.min_depth_m >= 0",
+        loaded.source, c.mask.min_depth_m));
   const GlobalSetup setup = prepare_global_run(c, {.allow_window = false});  // blocks rank the global lattice's squares
   log_memory_estimate(setup, log);
   const Lattice& lat = setup.lattice;

@@ -16,6 +16,7 @@
 #include "mask/passages.hpp"
 #include "mesh/boundaries.hpp"
 #include "mesh/build_mesh.hpp"
+#include "mesh/floodplain.hpp"
 #include "mesh/open_snap.hpp"
 #include "mesh/time_step.hpp"
 #include "mesh_files/element_kinds.hpp"
@@ -53,6 +54,9 @@ namespace {
 // (2026-11-28): 15" with every size term 6.58 / 6.80 GB (before the run, from the guessed count:
 // 5.10); global_tides on the 1' raster (rotated: no copy) 2.94 / 3.09 GB.
 constexpr double kLatticeBitsPerPixel = 8.0;
+// A floodplain run (mask.min_depth_m < 0) keeps 3 bitmaps more: the pixels wet at the datum, the
+// sea inside Ω_L and, regional, the open water (mask/wet_area.hpp).
+constexpr double kFloodplainBitsPerPixel = 3.0;
 constexpr double kMeshBytesPerTriangle = 215.0;
 constexpr double kTrianglesPerSqrtPixel = 350.0;
 constexpr std::int64_t kBaseBytes = 230'000'000;  // program, GDAL cache, the writers' chunk buffers, small tables
@@ -148,6 +152,9 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
                              ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))
                              : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
   s.lattice_bytes = estimate_lattice_bytes(s.lattice);
+  if (c.mask.min_depth_m < 0.0)  // a floodplain: the pixels at the datum, the sea and (regional) the open water
+    s.lattice_bytes = saturate(estimate_lattice_bytes_f(s.lattice) * (kLatticeBitsPerPixel + kFloodplainBitsPerPixel) /
+                               kLatticeBitsPerPixel);
   s.triangles_guess = estimate_triangles(s.lattice);
   s.mesh_bytes = saturate(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
   const Lattice& lat = s.lattice;
@@ -507,8 +514,11 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
     log.info("critical passages (open = the filled ocean connects both sides):");
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
-  run.size_field = size::build_size_field(area.filled, lat, c, rot, &bathy, log, report);
-  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report, &run.size_field);
+  // The coast beyond Ω_L's edge (mask/coast.hpp): not the open water beyond a regional domain,
+  // and with a floodplain the shoreline at the datum.
+  const mask::CoastSources coast = area.coast();
+  run.size_field = size::build_size_field(area.filled, lat, c, rot, &bathy, log, report, coast);
+  run.leaves = quadtree::build_leaves(area.filled, lat, c.quadtree, rot, &bathy, log, report, &run.size_field, coast);
   return run;
 }
 
@@ -586,10 +596,11 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
   }
 }
 
-// Open boundary where the domain cuts the sea, the rest mainland or island (mesh/boundaries.hpp).
+// Open boundary where the domain edge meets water at the datum outside it (WetArea::open), the
+// rest mainland or island (mesh/boundaries.hpp).
 static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* report) {
   StageScope stage("boundaries", report, log);
-  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, run.domain, run.area.wet, &log);
+  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, run.area.open, &log);
   if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(run.mesh, counts);
   stage.done(mesh::describe(counts));
 }
@@ -606,7 +617,7 @@ static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfi
     return;
   }
   mesh::OpenSnapOptions o;
-  o.wet_max_elevation_m = -c.mask.min_depth_m;
+  o.wet_max_elevation_m = -std::max(c.mask.min_depth_m, 0.0);  // an open node stays in water at the datum
   const raster::Bathymetry& bathy = *run.bathy;
   const mesh::OpenSnapResult r = mesh::snap_open_boundary(
       run.mesh, run.domain.rings, run.setup.rotation,
@@ -618,6 +629,23 @@ static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfi
       o);
   if (report != nullptr) (*report)["open_boundary_snap"] = r.json();
   stage.done(r.describe());
+}
+
+// A floodplain mesh (mask.min_depth_m < 0; README "A storm-surge mesh"): its nodes and area above
+// the datum (mesh/floodplain.hpp), the "floodplain" stage line and report section.
+static void report_floodplain(const GlobalRun& run, const Logger& log, Report* report) {
+  StageScope stage("floodplain", report, log);
+  const mesh::Floodplain f = mesh::floodplain(run.mesh, run.mesh.floodplain_top_m);
+  if (report != nullptr) {
+    Json j = mesh::floodplain_json(f);
+    j["pixels"] = run.area.floodplain_pixels;
+    (*report)["floodplain"] = j;
+  }
+  stage.done(
+      fmt::format("{} of {} nodes above the datum (dry at rest; highest {:.1f} m), {:.1f} km² (WGS84) of land up "
+                  "to +{:g} m in {} triangles; {} of the {} land-boundary nodes are above the datum",
+                  f.nodes, run.mesh.node_count(), f.highest_node_m, f.area_km2, f.top_m, f.triangles,
+                  f.land_boundary_nodes_above, f.land_boundary_nodes));
 }
 
 // The statistics and checks of the lattice mesh (conforming, its area that of the filled pixels):
@@ -644,21 +672,35 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     run.area.wet_vertices = Bitmap();
     run.area.coastal = Bitmap();
     run.area.filled = Bitmap();
-    if (!run.domain.regional()) run.area.wet = Bitmap();
+    run.area.datum_wet = Bitmap();
+    run.area.sea = Bitmap();
+    run.area.wet = Bitmap();  // a regional run types its boundaries with `open`
   }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
   if (run.domain.regional()) type_regional_boundaries(run, log, report);
   if (statistics) check_lattice_mesh(run, log, report);
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
-  if (!keep_masks) run.area.wet = Bitmap();
+  if (!keep_masks) run.area.open = Bitmap();
   if (!statistics) return run;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)
     StageScope dt_stage("time_step", report, log);
-    const mesh::TimeStep ts = mesh::time_step(run.mesh, c.size.min_depth_m, c.size.cfl.dt_s, c.size.cfl.courant_max);
+    const mesh::TimeStep ts = mesh::time_step(run.mesh, c.size.min_depth_m, c.size.cfl.dt_s, c.size.cfl.courant_max,
+                                              run.mesh.floodplain_top_m);
     if (report != nullptr) (*report)["time_step"] = mesh::time_step_json(ts);
+    if (ts.wetting_drying.flood_level_m > 0.0) {
+      const mesh::TimeStep::WettingDrying& w = ts.wetting_drying;
+      log.info(
+          "time_step: with wetting and drying, water up to {:g} m above the datum over every node (H = {:g} m - "
+          "elevation, at least {} m): dt {:.2f} s (edge {:.0f} m, H {:.1f} m at {:.3f}, {:.3f}, whose highest "
+          "node is at {:.1f} m); {:.2f} s at Courant {}",
+          w.flood_level_m, w.flood_level_m, ts.min_depth_m, w.max_stable_dt_s, w.limiting_edge_m, w.limiting_depth_m,
+          w.limiting_lon_deg, w.limiting_lat_deg, w.limiting_elevation_m, w.max_stable_dt_s * ts.courant_max,
+          ts.courant_max);
+    }
     std::string courant;
     if (ts.dt_s > 0.0 && ts.courant_percentiles.size() == 5)
       courant = fmt::format("; at dt = {} s Courant min/median/p99/max {:.3f}/{:.3f}/{:.3f}/{:.3f}, {} triangles above {}",
@@ -680,6 +722,7 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
                setup.lattice.levels, ts.max_stable_dt_s * ts.courant_max, ts.courant_max);
     }
   }
+  if (run.mesh.floodplain_top_m > 0.0) report_floodplain(run, log, report);
   return run;
 }
 

@@ -280,6 +280,15 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
               return Facts{{"open-boundary nodes", s.nodes}};
             });
       }
+      if (g.floodplain_top_m > 0.0) {  // FESOM2 has no wetting and drying
+        const auto above = std::count_if(g.depth_m.begin(), g.depth_m.end(), [](double e) { return e > 0.0; });
+        if (above > 0)
+          hold(LogLevel::kWarning,
+               fmt::format("fesom: FESOM2 has no wetting and drying: aux3d.out writes the {} nodes of the floodplain "
+                           "(above the datum, up to {} m) at 0 m, and FESOM2 deepens them to its 5th level, water; "
+                           "mesh a surge domain for ADCIRC or SCHISM (fort14, schism), or set mask.min_depth_m >= 0",
+                           above, g.floodplain_top_m));
+      }
       const FesomRotation r = fesom_rotation(mesh.rotation);
       hold(LogLevel::kInfo,
            fmt::format("FESOM namelist.config &geometry: {} ({})", r.namelist(),
@@ -331,8 +340,15 @@ std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster
         if (o->colour == PreviewColour::kSize && shapes) o->triangle_values = lattice_values(shapes->size_km);
       };
       if (o->colour == PreviewColour::kTarget) o->triangle_values = info.target_km;
-      if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget)
-        o->value_range_km = info.size_scale_km;
+      if (o->colour == PreviewColour::kElevation) {  // the mean node elevation (m) of each lattice-mesh triangle
+        o->triangle_values.resize(mesh.triangles.size());
+        for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+          double sum = 0.0;
+          for (const NodeId n : mesh.triangles[k]) sum += mesh.depth_m[static_cast<std::size_t>(n)];
+          o->triangle_values[k] = static_cast<float>(sum / 3.0);
+        }
+      }
+      if (o->colour == PreviewColour::kSize || o->colour == PreviewColour::kTarget) o->value_range_km = info.size_scale_km;
       plan(
           format, name + ".png",
           [&mesh, &bathy, o, colour](const auto& p) {

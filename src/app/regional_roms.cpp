@@ -139,6 +139,14 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
     throw named(e);
   }
   config::GlobalConfig& g = r.loaded.options;
+  // A floodplain is land the FE models wet and dry; the ROMS grid's mask follows the global fill
+  // (land where the elevation is above −h) and its h is clipped at roms.hmin_m, so the floodplain
+  // would become water hmin_m deep.
+  if (g.mask.min_depth_m < 0.0)
+    throw named(ConfigError(fmt::format(
+        "mask.min_depth_m = {} meshes a floodplain up to {} m above the datum, which a ROMS grid's land mask and "
+        "depth (clipped at roms.hmin_m) cannot hold: give a global config with mask.min_depth_m >= 0",
+        g.mask.min_depth_m, -g.mask.min_depth_m)));
   if (g.mesh.elements == config::ElementKinds::kSquares)
     g.mesh.elements = config::ElementKinds::kTriangles;  // the nesting weights live on triangles
   GlobalSetup setup;

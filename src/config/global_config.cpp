@@ -21,6 +21,11 @@ using detail::Origin;
 using detail::Problems;
 using S = detail::Schema<GlobalConfig>;
 
+// mask.min_depth_m's lowest value: a floodplain up to 100 m above the datum. Surge meshes reach
+// +10 to +20 m, tsunami inundation tens of metres; land higher than that is no floodplain (and a
+// typo such as -5000 for 5000 would mesh the continents).
+constexpr double kMinDepthLowest = -100.0;
+
 std::string in_range(double v, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi) return fmt::format("{} is outside [{}, {}]", v, lo, hi);
   return {};
@@ -229,11 +234,10 @@ const S& schema() {
         "input", "max_abs_elevation_m", [](GlobalConfig& c) -> double& { return c.input.max_abs_elevation_m; },
         [](const double& v) { return in_range(v, 100.0, 1e6); }, "");
     // [mask]
-    // The mask stage takes h >= 0 only: a negative h (land kept above the datum) is not yet
-    // meshed, so it is refused here rather than inside the stage.
+    // h < 0 keeps a floodplain above the datum (down to kMinDepthLowest); the stages do not check it again.
     t.add<double>(
         "mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },
-        [](const double& v) { return in_range(v, 0.0, 12000.0); }, "h");
+        [](const double& v) { return in_range(v, kMinDepthLowest, 12000.0); }, "h");
     t.add<int>(
         "mask", "cursor", [](GlobalConfig& c) -> int& { return c.mask.cursor; },
         [](const int& v) { return in_range(v, 1, 64); }, "K");
@@ -324,6 +328,14 @@ const S& schema() {
     size_num("size.slope", "filter", [](GlobalConfig& c) -> double& { return c.size.slope.filter; }, 0.0, 100.0);
     size_num("size.slope", "filter_max_km", [](GlobalConfig& c) -> double& { return c.size.slope.filter_max_km; },
              0.0, 1e4);
+    size_num(
+        "size.inland", "h0_km", [](GlobalConfig& c) -> double& { return c.size.inland.h0_km; }, 0.0, 1e5);
+    size_num(
+        "size.inland", "alpha", [](GlobalConfig& c) -> double& { return c.size.inland.alpha; }, 0.0, 10.0);
+    size_num(
+        "size.elevation", "h0_km", [](GlobalConfig& c) -> double& { return c.size.elevation.h0_km; }, 0.0, 1e5);
+    size_num(
+        "size.elevation", "km_per_m", [](GlobalConfig& c) -> double& { return c.size.elevation.km_per_m; }, 0.0, 1e3);
     size_num("size.cfl", "dt_s", [](GlobalConfig& c) -> double& { return c.size.cfl.dt_s; }, 0.0, 1e6);
     size_num("size.cfl", "courant_max", [](GlobalConfig& c) -> double& { return c.size.cfl.courant_max; }, 1e-3,
              100.0);
@@ -550,6 +562,15 @@ void cross_check(GlobalConfig& c, Problems& p) {
     p.add_keys({"size.h_min_km", "size.h_max_km"},
                fmt::format("size.h_min_km = {} is above size.h_max_km = {}", c.size.h_min_km, c.size.h_max_km));
   for (const KeyProblem& bad : output_problems(c.output, c.mesh.elements)) p.add_keys(bad.keys, bad.text);
+  // The floodplain terms size land above the datum: without a floodplain they would size nothing.
+  for (const auto& [key, on] : {std::pair{"size.inland.h0_km", c.size.inland.h0_km > 0.0},
+                                std::pair{"size.elevation.h0_km", c.size.elevation.h0_km > 0.0}})
+    if (on && !(c.mask.min_depth_m < 0.0))
+      p.add_keys({key, "mask.min_depth_m"},
+                 fmt::format("{} sizes the floodplain (land above the datum inside the mesh), but "
+                             "mask.min_depth_m = {} >= 0 meshes none: set mask.min_depth_m = -z to reach "
+                             "land up to z m above the datum, or remove {}",
+                             key, c.mask.min_depth_m, key));
 }
 
 }  // namespace

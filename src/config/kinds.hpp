@@ -101,12 +101,13 @@ inline constexpr std::array<EnumName<VtuCoordinates>, 2> kVtuCoordinatesNames{{
 constexpr std::span<const EnumName<VtuCoordinates>> enum_names(VtuCoordinates) { return kVtuCoordinatesNames; }
 
 /// output.png_color: what fills the elements of the preview (pictures/preview_png.hpp).
-enum class PreviewColour { kLevel, kAngle, kSize, kTarget };
-inline constexpr std::array<EnumName<PreviewColour>, 4> kPreviewColourNames{{
+enum class PreviewColour { kLevel, kAngle, kSize, kTarget, kElevation };
+inline constexpr std::array<EnumName<PreviewColour>, 5> kPreviewColourNames{{
     {PreviewColour::kLevel, "level", "the quadtree level"},
     {PreviewColour::kAngle, "angle", "the smallest angle on the sphere"},
     {PreviewColour::kSize, "size", "the size achieved in km, log classes"},
     {PreviewColour::kTarget, "target", "the size field, on the scale of \"size\""},
+    {PreviewColour::kElevation, "elevation", "each element's mean node elevation: the floodplain above the datum"},
 }};
 constexpr std::span<const EnumName<PreviewColour>> enum_names(PreviewColour) { return kPreviewColourNames; }
 

@@ -36,7 +36,10 @@ struct InputOptions {
 };
 
 struct MaskOptions {
-  double min_depth_m = 0.0;                                  ///< h: a lattice vertex is wet when elevation <= -h
+  /// h (metres, -100..12000): a lattice vertex is wet when elevation <= -h. Negative: the mesh
+  /// reaches land up to |h| above the datum that is connected to the ocean (a floodplain for storm
+  /// surge and inundation; README "A storm-surge mesh").
+  double min_depth_m = 0.0;
   int cursor = 2;                                            ///< K of the K-cursor fill, 1..64
   std::vector<std::array<double, 2>> seeds{{-30.0, -50.0}};  ///< lon, lat of fill seeds (degrees)
   double seed_radius_deg = 5.0;     ///< how far a seed may be moved to the nearest all-wet window
@@ -95,6 +98,15 @@ struct SizeSlopeOptions {
   double filter = 0.25;   ///< low-pass box half-width as a fraction of the Rossby radius √(gH)/|f|; 0 = none
   double filter_max_km = 500.0;  ///< the box half-width's upper bound (km; the Rossby radius grows without bound at the equator)
 };
+// Sizes on the floodplain (mask.min_depth_m < 0): land above the datum inside the mesh.
+struct SizeInlandOptions {
+  double h0_km = 0.0;  ///< h = h0 + alpha·d on the floodplain, d (km) inland from the shoreline at the datum; 0 = off
+  double alpha = 0.2;  ///< growth of the inland term (km per km)
+};
+struct SizeElevationOptions {
+  double h0_km = 0.0;     ///< h = h0 + km_per_m·z on the floodplain, z (m) the elevation above the datum; 0 = off
+  double km_per_m = 0.5;  ///< growth of the elevation term (km per metre above the datum)
+};
 struct SizeCflOptions {
   double dt_s = 0.0;          ///< time step (s) the sizes must keep stable: h >= (√(gH)+u)·Δt/Cr_max; 0 = off
   double courant_max = 0.5;   ///< Cr_max
@@ -111,6 +123,8 @@ struct SizeOptions {
   SizeFeatureOptions feature;
   SizeWavelengthOptions wavelength;
   SizeSlopeOptions slope;
+  SizeInlandOptions inland;
+  SizeElevationOptions elevation;
   SizeCflOptions cfl;
 };
 

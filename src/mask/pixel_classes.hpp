@@ -1,7 +1,7 @@
 // Pixel classes of seed 002 (Kireev & Pyataev 2009, §2 "мокрые/сухие/прибрежные пиксели"):
-// a lattice vertex is wet when the elevation there is d <= -h (h = mask.min_depth_m >= 0, NaN =
-// no data = dry); a pixel is wet when its 4 vertices are wet, dry when its 4 vertices are dry,
-// coastal otherwise (ARCHITECTURE §4.2).
+// a lattice vertex is wet when the elevation there is d <= -h (h = mask.min_depth_m, negative for
+// a floodplain above the datum; NaN = no data = dry); a pixel is wet when its 4 vertices are wet,
+// dry when its 4 vertices are dry, coastal otherwise (ARCHITECTURE §4.2).
 //
 //   vertex rows J+1:  (i,J+1) o-------o (i+1,J+1)      pixel (i, J) and its 4 vertices;
 //                             | (i,J) |                vertex column i+1 wraps to 0 at the seam
@@ -46,7 +46,7 @@ struct PixelWindow {
 };
 
 struct ClassifyOptions {
-  double min_depth_m = 0.0;  ///< h >= 0 (metres); wet means elevation <= -h
+  double min_depth_m = 0.0;  ///< h (metres; < 0: land up to -h above the datum); wet means elevation <= -h
   Sampling sampling = Sampling::kVertex;
   ProgressFn progress;  ///< optional; called from the calling thread, fraction in [0,1]
   /// Unrotated vertex rule only (else ignored): classify these pixels only.
@@ -74,7 +74,7 @@ void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice
 
 /// Samples the bathymetry at every lattice vertex (rotated lattices through `rot`) and returns
 /// the wet vertices and the pixel classes. OpenMP over rows; bit-identical for any thread count.
-/// `min_depth_m` is mask.min_depth_m as validated at load (config/global_config.cpp).
+/// `min_depth_m` is mask.min_depth_m as validated at load (config/global_config.cpp; negative = a floodplain).
 PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                              const ClassifyOptions& options);
 

@@ -6,14 +6,49 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.hpp"
+#include "mask/lattice_coords.hpp"
 
 namespace aq::mask {
 
 namespace {
 
 Json lonlat_json(LonLat p) { return Json::array({p.lon_deg, p.lat_deg}); }
+
+// The sea pixels (wet at the datum, in Ω_L) not 4-connected through sea to a seed window: water
+// below the datum the fill reached across the floodplain (WetArea::inland_sea_*).
+void find_inland_sea(WetArea& area, const Lattice& lattice, const PoleRotation& rot, int k) {
+  std::vector<PixelIJ> starts;
+  for (const SeedInfo& s : area.seeds)
+    for (std::int64_t dj = 0; dj < k; ++dj)
+      for (std::int64_t di = 0; di < k; ++di) {
+        const PixelIJ p{(s.window.i + di) % lattice.nx, s.window.j + dj};
+        if (p.j < lattice.ny && area.sea.get(p.i, p.j)) starts.push_back(p);
+      }
+  Bitmap inland = area.sea;
+  const Bitmap reached = flood_fill(area.sea, starts);
+  auto& w = inland.words();
+  for (std::size_t q = 0; q < w.size(); ++q) w[q] &= ~reached.words()[q];
+  area.inland_sea_pixels = inland.count();
+  if (area.inland_sea_pixels == 0) return;
+  area.inland_sea_components = count_components(inland).count;
+  double lon_min = 1e9, lon_max = -1e9, lat_min = 1e9, lat_max = -1e9;
+  for (std::int64_t j = 0; j < inland.ny(); ++j)
+    for (std::int64_t i = 0; i < inland.nx(); ++i) {
+      if (!inland.get(i, j)) continue;
+      const LonLat g = lattice_to_geographic(rot, pixel_center_lattice_deg(lattice, {i, j}));
+      lon_min = std::min(lon_min, g.lon_deg);
+      lon_max = std::max(lon_max, g.lon_deg);
+      lat_min = std::min(lat_min, g.lat_deg);
+      lat_max = std::max(lat_max, g.lat_deg);
+    }
+  area.inland_sea_lon_min = lon_min;
+  area.inland_sea_lon_max = lon_max;
+  area.inland_sea_lat_min = lat_min;
+  area.inland_sea_lat_max = lat_max;
+}
 
 }  // namespace
 
@@ -60,9 +95,18 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     area.wet = std::move(pc.wet);
     area.coastal = std::move(pc.coastal);
     area.classes = {pc.wet_vertex_count, pc.wet_count, pc.coastal_count, pc.dry_count};
-    stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule)", lattice.nx,
+    std::string datum;
+    if (options.min_depth_m < 0.0) {  // a floodplain: the same pixel rule at the datum, for the sea inside Ω_L
+      ClassifyOptions at_datum = co;
+      at_datum.min_depth_m = 0.0;
+      at_datum.progress = {};
+      area.datum_wet = std::move(classify_pixels(bathy, lattice, rot, at_datum).wet);
+      area.datum_wet_pixels = area.datum_wet.count();
+      datum = fmt::format("; {} wet at the datum", area.datum_wet_pixels);
+    }
+    stage.done(fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule){}", lattice.nx,
                            lattice.ny, lattice.mercator() ? "Mercator " : "", lattice.pixel_deg(), pc.wet_count,
-                           pc.coastal_count, pc.dry_count, options.min_depth_m, options.sampling));
+                           pc.coastal_count, pc.dry_count, options.min_depth_m, options.sampling, datum));
   }
   {
     StageScope stage("fill", report, log);
@@ -81,6 +125,13 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     area.fill = kf.stats;
     area.seeds = std::move(kf.seeds);
     area.filled_pixels = area.fill.filled_pixels;
+    if (regional) {  // the water beyond the domain edge, at the datum: where the mesh is open
+      const Bitmap& water = area.datum_wet.nx() > 0 ? area.datum_wet : area.wet;
+      area.open = water;
+      auto& o = area.open.words();
+      const auto& d = domain->inside.words();
+      for (std::size_t k = 0; k < o.size(); ++k) o[k] &= ~d[k];
+    }
     stage.done(fmt::format("K = {}: {} filled pixels ({:.1f}% of wet), {} wet pixels left out, {} wet components",
                            options.cursor, area.fill.filled_pixels,
                            area.fill.wet_pixels > 0 ? 100.0 * static_cast<double>(area.fill.filled_pixels) /
@@ -96,6 +147,22 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
       for (const SeedInfo& s : area.seeds) seed_windows.push_back(s.window);
       area.pinches.removal = remove_pinches(area.filled, options.cursor, seed_windows);
       area.filled_pixels = area.filled.count();
+    }
+    if (area.datum_wet.nx() > 0) {  // the sea inside Ω_L (after pinch removal); the rest is floodplain
+      area.sea = area.filled;
+      auto& w = area.sea.words();
+      const auto& d = area.datum_wet.words();
+      for (std::size_t k = 0; k < w.size(); ++k) w[k] &= d[k];
+      area.floodplain_pixels = area.filled_pixels - area.sea.count();
+      find_inland_sea(area, lattice, rot, options.cursor);
+      if (area.inland_sea_pixels > 0)
+        log.warn(
+            "floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
+            "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
+            "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
+            "elevation (elev.ic) starts them dry",
+            area.inland_sea_pixels, area.inland_sea_components, area.inland_sea_lon_min, area.inland_sea_lon_max,
+            area.inland_sea_lat_min, area.inland_sea_lat_max);
     }
     area.pinches.pinches = find_pinches(area.filled);
     locate_pinches(area.pinches.pinches, lattice, rot);
@@ -129,6 +196,16 @@ Json wet_area_json(const WetArea& area, const config::MaskOptions& options, std:
   j["cursor"] = options.cursor;
   j["sampling"] = std::string(name_of(options.sampling));
   j["lattice"] = {{"nx", area.wet.nx()}, {"ny", area.wet.ny()}};
+  if (options.min_depth_m < 0.0)  // README "A storm-surge mesh"
+    j["floodplain"] = {{"top_m", -options.min_depth_m},
+                       {"datum_wet_pixels", area.datum_wet_pixels},
+                       {"floodplain_pixels", area.floodplain_pixels},
+                       {"sea_pixels", area.filled_pixels - area.floodplain_pixels},
+                       {"inland_sea_pixels", area.inland_sea_pixels},
+                       {"inland_sea_components", area.inland_sea_components}};
+  if (area.inland_sea_pixels > 0)
+    j["floodplain"]["inland_sea_box_deg"] = {area.inland_sea_lon_min, area.inland_sea_lon_max, area.inland_sea_lat_min,
+                                             area.inland_sea_lat_max};
   j["classes"] = {{"wet_vertices", area.classes.wet_vertices},
                   {"wet", area.classes.wet},
                   {"coastal", area.classes.coastal},

@@ -123,7 +123,7 @@ BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)
   return counts;
 }
 
-BoundaryCounts type_domain_boundaries(Mesh& m, const mask::Domain& domain, const Bitmap& wet, const Logger* log) {
+BoundaryCounts type_domain_boundaries(Mesh& m, const Bitmap& open, const Logger* log) {
   const Lattice& lat = m.lattice;
   const auto is_open = [&](NodeId a, NodeId b) {
     const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
@@ -142,7 +142,7 @@ BoundaryCounts type_domain_boundaries(Mesh& m, const mask::Domain& domain, const
     }
     if (pj < 0 || pj >= lat.ny) return false;
     pi = ((pi % lat.nx) + lat.nx) % lat.nx;
-    return !domain.contains(pi, pj) && wet.get(pi, pj);
+    return open.get(pi, pj);
   };
   return type_boundaries(m, is_open, log);
 }

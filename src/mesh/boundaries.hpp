@@ -2,8 +2,9 @@
 // open, mainland or island, and the loops are cut into the segments the model formats write.
 //
 //   * An edge is open when the caller's predicate says so; for a regional domain
-//     (type_domain_boundaries) when the pixel on its right, outside the wet area, is wet and
-//     outside the domain.
+//     (type_domain_boundaries) when the pixel on its right, outside the wet area, is open water:
+//     wet at the datum outside the domain (mask::WetArea::open), so the floodplain of a surge
+//     mesh meets the domain edge with land.
 //   * A land gap shorter than kMinSegmentEdges edges between two open runs becomes open (the two
 //     segments merge); then an open run shorter than kMinSegmentEdges becomes land. A loop that
 //     is open all round is split into two open segments (SCHISM refuses a looped open segment).
@@ -22,7 +23,6 @@
 #include "core/bitmap.hpp"
 #include "core/log.hpp"
 #include "core/report.hpp"
-#include "mask/domain.hpp"
 #include "mesh/mesh.hpp"
 
 namespace aq::mesh {
@@ -41,10 +41,11 @@ struct BoundaryCounts {
 /// when `log` is given.
 BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)>& is_open, const Logger* log);
 
-/// type_boundaries() for the mesh of a regional `domain` (mask/domain.hpp): the edge a -> b is
-/// open when the pixel on the right of its first lattice step (outside the wet area) is `wet` and
-/// outside the domain; diagonals (after the model cleaning) and degenerate edges are land.
-BoundaryCounts type_domain_boundaries(Mesh& m, const mask::Domain& domain, const Bitmap& wet, const Logger* log);
+/// type_boundaries() for the mesh of a regional domain: the edge a -> b is open when the pixel on
+/// the right of its first lattice step (outside the wet area) is set in `open` (mask::WetArea::open:
+/// water at the datum outside the domain, lattice-sized); everything else is land, and so are
+/// diagonals (after the model cleaning) and degenerate edges.
+BoundaryCounts type_domain_boundaries(Mesh& m, const Bitmap& open, const Logger* log);
 
 /// Counts of a typed mesh.
 BoundaryCounts boundary_counts(const Mesh& m);

@@ -73,6 +73,9 @@ struct RotationInfo {
 struct Mesh {
   Lattice lattice;
   RotationInfo rotation;
+  /// > 0: the mesh reaches land up to this many metres above the datum (mask.min_depth_m < 0, a
+  /// floodplain for wetting and drying): nodes above the datum have a negative depth in the files.
+  double floodplain_top_m = 0.0;
 
   // Nodes.
   std::vector<std::int64_t> node_i, node_j;  ///< lattice coordinates, I in [0, nx), J in [0, ny]

@@ -223,6 +223,7 @@ ModelMesh::ModelMesh(const Mesh& m) : input_(m) {
   Mesh g;
   g.lattice = m.lattice;
   g.rotation = m.rotation;
+  g.floodplain_top_m = m.floodplain_top_m;
   // Exactly the kept counts: growing by push_back alone would leave up to twice the capacity.
   const auto kept_nodes = static_cast<std::size_t>(std::count(new_id.begin(), new_id.end(), NodeId{0}));
   const auto kept_triangles = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));

@@ -49,7 +49,43 @@ std::vector<double> triangle_time_steps(const std::vector<double>& lon_deg, cons
   return dt;
 }
 
-TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double courant_max) {
+namespace {
+
+// The smallest of `dt` (the first: deterministic) and its triangle's shortest edge, H (from
+// `depth`, at least min_depth_m) and first node.
+struct Limiting {
+  double dt_s = 0.0;
+  std::int64_t triangle = -1;
+  double edge_m = 0.0, depth_m = 0.0, lon_deg = 0.0, lat_deg = 0.0, max_elevation_m = 0.0;
+};
+
+Limiting limiting(const Mesh& mesh, const std::vector<double>& depth, const std::vector<double>& dt,
+                  double min_depth_m) {
+  Limiting r;
+  const auto it = std::min_element(dt.begin(), dt.end());
+  r.dt_s = *it;
+  r.triangle = it - dt.begin();
+  const auto& tri = mesh.triangles[static_cast<std::size_t>(r.triangle)];
+  double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
+  r.max_elevation_m = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
+    const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
+    const double len = great_circle_m(mesh.lon_deg[a], mesh.lat_deg[a], mesh.lon_deg[b], mesh.lat_deg[b]);
+    if (len > kMinEdgeM) edge = std::min(edge, len);
+    h = std::max(h, depth[a]);
+    r.max_elevation_m = std::max(r.max_elevation_m, mesh.depth_m[a]);
+  }
+  r.edge_m = edge;
+  r.depth_m = h;
+  r.lon_deg = mesh.lon_deg[static_cast<std::size_t>(tri[0])];
+  r.lat_deg = mesh.lat_deg[static_cast<std::size_t>(tri[0])];
+  return r;
+}
+
+}  // namespace
+
+TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double courant_max, double flood_level_m) {
   TimeStep r;
   r.min_depth_m = min_depth_m;
   r.dt_s = dt_s;
@@ -59,22 +95,29 @@ TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double cou
   const std::vector<double> dt = triangle_time_steps(mesh.lon_deg, mesh.lat_deg, depth, mesh.triangles, min_depth_m);
   r.triangles = static_cast<std::int64_t>(dt.size());
   if (dt.empty()) return r;
-  const auto it = std::min_element(dt.begin(), dt.end());  // the first minimum: deterministic
-  r.max_stable_dt_s = *it;
-  r.limiting_triangle = it - dt.begin();
-  const auto& tri = mesh.triangles[static_cast<std::size_t>(r.limiting_triangle)];
-  double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
-  for (int k = 0; k < 3; ++k) {
-    const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
-    const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
-    const double len = great_circle_m(mesh.lon_deg[a], mesh.lat_deg[a], mesh.lon_deg[b], mesh.lat_deg[b]);
-    if (len > kMinEdgeM) edge = std::min(edge, len);
-    h = std::max(h, depth[a]);
+  const Limiting at_rest = limiting(mesh, depth, dt, min_depth_m);
+  r.max_stable_dt_s = at_rest.dt_s;
+  r.limiting_triangle = at_rest.triangle;
+  r.limiting_edge_m = at_rest.edge_m;
+  r.limiting_depth_m = at_rest.depth_m;
+  r.limiting_lon_deg = at_rest.lon_deg;
+  r.limiting_lat_deg = at_rest.lat_deg;
+  if (flood_level_m > 0.0) {  // the highest water the floodplain is built for over every node
+    std::vector<double> flooded(depth.size());
+    for (std::size_t k = 0; k < depth.size(); ++k) flooded[k] = depth[k] + flood_level_m;
+    const std::vector<double> dt_wd =
+        triangle_time_steps(mesh.lon_deg, mesh.lat_deg, flooded, mesh.triangles, min_depth_m);
+    const Limiting wd = limiting(mesh, flooded, dt_wd, min_depth_m);
+    TimeStep::WettingDrying& w = r.wetting_drying;
+    w.flood_level_m = flood_level_m;
+    w.max_stable_dt_s = wd.dt_s;
+    w.limiting_triangle = wd.triangle;
+    w.limiting_edge_m = wd.edge_m;
+    w.limiting_depth_m = wd.depth_m;
+    w.limiting_lon_deg = wd.lon_deg;
+    w.limiting_lat_deg = wd.lat_deg;
+    w.limiting_elevation_m = wd.max_elevation_m;
   }
-  r.limiting_edge_m = edge;
-  r.limiting_depth_m = h;
-  r.limiting_lon_deg = mesh.lon_deg[static_cast<std::size_t>(tri[0])];
-  r.limiting_lat_deg = mesh.lat_deg[static_cast<std::size_t>(tri[0])];
   if (dt_s > 0.0) {
     std::vector<double> cr(dt.size());
     for (std::size_t k = 0; k < dt.size(); ++k) cr[k] = dt_s / dt[k];
@@ -111,6 +154,22 @@ Json time_step_json(const TimeStep& t) {
          {"limiting_depth_m", round6(t.limiting_depth_m)},
          {"limiting_lon_deg", round6(t.limiting_lon_deg)},
          {"limiting_lat_deg", round6(t.limiting_lat_deg)}};
+  if (t.wetting_drying.flood_level_m > 0.0) {
+    const TimeStep::WettingDrying& w = t.wetting_drying;
+    j["wetting_drying"] =
+        Json{{"flood_level_m", w.flood_level_m},
+             {"max_stable_dt_s", round6(w.max_stable_dt_s)},
+             {"dt_at_courant_max_s", round6(w.max_stable_dt_s * t.courant_max)},
+             {"formula",
+              "min over triangles of shortest edge / sqrt(g * H), H = flood_level_m - elevation at the deepest "
+              "node (the water the floodplain is built for over every node), at least min_depth_m"},
+             {"limiting_triangle", w.limiting_triangle},
+             {"limiting_edge_m", round6(w.limiting_edge_m)},
+             {"limiting_depth_m", round6(w.limiting_depth_m)},
+             {"limiting_highest_node_elevation_m", round6(w.limiting_elevation_m)},
+             {"limiting_lon_deg", round6(w.limiting_lon_deg)},
+             {"limiting_lat_deg", round6(w.limiting_lat_deg)}};
+  }
   if (t.dt_s > 0.0) {
     Json c{{"dt_s", t.dt_s},
            {"courant_max", t.courant_max},

@@ -16,7 +16,9 @@
 //                                           z_1 = 0 (FESOM's zbar; it negates positive lists)
 //                depth                      n2d lines: the node's bottom, metres, negative
 //                                           (FESOM's sign; it negates positive values, so a node
-//                                           with elevation ≥ 0 is written as 0, not as a depth)
+//                                           with elevation ≥ 0 is written as 0, not as a depth;
+//                                           FESOM2 has no wetting and drying, so a floodplain's
+//                                           nodes above the datum become water: the app warns)
 //
 // Rotation: FESOM reads geographic coordinates and rotates them itself into its model frame when
 // namelist.config has force_rotation = .true., with Euler angles alphaEuler, betaEuler,

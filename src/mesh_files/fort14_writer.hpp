@@ -4,7 +4,9 @@
 //   AGRID                              title line
 //   NE NP                              triangles, nodes
 //   JN X Y DP                          NP lines: 1-based id, longitude, latitude (degrees),
-//                                      depth below the datum in metres (positive down)
+//                                      depth below the datum in metres (positive down; negative
+//                                      on a floodplain above the datum, mask.min_depth_m < 0:
+//                                      ADCIRC with NOLIFA = 2 starts such nodes dry)
 //   JE 3 NM1 NM2 NM3                   NE lines: 1-based triangle, anticlockwise
 //   NOPE = 0, NETA = 0                 no open boundaries (a global mesh is closed)
 //   NBOU, NVEL                         land boundaries, their total node count

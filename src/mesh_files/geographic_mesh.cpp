@@ -156,6 +156,7 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
   mesh::Mesh g;
   g.lattice = lm.lattice;
   g.rotation = lm.rotation;
+  g.floodplain_top_m = lm.floodplain_top_m;
   for (auto* v : {&g.node_i, &g.node_j}) v->reserve(kept_nodes + added_nodes);
   for (auto* v : {&g.lon_deg, &g.lat_deg, &g.rlon_deg, &g.rlat_deg, &g.depth_m}) v->reserve(kept_nodes + added_nodes);
   g.node_flags.reserve(kept_nodes + added_nodes);

@@ -4,8 +4,8 @@
 // What is written:
 //   $MeshFormat, $PhysicalNames (1 1 "coast", 2 2 "ocean", and 2 3 "ocean_squares" when both
 //   triangles and squares are written), $Entities, $Nodes, $Elements, [$Periodic],
-//   $NodeData "depth_m" (metres, positive down), $ElementData "level" (quadtree level of every
-//   triangle/quad), and with a rotated pole $NodeData "lon_deg" / "lat_deg" (geographic).
+//   $NodeData "depth_m" (metres, positive down; negative on a floodplain), $ElementData "level" (quadtree level of
+//   every triangle/quad), and with a rotated pole $NodeData "lon_deg" / "lat_deg" (geographic).
 //
 // Entities (all discrete, no parametric coordinates):
 //   surface 1  physical "ocean": triangles (type 2), or quads (type 3) for squares only

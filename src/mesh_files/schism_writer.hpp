@@ -6,7 +6,8 @@
 //   title                              one line
 //   NE NP                              triangles, nodes
 //   id lon lat depth                   NP lines: 1-based, degrees (λ in [-180, 180)), depth below
-//                                      the datum in metres, positive down
+//                                      the datum in metres, positive down (negative on a
+//                                      floodplain above it: SCHISM wets and dries them itself)
 //   id 3 n1 n2 n3                      NE lines: 1-based, anticlockwise seen from outside the sphere
 //   0 = number of open boundaries      a global mesh is closed (NOPE = 0, NETA = 0)
 //   0 = total number of open boundary nodes

@@ -28,6 +28,9 @@ WriteStats write_text(const mesh::Mesh& mesh, const std::filesystem::path& path,
   } else {
     f.print("# rotation none\n");
   }
+  if (mesh.floodplain_top_m > 0.0)  // only then: the files of other meshes keep their bytes
+    f.print("# floodplain: the mesh reaches land up to {} m above the datum; depth_m is negative there (dry at rest)\n",
+            mesh.floodplain_top_m);
   f.print(
       "# ids are 0-based; depth_m is positive down; lon/lat are geographic degrees; i j are the\n"
       "# integer lattice coordinates (rotated system with a rotated pole), -1 -1 for a node of a pole cap;\n"

@@ -6,6 +6,8 @@
 //   # lattice lon0_deg=<λ0> step0_deg=<Δ0> levels=<L> nx=<nx> ny=<ny> [kind=mercator y0_deg=<y0>]
 //     (Mercator lattice: row J at the Mercator ordinate y0 + J·Δ0/2^L degrees, φ = atan(sinh y))
 //   # rotation none | rotation pole_lon_deg=<λp> pole_lat_deg=<φp>
+//   [# floodplain: the mesh reaches land up to <z> m above the datum; depth_m is negative there ...]
+//     (only for a floodplain mesh, mask.min_depth_m = -z < 0)
 //   # ids are 0-based; depth_m is positive down; lon/lat are geographic degrees; i j are the
 //   # integer lattice coordinates (rotated system with a rotated pole);
 //   # flags: 1 boundary, 2 midside (hanging) node, 4 centre node, 8 pole, 16 seam

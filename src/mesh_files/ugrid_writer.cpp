@@ -511,6 +511,13 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   // only then, so files of meshes without one keep their bytes.
   if (std::any_of(mesh.depth_m.begin(), mesh.depth_m.end(), [](double d) { return std::isnan(d); }))
     nc.number(depth, "_FillValue", std::numeric_limits<double>::quiet_NaN());
+  // A floodplain mesh (mask.min_depth_m < 0) says what its negative depths are (only then: the
+  // files of other meshes keep their bytes).
+  if (mesh.floodplain_top_m > 0.0)
+    nc.text(depth, "comment",
+            fmt::format("Positive down from the datum; negative above it: the floodplain, land up to {} m above the "
+                        "datum that is connected to the ocean (dry at rest; a model with wetting and drying floods it)",
+                        mesh.floodplain_top_m));
 
   const int flags = nc.var("node_flags", NC_BYTE, {node_dim});
   nc.text(flags, "long_name", "Node flags");

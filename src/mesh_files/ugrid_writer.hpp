@@ -29,7 +29,9 @@
 //                         the centre (so a face across the antimeridian is continuous), padded by
 //                         repeating the last corner; these make CDO see an unstructured grid
 //   depth                 on nodes, sea_floor_depth_below_geoid, metres, positive down (no
-//                         `positive` attribute: that marks a vertical axis for CF and CDO)
+//                         `positive` attribute: that marks a vertical axis for CF and CDO);
+//                         negative on a floodplain above the datum (mask.min_depth_m < 0),
+//                         which a `comment` attribute then states with its top elevation
 //   node_flags            on nodes, CF flag_masks (boundary midside centre pole seam)
 //   level                 on faces, the quadtree level
 //   crs                   WGS84 latitude_longitude (EPSG:4326) grid mapping

@@ -8,7 +8,7 @@
 //               (GeographicLib::Geocentric, height 0) from the geographic λ, φ: the seam vanishes.
 //   Cells       triangles (VTK_TRIANGLE = 5); squares as VTK_QUAD (9), or VTK_POLYGON (7) with
 //               their hanging nodes inserted (io/element_kinds.hpp) so the cells are conforming.
-//   PointData   depth_m (Float64, positive down), flags (UInt8, mesh::NodeFlag bits),
+//   PointData   depth_m (Float64, positive down; negative on a floodplain), flags (UInt8, mesh::NodeFlag bits),
 //               lon_deg, lat_deg (Float64, geographic)
 //   CellData    level (UInt8, quadtree level); with both kinds also kind (UInt8: 0 triangle,
 //               1 square)

@@ -91,6 +91,19 @@ FillClasses angle_classes() {
   return c;
 }
 
+// The "elevation" fill (a floodplain mesh, README "A storm-surge mesh"): a triangle's mean node
+// elevation, sea in blues by depth (at or below the datum) and land above the datum in yellow to
+// brown. The first class above the datum starts just above 0 m: a node at 0 m is not floodplain.
+FillClasses elevation_classes() {
+  FillClasses c;
+  c.upper = {-200, -50, -10, 1e-9, 1, 2, 5, 10, std::numeric_limits<double>::infinity()};
+  c.rgb = {{8, 48, 107},    {33, 113, 181}, {107, 174, 214}, {198, 219, 239}, {255, 247, 188},
+           {254, 227, 145}, {254, 196, 79}, {254, 153, 41},  {204, 76, 2}};
+  c.labels = {"depth > 200 m", "50-200 m", "10-50 m", "0-10 m", "above the datum 0-1 m",
+              "1-2 m",         "2-5 m",    "5-10 m",  "> 10 m"};
+  return c;
+}
+
 // 1-2-5 steps (km) from the largest at or below the smallest value to the smallest at or above
 // the largest, at most 8 classes (every other step dropped until they fit).
 FillClasses size_classes(const std::vector<float>& values, const std::vector<double>& range, const char* what) {
@@ -503,6 +516,7 @@ void fit_font(cairo_t* cr, double size, double width, double room) {
 
 FillClasses fill_classes(const PreviewOptions& o) {
   if (o.colour == PreviewColour::kAngle) return angle_classes();
+  if (o.colour == PreviewColour::kElevation) return elevation_classes();
   return size_classes(o.triangle_values, o.value_range_km, o.colour == PreviewColour::kTarget ? "target " : "size ");
 }
 
@@ -545,12 +559,12 @@ void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOp
                        fmt::format("{}: {}{}", classes.labels[k], in_class[k], k == 0 ? " triangles" : "")});
     }
   }
-  for (const auto& [e, label] : std::vector<std::pair<float, const char*>>{{-100.0f, "0-200 m"},
-                                                                           {-1500.0f, "1000-2000 m"},
-                                                                           {-4500.0f, "4000-5000 m"},
-                                                                           {-7000.0f, "> 6000 m"},
-                                                                           {100.0f, "land"},
-                                                                           {std::nanf(""), "no data"}}) {
+  // The background's tints (with "elevation" the classes above say the depths: land and no data only).
+  std::vector<std::pair<float, const char*>> tints{{-100.0f, "0-200 m"},      {-1500.0f, "1000-2000 m"},
+                                                   {-4500.0f, "4000-5000 m"}, {-7000.0f, "> 6000 m"},
+                                                   {100.0f, "land"},          {std::nanf(""), "no data"}};
+  if (o.colour == PreviewColour::kElevation) tints.erase(tints.begin(), tints.begin() + 4);
+  for (const auto& [e, label] : tints) {
     const std::uint32_t p = shade_exact(e);
     items.push_back({{((p >> 16) & 0xff) / 255.0, ((p >> 8) & 0xff) / 255.0, (p & 0xff) / 255.0}, label});
   }

@@ -50,14 +50,16 @@ struct PreviewOutline {
 /// angle on the sphere ("angle": < 10°, 10–20°, …, ≥ 50°, dark red to green) or its size in km
 /// ("size": classes 1–2–5–10… km wide on a log scale, spanning the values, fine = yellow), or the
 /// target size field at its centre ("target", the same classes). With value_range_km the classes
-/// span that range instead, so "size" and "target" pictures of one run share a scale.
+/// span that range instead, so "size" and "target" pictures of one run share a scale. "elevation":
+/// its mean node elevation in fixed classes, sea by depth in blues and land above the datum (the
+/// floodplain of a surge mesh) in 0-1, 1-2, 2-5, 5-10, > 10 m classes in yellow to brown.
 using config::PreviewColour;
 
 struct PreviewOptions {
   int width_px = 2400;  ///< picture width, 200..20000
   ElementKinds elements = ElementKinds::kTriangles;
   PreviewColour colour = PreviewColour::kLevel;
-  /// kAngle / kSize: one value per triangle of the mesh drawn (degrees / km); NaN leaves a
+  /// kAngle / kSize / kTarget / kElevation: one value per triangle of the mesh drawn (degrees / km / m); NaN leaves a
   /// triangle unfilled (the pole cap rows, which the geographic files hold instead).
   std::vector<float> triangle_values;
   std::vector<double> value_range_km;  ///< kSize / kTarget: [lo, hi] the classes span; empty = the values'

@@ -101,13 +101,13 @@ Json rules_json(const std::vector<Rule>& rules, const char* key, const Lattice& 
 
 std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const config::QuadtreeOptions& options,
                                const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
-                               Report* report, const size::SizeField* field) {
+                               Report* report, const size::SizeField* field, const mask::CoastSources& coast) {
   StageScope stage("quadtree", report, log);
   const BalanceMode mode = options.balance;
   const std::int64_t filled_pixels = filled.count();
 
   Timer t_masks;
-  LevelMasks masks = make_level_masks(filled, lat, 0);
+  LevelMasks masks = make_level_masks(filled, lat, 0, coast);
   const std::vector<std::int64_t> bare = count_leaves_per_level(masks);
   if (options.coast_band != 0 && options.coast_size_km == 0.0) apply_coast_band(masks, options.coast_band);
   const std::vector<std::int64_t> banded = count_leaves_per_level(masks);
@@ -121,7 +121,8 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
              size::has_size_rules(options)) {  // the size keys of [quadtree] alone
     config::GlobalConfig only;
     only.quadtree = options;
-    apply_size_field(masks, lat, size::build_size_field(filled, lat, only, rotation, bathy, Logger::null(), nullptr));
+    apply_size_field(masks, lat,
+                     size::build_size_field(filled, lat, only, rotation, bathy, Logger::null(), nullptr, coast));
   }
   GradeStats grade;
   if (field != nullptr) grade = grade_levels(masks, lat, *field);

@@ -25,15 +25,18 @@ namespace aq::quadtree {
 /// `filled` is Ω_L on the lattice (lat.nx × lat.ny pixels). `rotation` maps lattice coordinates
 /// to geographic ones (identity without pole rotation); `bathy` is needed only for depth rules
 /// (may be null otherwise). `field` is the target size field (size/size_field.hpp); null: the
-/// field of quadtree.size_km / coast_size_km alone (size::build_size_field), the level rules only when both are 0. Logs one stage line and, when `report` is given, writes the
-/// "quadtree" section: leaves per level for the bare D_l rule, after the coastal band and rules,
-/// and after smoothing, plus sub-stage timings.
+/// field of quadtree.size_km / coast_size_km alone (size::build_size_field), the level rules only when both are 0. Logs
+/// one stage line and, when `report` is given, writes the "quadtree" section: leaves per level for the bare D_l rule,
+/// after the coastal band and rules, and after smoothing, plus sub-stage timings. `coast` (mask/coast.hpp; bitmaps
+/// lat.nx × lat.ny) says what the coastal band and a field built here take for the coast: the open water beyond a
+/// regional domain is none, the shoreline at the datum of a floodplain run is.
 ///
 /// Throws ConfigError for bad quadtree options (coast_band < 0, balance not "face"/"corner", bad
 /// rules) and InternalError when a checker fails (leaves not partitioning Ω_L, or balance
 /// violations left).
 std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const config::QuadtreeOptions& options,
                                const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
-                               Report* report, const size::SizeField* field = nullptr);
+                               Report* report, const size::SizeField* field = nullptr,
+                               const mask::CoastSources& coast = {});
 
 }  // namespace aq::quadtree

@@ -26,21 +26,24 @@ void check_shape(const Bitmap& filled, const Lattice& lat) {
   }
 }
 
-/// H[j] = row j of the unfilled pixels dilated by r along the (periodic) row.
-Bitmap dry_dilation(const Bitmap& filled, std::int64_t r) {
+/// H[j] = row j of the coast pixels dilated by r along the (periodic) row: the pixels not in
+/// `filled` and not `open` (the water beyond a regional domain's edge, mask/coast.hpp; null: none).
+Bitmap dry_dilation(const Bitmap& filled, std::int64_t r, const Bitmap* open = nullptr) {
   Bitmap h(filled.nx(), filled.ny());
   const std::int64_t nx = filled.nx();
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
   const std::uint64_t last = bits::last_word_mask(nx);
 #pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * 8)) \
-    shared(filled, h, nx, ny, words, last, r)
+    shared(filled, open, h, nx, ny, words, last, r)
   {
     Words comp(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
     for (std::int64_t j = 0; j < ny; ++j) {
       const std::uint64_t* src = filled.row(j);
-      for (std::int64_t w = 0; w < words; ++w) comp[static_cast<std::size_t>(w)] = ~src[w];
+      const std::uint64_t* beyond = open != nullptr ? open->row(j) : nullptr;
+      for (std::int64_t w = 0; w < words; ++w)
+        comp[static_cast<std::size_t>(w)] = ~src[w] & (beyond != nullptr ? ~beyond[w] : ~std::uint64_t{0});
       comp[static_cast<std::size_t>(words - 1)] &= last;
       bits::dilate_row(comp.data(), h.row(j), tmp.data(), nx, r);
     }
@@ -48,16 +51,37 @@ Bitmap dry_dilation(const Bitmap& filled, std::int64_t r) {
   return h;
 }
 
-/// out = filled row j with the coastal band removed (band = filled & OR of h rows j-r .. j+r).
-void interior_row(const Bitmap& filled, const Bitmap& h, std::int64_t j, std::int64_t r, std::uint64_t* out) {
+/// The row dilations of the coast for the band of radius r (mask/coast.hpp): `h` of the edge of
+/// the filled set, and with a sea at the datum (a floodplain run) `h_sea` of the shoreline.
+struct CoastDilation {
+  Bitmap h, h_sea;
+  const Bitmap* sea = nullptr;
+};
+
+CoastDilation coast_dilation(const Bitmap& filled, std::int64_t r, const mask::CoastSources& coast) {
+  CoastDilation d;
+  d.h = dry_dilation(filled, r, coast.open);
+  if (coast.sea != nullptr) {
+    d.h_sea = dry_dilation(*coast.sea, r, coast.open);
+    d.sea = coast.sea;
+  }
+  return d;
+}
+
+/// out = filled row j with the coastal band removed: band = filled & OR of h rows j-r .. j+r, and
+/// with a sea also sea & OR of h_sea rows j-r .. j+r (the sea side of the shoreline at the datum).
+void interior_row(const Bitmap& filled, const CoastDilation& d, std::int64_t j, std::int64_t r, std::uint64_t* out) {
   const std::int64_t words = filled.words_per_row();
   const std::int64_t j0 = std::max<std::int64_t>(0, j - r);
   const std::int64_t j1 = std::min<std::int64_t>(filled.ny() - 1, j + r);
   const std::uint64_t* f = filled.row(j);
+  const std::uint64_t* sea = d.sea != nullptr ? d.sea->row(j) : nullptr;
   for (std::int64_t w = 0; w < words; ++w) {
-    std::uint64_t v = 0;
-    for (std::int64_t k = j0; k <= j1; ++k) v |= h.row(k)[w];
-    out[w] = f[w] & ~v;
+    std::uint64_t v = 0, vs = 0;
+    for (std::int64_t k = j0; k <= j1; ++k) v |= d.h.row(k)[w];
+    if (sea != nullptr)
+      for (std::int64_t k = j0; k <= j1; ++k) vs |= d.h_sea.row(k)[w];
+    out[w] = f[w] & ~v & ~(sea != nullptr ? sea[w] & vs : std::uint64_t{0});
   }
 }
 
@@ -105,20 +129,20 @@ LeafKey pixel_key(const Lattice& lat, std::int64_t i, std::int64_t j) {
 
 LeafKey leaf_key(const Lattice& lat, const Leaf& f) { return pixel_key(lat, leaf_i0(lat, f), leaf_j0(lat, f)); }
 
-Bitmap coastal_band(const Bitmap& filled, int band) {
+Bitmap coastal_band(const Bitmap& filled, int band, const mask::CoastSources& coast) {
   Bitmap out(filled.nx(), filled.ny());
   if (band <= 0) return out;
-  const Bitmap h = dry_dilation(filled, band);
+  const CoastDilation d = coast_dilation(filled, band, coast);
   const std::int64_t ny = filled.ny();
   const std::int64_t words = filled.words_per_row();
   const std::int64_t r = band;
 #pragma omp parallel default(none) if (quadtree::parallel_worth(ny * words * (2 * r + 1))) \
-    shared(filled, h, out, ny, words, r)
+    shared(filled, d, out, ny, words, r)
   {
     Words inner(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
     for (std::int64_t j = 0; j < ny; ++j) {
-      interior_row(filled, h, j, r, inner.data());
+      interior_row(filled, d, j, r, inner.data());
       const std::uint64_t* f = filled.row(j);
       std::uint64_t* o = out.row(j);
       for (std::int64_t w = 0; w < words; ++w) o[w] = f[w] & ~inner[static_cast<std::size_t>(w)];
@@ -127,10 +151,13 @@ Bitmap coastal_band(const Bitmap& filled, int band) {
   return out;
 }
 
-LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band) {
+LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band, const mask::CoastSources& coast) {
   check_shape(filled, lat);
+  for (const Bitmap* b : {coast.open, coast.sea})
+    if (b != nullptr) check_shape(*b, lat);
   const int levels = lat.levels;
   LevelMasks m;
+  m.coast = coast;
   m.omega.resize(static_cast<std::size_t>(levels) + 1);
   m.any.resize(static_cast<std::size_t>(levels) + 1);
   m.omega.back() = filled;
@@ -155,19 +182,19 @@ void apply_coast_band(LevelMasks& m, int coast_band) {
     m.omega[top] = bits::reduce(filled, false);
   } else {
     const std::int64_t r = coast_band;
-    const Bitmap h = dry_dilation(filled, r);
+    const CoastDilation d = coast_dilation(filled, r, m.coast);
     Bitmap& dst = m.omega[top];
     dst = Bitmap(filled.nx() / 2, filled.ny() / 2);
     const std::int64_t rows = dst.ny();
     const std::int64_t words = filled.words_per_row();
 #pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * (4 * r + 2))) \
-    shared(filled, h, dst, rows, words, r)
+    shared(filled, d, dst, rows, words, r)
     {
       Words lo(static_cast<std::size_t>(words)), hi(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
       for (std::int64_t b = 0; b < rows; ++b) {
-        interior_row(filled, h, 2 * b, r, lo.data());
-        interior_row(filled, h, 2 * b + 1, r, hi.data());
+        interior_row(filled, d, 2 * b, r, lo.data());
+        interior_row(filled, d, 2 * b + 1, r, hi.data());
         bits::reduce_rows(lo.data(), hi.data(), words, dst.row(b), false);
       }
     }
@@ -287,7 +314,8 @@ void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeFie
   std::vector<Bitmap> band;
   if (band_km > 0.0) {
     band.resize(static_cast<std::size_t>(levels));
-    band[static_cast<std::size_t>(levels - 1)] = bits::reduce(coastal_band(masks.filled(), field.band_radius()), true);
+    band[static_cast<std::size_t>(levels - 1)] =
+        bits::reduce(coastal_band(masks.filled(), field.band_radius(), masks.coast), true);
     for (int l = levels - 2; l >= 0; --l)
       band[static_cast<std::size_t>(l)] = bits::reduce(band[static_cast<std::size_t>(l) + 1], true);
   }

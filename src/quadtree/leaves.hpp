@@ -25,7 +25,11 @@
 //  * coastal band (`QuadtreeOptions::coast_band` = r): a filled pixel is in the band when an
 //    unfilled pixel lies within Chebyshev distance r (columns wrap at the seam; rows beyond the
 //    poles do not exist, so the lattice edge at φ = ±90° is not coast). Every leaf holding a band
-//    pixel is split, recursively, until the band pixels are leaves of level L.
+//    pixel is split, recursively, until the band pixels are leaves of level L. With coast sources
+//    (mask/coast.hpp) an unfilled pixel beyond a regional domain's edge in water is no coast (the
+//    open boundary follows the other rules), and in a floodplain run a sea pixel (wet at the
+//    datum) is also in the band when a pixel that is neither sea nor open lies within r of it
+//    (the sea side of the shoreline at 0 m).
 //  * depth rules (`DepthRule`) and box rules (`BoxRule`) asking level m >= 1 are sampled on the
 //    level-(m-1) grid: every level-(m-1) square whose centre is in the rule's range is split,
 //    together with every coarser square containing it, so the leaves there get level >= m.
@@ -49,6 +53,7 @@
 #include "core/bitmap.hpp"
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
+#include "mask/coast.hpp"
 #include "size/size_field.hpp"
 
 namespace aq::raster {
@@ -97,6 +102,9 @@ LeafKey leaf_key(const Lattice& lat, const Leaf& f);
 struct LevelMasks {
   std::vector<Bitmap> omega;
   std::vector<Bitmap> any;
+  /// What the coastal band takes for coast beyond the edge of the filled set (the bitmaps must
+  /// outlive the masks); empty: every unfilled pixel.
+  mask::CoastSources coast;
   [[nodiscard]] int levels() const { return static_cast<int>(omega.size()) - 1; }
   [[nodiscard]] const Bitmap& any_at(int l) const {
     return l == levels() ? omega.back() : any[static_cast<std::size_t>(l)];
@@ -104,18 +112,21 @@ struct LevelMasks {
   [[nodiscard]] const Bitmap& filled() const { return omega.back(); }
 };
 
-/// Pixels of the coastal band of radius `band` >= 0 (see the file comment); empty for band = 0.
-/// Cost O((log band + 2·band + 1) · N / 64) word operations.
-Bitmap coastal_band(const Bitmap& filled, int band);
+/// Pixels of the coastal band of radius `band` >= 0 (see the file comment; `coast` the open water
+/// and the sea at the datum, mask/coast.hpp); empty for band = 0.
+/// Cost O((log band + 2·band + 1) · N / 64) word operations (twice that with a sea).
+Bitmap coastal_band(const Bitmap& filled, int band, const mask::CoastSources& coast = {});
 
 /// The pyramid of Ω_l (the bare D_l rule when coast_band = 0, else with the coastal band split
-/// to level L). `filled` must be lat.nx × lat.ny and coast_band >= 0 (quadtree.coast_band, validated
-/// at load); InternalError otherwise. O(N / 64) word operations, parallel.
-LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band);
+/// to level L). `filled` (and the bitmaps of `coast`, which must outlive the masks) must be
+/// lat.nx × lat.ny and coast_band >= 0 (quadtree.coast_band, validated at load); InternalError
+/// otherwise. O(N / 64) word operations, parallel.
+LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band,
+                            const mask::CoastSources& coast = {});
 
 /// Recomputes omega[0..L-1] of `masks` from its filled set with the coastal band of radius
-/// `coast_band` split to level L (0: the bare rule); the `any` pyramid is unchanged. Undoes any
-/// earlier refinement. coast_band >= 0 (InternalError otherwise).
+/// `coast_band` (and masks.coast) split to level L (0: the bare rule); the `any` pyramid is
+/// unchanged. Undoes any earlier refinement. coast_band >= 0 (InternalError otherwise).
 void apply_coast_band(LevelMasks& masks, int coast_band);
 
 /// Applies the depth and box rules of `options` in place (see the file comment). `bathy` may be

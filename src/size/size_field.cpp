@@ -178,20 +178,22 @@ bool has_size_rules(const config::QuadtreeOptions& q) {
 
 bool needs_grid(const config::GlobalConfig& c) {
   const config::SizeOptions& s = c.size;
-  return c.quadtree.size_km > 0.0 || has_size_rules(c.quadtree) || s.coast.h0_km > 0.0 || s.feature.r > 0.0 || needs_depth(s) ||
-         !s.raster.empty() || s.h_max_km > 0.0 || (s.gradation > 0.0 && c.quadtree.coast_size_km > 0.0);
+  const bool floodplain = c.mask.min_depth_m < 0.0 && (s.inland.h0_km > 0.0 || s.elevation.h0_km > 0.0);
+  return c.quadtree.size_km > 0.0 || has_size_rules(c.quadtree) || s.coast.h0_km > 0.0 || s.feature.r > 0.0 ||
+         needs_depth(s) || !s.raster.empty() || s.h_max_km > 0.0 ||
+         (s.gradation > 0.0 && c.quadtree.coast_size_km > 0.0) || floodplain;
 }
 
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
-                           Report* report) {
+                           Report* report, const mask::CoastSources& coast_sources) {
   const config::SizeOptions& s = c.size;
   const double band_km = c.quadtree.coast_size_km;
   const int band_radius = std::max(c.quadtree.coast_band, 1);
   if (!needs_grid(c)) return SizeField(band_km, band_radius);
   const bool depth_size_rules = any_size_rule(c.quadtree.depth_rules);
-  if ((needs_depth(s) || depth_size_rules) && bathy == nullptr)
-    throw InternalError("size: depth terms need the bathymetry raster");
+  if ((needs_depth(s) || depth_size_rules || s.elevation.h0_km > 0.0) && bathy == nullptr)
+    throw InternalError("size: depth and elevation terms need the bathymetry raster");
 
   StageScope stage("size", report, log);
   Timer t_total;
@@ -200,7 +202,23 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   const std::vector<std::int32_t> counts = grid.filled_counts(filled);
   std::vector<std::uint8_t> water(n);
   for (std::size_t k = 0; k < n; ++k) water[k] = counts[k] > 0 ? 1 : 0;
-  const std::vector<std::uint8_t> coast = coast_cells(grid, counts);
+  // The coast (mask/coast.hpp): cells holding land, not the open water beyond the domain edge;
+  // with a floodplain the land at the datum, so the coast terms measure from the shoreline.
+  const std::vector<std::uint8_t> coast =
+      coast_sources.plain() ? coast_cells(grid, counts) : shore_cells(grid, filled, coast_sources);
+  // With a floodplain: the cells holding sea (what the coast and feature terms size) and those
+  // holding floodplain pixels (what the inland and elevation terms size).
+  std::vector<std::uint8_t> sea_cells, floodplain_cells;
+  if (coast_sources.sea != nullptr) {
+    const std::vector<std::int32_t> sea_counts = grid.filled_counts(*coast_sources.sea);
+    sea_cells.resize(n);
+    floodplain_cells.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      sea_cells[k] = sea_counts[k] > 0 ? 1 : 0;
+      floodplain_cells[k] = counts[k] > sea_counts[k] ? 1 : 0;
+    }
+  }
+  const std::vector<std::uint8_t>& coast_water = sea_cells.empty() ? water : sea_cells;
   SizeFieldStats st;
   std::vector<double> h(n, kInf);
   Json timings = Json::object();
@@ -218,22 +236,34 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   }
   if (s.coast.h0_km > 0.0) {
     Timer t;
-    const std::vector<double> term = coast_term(coast_d, s.coast.h0_km, s.coast.alpha);
+    std::vector<double> term = coast_term(coast_d, s.coast.h0_km, s.coast.alpha);
+    for (std::size_t k = 0; k < floodplain_cells.size(); ++k)  // the floodplain terms size floodplain without sea
+      if (floodplain_cells[k] != 0 && sea_cells[k] == 0) term[k] = kInf;
     st.terms["coast"] = summary(term, water);
     take_min(h, term);
     timings["coast"] = round3(t.wall_s());
   }
   if (s.feature.r > 0.0) {
     Timer t;
-    const std::vector<double> term = feature_term(grid, coast_d, nearest, water, s.feature.r);
+    const std::vector<double> term = feature_term(grid, coast_d, nearest, coast_water, s.feature.r);
     st.terms["feature"] = summary(term, water);
     take_min(h, term);
     timings["feature"] = round3(t.wall_s());
   }
+  if (!floodplain_cells.empty() && s.inland.h0_km > 0.0) {  // h0 + α·d, d inland from the nearest cell holding sea
+    Timer t;
+    std::vector<double> term = distance_to(grid, sea_cells);
+    for (std::size_t k = 0; k < n; ++k)
+      term[k] = floodplain_cells[k] != 0 ? s.inland.h0_km + s.inland.alpha * term[k] : kInf;
+    st.terms["inland"] = summary(term, water);
+    take_min(h, term);
+    timings["inland"] = round3(t.wall_s());
+  }
+  const bool elevation_term = !floodplain_cells.empty() && s.elevation.h0_km > 0.0;
   std::vector<double> depth;  // H (m, >= min_depth) on water cells, NaN elsewhere
   std::vector<double> geo_lat(n, 0.0);
   const bool box_size_rules = any_size_rule(c.quadtree.box_rules);
-  if (needs_depth(s) || depth_size_rules || box_size_rules) {
+  if (needs_depth(s) || depth_size_rules || box_size_rules || elevation_term) {
     Timer t;
     std::vector<double> lon(n), latv(n), elev(n);
     for (std::int64_t j = 0; j < grid.ny(); ++j)
@@ -252,8 +282,17 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
       st.terms["box_rules"] = summary(term, water);
       take_min(h, term);
     }
-    if (needs_depth(s) || depth_size_rules) {
+    if (needs_depth(s) || depth_size_rules || elevation_term) {
       bathy->sample_points(lon.data(), latv.data(), static_cast<std::int64_t>(n), elev.data());
+      if (elevation_term) {  // h0 + k·z on the floodplain cells, z the elevation at the centre (at least 0)
+        std::vector<double> term(n, kInf);
+        for (std::size_t k = 0; k < n; ++k)
+          if (floodplain_cells[k] != 0)
+            term[k] =
+                s.elevation.h0_km + s.elevation.km_per_m * (std::isfinite(elev[k]) ? std::max(0.0, elev[k]) : 0.0);
+        st.terms["elevation"] = summary(term, water);
+        take_min(h, term);
+      }
       if (depth_size_rules) {  // quadtree.depth_rules with size_km: a constant term in each depth band
         std::vector<double> term(n, kInf);
         for (const config::DepthRule& r : c.quadtree.depth_rules) {
@@ -267,9 +306,12 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
         take_min(h, term);
       }
       if (needs_depth(s)) {
+        // A floodplain cell without sea has no depth at rest: the wavelength and slope terms are
+        // the sea's (the floodplain terms size it), as on land (the CFL bound keeps it, below).
         depth.assign(n, std::numeric_limits<double>::quiet_NaN());
         for (std::size_t k = 0; k < n; ++k)
-          if (water[k] != 0) depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
+          if (water[k] != 0 && (sea_cells.empty() || sea_cells[k] != 0))
+            depth[k] = std::max(std::isfinite(elev[k]) ? -elev[k] : 0.0, s.min_depth_m);
       }
     }
     timings["depth"] = round3(t.wall_s());

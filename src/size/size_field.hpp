@@ -22,6 +22,7 @@
 #include "core/log.hpp"
 #include "core/report.hpp"
 #include "core/rotation.hpp"
+#include "mask/coast.hpp"
 #include "size/field_grid.hpp"
 
 namespace aq::raster {
@@ -87,19 +88,27 @@ struct SizeFieldStats {
 
 /// Builds the field of `c.size` and the size rules of `c.quadtree` (size_km, coast_size_km) over
 /// the filled set. An inactive field (no term set) when nothing asks a size. `bathy` is sampled at
-/// the cell centres (mapped through `rotation`) when a depth term is on. Logs a "size" stage line
-/// and writes the report's "size" section when `report` is given. `c` is as validated at load
-/// (config/global_config.cpp: ranges, h_min <= h_max). Throws InputError for a size raster that
-/// cannot be read or holds a value <= 0.
+/// the cell centres (mapped through `rotation`) when a depth or elevation term is on. Logs a
+/// "size" stage line and writes the report's "size" section when `report` is given. `c` is as
+/// validated at load (config/global_config.cpp: ranges, h_min <= h_max). Throws InputError for a
+/// size raster that cannot be read or holds a value <= 0.
+///
+/// `coast` (mask/coast.hpp) says where the coast is: a cell is a coast cell when it holds a pixel
+/// that is not filled (not sea, with a floodplain) and not open water beyond a regional domain's
+/// edge. The coast and feature terms measure from those cells; with a floodplain (coast.sea) they,
+/// and the wavelength and slope terms, size the cells holding sea, and the floodplain terms (size.inland: distance
+/// inland from the nearest cell holding sea; size.elevation: the elevation at the cell centre, at least 0) size the
+/// cells holding floodplain pixels (filled, not sea).
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
-                           Report* report);
+                           Report* report, const mask::CoastSources& coast = {});
 
 /// Whether `q` has depth or box rules in the size form (size_km > 0): terms of the field.
 [[nodiscard]] bool has_size_rules(const config::QuadtreeOptions& q);
 /// Whether `c` asks for a field grid (any [size] term or quadtree.size_km); the band term alone needs none.
+/// The floodplain terms (size.inland, size.elevation) count only with a floodplain (mask.min_depth_m < 0).
 [[nodiscard]] bool needs_grid(const config::GlobalConfig& c);
-/// Whether `c` needs depths on the field grid (wavelength, slope, CFL).
+/// Whether `c` needs depths on the field grid (wavelength, slope, CFL; not the elevation term).
 [[nodiscard]] bool needs_depth(const config::SizeOptions& s);
 
 }  // namespace aq::size

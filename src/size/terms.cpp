@@ -23,6 +23,24 @@ std::vector<std::uint8_t> coast_cells(const FieldGrid& grid, const std::vector<s
   return c;
 }
 
+std::vector<std::uint8_t> shore_cells(const FieldGrid& grid, const Bitmap& filled, const mask::CoastSources& coast) {
+  // The coast pixels: neither water at the datum inside the mesh nor open water beyond it.
+  const Bitmap& water = coast.sea != nullptr ? *coast.sea : filled;
+  Bitmap land(water.nx(), water.ny());
+  const auto& w = water.words();
+  auto& out = land.words();
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k] = ~w[k] & (coast.open != nullptr ? ~coast.open->words()[k] : ~std::uint64_t{0});
+  const int tail = static_cast<int>(land.nx() & 63);  // padding bits stay clear
+  if (tail != 0)
+    for (std::int64_t j = 0; j < land.ny(); ++j)
+      land.row(j)[land.words_per_row() - 1] &= (std::uint64_t{1} << tail) - 1;
+  const std::vector<std::int32_t> count = grid.filled_counts(land);
+  std::vector<std::uint8_t> c(count.size());
+  for (std::size_t k = 0; k < c.size(); ++k) c[k] = count[k] > 0 ? 1 : 0;
+  return c;
+}
+
 std::vector<double> coast_term(const FieldGrid& grid, const std::vector<std::uint8_t>& coast, double h0_km,
                                double alpha) {
   return coast_term(distance_to(grid, coast), h0_km, alpha);

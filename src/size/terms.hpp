@@ -1,8 +1,11 @@
 // The physical terms of the size field (ARCHITECTURE §4.10), each a function of grid values so
 // that it can be tested on a synthetic grid with a known answer. Sizes are in km, depths H in
 // metres (positive down), +inf means "no constraint". The formulas are the peers' (OceanMesh2D
-// `edgefx`, oceanmesh sizing functions):
+// `edgefx`, oceanmesh sizing functions; the floodplain terms those of surge meshes, OCSMesh's
+// `Hfun` by elevation and the inland distance of OceanMesh2D's `dis` on land):
 //   coast       h = h0 + α·d                    d: distance (km) to the nearest coast cell
+//   inland      h = h0 + α·d                    d: distance (km) inland from the nearest cell holding sea
+//   elevation   h = h0 + k·z                    z: elevation (m) above the datum, on the floodplain
 //   feature     h = 2·(d_MA + d)/R              d_MA: distance (km) to the water's medial axis
 //   wavelength  h = T·√(g·H)/wl
 //   slope       h = (2π/slp)·H̄/|∇H̄|             H̄: H low-pass filtered over a box of half-width
@@ -13,6 +16,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/bitmap.hpp"
+#include "mask/coast.hpp"
 #include "size/field_grid.hpp"
 
 namespace aq::size {
@@ -22,6 +27,11 @@ inline constexpr double kEarthOmega = 7.2921159e-5;  ///< rad/s
 
 /// Coast cells: cells with at least one pixel outside the filled set (count < pixels per cell²).
 std::vector<std::uint8_t> coast_cells(const FieldGrid& grid, const std::vector<std::int32_t>& filled_count);
+
+/// Coast cells with coast sources (mask/coast.hpp): cells holding a pixel that is neither in
+/// `coast.sea` (or `filled` without a sea) nor in `coast.open`: the shoreline at the datum and
+/// the land, not the open water beyond a regional domain's edge.
+std::vector<std::uint8_t> shore_cells(const FieldGrid& grid, const Bitmap& filled, const mask::CoastSources& coast);
 
 /// h0 + α·d per cell, d the distance (km) to the nearest coast cell; +inf without coast cells.
 std::vector<double> coast_term(const FieldGrid& grid, const std::vector<std::uint8_t>& coast, double h0_km,

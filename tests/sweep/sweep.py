@@ -3,7 +3,8 @@
 configuration space and checks every run (exit 0, "all checks passed", finite areas).
 
 Global part, on ETOPO5 and ETOPO60 (a 1° raster with another origin and registration): the full
-product h × rotation × L (5 × 2 × 4 = 40 runs per raster, so every pair of those three keys), and
+product h × rotation × L (6 × 2 × 4 = 48 runs per raster, so every pair of those three keys; h = -10
+is a floodplain to +10 m), and
 K, balance and elements assigned from the indices of (h, rotation, L) so that every value of every
 key and every pair of keys appears (the assignment is checked below):
   K        = (ih + ir + iL + shift) mod 4
@@ -36,7 +37,7 @@ import tempfile
 import time
 
 ETOPO = "/usr/share/ferret-vis/data"
-HS = [0, 10, 50, 200, 1000]
+HS = [-10, 0, 10, 50, 200, 1000]
 ROT = [False, True]
 LS = [2, 3, 4, 5]
 KS = [1, 2, 3, 4]

@@ -439,6 +439,30 @@ TEST(Config, ShippedConfigsLoad) {
   }
 }
 
+// A floodplain (README "A storm-surge mesh"): mask.min_depth_m down to -100 m, refused below with
+// the key, the file position and the range; the floodplain's size terms with their ranges and only
+// with a floodplain; the shipped surge config loads.
+TEST(Config, FloodplainThresholdAndSizeTermsAreCheckedAtLoad) {
+  const auto ok = load_global(std::nullopt, {"mask.min_depth_m=-100", "size.inland.h0_km=2", "size.elevation.h0_km=3"});
+  EXPECT_DOUBLE_EQ(ok.options.mask.min_depth_m, -100.0);
+  EXPECT_DOUBLE_EQ(ok.options.size.inland.h0_km, 2.0);
+  EXPECT_DOUBLE_EQ(ok.options.size.inland.alpha, 0.2);
+  EXPECT_DOUBLE_EQ(ok.options.size.elevation.km_per_m, 0.5);
+  const auto p = write_temp("flood.toml", "[mask]\nmin_depth_m = -250.0\n[size.inland]\nalpha = -0.1\n");
+  const std::string e = error_of(p.string());
+  EXPECT_THAT(e, HasSubstr("flood.toml:2:"));
+  EXPECT_THAT(e, HasSubstr("mask.min_depth_m: -250 is outside [-100, 12000]"));
+  EXPECT_THAT(e, HasSubstr("flood.toml:4:"));
+  EXPECT_THAT(e, HasSubstr("size.inland.alpha: -0.1 is outside [0, 10]"));
+  EXPECT_THAT(error_of(std::nullopt, {"size.elevation.h0_km=4"}),
+              HasSubstr("size.elevation.h0_km sizes the floodplain (land above the datum inside the mesh), but "
+                        "mask.min_depth_m = 0 >= 0"));
+  EXPECT_THAT(error_of(std::nullopt, {"mask.min_depth_m=-5", "size.elevation.km_per_m=1e4"}),
+              HasSubstr("size.elevation.km_per_m: 10000 is outside [0, 1000]"));
+  EXPECT_THAT(error_of(std::nullopt, {"output.png_color=\"depth\""}), HasSubstr("\"elevation\""));
+  EXPECT_NO_THROW((void)load_global((fs::path(AQ_SOURCE_DIR) / "configs" / "gulf_surge.toml").string(), {}));
+}
+
 TEST(Config, InputPathTildeIsHome) {
   const char* home = std::getenv("HOME");
   if (home == nullptr || *home == '\0') GTEST_SKIP() << "no HOME";

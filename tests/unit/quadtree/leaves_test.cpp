@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "core/error.hpp"
 #include "quadtree/bits.hpp"
@@ -161,6 +162,75 @@ TEST(Leaves, CoastalBandIsChebyshevWrapsTheSeamAndIgnoresThePoles) {
       }
     }
   }
+}
+
+// The band with coast sources (mask/coast.hpp), against the definition pixel by pixel: a filled
+// pixel is in it when a pixel within r is neither filled nor open, or, for a sea pixel, neither
+// sea nor open. Open water beyond a domain is no coast; the shoreline inside a floodplain is.
+TEST(Leaves, CoastalBandWithCoastSourcesSkipsOpenWaterAndHoldsTheShoreline) {
+  const Lattice lat = make_lattice(30.0, 3);
+  for (const int band : {1, 2}) {
+    const Bitmap m = random_mask(lat.nx, lat.ny, 31u + static_cast<std::uint32_t>(band));
+    Bitmap open(lat.nx, lat.ny), sea(lat.nx, lat.ny);
+    std::mt19937 rng(7u + static_cast<std::uint32_t>(band));
+    for (std::int64_t j = 0; j < lat.ny; ++j)
+      for (std::int64_t i = 0; i < lat.nx; ++i) {
+        if (!m.get(i, j) && rng() % 3 == 0) open.set(i, j);
+        if (m.get(i, j) && rng() % 4 != 0) sea.set(i, j);
+      }
+    for (const bool with_sea : {false, true}) {
+      const mask::CoastSources coast{&open, with_sea ? &sea : nullptr};
+      const Bitmap cb = coastal_band(m, band, coast);
+      std::int64_t shore_only = 0;
+      for (std::int64_t j = 0; j < lat.ny; ++j) {
+        for (std::int64_t i = 0; i < lat.nx; ++i) {
+          bool edge = false, shore = false;
+          for (std::int64_t dj = -band; dj <= band; ++dj)
+            for (std::int64_t di = -band; di <= band; ++di) {
+              const std::int64_t jj = j + dj, ii = wrap_index(i + di, lat.nx);
+              if (jj < 0 || jj >= lat.ny || open.get(ii, jj)) continue;
+              edge = edge || !m.get(ii, jj);
+              shore = shore || !sea.get(ii, jj);
+            }
+          const bool expect = m.get(i, j) && (edge || (with_sea && sea.get(i, j) && shore));
+          ASSERT_EQ(cb.get(i, j), expect)
+              << "band " << band << (with_sea ? " with sea" : "") << " at " << i << "," << j;
+          shore_only += expect && !edge ? 1 : 0;
+        }
+      }
+      if (with_sea) {
+        EXPECT_GT(shore_only, 0);  // the shoreline inside the fill adds pixels
+      }
+      // The level masks split the same band to level L.
+      const std::vector<Leaf> leaves = extract_leaves(make_level_masks(m, lat, band, coast), lat);
+      EXPECT_EQ(leaf_coverage(leaves, lat), m);
+      for (const Leaf& f : leaves) {
+        if (f.level < lat.levels) {
+          ASSERT_FALSE(naive_any(cb, lat, f.level, f.a, f.b));
+        }
+      }
+    }
+    // Without sources every unfilled pixel is coast, as before.
+    EXPECT_EQ(coastal_band(m, band, {}), coastal_band(m, band));
+    EXPECT_NE(coastal_band(m, band, {&open, nullptr}), coastal_band(m, band));
+  }
+}
+
+// A box's open edge on level-0 square edges: without the open water as coast the squares there
+// stay coarse (the D_l rule allows it); counted as coast (no sources) they are split to level L.
+TEST(Leaves, OpenWaterBeyondABoxLeavesTheEdgeSquaresCoarse) {
+  const Lattice lat = make_lattice(30.0, 3);  // 12 x 6 level-0 squares of 8 x 8 pixels
+  Bitmap filled(lat.nx, lat.ny), open(lat.nx, lat.ny);
+  for (std::int64_t j = 0; j < lat.ny; ++j)
+    for (std::int64_t i = 0; i < lat.nx; ++i) (i >= 16 && i < 48 && j >= 8 && j < 40 ? filled : open).set(i, j);
+  const auto finest = [&](const mask::CoastSources& coast) {
+    std::int64_t n = 0;
+    for (const Leaf& f : extract_leaves(make_level_masks(filled, lat, 2, coast), lat)) n += f.level == lat.levels;
+    return n;
+  };
+  EXPECT_EQ(finest({&open, nullptr}), 0);  // 16 level-0 squares
+  EXPECT_EQ(extract_leaves(make_level_masks(filled, lat, 2, {&open, nullptr}), lat).size(), 16u);
+  EXPECT_GT(finest({}), 0);
 }
 
 TEST(Leaves, CoastalBandLeavesAreFinestAndOthersMaximal) {
