@@ -391,22 +391,8 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
   io::RomsPictureOptions po;
   po.title = fmt::format("{}: ROMS grid {} x {} rho points, {} wet; h >= {} m{}", c.name, ni, nj, ms.wet_rho,
                          c.roms.hmin_m, c.roms.rmax > 0.0 ? fmt::format(", r <= {}", c.roms.rmax) : std::string());
-  {
-    double w = 1e9, e = -1e9, s = 1e9, n = -1e9;
-    for (std::size_t k = 0; k < nr; ++k) {
-      w = std::min(w, cg.rho.lon_deg[k]);
-      e = std::max(e, cg.rho.lon_deg[k]);
-      s = std::min(s, cg.rho.lat_deg[k]);
-      n = std::max(n, cg.rho.lat_deg[k]);
-    }
-    const double pad = 0.5;
-    for (const auto& line : raster::contour_lines(bathy, c.coast_level_m, w - pad, e + pad, std::max(-90.0, s - pad),
-                                                  std::min(90.0, n + pad))) {
-      std::vector<curvilinear::PlanePoint> q(line.lon_deg.size());
-      for (std::size_t k = 0; k < q.size(); ++k) q[k] = result.projection->forward(line.lon_deg[k], line.lat_deg[k]);
-      po.coastlines.push_back(std::move(q));
-    }
-  }
+  po.coastlines = io::grid_coastlines(bathy, c.coast_level_m, cg.rho.lon_deg.data(), cg.rho.lat_deg.data(), nr,
+                                     *result.projection);
   const std::string png = c.name + "_roms.png";
   io::write_roms_png(out.temp_path(png), result.grid, masks.rho, depth.h, po);
   outputs.push_back(Json{{"file", png}, {kChecksumKey, file_checksum(out.pending_path(png))}});
