@@ -37,30 +37,15 @@ namespace {
 constexpr double kIsotropyWarn = 0.5;   // max |pm/pn − 1| over interior ρ points
 constexpr double kAreaJumpWarn = 2.0;   // largest area ratio of two neighbouring interior ρ cells
 
-// Warns about extreme metrics with their values and places; returns them for the report.
+// Warns about extreme metrics (curvilinear::cgrid_stats, max_area_jump) with their values and
+// places; returns them for the report.
 MetricWarnings warn_extreme_metrics(const curvilinear::CGrid& cg, const curvilinear::CGridStats& st,
                                     const std::string& name, const Logger& log) {
   MetricWarnings w;
-  const int ni = cg.L + 1, nj = cg.M + 1;
-  const auto area = [&](int i, int j) {
-    const std::size_t k = cg.rho.at(i, j);
-    return 1.0 / (cg.pm[k] * cg.pn[k]);
-  };
-  for (int j = 1; j < nj - 1; ++j)
-    for (int i = 1; i < ni - 1; ++i) {
-      const auto jump = [&](int i2, int j2) {
-        if (i2 < 1 || j2 < 1 || i2 > ni - 2 || j2 > nj - 2) return;
-        const double a = area(i, j), b = area(i2, j2);
-        const double r = std::max(a, b) / std::min(a, b);
-        if (r > w.area_jump) {
-          w.area_jump = r;
-          w.area_jump_i = i;
-          w.area_jump_j = j;
-        }
-      };
-      jump(i + 1, j);
-      jump(i, j + 1);
-    }
+  const curvilinear::AreaJump jump = curvilinear::max_area_jump(cg);
+  w.area_jump = jump.ratio;
+  w.area_jump_i = jump.i;
+  w.area_jump_j = jump.j;
   if (st.isotropy_max_interior > kIsotropyWarn) {
     const std::size_t k = cg.rho.at(st.isotropy_worst_i, st.isotropy_worst_j);
     log.warn("{}: extreme cell shapes: max |pm/pn - 1| = {:.3g} inside the grid ({:.3g} with the boundary; worst at "
@@ -78,37 +63,21 @@ MetricWarnings warn_extreme_metrics(const curvilinear::CGrid& cg, const curvilin
   return w;
 }
 
-// ρ cells smaller than the raster spacing under them in both directions: their depths are
-// interpolated between raster points, not measured. Warns with the count and the finest place.
+// ρ cells smaller than the raster spacing under them in both directions
+// (curvilinear::finer_than_raster): warns with the count and the finest place.
 Json warn_finer_than_raster(const curvilinear::CGrid& cg, double dlon, double dlat, double radius_m,
                             const std::string& name, const std::string& raster, const Logger& log) {
-  constexpr double kRad = 3.14159265358979323846 / 180.0;
-  const int ni = cg.L + 1, nj = cg.M + 1;
-  std::int64_t finer = 0, total = 0;
-  double worst = 0.0;
-  std::size_t worst_k = 0;
-  for (int j = 1; j < nj - 1; ++j)
-    for (int i = 1; i < ni - 1; ++i) {
-      const std::size_t k = cg.rho.at(i, j);
-      ++total;
-      const double rx = dlon * kRad * radius_m * std::cos(cg.rho.lat_deg[k] * kRad), ry = dlat * kRad * radius_m;
-      const double dx = 1.0 / cg.pm[k], dy = 1.0 / cg.pn[k];
-      const double ratio = std::min(rx / dx, ry / dy);  // > 1: the cell is finer than the raster both ways
-      if (ratio > 1.0) {
-        ++finer;
-        if (ratio > worst) {
-          worst = ratio;
-          worst_k = k;
-        }
-      }
-    }
-  if (finer > 0)
+  const curvilinear::FinerThanRaster f = curvilinear::finer_than_raster(cg, dlon, dlat, radius_m);
+  if (f.finer > 0)
     log.warn("{}: {} of {} interior rho cells ({:.3g} %) are finer than the raster under them ({} at {:.4g}' x {:.4g}'; "
              "up to {:.3g} cells per raster spacing, at {:.4f}°E {:.4f}°N): their depths are interpolated, not "
              "measured. A finer roms.global_config input.path, or fewer cells (regional.ny), match grid and data",
-             name, finer, total, 100.0 * static_cast<double>(finer) / static_cast<double>(std::max<std::int64_t>(total, 1)),
-             raster, dlon * 60.0, dlat * 60.0, worst, cg.rho.lon_deg[worst_k], cg.rho.lat_deg[worst_k]);
-  return Json{{"rho_cells_finer_than_raster", finer}, {"interior_rho_cells", total}, {"max_cells_per_raster_spacing", worst}};
+             name, f.finer, f.interior,
+             100.0 * static_cast<double>(f.finer) / static_cast<double>(std::max<std::int64_t>(f.interior, 1)), raster,
+             dlon * 60.0, dlat * 60.0, f.worst, cg.rho.lon_deg[f.worst_k], cg.rho.lat_deg[f.worst_k]);
+  return Json{{"rho_cells_finer_than_raster", f.finer},
+              {"interior_rho_cells", f.interior},
+              {"max_cells_per_raster_spacing", f.worst}};
 }
 
 }  // namespace

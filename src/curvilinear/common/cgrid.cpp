@@ -234,6 +234,53 @@ void rho_cell_corners(const CGrid& g, std::vector<double>& lon_deg, std::vector<
   for (double& v : lat_deg) v = std::clamp(v, -90.0, 90.0);
 }
 
+AreaJump max_area_jump(const CGrid& g) {
+  AreaJump w;
+  const int ni = g.L + 1, nj = g.M + 1;
+  const auto area = [&](int i, int j) {
+    const std::size_t k = g.rho.at(i, j);
+    return 1.0 / (g.pm[k] * g.pn[k]);
+  };
+  for (int j = 1; j < nj - 1; ++j)
+    for (int i = 1; i < ni - 1; ++i) {
+      const auto jump = [&](int i2, int j2) {
+        if (i2 < 1 || j2 < 1 || i2 > ni - 2 || j2 > nj - 2) return;
+        const double a = area(i, j), b = area(i2, j2);
+        const double r = std::max(a, b) / std::min(a, b);
+        if (r > w.ratio) {
+          w.ratio = r;
+          w.i = i;
+          w.j = j;
+        }
+      };
+      jump(i + 1, j);
+      jump(i, j + 1);
+    }
+  return w;
+}
+
+FinerThanRaster finer_than_raster(const CGrid& g, double dlon_deg, double dlat_deg, double radius_m) {
+  constexpr double kRad = 3.14159265358979323846 / 180.0;
+  const int ni = g.L + 1, nj = g.M + 1;
+  FinerThanRaster f;
+  for (int j = 1; j < nj - 1; ++j)
+    for (int i = 1; i < ni - 1; ++i) {
+      const std::size_t k = g.rho.at(i, j);
+      ++f.interior;
+      const double rx = dlon_deg * kRad * radius_m * std::cos(g.rho.lat_deg[k] * kRad), ry = dlat_deg * kRad * radius_m;
+      const double dx = 1.0 / g.pm[k], dy = 1.0 / g.pn[k];
+      const double ratio = std::min(rx / dx, ry / dy);  // > 1: the cell is finer than the raster both ways
+      if (ratio > 1.0) {
+        ++f.finer;
+        if (ratio > f.worst) {
+          f.worst = ratio;
+          f.worst_k = k;
+        }
+      }
+    }
+  return f;
+}
+
 CGridStats cgrid_stats(const CGrid& g) {
   CGridStats s;
   s.pm_min = s.pn_min = s.angle_min = std::numeric_limits<double>::infinity();

@@ -51,6 +51,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,24 @@ void rho_cell_corners(const CGrid& g, std::vector<double>& lon_deg, std::vector<
 
 /// pm/pn ranges, isotropy and angle range of `g`.
 CGridStats cgrid_stats(const CGrid& g);
+
+/// The largest area ratio of two neighbouring interior ρ cells (area 1/(pm·pn); i and j from 1 to
+/// L−1, M−1) and the first cell (row by row) where it is reached; 1 with no pair.
+struct AreaJump {
+  double ratio = 1.0;
+  int i = 0, j = 0;
+};
+AreaJump max_area_jump(const CGrid& g);
+
+/// Interior ρ cells finer than a raster of `dlon_deg` × `dlat_deg` pixels in both directions (the
+/// pixel's size on a sphere of `radius_m` above both 1/pm and 1/pn): their depths are interpolated
+/// between raster points, not measured. `worst_k` is the ρ index with the most cells per raster spacing.
+struct FinerThanRaster {
+  std::int64_t finer = 0, interior = 0;
+  double worst = 0.0;  ///< the most cells per raster spacing (0 when none is finer)
+  std::size_t worst_k = 0;
+};
+FinerThanRaster finer_than_raster(const CGrid& g, double dlon_deg, double dlat_deg, double radius_m);
 
 /// Great-circle distance between two points on a sphere of `radius_m`, metres (atan2 form).
 double great_circle_m(double lon1_deg, double lat1_deg, double lon2_deg, double lat2_deg, double radius_m);
