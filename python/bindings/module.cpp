@@ -129,7 +129,7 @@ class MeshRun {
     config::GlobalConfig c = loaded_.options;
     c.output.dir = dir;
     c.output.name = name;
-    if (formats) c.output.formats = config::parse_names<config::OutputFormat>(*formats, "formats");
+    if (formats) c.output.formats = config::parse_names<config::OutputFormat>(*formats, "output.formats");
     io::check_mesh_output_options(c.output, kinds_);
     Report report = report_;
     report["config"]["output"]["name"] = c.output.name;

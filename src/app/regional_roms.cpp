@@ -279,7 +279,7 @@ Json roms_report_json(const config::RegionalConfig& c, const curvilinear::CGrid&
                                  {"xl_m", cg.xl_m},
                                  {"el_m", cg.el_m}}},
                 {"depth", Json{{"statistic", std::string(name_of(f.cells.used))},
-                               {"statistic_requested", c.roms.depth_statistic},
+                               {"statistic_requested", std::string(name_of(c.roms.depth_statistic))},
                                {"median_raster_points_per_cell", f.cells.median_points_per_cell},
                                {"cells_with_point_sample", f.cells.point_cells},
                                {"hmin_m", c.roms.hmin_m},

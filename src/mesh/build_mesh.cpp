@@ -199,7 +199,7 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
   if (report != nullptr) {
     Json& j = (*report)["mesh"];
     j["elements"] = std::string(name_of(options.elements));
-    j["diagonal"] = options.diagonal;
+    j["diagonal"] = std::string(name_of(options.diagonal));
     j["nodes"] = n;
     j["corner_nodes"] = n - centres;
     j["centre_nodes"] = centres;

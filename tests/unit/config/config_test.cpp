@@ -140,7 +140,7 @@ TEST(Config, EveryBadValueIsReportedWithItsPositionInOneMessage) {
                             "[input]\n"
                             "interpolation = \"cubic\"\n"  // 2
                             "[mask]\n"
-                            "min_depth_m = -5.0\n"       // 4
+                            "min_depth_m = -500.0\n"     // 4
                             "cursor = 0\n"               // 5
                             "sampling = \"bilinear\"\n"  // 6
                             "seeds = [[0.0, nan]]\n"     // 7
@@ -166,7 +166,7 @@ TEST(Config, EveryBadValueIsReportedWithItsPositionInOneMessage) {
   const std::string f = p.string();
   const std::vector<std::string> expected{
       f + ":2:17: input.interpolation: \"cubic\" is not one of \"bilinear\", \"bicubic\"",
-      f + ":4:15: mask.min_depth_m: -5 is outside [0, 12000]",
+      f + ":4:15: mask.min_depth_m: -500 is outside [-100, 12000]",
       f + ":5:10: mask.cursor: 0 is outside [1, 64]",
       f + ":6:12: mask.sampling: \"bilinear\" is not one of \"vertex\", \"area\"",
       f + ":7:9: mask.seeds: seed 0 = [0, nan]: expected a longitude in [-360, 360] and a latitude in [-90, 90]",
