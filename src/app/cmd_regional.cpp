@@ -108,9 +108,9 @@ void check_parent_unchanged(const config::RegionalConfig& c, const Json& inputs,
     if (!d.empty()) what = "; the parent is now made with " + join_some(d, 4);
   }
   const std::string grd = (std::filesystem::path(c.output_dir) / (c.name + "_grd.nc")).string();
-  const std::string msg = fmt::format(
-      "{}: the parent {} has changed since {} was cut from it (checksum {} -> {}){}", source, now.value("file", ""),
-      grd, was.value(kChecksumKey, ""), now.value(kChecksumKey, ""), what);
+  const std::string msg =
+      fmt::format("{}: the parent {} has changed since {} was cut from it (checksum {} -> {}){}", source,
+                  now.value("file", ""), grd, was.value(kChecksumKey, ""), now.value(kChecksumKey, ""), what);
   if (!force)
     throw InputError(msg + ". Make the parent again as it was, or pass --force to cut this grid from the new parent");
   log.warn("{}; --force: cutting this grid from the new parent", msg);
@@ -147,6 +147,98 @@ std::array<double, 4> picture_box(const curvilinear::RegionalResult& r) {
   return {w - pad_lon, e + pad_lon, std::max(-89.0, s - pad_lat), std::min(89.0, n + pad_lat)};
 }
 
+// The stage a regional run stops after: --stop-after (checked against the configuration), else
+// regional.stop_after or the seed's mode (config::stop_stage), logged when the mode stops early.
+curvilinear::Stage regional_stage(const RegionalArgs& a, const config::RegionalConfig& c, const std::string& path,
+                                  const Logger& log) {
+  std::optional<curvilinear::Stage> cli_stage;
+  if (!a.stop_after.empty()) {
+    cli_stage = parse_name<curvilinear::Stage>(a.stop_after);
+    if (!cli_stage)
+      throw ConfigError(fmt::format("--stop-after: {} (or the seed's mode 0..5)",
+                                    unknown_name_message<curvilinear::Stage>(a.stop_after)));
+  }
+  const curvilinear::Stage stage = config::stop_stage(c, cli_stage);
+  if (cli_stage) {
+    std::string why;
+    for (const config::KeyProblem& bad : config::stop_stage_problems(c, stage)) why += "; " + bad.text;
+    if (!why.empty()) throw ConfigError(fmt::format("--stop-after {}: {}", a.stop_after, why.substr(2)));
+  }
+  if (!cli_stage && !c.stop_after && stage != curvilinear::Stage::kGrid) {
+    log.info("{}: mode={} stops after the {} stage (the seed's modes); --stop-after grid builds the grid", path,
+             c.params.mode, std::string(name_of(stage)));
+  }
+  return stage;
+}
+
+// The picture's coastline: the [input] raster's contour at coast_level_m around the grid.
+std::vector<std::vector<curvilinear::GeoPoint>> regional_coastlines(const config::RegionalConfig& c,
+                                                                    const curvilinear::RegionalResult& result,
+                                                                    Report& report, const Logger& log) {
+  std::vector<std::vector<curvilinear::GeoPoint>> lines_out;
+  StageScope cs("coastline", &report, log);
+  const auto box = picture_box(result);
+  const auto bathy = raster::Bathymetry::open(window_options(c.input, box[2], box[3]), log);
+  const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
+  std::size_t points = 0;
+  for (const auto& l : lines) {
+    std::vector<curvilinear::GeoPoint> g(l.lon_deg.size());
+    for (std::size_t k = 0; k < g.size(); ++k) g[k] = {l.lon_deg[k], l.lat_deg[k]};
+    points += g.size();
+    lines_out.push_back(std::move(g));
+  }
+  cs.done(fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m, c.input.path));
+  return lines_out;
+}
+
+// The plane grid <name>_xygrid.nc with its checks (curvilinear::check_grid; NumericalError for
+// non-finite fields) and the report's "quality" section.
+void write_xygrid_stage(const config::RegionalConfig& c, const std::string& source,
+                        const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
+                        const Logger& log) {
+  StageScope ws("xygrid", &report, log);
+  curvilinear::CheckOptions co;
+  co.dxi_over_deta = result.dxi_over_deta;
+  const curvilinear::GridQuality q = curvilinear::check_grid(result.grid, co);
+  if (!q.non_finite.empty()) {
+    std::string list;
+    for (const auto& f : q.non_finite) list += "; " + f;
+    throw NumericalError("grid checks failed" + list);
+  }
+  io::XyGrid xy;
+  xy.grid = result.grid;
+  xy.units = "1";  // plane units: unit-sphere radians divided by uscale
+  xy.dxi = result.aspect_ratio / static_cast<double>(result.grid.nx_pts - 1);
+  xy.deta = 1.0 / static_cast<double>(result.grid.ny_pts - 1);
+  xy.title = fmt::format("aquatoria regional grid {}", c.name);
+  xy.history = fmt::format("aquatoria regional {}", source);
+  xy.residual_history = result.inverse.residual_history;
+  const auto& p = result.params;
+  xy.attributes = {{"proj", std::string(p.projection.kind == curvilinear::ProjectionKind::kMercator       ? "ME"
+                                        : p.projection.kind == curvilinear::ProjectionKind::kLambertConic ? "LC"
+                                                                                                          : "ST")},
+                   {"rlat", p.projection.rlat_deg},
+                   {"rlon", p.projection.rlon_deg},
+                   {"rota", p.projection.rota_deg},
+                   {"uscale", p.projection.uscale},
+                   {"radius", p.projection.radius_m},
+                   {"spline_type", static_cast<std::int64_t>(p.spline_type)},
+                   {"nx", static_cast<std::int64_t>(result.nx)},
+                   {"ny", static_cast<std::int64_t>(result.ny)},
+                   {"aspect_ratio", result.aspect_ratio},
+                   {"source", source}};
+  const std::string nc = c.name + "_xygrid.nc";
+  io::write_xygrid(out.temp_path(nc), xy, &q);
+  outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
+  Json qj = Json::object();
+  for (const auto* f : q.fields())
+    qj[f->name] =
+        Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms}, {"worst_cell", {f->worst_i, f->worst_j}}};
+  report["quality"] = qj;
+  ws.done(fmt::format("{} ({} x {} supergrid, nx = {}, ny = {}); orthogonality (50) worst {:.3g}, rms {:.3g}", nc,
+                      result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst, q.ortho_50.rms));
+}
+
 int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   Timer total;
   const std::string path = !a.config.empty() ? a.config : a.file;
@@ -168,28 +260,13 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     bool named = false;
     for (const auto& s : a.sets) named = named || s.rfind("regional.name=", 0) == 0;
     if (!named)
-      log.info("outputs named {} (regional.name of {}); the --set overrides are not in the name: set regional.name to "
-               "keep the runs apart",
-               c.name, loaded.source);
+      log.info(
+          "outputs named {} (regional.name of {}); the --set overrides are not in the name: set regional.name to "
+          "keep the runs apart",
+          c.name, loaded.source);
   }
 
-  std::optional<curvilinear::Stage> cli_stage;
-  if (!a.stop_after.empty()) {
-    cli_stage = parse_name<curvilinear::Stage>(a.stop_after);
-    if (!cli_stage)
-      throw ConfigError(fmt::format("--stop-after: {} (or the seed's mode 0..5)",
-                                    unknown_name_message<curvilinear::Stage>(a.stop_after)));
-  }
-  const curvilinear::Stage stage = config::stop_stage(c, cli_stage);
-  if (cli_stage) {
-    std::string why;
-    for (const config::KeyProblem& bad : config::stop_stage_problems(c, stage)) why += "; " + bad.text;
-    if (!why.empty()) throw ConfigError(fmt::format("--stop-after {}: {}", a.stop_after, why.substr(2)));
-  }
-  if (!cli_stage && !c.stop_after && stage != curvilinear::Stage::kGrid) {
-    log.info("{}: mode={} stops after the {} stage (the seed's modes); --stop-after grid builds the grid", path,
-             c.params.mode, std::string(name_of(stage)));
-  }
+  const curvilinear::Stage stage = regional_stage(a, c, path, log);
 
   Report report;
   report["command"] = "regional";
@@ -225,21 +302,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   io::RegionalPictureOptions po;
   po.line_width = c.params.lwidth;
   po.title = fmt::format("{}: {}", c.name, std::string(name_of(result.completed)));
-  if (!a.no_coastline && !c.input.path.empty() && result.projection) {
-    StageScope cs("coastline", &report, log);
-    const auto box = picture_box(result);
-    const auto bathy = raster::Bathymetry::open(window_options(c.input, box[2], box[3]), log);
-    const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
-    std::size_t points = 0;
-    for (const auto& l : lines) {
-      std::vector<curvilinear::GeoPoint> g(l.lon_deg.size());
-      for (std::size_t k = 0; k < g.size(); ++k) g[k] = {l.lon_deg[k], l.lat_deg[k]};
-      points += g.size();
-      po.coastlines.push_back(std::move(g));
-    }
-    cs.done(
-        fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m, c.input.path));
-  }
+  if (!a.no_coastline && !c.input.path.empty() && result.projection)
+    po.coastlines = regional_coastlines(c, result, report, log);
 
   Json outputs = Json::array();
   const std::string png = fmt::format("{}_{}.png", c.name, std::string(name_of(result.completed)));
@@ -250,50 +314,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     ps.done(png);
   }
 
-  if (result.completed == curvilinear::Stage::kGrid) {
-    StageScope ws("xygrid", &report, log);
-    curvilinear::CheckOptions co;
-    co.dxi_over_deta = result.dxi_over_deta;
-    const curvilinear::GridQuality q = curvilinear::check_grid(result.grid, co);
-    if (!q.non_finite.empty()) {
-      std::string list;
-      for (const auto& f : q.non_finite) list += "; " + f;
-      throw NumericalError("grid checks failed" + list);
-    }
-    io::XyGrid xy;
-    xy.grid = result.grid;
-    xy.units = "1";  // plane units: unit-sphere radians divided by uscale
-    xy.dxi = result.aspect_ratio / static_cast<double>(result.grid.nx_pts - 1);
-    xy.deta = 1.0 / static_cast<double>(result.grid.ny_pts - 1);
-    xy.title = fmt::format("aquatoria regional grid {}", c.name);
-    xy.history = fmt::format("aquatoria regional {}", loaded.source);
-    xy.residual_history = result.inverse.residual_history;
-    const auto& p = result.params;
-    xy.attributes = {{"proj", std::string(p.projection.kind == curvilinear::ProjectionKind::kMercator       ? "ME"
-                                          : p.projection.kind == curvilinear::ProjectionKind::kLambertConic ? "LC"
-                                                                                                            : "ST")},
-                     {"rlat", p.projection.rlat_deg},
-                     {"rlon", p.projection.rlon_deg},
-                     {"rota", p.projection.rota_deg},
-                     {"uscale", p.projection.uscale},
-                     {"radius", p.projection.radius_m},
-                     {"spline_type", static_cast<std::int64_t>(p.spline_type)},
-                     {"nx", static_cast<std::int64_t>(result.nx)},
-                     {"ny", static_cast<std::int64_t>(result.ny)},
-                     {"aspect_ratio", result.aspect_ratio},
-                     {"source", loaded.source}};
-    const std::string nc = c.name + "_xygrid.nc";
-    io::write_xygrid(out.temp_path(nc), xy, &q);
-    outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
-    Json qj = Json::object();
-    for (const auto* f : q.fields())
-      qj[f->name] =
-          Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms}, {"worst_cell", {f->worst_i, f->worst_j}}};
-    report["quality"] = qj;
-    ws.done(fmt::format("{} ({} x {} supergrid, nx = {}, ny = {}); orthogonality (50) worst {:.3g}, rms {:.3g}", nc,
-                        result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst,
-                        q.ortho_50.rms));
-  }
+  if (result.completed == curvilinear::Stage::kGrid)
+    write_xygrid_stage(c, loaded.source, result, out, outputs, report, log);
 
   // Stage 5 on the sphere: the ROMS grid file <name>_grd.nc and <name>_roms.png (app/regional_roms.hpp),
   // and the nesting data beside it, boundary points in the global mesh (app/regional_nesting.hpp),
