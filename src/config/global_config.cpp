@@ -639,6 +639,16 @@ RunName default_run_name(const GlobalConfig& c) {
     out.name = "seed_4deg_L3";
     return out;
   }
+  // The keys the name below follows.
+  static const char* const kNamed[] = {
+      "quadtree.step_deg", "quadtree.levels",  "mask.min_depth_m", "mask.cursor",      "rotation.enabled",
+      "input.path",        "input.paths",      "input.blend_km",   "quadtree.balance", "quadtree.coast_band",
+      "quadtree.lattice",  "quadtree.size_km", "mesh.elements"};
+  for (const std::string& k : out.changed) {
+    bool named = false;
+    for (const char* n : kNamed) named = named || k.rfind(std::string(n) + " =", 0) == 0;
+    if (!named) out.unnamed.push_back(k);
+  }
   const auto step_s = static_cast<long long>(std::llround(c.quadtree.step_deg * 3600.0));
   const std::string step = step_s % 3600 == 0 ? fmt::format("{}deg", step_s / 3600)
                            : step_s % 60 == 0 ? fmt::format("{}min", step_s / 60)

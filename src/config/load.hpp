@@ -76,6 +76,8 @@ struct RunName {
   /// Keys outside [output] and [blocks] whose effective value differs from the built-in
   /// default, as "section.key = value", in documentation order; empty for the seed's run.
   std::vector<std::string> changed;
+  /// Those of `changed` the name does not show: a run differing only there writes the same files.
+  std::vector<std::string> unnamed;
 };
 
 /// "seed_4deg_L3" when the mesh-defining values of `c` (every section but [output] and [blocks])

@@ -500,6 +500,16 @@ TEST(RunName, ListsWhatDiffersFromTheSeedRun) {
   const auto n = aq::config::default_run_name(
       load_global(std::nullopt, {"quadtree.step_deg=1", "mask.min_depth_m=10", "output.name=ignored"}).options);
   EXPECT_THAT(n.changed, ::testing::ElementsAre("mask.min_depth_m = 10.0", "quadtree.step_deg = 1.0"));
+  EXPECT_TRUE(n.unnamed.empty());  // both are in the name
+}
+
+// What the name does not show is listed (`aquatoria mesh` warns: such runs write the same files).
+TEST(RunName, ListsWhatTheNameDoesNotShow) {
+  const auto n = aq::config::default_run_name(
+      load_global(std::nullopt, {"quadtree.step_deg=1", "mesh.diagonal=\"nw\"", "size.wavelength.wl=30"}).options);
+  EXPECT_EQ(n.name, "global_1deg_L3");
+  EXPECT_THAT(n.unnamed, ::testing::ElementsAre("size.wavelength.wl = 30.0", "mesh.diagonal = \"nw\""));
+  EXPECT_TRUE(aq::config::default_run_name(load_global(std::nullopt, {}).options).unnamed.empty());
 }
 
 }  // namespace unit_config_config_test
