@@ -12,6 +12,11 @@
 #                               package (a whole `python3 -c "aq.mesh(...).write(...)"` process,
 #                               start-up included), alternately, AQ_BENCH_REPEAT pairs (default 3):
 #                               median wall times and their ratio (issue 24's target <= 1.05)
+#   scripts/bench.sh forest     the forest engine against the dense one (README "The forest engine"):
+#                               the seed run, the 1' global lattice (and the 15" one with
+#                               AQ_BENCH_FOREST_15S=1) and the 1/9" coast (configs/us_east_19.toml;
+#                               forest only, with its tile stack) on 1 and 2 MPI ranks: wall, CPU
+#                               (summed over the ranks), peak RSS per rank, leaves, same bytes
 #   scripts/bench.sh tides      configs/global_tides.toml (the size field from physics) on ETOPO5
 #                               and on the 1' raster (Δ0 = 16', L = 4): the stage table and the
 #                               size stage's share of the run (target <= 25 %)
@@ -171,6 +176,58 @@ if [ "$mode" = tides ]; then
   tides_case "configs/global_tides.toml on the 1' raster (Δ0=16', L=4)" tides_1m \
     --set input.path="$(bash data_tools/make_resampled.sh 60)" --set quadtree.step_deg=0.26666666666666666 \
     --set quadtree.levels=4 --set 'output.formats=["msh"]' --set output.msh_binary=true
+  exit 0
+fi
+# The forest engine: forest_case NAME ENGINES ARGS... (ENGINES: "dense f1 f2" or "f1 f2"); each run
+# under /usr/bin/time per rank; the files of every forest run are compared with the first run's.
+forest_rows=()
+forest_case() {
+  local name="$1" engines="$2"
+  shift 2
+  local first="" e out np
+  for e in $engines; do
+    out="$work/forest_$name/$e"
+    mkdir -p "$out"
+    if [ "$e" = dense ]; then
+      /usr/bin/time -f "%e %U %S %M" -o "$out.time.0" "$bin" mesh -q "$@" --set quadtree.engine=dense -o "$out" \
+        >/dev/null 2>"$out.log"
+    else
+      np=${e#f}
+      OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 /usr/bin/time -f "%e" -o "$out.wall" \
+        mpirun --oversubscribe -np "$np" bash -c '/usr/bin/time -f "%e %U %S %M" -o "$0.time.$OMPI_COMM_WORLD_RANK" "$@"' \
+        "$out" "$bin" mesh -q "$@" --set quadtree.engine=forest -o "$out" >/dev/null 2>"$out.log"
+    fi
+    [ -z "$first" ] && first="$out"
+    forest_rows+=("$(python3 - "$name" "$e" "$out" "$first" <<'PY'
+import filecmp, glob, json, os, sys
+name, e, out, first = sys.argv[1:]
+times = [open(f).read().split() for f in sorted(glob.glob(out + ".time.*"))]
+wall = float(open(out + ".wall").read().split()[0]) if os.path.exists(out + ".wall") else float(times[0][0])
+cpu = sum(float(t[1]) + float(t[2]) for t in times)
+peak = max(int(t[3]) for t in times) / 1e6
+r = json.load(open(glob.glob(out + "/*_report.json")[0]))
+files = sorted(f for f in os.listdir(first) if not f.endswith("_report.json"))
+same = "-" if out == first else ("yes" if all(filecmp.cmp(f"{first}/{f}", f"{out}/{f}", shallow=False) for f in files) else "NO")
+print(f"{name:<12}{e:>6}{wall:>9.1f}{cpu:>9.1f}{peak:>10.2f}{r['quadtree']['leaves']:>12}{r['mesh_counts']['triangles']:>12}  {same}")
+PY
+)")
+  done
+}
+if [ "$mode" = forest ]; then
+  forest_case seed "dense f1 f2"
+  forest_case 1min "dense f1 f2" --set input.path="$(bash data_tools/make_resampled.sh 60)" \
+    --set quadtree.step_deg=0.26666666666666666 --set quadtree.levels=4 --set 'output.formats=["msh"]' \
+    --set output.msh_binary=true
+  if [ "${AQ_BENCH_FOREST_15S:-0}" = 1 ]; then
+    forest_case 15s "dense f1 f2" -c configs/global_15s.toml --set input.path="$(bash data_tools/make_resampled.sh 15)"
+  fi
+  tiles="$HOME/.cache/aquatoria/us_east_19/tiles.vrt"
+  [ -f "$tiles" ] || data_tools/make_coast_tiles.py "$(dirname "$tiles")" -80 -70 32 42 >/dev/null
+  forest_case us_east_19 "f1 f2" -c configs/us_east_19.toml --set 'output.formats=["ugrid","fort14"]'
+  echo
+  echo "== forest vs dense: wall s, CPU s (all ranks), peak GB (largest rank), leaves, triangles, same bytes as the first row; load: $(uptime | sed 's/.*load average: //')"
+  printf '%-12s%6s%9s%9s%10s%12s%12s  %s\n' case run wall cpu peak_GB leaves triangles same
+  for row in "${forest_rows[@]}"; do echo "$row"; done
   exit 0
 fi
 if [ "$mode" = mercator ]; then

@@ -19,8 +19,9 @@ PACKAGES=(
   python3-dev pybind11-dev python3-xarray python3-pytest python3-matplotlib
   # the ADCIRC and ROMS client tests (../shared/clients/adcirc and roms build the models with these)
   gfortran libnetcdff-dev make perl patch xz-utils python3
-  # the FESOM2 and SCHISM client tests (MPI models: mpif90/mpicc and mpirun)
-  libopenmpi-dev openmpi-bin
+  # the forest engine (quadtree.engine = "forest": p4est's forest of quadtrees on MPI ranks) and the
+  # FESOM2 and SCHISM client tests (MPI models: mpif90/mpicc and mpirun)
+  libp4est-dev libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -17,7 +17,6 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
-#include "app/key_list.hpp"
 #include "app/mesh_run.hpp"
 #include "app/provenance.hpp"
 #include "config/load.hpp"
@@ -27,16 +26,26 @@
 #include "core/report.hpp"
 #include "mesh/statistics.hpp"
 #include "raster/bathymetry.hpp"
+#ifdef AQ_HAVE_MPI
+#include "forest/mpi_session.hpp"
+#endif
 
 namespace aq::app {
 
 namespace {
 
+int world_rank() {
+#ifdef AQ_HAVE_MPI
+  return aq::forest::world_rank();
+#else
+  return 0;
+#endif
+}
+
 struct MeshArgs {
   std::optional<std::string> config;
   std::vector<std::string> sets;
   std::string out_dir;
-  bool keys = false;
 };
 
 // The seed's published counts for its reference runs on ETOPO2 (seed 002 Figs. 6, 7, 10).
@@ -103,9 +112,22 @@ void log_mesh_summary(const config::GlobalConfig& c, const GlobalRun& run, const
            static_cast<double>(peak_rss_bytes()) / 1048576.0);
 }
 
-int run_mesh(const MeshArgs& a, const Logger& log) {
+int run_mesh(const MeshArgs& a, const Logger& main_log) {
   Timer total;
   auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
+  // The forest engine runs on every MPI rank (under mpirun, or a single rank started here); only
+  // rank 0 logs and writes. The dense engine is one process.
+  const bool forest = loaded.options.quadtree.engine == config::QuadtreeEngine::kForest;
+#ifdef AQ_HAVE_MPI
+  if (forest) aq::forest::start_mpi();
+  if (!forest && aq::forest::world_size() > 1)
+    throw ConfigError(
+        fmt::format("quadtree.engine = \"dense\" runs in one process, but this run has {} MPI ranks: "
+                    "set quadtree.engine = \"forest\" (--set quadtree.engine=forest) or run without mpirun",
+                    aq::forest::world_size()));
+#endif
+  const bool writer = !forest || world_rank() == 0;
+  const Logger& log = writer ? main_log : Logger::null();
   if (!a.config) {
     // No config file: the base name says what was run (the seed's reference run, or the
     // parameters that differ from it).
@@ -138,7 +160,12 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
 
   // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
   const bool tif = c.output.writes(config::OutputFormat::kTif);
-  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif});
+#ifdef AQ_HAVE_MPI
+  const int ranks = aq::forest::world_size();
+#else
+  const int ranks = 1;
+#endif
+  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif, .ranks = ranks});
   const Lattice& lat = setup.lattice;
   log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
            loaded.source, fmt::join(c.input.sources(), " over "), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
@@ -148,10 +175,13 @@ int run_mesh(const MeshArgs& a, const Logger& log) {
 
   log_memory_estimate(setup, log);
 
-  // Fail on an unwritable output folder before the work, not after.
-  OutputSet out(c.output.dir, log);
+  // Fail on an unwritable output folder before the work, not after (rank 0 writes).
+  std::optional<OutputSet> out_set;
+  if (writer) out_set.emplace(c.output.dir, log);
 
   const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, false, tif);
+  if (!writer) return 0;
+  OutputSet& out = *out_set;
   const raster::Bathymetry& bathy = *run.bathy;
   const auto& ri = bathy.info();
   const mesh::Mesh& m = run.mesh;
@@ -193,14 +223,7 @@ void add_mesh_command(CLI::App& app, Context& ctx) {
       "Configuration file (TOML); see configs/example.toml");
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
-  cmd->add_flag("--keys", args->keys, "List every configuration key with its default and values, and exit");
-  cmd->callback([&ctx, args] {
-    ctx.run = [&ctx, args] {
-      if (!args->keys) return run_mesh(*args, ctx.log);
-      print_keys(config::global_key_info(), stdout);
-      return 0;
-    };
-  });
+  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_mesh(*args, ctx.log); }; });
 }
 
 }  // namespace aq::app

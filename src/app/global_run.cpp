@@ -7,9 +7,12 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <limits>
+#include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/timer.hpp"
 #include "core/types.hpp"
 #include "mask/domain.hpp"
 #include "mask/global_run_file.hpp"
@@ -22,6 +25,11 @@
 #include "mesh_files/element_kinds.hpp"
 #include "quadtree/build_leaves.hpp"
 #include "size/size_field.hpp"
+#ifdef AQ_HAVE_MPI
+#include "forest/comm.hpp"
+#include "forest/mpi_session.hpp"
+#include "forest/pipeline.hpp"
+#endif
 
 namespace aq::app {
 
@@ -53,7 +61,19 @@ namespace {
 // term has 37 % more triangles than the guess). Measured peak / estimate for the mesh's count
 // (2026-11-28): 15" with every size term 6.58 / 6.80 GB (before the run, from the guessed count:
 // 5.10); global_tides on the 1' raster (rotated: no copy) 2.94 / 3.09 GB.
+//   forest   (quadtree.engine = "forest") instead of the lattice bitmaps, per rank: kForestBytesPerPatch
+//            for every patch of its trees (p4est's quadrant, the patch's sets and their ghosts),
+//            kForestBytesPerActivePixel·P per coastal pixel (the mixed patches' bitmaps and fine
+//            pyramids; coastal pixels ~ triangles / 10) and kForestBytesPerQuadrant per mesh-forest
+//            quadrant (leaves ~ triangles / 2.4, land included ×1.5); rank 0 holds the mesh and the
+//            gathered leaves as well (kForestGatherBytesPerLeaf).
 constexpr double kLatticeBitsPerPixel = 8.0;
+constexpr double kForestBytesPerPatch = 200.0;
+constexpr double kForestBytesPerActivePixel = 2.25;
+constexpr double kForestBytesPerQuadrant = 120.0;
+constexpr double kForestGatherBytesPerLeaf = 27.0;
+// The forest reads a raster in tiles (raster::OpenOptions::tiles_above_bytes) above this.
+constexpr std::int64_t kForestTilesAboveBytes = std::int64_t{1} << 30;
 // A floodplain run (mask.min_depth_m < 0) keeps 3 bitmaps more: the pixels wet at the datum, the
 // sea inside Ω_L and, regional, the open water (mask/wet_area.hpp).
 constexpr double kFloodplainBitsPerPixel = 3.0;
@@ -80,7 +100,8 @@ double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
 // Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
 // AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
-// AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read).
+// AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read);
+// AQ_RASTER_TILES_ABOVE (below) reads them in tiles.
 void apply_test_knobs(raster::OpenOptions& ro) {
   if (const char* s = std::getenv("AQ_RASTER_WHOLE"); s != nullptr && std::string(s) == "1")
     ro.lon_min = ro.lon_max = ro.lat_min = ro.lat_max = std::numeric_limits<double>::quiet_NaN();
@@ -90,6 +111,9 @@ void apply_test_knobs(raster::OpenOptions& ro) {
     if (v == "never") ro.streaming = raster::OpenOptions::Streaming::kNever;
   }
   if (const char* s = std::getenv("AQ_RASTER_BAND_ROWS")) ro.band_rows = std::max<std::int64_t>(0, std::atoll(s));
+  // AQ_RASTER_TILES_ABOVE = bytes: read rasters above that size in tiles (tests compare with held).
+  if (const char* s = std::getenv("AQ_RASTER_TILES_ABOVE"))
+    ro.tiles_above_bytes = std::max<std::int64_t>(0, std::atoll(s));
 }
 
 // Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
@@ -129,8 +153,23 @@ Lattice window_lattice(const config::GlobalConfig& c, const Lattice& g, const Po
 // base + raster + bitmaps and mesh: their sum while the bitmaps stay, else the larger.
 static double model_bytes(const GlobalSetup& s, double mesh_bytes) {
   const auto lattice = static_cast<double>(s.lattice_bytes);
+  if (s.forest)  // rank 0: its share of the forest beside the whole mesh
+    return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) + lattice + mesh_bytes;
   return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
          (s.masks_kept ? lattice + mesh_bytes : std::max(lattice, mesh_bytes));
+}
+
+// The forest's structures on one of `ranks` ranks (the memory model above).
+static double forest_bytes(const Lattice& l, double triangles, int ranks) {
+  const int plog = std::min(l.levels, 7);
+  const double p = static_cast<double>(std::int64_t{1} << plog);
+  const double patches = static_cast<double>(l.nx) / p * static_cast<double>(l.ny) / p;
+  const double leaves = triangles / 2.4;
+  const double r = std::max(1, ranks);
+  return (kForestBytesPerPatch * patches + kForestBytesPerActivePixel * p * triangles / 10.0 +
+          kForestBytesPerQuadrant * 1.5 * leaves) /
+             r +
+         kForestGatherBytesPerLeaf * leaves;
 }
 
 GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
@@ -151,14 +190,17 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   s.memory_limit_bytes = c.input.max_memory_gb > 0
                              ? std::max<std::int64_t>(1, saturate(c.input.max_memory_gb * 1e9))
                              : static_cast<std::int64_t>(0.8 * static_cast<double>(physical_memory_bytes()));
+  s.forest = c.quadtree.engine == config::QuadtreeEngine::kForest;
+  s.ranks = std::max(1, o.ranks);
+  s.triangles_guess = estimate_triangles(s.lattice);
   s.lattice_bytes = estimate_lattice_bytes(s.lattice);
   if (c.mask.min_depth_m < 0.0)  // a floodplain: the pixels at the datum, the sea and (regional) the open water
     s.lattice_bytes = saturate(estimate_lattice_bytes_f(s.lattice) * (kLatticeBitsPerPixel + kFloodplainBitsPerPixel) /
                                kLatticeBitsPerPixel);
-  s.triangles_guess = estimate_triangles(s.lattice);
+  if (s.forest) s.lattice_bytes = saturate(forest_bytes(s.lattice, static_cast<double>(s.triangles_guess), s.ranks));
   s.mesh_bytes = saturate(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
   const Lattice& lat = s.lattice;
-  if (s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
+  if (!s.forest && s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
     throw ConfigError(fmt::format(
         "quadtree.levels = {} with quadtree.step_deg = {}: the {} x {} pixel lattice needs about {:.1f} GB of "
         "bitmaps, more than the {:.3g} GB allowed (input.max_memory_gb); use fewer levels or a larger Δ0",
@@ -200,6 +242,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   for (std::size_t k = 0; k < paths.size(); ++k) {
     raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
     ro.path = paths[k];
+    // The forest reads a raster too large to hold in tiles where it samples (a fine tile stack).
+    if (s.forest) ro.tiles_above_bytes = kForestTilesAboveBytes;
     ro.allow_streaming = s.rotation.identity() && c.mask.sampling == config::Sampling::kVertex &&
                          c.quadtree.depth_rules.empty() && !c.domain.regional();
     if (!std::isnan(window[2]) && !(c.input.blend_km > 0.0 && k + 1 < paths.size())) {
@@ -243,11 +287,12 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
                 ? " (input.interpolation = \"bicubic\" holds the raster whole)"
                 : "";
     }
-    throw ConfigError(fmt::format(
-        "the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, lattice bitmaps {:.2f} GB, mesh {:.2f} GB), "
-        "more than input.max_memory_gb = {:.2f} GB; nothing was read",
-        gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
-        gb(s.lattice_bytes), gb(s.mesh_bytes), gb(s.memory_limit_bytes)));
+    throw ConfigError(
+        fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
+                    "more than input.max_memory_gb = {:.2f} GB; nothing was read",
+                    gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
+                    s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
+                    gb(s.memory_limit_bytes)));
   }
   return s;
 }
@@ -268,6 +313,15 @@ Json memory_json(const GlobalSetup& s, std::int64_t triangles) {
 }
 
 void log_memory_estimate(const GlobalSetup& s, const Logger& log) {
+  if (s.forest) {
+    log.info(
+        "memory: estimate {:.2f} GB on rank 0 of {} of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} "
+        "GB {}, forest {:.2f} GB per rank, mesh {:.2f} GB (~{} triangles) on rank 0",
+        gb(s.estimate_bytes), s.ranks, gb(s.memory_limit_bytes), gb(s.raster.bytes),
+        s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows) : std::string("held whole"),
+        gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
+    return;
+  }
   log.info(
       "memory: estimate {:.2f} GB of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} GB {}, lattice "
       "bitmaps {:.2f} GB, mesh {:.2f} GB (~{} triangles){}",
@@ -379,10 +433,10 @@ static Json source_json(const raster::Bathymetry& b) {
               {"memory_bytes", i.memory_bytes}};
 }
 
-GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
-                            bool reuse) {
-  GlobalRun run;
-  run.setup = setup;
+// The read stage, the lattice's and the domain's lines and report sections: what both engines do
+// first.
+static void open_inputs(GlobalRun& run, const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                        Report* report, bool dense_domain = true) {
   const Lattice& lat = setup.lattice;
   const PoleRotation& rot = setup.rotation;
   const std::int64_t limit = setup.memory_limit_bytes, need = setup.lattice_bytes;
@@ -455,12 +509,12 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
       (*report)["lattice"]["global_because"] = setup.lattice_note;
   }
 
-  run.domain = mask::make_domain(c.domain, lat, rot);
+  run.domain = mask::make_domain(c.domain, lat, rot, dense_domain);
   if (run.domain.regional()) {
-    reuse = false;  // the global run file holds a global fill
-    log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
-             lat.pixel_count(), lat.windowed() ? "window" : "global",
-             100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
+    if (dense_domain)  // (the forest counts its domain's pixels over its patches, and logs them)
+      log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
+               lat.pixel_count(), lat.windowed() ? "window" : "global",
+               100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
     if (report != nullptr)
       (*report)["domain"] = Json{{"kind", c.domain.resolved == config::DomainKind::kBox ? "box" : "polygon"},
                                  {"description", run.domain.description},
@@ -470,6 +524,41 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
                                  {"lat_min_deg", run.domain.lat_min},
                                  {"lat_max_deg", run.domain.lat_max}};
   }
+}
+
+// The report's "input" section (after the classification: a streamed raster's statistics come from
+// that pass).
+static void input_json(const raster::Bathymetry& bathy, const config::GlobalConfig& c, Report* report) {
+  if (report == nullptr) return;
+  const auto& ri = bathy.info();
+  const std::size_t nsources = bathy.source_count();
+  if (nsources == 1) {
+    (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
+                              {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
+                              {"min_m", ri.min_m},         {"max_m", ri.max_m},          {"streamed", ri.streamed},
+                              {"band_rows", ri.band_rows}, {"block_rows", ri.block_rows}};
+  } else {
+    (*report)["input"] = Json{{"path", ri.path}, {"blend_km", c.input.blend_km}, {"streamed", ri.streamed}};
+  }
+  Json sources = Json::array();
+  for (std::size_t k = 0; k < nsources; ++k) sources.push_back(source_json(bathy.source(k)));
+  (*report)["input"]["sources"] = sources;
+}
+
+GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
+                            bool reuse) {
+  if (c.quadtree.engine == config::QuadtreeEngine::kForest)
+    throw ConfigError(
+        "quadtree.engine = \"forest\": this command needs the dense engine's bitmaps; quadtree.engine = "
+        "\"dense\" (aquatoria mesh runs the forest)");
+  GlobalRun run;
+  run.setup = setup;
+  const Lattice& lat = setup.lattice;
+  const PoleRotation& rot = setup.rotation;
+  open_inputs(run, c, setup, log, report);
+  if (run.domain.regional()) reuse = false;  // the global run file holds a global fill
+  const raster::Bathymetry& bathy = *run.bathy;
+  const std::size_t nsources = bathy.source_count();
   const std::filesystem::path file = global_run_file_path(c);
   if (reuse && std::filesystem::exists(file)) {
     StageScope stage("mask", report, log);
@@ -496,19 +585,7 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
     if (si.streamed && run.area_file.empty())
       if (const std::string note = raster::implausible_note(si); !note.empty()) log.warn("{}: {}", si.path, note);
   }
-  if (report != nullptr) {  // after the classification: a streamed raster's statistics come from that pass
-    if (nsources == 1) {
-      (*report)["input"] = Json{{"path", ri.path},           {"driver", ri.driver},        {"variable", ri.variable},
-                                {"columns", ri.ncols},       {"rows", ri.nrows},           {"resolution_deg", ri.dlon},
-                                {"min_m", ri.min_m},         {"max_m", ri.max_m},          {"streamed", ri.streamed},
-                                {"band_rows", ri.band_rows}, {"block_rows", ri.block_rows}};
-    } else {
-      (*report)["input"] = Json{{"path", ri.path}, {"blend_km", c.input.blend_km}, {"streamed", ri.streamed}};
-    }
-    Json sources = Json::array();
-    for (std::size_t k = 0; k < nsources; ++k) sources.push_back(source_json(bathy.source(k)));
-    (*report)["input"]["sources"] = sources;
-  }
+  input_json(bathy, c, report);
   const mask::WetArea& area = run.area;
   if (c.mask.passages && !area.passages.empty()) {
     log.info("critical passages (open = the filled ocean connects both sides):");
@@ -596,13 +673,22 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
   }
 }
 
-// Open boundary where the domain edge meets water at the datum outside it (WetArea::open), the
-// rest mainland or island (mesh/boundaries.hpp).
-static void type_regional_boundaries(GlobalRun& run, const Logger& log, Report* report) {
+// Open boundary where the domain edge meets water at the datum outside it (`open_water`), the rest
+// mainland or island (mesh/boundaries.hpp).
+static void type_regional_boundaries(GlobalRun& run, const std::function<bool(const mask::PixelIJ&)>& open_water,
+                                     const Logger& log, Report* report) {
   StageScope stage("boundaries", report, log);
-  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, run.area.open, &log);
+  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, open_water, &log);
   if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(run.mesh, counts);
   stage.done(mesh::describe(counts));
+}
+
+// The dense engine's: WetArea::open, the water at the datum outside the domain (wet at max(h, 0), so
+// the floodplain of a surge mesh meets the domain edge with land).
+static void type_regional_boundaries_dense(GlobalRun& run, const Logger& log, Report* report) {
+  const Bitmap& open = run.area.open;
+  type_regional_boundaries(
+      run, [&](const mask::PixelIJ& px) { return open.get(px.i, px.j); }, log, report);
 }
 
 // A polygon domain: the open-boundary nodes moved onto the polygon where the triangles stay valid
@@ -665,26 +751,17 @@ static void check_lattice_mesh(GlobalRun& run, const Logger& log, Report* report
   stat_stage.done(fmt::format("all checks passed; wet area {:.4g} million km²", st.triangle_area_km2 / 1e6));
 }
 
-GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
-                              Report* report, bool statistics, bool reuse, bool keep_masks) {
-  GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
-  if (!keep_masks) {  // a moved-in empty bitmap frees the words (clear() would keep their capacity)
-    run.area.wet_vertices = Bitmap();
-    run.area.coastal = Bitmap();
-    run.area.filled = Bitmap();
-    run.area.datum_wet = Bitmap();
-    run.area.sea = Bitmap();
-    run.area.wet = Bitmap();  // a regional run types its boundaries with `open`
-  }
-  run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
-  run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
-  if (run.domain.regional()) type_regional_boundaries(run, log, report);
+// The stages after the lattice mesh, on the process that holds it (rank 0 of a forest run): the
+// lattice mesh's checks, a polygon's open boundary, the sources' node counts, the threshold depth
+// warning and the time step.
+static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                        Report* report, bool statistics, bool keep_masks) {
   if (statistics) check_lattice_mesh(run, log, report);
   if (run.domain.kind == config::DomainKind::kPolygon) snap_polygon_open_boundary(run, c, log, report);
   count_source_nodes(run, c, log, report);
   warn_threshold_depth_nodes(run.mesh, c.mask.min_depth_m, log, report);
   if (!keep_masks) run.area.open = Bitmap();
-  if (!statistics) return run;
+  if (!statistics) return;
 
   {  // the explicit barotropic time step (and the Courant numbers at size.cfl.dt_s)
     StageScope dt_stage("time_step", report, log);
@@ -723,6 +800,98 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
     }
   }
   if (run.mesh.floodplain_top_m > 0.0) report_floodplain(run, log, report);
+}
+
+// The forest engine (README "The forest engine"): the same stages on every MPI rank; rank 0
+// gathers the leaves, builds the mesh and runs the stages after it (the other ranks return a run
+// without a mesh and answer the open boundary's questions).
+static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                                     Report* report, bool statistics, bool keep_masks) {
+#ifdef AQ_HAVE_MPI
+  if (c.output.writes(config::OutputFormat::kTif))
+    throw ConfigError(
+        "output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the "
+        "forest engine never makes; quadtree.engine = \"dense\" writes it");
+  forest::start_mpi();
+  GlobalRun run;
+  run.setup = setup;
+  const Lattice& lat = setup.lattice;
+  const forest::Comm comm;
+  forest::collective(comm, [&] { open_inputs(run, c, setup, log, report, false); });
+  forest::ForestLeaves fl =
+      forest::run_forest_leaves(c, lat, setup.rotation, *run.bathy, run.domain, log, comm.root() ? report : nullptr);
+  run.area = std::move(fl.area);
+  run.size_field = std::move(fl.size_field);
+  if (run.domain.regional()) {
+    run.domain.pixels = fl.area_domain_pixels;
+    log.info("domain: {}: {} pixels of {} of the {} lattice ({:.2g} %)", run.domain.description, run.domain.pixels,
+             lat.pixel_count(), lat.windowed() ? "window" : "global",
+             100.0 * static_cast<double>(run.domain.pixels) / static_cast<double>(lat.pixel_count()));
+    if (report != nullptr) (*report)["domain"]["pixels"] = run.domain.pixels;
+  }
+  input_json(*run.bathy, c, report);
+  if (c.mask.passages && !run.area.passages.empty()) {
+    log.info("critical passages (open = the filled ocean connects both sides):");
+    for (const auto& line : mask::format_passage_table(run.area.passages)) log.info("  {}", line);
+  }
+  forest::collective(comm, [&] {  // the mesh, on rank 0
+    if (!comm.root()) return;
+    StageScope stage("mesh", report, log);
+    Timer t;
+    quadtree::QuadNodes qn = quadtree::build_nodes_from_neighbourhoods(
+        fl.leaves, fl.neighbourhoods, lat, quadtree::NodeOptions{mesh::mesh_needs_centres(c.mesh)});
+    run.mesh = mesh::build_mesh(fl.leaves, std::move(qn), t.wall_s(), lat, setup.rotation, *run.bathy, c.mesh, log,
+                                report, stage);
+    fl.neighbourhoods = {};
+    run.leaves = std::move(fl.leaves);
+  });
+  if (run.domain.regional()) {  // the open boundary: whether the pixel outside each edge is wet water outside
+    std::vector<mask::PixelIJ> queries;
+    for (const auto& e : run.mesh.boundary_edges) {
+      mask::PixelIJ px{-1, -1};
+      if (mesh::edge_right_pixel(run.mesh, e[0], e[1], px)) queries.push_back(px);
+    }
+    const std::vector<char> answers = forest::wet_outside_domain(*fl.state, run.domain, queries);
+    forest::collective(comm, [&] {
+      if (!comm.root()) return;
+      std::unordered_map<std::int64_t, bool> open;
+      for (std::size_t k = 0; k < queries.size(); ++k) open[queries[k].j * lat.nx + queries[k].i] = answers[k] != 0;
+      type_regional_boundaries(
+          run, [&](const mask::PixelIJ& px) { return open.at(px.j * lat.nx + px.i); }, log, report);
+    });
+  }
+  if (comm.root()) finish_mesh(run, c, setup, log, report, statistics, keep_masks);
+  return run;
+#else
+  (void)setup;
+  (void)log;
+  (void)report;
+  (void)statistics;
+  (void)keep_masks;
+  throw ConfigError(
+      fmt::format("quadtree.engine = \"{}\": this aquatoria was built without the forest engine "
+                  "(AQ_MPI=OFF: p4est and MPI were not found; scripts/install_deps.sh installs them)",
+                  config::engine_name(c.quadtree.engine)));
+#endif
+}
+
+GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
+                              Report* report, bool statistics, bool reuse, bool keep_masks) {
+  if (c.quadtree.engine == config::QuadtreeEngine::kForest)
+    return run_forest_pipeline(c, setup, log, report, statistics, keep_masks);
+  GlobalRun run = run_global_leaves(c, setup, log, report, reuse);
+  if (!keep_masks) {  // a moved-in empty bitmap frees the words (clear() would keep their capacity)
+    run.area.wet_vertices = Bitmap();
+    run.area.coastal = Bitmap();
+    run.area.filled = Bitmap();
+    run.area.datum_wet = Bitmap();
+    run.area.sea = Bitmap();
+    run.area.wet = Bitmap();  // a regional run types its boundaries with `open`
+  }
+  run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
+  run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
+  if (run.domain.regional()) type_regional_boundaries_dense(run, log, report);
+  finish_mesh(run, c, setup, log, report, statistics, keep_masks);
   return run;
 }
 

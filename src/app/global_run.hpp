@@ -41,6 +41,8 @@ struct GlobalSetup {
   std::vector<raster::RasterPlan> source_plans;     ///< and its plan (bytes include a blend distance field)
   std::int64_t estimate_bytes = 0;      ///< the whole run (global_run.cpp states the model)
   bool masks_kept = true;               ///< the bitmaps stay beside the mesh (estimate: their sum, not the larger)
+  bool forest = false;                  ///< quadtree.engine = "forest": lattice_bytes is the forest per rank
+  int ranks = 1;                        ///< MPI ranks of a forest run
 };
 
 /// Builds the lattice and rotation of `c`, reads the raster's header (whole or streamed) and
@@ -54,6 +56,7 @@ struct GlobalSetup {
 struct SetupOptions {
   bool allow_window = true;
   bool keep_masks = true;
+  int ranks = 1;  ///< MPI ranks a forest run has (its memory estimate is per rank)
 };
 GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o = {});
 /// The estimate of `s` had the mesh `triangles` triangles (the model with the count the run made

@@ -284,6 +284,9 @@ const S& schema() {
     t.add<LatticeKind>(
         "quadtree", "lattice", [](GlobalConfig& c) -> LatticeKind& { return c.quadtree.lattice; }, {},
         "the lattice's rows");
+    t.add<QuadtreeEngine>(
+        "quadtree", "engine", [](GlobalConfig& c) -> QuadtreeEngine& { return c.quadtree.engine; }, {},
+        "what holds the quadtree");
     t.add<double>(
         "quadtree", "mercator_lat_max_deg", [](GlobalConfig& c) -> double& { return c.quadtree.mercator_lat_max_deg; },
         [](const double& v) { return in_range(v, 1.0, 89.5); }, "");
@@ -631,9 +634,11 @@ RunName default_run_name(const GlobalConfig& c) {
   const Json now = schema().echo(c), def = schema().echo(d);
   for (const auto& [sec, keys] : now.items()) {
     if (sec == "output" || sec == "blocks") continue;
-    for (const auto& [key, value] : keys.items())
+    for (const auto& [key, value] : keys.items()) {
+      if (sec == "quadtree" && key == "engine") continue;  // both engines write the same files
       if (!def.contains(sec) || !def[sec].contains(key) || def[sec][key] != value)
         out.changed.push_back(fmt::format("{}.{} = {}", sec, key, value.dump()));
+    }
   }
   if (out.changed.empty()) {
     out.name = "seed_4deg_L3";

@@ -100,6 +100,20 @@ inline constexpr std::array<EnumName<VtuCoordinates>, 2> kVtuCoordinatesNames{{
 }};
 constexpr std::span<const EnumName<VtuCoordinates>> enum_names(VtuCoordinates) { return kVtuCoordinatesNames; }
 
+/// quadtree.engine: what holds the quadtree (README "The forest engine"). Both write the same
+/// files; the forest needs the AQ_MPI build.
+enum class QuadtreeEngine {
+  kDense,   ///< bitmaps over every pixel of the lattice, in one process (the default)
+  kForest,  ///< a p4est forest of the level-0 squares: leaves only, on one or many MPI ranks
+};
+inline constexpr std::array<EnumName<QuadtreeEngine>, 2> kQuadtreeEngineNames{{
+    {QuadtreeEngine::kDense, "dense", "bitmaps over every pixel of the lattice, in one process"},
+    {QuadtreeEngine::kForest, "forest", "a p4est forest of the level-0 squares on one or many MPI ranks"},
+}};
+constexpr std::span<const EnumName<QuadtreeEngine>> enum_names(QuadtreeEngine) { return kQuadtreeEngineNames; }
+/// The name of `e` (kQuadtreeEngineNames).
+[[nodiscard]] inline const char* engine_name(QuadtreeEngine e) { return name_of(e).data(); }
+
 /// output.png_color: what fills the elements of the preview (pictures/preview_png.hpp).
 enum class PreviewColour { kLevel, kAngle, kSize, kTarget, kElevation };
 inline constexpr std::array<EnumName<PreviewColour>, 5> kPreviewColourNames{{

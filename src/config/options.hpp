@@ -76,6 +76,7 @@ struct QuadtreeOptions {
   double coast_size_km = 0.0;          ///< coastal-band square size target (km); 0 = band to level L
   std::vector<DepthRule> depth_rules;
   std::vector<BoxRule> box_rules;
+  QuadtreeEngine engine = QuadtreeEngine::kDense;  ///< what holds the quadtree
 };
 
 // The target size field h(x) in km (ARCHITECTURE §4.10, src/size): terms combined by minimum,

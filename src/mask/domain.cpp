@@ -24,19 +24,17 @@ using config::DomainKind;
 
 std::int64_t mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 
-using Ring = PolygonRing;
-
-// Rotated lattice: the pixels whose centre's geographic position satisfies inside(lon, lat).
-template <typename Inside>
-void mark_geographic_centres(Domain& d, const Lattice& lat, const PoleRotation& rot, Inside&& inside) {
-  for (std::int64_t j = 0; j < lat.ny; ++j)
-    for (std::int64_t i = 0; i < lat.nx; ++i) {
-      const LonLat c = pixel_center_lattice_deg(lat, {i, j});
-      double lon = 0.0, la = 0.0;
-      rot.to_geographic(c.lon_deg, c.lat_deg, lon, la);
-      if (inside(lon, la)) d.inside.set(i, j);
-    }
+// Sets bits [x0, x1) of a row, a word at a time.
+void quadtree_free_set_range(std::uint64_t* row, std::int64_t x0, std::int64_t x1) {
+  while (x0 < x1) {
+    const std::int64_t w = x0 >> 6, b = x0 & 63, n = std::min<std::int64_t>(64 - b, x1 - x0);
+    const std::uint64_t bits = n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1) << b;
+    row[w] |= bits;
+    x0 += n;
+  }
 }
+
+using Ring = PolygonRing;
 
 void add_rings(OGRGeometryH g, std::vector<Ring>& rings) {
   if (g == nullptr) return;
@@ -139,9 +137,7 @@ SnappedBox snap_box(const config::DomainOptions& o, const Lattice& lat) {
 }
 
 void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, const PoleRotation& rot) {
-  const double w = o.box[0];
-  double width = o.box[1] - o.box[0];
-  if (width < 0.0) width += 360.0;
+  d.box = o.box;
   if (rot.identity()) {
     const SnappedBox b = snap_box(o, lat);
     const std::int64_t i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
@@ -151,8 +147,6 @@ void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, c
     d.j0 = j0;
     d.ni = i1 - i0;
     d.nj = j1 - j0;
-    for (std::int64_t j = j0; j < j1; ++j)
-      for (std::int64_t i = i0; i < i1; ++i) d.inside.set(mod(i, lat.nx), j);
     d.lon_min = lat.lon_of(i0);
     d.lon_max = lat.lon_of(i1);
     d.lat_min = lat.lat_of(j0);
@@ -166,15 +160,12 @@ void box_domain(Domain& d, const config::DomainOptions& o, const Lattice& lat, c
     return;
   }
   // Rotated lattice: pixel centres tested in geographic coordinates.
-  d.lon_min = w;
-  d.lon_max = w + width;
+  double width = o.box[1] - o.box[0];
+  if (width < 0.0) width += 360.0;
+  d.lon_min = o.box[0];
+  d.lon_max = o.box[0] + width;
   d.lat_min = o.box[2];
   d.lat_max = o.box[3];
-  mark_geographic_centres(d, lat, rot, [&](double lon, double la) {
-    double dl = std::fmod(lon - w, 360.0);
-    if (dl < 0.0) dl += 360.0;
-    return dl < width && la >= o.box[2] && la <= o.box[3];
-  });
   d.description = fmt::format("box [{}, {}, {}, {}] (rotated lattice: pixels whose centre is in the box)", o.box[0],
                               o.box[1], o.box[2], o.box[3]);
 }
@@ -212,45 +203,18 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
     }
   }
   if (hi - lo >= 360.0)
-    throw InputError(fmt::format("domain.polygon = \"{}\": the polygon spans {}° of longitude (360° or more)",
-                                 o.polygon, hi - lo));
-  const double pix = lat.pixel_deg();
+    throw InputError(
+        fmt::format("domain.polygon = \"{}\": the polygon spans {}° of longitude (360° or more)", o.polygon, hi - lo));
   // On a window lattice: the column offset of the polygon's copy of the longitudes that lies on it.
   double shift = 0.0;
   if (lat.windowed()) {
-    const double x_lo = (lo - lat.lon0_deg) / pix;
+    const double x_lo = (lo - lat.lon0_deg) / lat.pixel_deg();
     shift = lat.col_of_lon(lo) - x_lo;
   }
-  std::vector<double> xs;
-  if (!rot.identity()) {
-    mark_geographic_centres(d, lat, rot, [&](double lon, double la) {
-      return la >= so && la <= no && inside_rings(rings, lo, lon, la);
-    });
-  }
-  for (std::int64_t j = 0; j < lat.ny && rot.identity(); ++j) {
-    const double la = lat.lat_of_row(static_cast<double>(j) + 0.5);
-    if (la < so || la > no) continue;
-    xs.clear();
-    for (const Ring& r : rings) {
-      const std::size_t n = r.lon.size();
-      for (std::size_t k = 0; k < n; ++k) {
-        const double ax = r.lon[k], ay = r.lat[k], bx = r.lon[(k + 1) % n], by = r.lat[(k + 1) % n];
-        if ((ay <= la) == (by <= la)) continue;
-        xs.push_back(ax + (la - ay) * (bx - ax) / (by - ay));
-      }
-    }
-    std::sort(xs.begin(), xs.end());
-    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
-      auto a = static_cast<std::int64_t>(std::ceil((xs[k] - lat.lon0_deg) / pix - 0.5));
-      auto b = static_cast<std::int64_t>(std::ceil((xs[k + 1] - lat.lon0_deg) / pix - 0.5));
-      if (!lat.periodic()) {  // the window holds the polygon's bounding box and a level-0 square more
-        const auto sh = static_cast<std::int64_t>(std::llround(shift));
-        a = std::max<std::int64_t>(0, a + sh);
-        b = std::min<std::int64_t>(lat.nx, b + sh);
-      }
-      for (std::int64_t i = a; i < b && i < a + lat.nx; ++i) d.inside.set(mod(i, lat.nx), j);
-    }
-  }
+  d.poly_lon_lo = lo;
+  d.poly_lat_lo = so;
+  d.poly_lat_hi = no;
+  d.poly_shift = shift;
   d.lon_min = lo;
   d.lon_max = hi;
   d.lat_min = so;
@@ -259,6 +223,69 @@ void polygon_domain(Domain& d, const config::DomainOptions& o, const Lattice& la
                               rings.size(), vertices, lo, hi, so, no,
                               rot.identity() ? "" : "; rotated lattice: pixels whose centre is in the polygon");
   d.rings = std::move(rings);
+}
+
+// The domain's pixels [i0, i0 + w) of row j into `out` (bit k = pixel i0 + k): the box's columns,
+// the polygon's scanline spans (a centre on a crossing's longitude is on the side east of it) or,
+// on a rotated lattice, the pixels whose centre's geographic position is inside.
+void row_bits(const Domain& d, std::int64_t j, std::int64_t i0, std::int64_t w, std::uint64_t* out) {
+  const Lattice& lat = d.lattice;
+  const auto set = [&](std::int64_t i) {  // i any column: taken modulo nx
+    const std::int64_t x = mod(i, lat.nx) - i0;
+    if (x >= 0 && x < w) out[x >> 6] |= std::uint64_t{1} << (x & 63);
+  };
+  if (!d.rotation.identity()) {
+    for (std::int64_t x = 0; x < w; ++x) {
+      const LonLat c = pixel_center_lattice_deg(lat, {i0 + x, j});
+      double lon = 0.0, la = 0.0;
+      d.rotation.to_geographic(c.lon_deg, c.lat_deg, lon, la);
+      bool in = false;
+      if (d.kind == config::DomainKind::kBox) {
+        double width = d.box[1] - d.box[0];
+        if (width < 0.0) width += 360.0;
+        double dl = std::fmod(lon - d.box[0], 360.0);
+        if (dl < 0.0) dl += 360.0;
+        in = dl < width && la >= d.box[2] && la <= d.box[3];
+      } else {
+        in = la >= d.poly_lat_lo && la <= d.poly_lat_hi && inside_rings(d.rings, d.poly_lon_lo, lon, la);
+      }
+      if (in) out[x >> 6] |= std::uint64_t{1} << (x & 63);
+    }
+    return;
+  }
+  if (d.kind == config::DomainKind::kBox) {
+    if (j < d.j0 || j >= d.j0 + d.nj) return;
+    // Columns d.i0 .. d.i0 + ni - 1, modulo nx: the unwrapped pieces [d.i0 + t·nx, ... + ni) that
+    // meet [i0, i0 + w) (0 <= i0, i0 + w <= nx).
+    for (std::int64_t t = -1; t <= 1; ++t) {
+      const std::int64_t a = std::max(d.i0 + t * lat.nx, i0), b = std::min(d.i0 + t * lat.nx + d.ni, i0 + w);
+      if (a < b) quadtree_free_set_range(out, a - i0, b - i0);
+    }
+    return;
+  }
+  const double la = lat.lat_of_row(static_cast<double>(j) + 0.5);
+  if (la < d.poly_lat_lo || la > d.poly_lat_hi) return;
+  const double pix = lat.pixel_deg();
+  std::vector<double> xs;
+  for (const Ring& r : d.rings) {
+    const std::size_t n = r.lon.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const double ax = r.lon[k], ay = r.lat[k], bx = r.lon[(k + 1) % n], by = r.lat[(k + 1) % n];
+      if ((ay <= la) == (by <= la)) continue;
+      xs.push_back(ax + (la - ay) * (bx - ax) / (by - ay));
+    }
+  }
+  std::sort(xs.begin(), xs.end());
+  for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+    auto a = static_cast<std::int64_t>(std::ceil((xs[k] - lat.lon0_deg) / pix - 0.5));
+    auto b = static_cast<std::int64_t>(std::ceil((xs[k + 1] - lat.lon0_deg) / pix - 0.5));
+    if (!lat.periodic()) {  // the window holds the polygon's bounding box and a level-0 square more
+      const auto sh = static_cast<std::int64_t>(std::llround(d.poly_shift));
+      a = std::max<std::int64_t>(0, a + sh);
+      b = std::min<std::int64_t>(lat.nx, b + sh);
+    }
+    for (std::int64_t i = a; i < b && i < a + lat.nx; ++i) set(i);
+  }
 }
 
 }  // namespace
@@ -285,26 +312,52 @@ DomainExtent domain_extent(const config::DomainOptions& options, const Lattice& 
 
 bool Domain::contains(std::int64_t i, std::int64_t j) const {
   if (!regional()) return true;
-  if (j < 0 || j >= inside.ny()) return false;
-  if (!periodic && (i < 0 || i >= inside.nx())) return false;
-  return inside.get(mod(i, inside.nx()), j);
+  if (j < 0 || j >= lattice.ny) return false;
+  if (!periodic && (i < 0 || i >= lattice.nx)) return false;
+  if (dense) return inside.get(mod(i, inside.nx()), j);
+  std::uint64_t bit = 0;
+  row_bits(*this, j, mod(i, lattice.nx), 1, &bit);
+  return bit != 0;
 }
 
-Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot) {
+Bitmap Domain::window(std::int64_t col0, std::int64_t row0, std::int64_t w, std::int64_t h) const {
+  Bitmap out(w, h);
+  if (!regional()) {
+    for (std::int64_t y = 0; y < h; ++y) quadtree_free_set_range(out.row(y), 0, w);
+    return out;
+  }
+  for (std::int64_t y = 0; y < h; ++y) {
+    if (dense) {
+      for (std::int64_t x = 0; x < w; ++x)
+        if (inside.get(col0 + x, row0 + y)) out.set(x, y);
+    } else {
+      row_bits(*this, row0 + y, col0, w, out.row(y));
+    }
+  }
+  return out;
+}
+
+Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot, bool dense) {
   Domain d;
   d.kind = options.resolved;
   if (!d.regional()) return d;
-  d.inside = Bitmap(lattice.nx, lattice.ny);
   d.periodic = lattice.periodic();
+  d.lattice = lattice;
+  d.rotation = rot;
+  d.dense = dense;
   if (d.kind == DomainKind::kBox) {
     box_domain(d, options, lattice, rot);
   } else {
     polygon_domain(d, options, lattice, rot);
   }
-  d.pixels = d.inside.count();
-  if (d.pixels == 0)
-    throw ConfigError(fmt::format("domain: the {} holds no pixel of the lattice ({}° pixels)", d.description,
-                                  lattice.pixel_deg()));
+  if (dense) {
+    d.inside = Bitmap(lattice.nx, lattice.ny);
+    for (std::int64_t j = 0; j < lattice.ny; ++j) row_bits(d, j, 0, lattice.nx, d.inside.row(j));
+    d.pixels = d.inside.count();
+    if (d.pixels == 0)
+      throw ConfigError(
+          fmt::format("domain: the {} holds no pixel of the lattice ({}° pixels)", d.description, lattice.pixel_deg()));
+  }
   return d;
 }
 

@@ -34,7 +34,7 @@ struct PolygonRing {
 
 struct Domain {
   config::DomainKind kind = config::DomainKind::kGlobal;
-  Bitmap inside;                 ///< nx × ny: pixel inside the domain (empty for a global run)
+  Bitmap inside;                 ///< nx × ny: pixel inside the domain (empty for a global run, or when not `dense`)
   std::int64_t pixels = 0;       ///< |inside|
   std::int64_t i0 = 0, j0 = 0;   ///< box: first pixel column (may wrap) and row of the snapped box
   std::int64_t ni = 0, nj = 0;   ///< box: pixel columns and rows of the snapped box
@@ -43,15 +43,28 @@ struct Domain {
   std::vector<PolygonRing> rings;  ///< polygon: its rings (the open boundary is moved onto them)
   bool periodic = true;          ///< the lattice wraps in I (false on a window lattice: i outside [0, nx) is outside)
 
+  bool dense = true;  ///< `inside` is held; otherwise pixels are tested from the shape
+  // The shape (for a domain without its bitmap): the lattice, the rotation, the box as given and
+  // the polygon's longitude origin and column shift on a window lattice.
+  Lattice lattice;
+  PoleRotation rotation;
+  std::vector<double> box;
+  double poly_lon_lo = 0.0, poly_lat_lo = 0.0, poly_lat_hi = 0.0, poly_shift = 0.0;
+
   [[nodiscard]] bool regional() const { return kind != config::DomainKind::kGlobal; }
   /// Whether pixel (i, j) is inside; i is taken modulo nx, rows outside [0, ny) are outside.
   [[nodiscard]] bool contains(std::int64_t i, std::int64_t j) const;
+  /// The pixels [col0, col0 + w) × [row0, row0 + h) of the lattice (0 <= col0, col0 + w <= nx, rows in range)
+  /// as a w × h bitmap: `inside` cut there, or the same bits computed from the shape.
+  [[nodiscard]] Bitmap window(std::int64_t col0, std::int64_t row0, std::int64_t w, std::int64_t h) const;
 };
 
 /// The domain of `options` on `lattice`. Throws ConfigError naming domain.* (an empty region)
 /// and InputError naming the polygon file (cannot be read, no layer,
-/// no polygon feature, not lon/lat).
-Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot);
+/// no polygon feature, not lon/lat). `dense = false` (the forest engine) keeps no bitmap of the
+/// lattice: `pixels` is then 0 (not counted) and every test works from the shape.
+Domain make_domain(const config::DomainOptions& options, const Lattice& lattice, const PoleRotation& rot,
+                   bool dense = true);
 
 /// The lon/lat extent (lattice frame, lon_max > lon_min, continuous across the seam) that a
 /// window lattice must hold for the domain of `options` on the global lattice `lattice`, without

@@ -125,7 +125,7 @@ const char* passage_status_name(PassageStatus s) {
   return "?";
 }
 
-PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattice& lattice, const PoleRotation& rot) {
+PassageResult judge_passage(const Passage& p, const PixelSet& filled, const Lattice& lattice, const PoleRotation& rot) {
   PassageResult res;
   res.name = p.name;
   res.box = p.box;
@@ -338,7 +338,7 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
   return res;
 }
 
-std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const Bitmap& filled,
+std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const PixelSet& filled,
                                           const Lattice& lattice, const PoleRotation& rot) {
   // Each passage is judged on its own: one per thread, results in table order.
   std::vector<PassageResult> out(passages.size());
@@ -348,6 +348,15 @@ std::vector<PassageResult> judge_passages(std::span<const Passage> passages, con
   for (std::int64_t k = 0; k < n; ++k)
     out[static_cast<std::size_t>(k)] = judge_passage(passages[static_cast<std::size_t>(k)], filled, lattice, rot);
   return out;
+}
+
+PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattice& lattice, const PoleRotation& rot) {
+  return judge_passage(p, ConstBitmapSet(filled), lattice, rot);
+}
+
+std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const Bitmap& filled,
+                                          const Lattice& lattice, const PoleRotation& rot) {
+  return judge_passages(passages, ConstBitmapSet(filled), lattice, rot);
 }
 
 Json to_json(std::span<const PassageResult> results) {

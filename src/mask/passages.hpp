@@ -22,6 +22,7 @@
 #include "core/lattice.hpp"
 #include "core/report.hpp"
 #include "core/rotation.hpp"
+#include "mask/pixel_set.hpp"
 
 namespace aq::mask {
 
@@ -62,6 +63,11 @@ PassageResult judge_passage(const Passage& p, const Bitmap& filled, const Lattic
 
 /// Judges every passage of the list, in order.
 std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const Bitmap& filled,
+                                          const Lattice& lattice, const PoleRotation& rot);
+
+/// The same on any pixel set (the forest engine's patches gathered on one rank).
+PassageResult judge_passage(const Passage& p, const PixelSet& filled, const Lattice& lattice, const PoleRotation& rot);
+std::vector<PassageResult> judge_passages(std::span<const Passage> passages, const PixelSet& filled,
                                           const Lattice& lattice, const PoleRotation& rot);
 
 /// JSON array: [{name, status, box: [lon_min, lon_max, lat_min, lat_max], pixels_in_box,

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/error.hpp"
 #include "mask/bit_rows.hpp"
 #include "mask/k_cursor_fill.hpp"
 
@@ -42,7 +43,7 @@ struct Removal {
   std::int64_t cost = 0;      // lost.size() + cut_cost when splits
 };
 
-Removal evaluate_removal(const Bitmap& f, int k, PixelIJ c) {
+Removal evaluate_removal(const PixelSet& f, int k, PixelIJ c) {
   const std::int64_t nx = f.nx(), ny = f.ny();
   const std::int64_t off = 2 * static_cast<std::int64_t>(k), s = 4 * static_cast<std::int64_t>(k) + 1;
   std::vector<int> sum(static_cast<std::size_t>((s + 1) * (s + 1)), 0);  // 2-D prefix sums of the patch
@@ -127,7 +128,7 @@ constexpr std::int64_t kCutOffSeed = 64 * kPieceBudget;
 // kPieceBudget windows each (pieces that meet merge). A fully explored piece without a seed
 // window is lost; a fully explored piece with a seed window keeps only itself; of several large
 // (not fully explored) pieces without a seed, all but one count kPieceBudget each.
-std::int64_t cut_cost(const Bitmap& f, int k, PixelIJ c, std::span<const PixelIJ> seeds) {
+std::int64_t cut_cost(const PixelSet& f, int k, PixelIJ c, std::span<const PixelIJ> seeds) {
   const std::int64_t nx = f.nx(), ny = f.ny();
   const auto full = [&](std::int64_t i, std::int64_t j) {
     if (j < 0 || j > ny - k) return false;
@@ -232,13 +233,17 @@ std::int64_t cut_cost(const Bitmap& f, int k, PixelIJ c, std::span<const PixelIJ
   return cost;
 }
 
-bool still_pinch(const Bitmap& f, const Pinch& p) {
+bool still_pinch(const PixelSet& f, const Pinch& p) {
   const std::int64_t nx = f.nx(), I = p.vertex.i, J = p.vertex.j, Iw = wrap_index(I - 1, nx);
   const bool nw = f.get(Iw, J), ne = f.get(I, J), sw = f.get(Iw, J - 1), se = f.get(I, J - 1);
   return p.pattern == PinchPattern::kNwSe ? (nw && se && !ne && !sw) : (ne && sw && !nw && !se);
 }
 
 }  // namespace
+
+void ConstBitmapSet::clear(std::int64_t, std::int64_t) {
+  throw InternalError("ConstBitmapSet: a read-only pixel set cannot be changed");
+}
 
 const char* pinch_pattern_name(PinchPattern p) { return p == PinchPattern::kNwSe ? "1001 (NW-SE)" : "0110 (NE-SW)"; }
 
@@ -315,42 +320,48 @@ void locate_pinches(std::vector<Pinch>& pinches, const Lattice& lattice, const P
   }
 }
 
+std::int64_t resolve_pinches(PixelSet& filled, int k, std::span<const PixelIJ> seed_windows,
+                             const std::vector<Pinch>& pinches) {
+  const std::int64_t nx = filled.nx();
+  std::int64_t chosen = 0;
+  for (const Pinch& p : pinches) {
+    if (!still_pinch(filled, p)) continue;
+    const std::int64_t I = p.vertex.i, J = p.vertex.j, Iw = wrap_index(I - 1, nx);
+    PixelIJ a{}, b{};
+    if (p.pattern == PinchPattern::kNwSe) {
+      a = {Iw, J};     // NW
+      b = {I, J - 1};  // SE
+    } else {
+      a = {I, J};       // NE
+      b = {Iw, J - 1};  // SW
+    }
+    const bool pa = in_seed_window(a, k, seed_windows, nx), pb = in_seed_window(b, k, seed_windows, nx);
+    if (pa && pb) continue;
+    Removal ra, rb;
+    const auto evaluate = [&](PixelIJ c) {
+      Removal r = evaluate_removal(filled, k, c);
+      r.cost = static_cast<std::int64_t>(r.lost.size()) + (r.splits ? cut_cost(filled, k, c, seed_windows) : 0);
+      return r;
+    };
+    if (!pa) ra = evaluate(a);
+    if (!pb) rb = evaluate(b);
+    bool take_a = !pa;
+    if (!pa && !pb) take_a = std::make_pair(ra.cost, pixel_index(a, nx)) < std::make_pair(rb.cost, pixel_index(b, nx));
+    for (const PixelIJ& q : (take_a ? ra : rb).lost) filled.clear(q.i, q.j);
+    ++chosen;
+  }
+  return chosen;
+}
+
 PinchRemovalStats remove_pinches(Bitmap& filled, int k, std::span<const PixelIJ> seed_windows) {
   PinchRemovalStats st;
-  const std::int64_t nx = filled.nx();
   const std::int64_t before = filled.count();
   std::vector<Pinch> pinches = find_pinches(filled);
   st.pinches_found = static_cast<std::int64_t>(pinches.size());
   while (!pinches.empty()) {
     ++st.rounds;
-    std::int64_t chosen = 0;
-    for (const Pinch& p : pinches) {
-      if (!still_pinch(filled, p)) continue;
-      const std::int64_t I = p.vertex.i, J = p.vertex.j, Iw = wrap_index(I - 1, nx);
-      PixelIJ a{}, b{};
-      if (p.pattern == PinchPattern::kNwSe) {
-        a = {Iw, J};     // NW
-        b = {I, J - 1};  // SE
-      } else {
-        a = {I, J};       // NE
-        b = {Iw, J - 1};  // SW
-      }
-      const bool pa = in_seed_window(a, k, seed_windows, nx), pb = in_seed_window(b, k, seed_windows, nx);
-      if (pa && pb) continue;
-      Removal ra, rb;
-      const auto evaluate = [&](PixelIJ c) {
-        Removal r = evaluate_removal(filled, k, c);
-        r.cost = static_cast<std::int64_t>(r.lost.size()) + (r.splits ? cut_cost(filled, k, c, seed_windows) : 0);
-        return r;
-      };
-      if (!pa) ra = evaluate(a);
-      if (!pb) rb = evaluate(b);
-      bool take_a = !pa;
-      if (!pa && !pb)
-        take_a = std::make_pair(ra.cost, pixel_index(a, nx)) < std::make_pair(rb.cost, pixel_index(b, nx));
-      for (const PixelIJ& q : (take_a ? ra : rb).lost) filled.clear(q.i, q.j);
-      ++chosen;
-    }
+    BitmapSet set(filled);
+    const std::int64_t chosen = resolve_pinches(set, k, seed_windows, pinches);
     st.pixels_chosen += chosen;
     if (chosen == 0) break;
     filled = k_fill(filled, k, seed_windows);

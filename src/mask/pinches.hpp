@@ -23,6 +23,7 @@
 #include "core/lattice.hpp"
 #include "core/rotation.hpp"
 #include "mask/lattice_coords.hpp"
+#include "mask/pixel_set.hpp"
 
 namespace aq::mask {
 
@@ -81,5 +82,11 @@ struct PinchRemovalStats {
 /// upsampled to 1', K = 2: 4658 pinches resolved by removing 4670 pixels in one round).
 /// `seed_windows` are the lower-left pixels of the seed windows (from place_seeds).
 PinchRemovalStats remove_pinches(Bitmap& filled, int k, std::span<const PixelIJ> seed_windows);
+
+/// Step 1 of one round of remove_pinches on any pixel set: for each of `pinches` (J, I order) still
+/// present, takes out the chosen pixel and those its windows leave (cleared in `filled`). Returns
+/// the pinches resolved. The forest engine runs it on its patches gathered on one rank.
+std::int64_t resolve_pinches(PixelSet& filled, int k, std::span<const PixelIJ> seed_windows,
+                             const std::vector<Pinch>& pinches);
 
 }  // namespace aq::mask

@@ -52,6 +52,35 @@ void find_inland_sea(WetArea& area, const Lattice& lattice, const PoleRotation& 
 
 }  // namespace
 
+PixelWindow classify_window(const Lattice& lattice, const Domain& domain) {
+  // Only the domain's box and one level-0 square around it (the open-boundary typing looks one
+  // pixel outside the domain): the rest of the lattice stays dry, unsampled. On a window lattice
+  // that is the whole window (its padding is one level-0 square).
+  PixelWindow w;
+  const double pix = lattice.pixel_deg();
+  const std::int64_t sq = lattice.pixels_per_square(0);
+  const double x_lo =
+      lattice.windowed() ? lattice.col_of_lon(domain.lon_min) : (domain.lon_min - lattice.lon0_deg) / pix;
+  const double x_hi = x_lo + (domain.lon_max - domain.lon_min) / pix;
+  auto i_lo = static_cast<std::int64_t>(std::floor(x_lo)) - sq;
+  auto i_hi = static_cast<std::int64_t>(std::ceil(x_hi)) + sq;
+  if (!lattice.periodic()) {
+    i_lo = std::max<std::int64_t>(0, i_lo);
+    i_hi = std::min(lattice.nx, i_hi);
+  }
+  const double y_s = lattice.row_of_lat(std::max(domain.lat_min, -lattice.lat_max_deg()));
+  const double y_n = lattice.row_of_lat(std::min(domain.lat_max, lattice.lat_max_deg()));
+  const std::int64_t j_lo = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s)) - sq);
+  const std::int64_t j_hi = std::min<std::int64_t>(lattice.ny, static_cast<std::int64_t>(std::ceil(y_n)) + sq);
+  if (i_hi - i_lo < lattice.nx) {
+    w.col_first = i_lo;
+    w.col_count = i_hi - i_lo;
+  }
+  w.row_first = j_lo;
+  w.row_count = std::max<std::int64_t>(0, j_hi - j_lo);
+  return w;
+}
+
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                          const config::MaskOptions& options, const Logger& log, Report* report,
                          const Domain* domain) {
@@ -63,32 +92,7 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     co.min_depth_m = options.min_depth_m;
     co.sampling = options.sampling;
     co.progress = log.progress("classify");
-    if (regional && rot.identity()) {
-      // Only the domain's box and one level-0 square around it (the open-boundary typing looks
-      // one pixel outside the domain): the rest of the lattice stays dry, unsampled.
-      // On a window lattice that is the whole window (its padding is one level-0 square).
-      const double pix = lattice.pixel_deg();
-      const std::int64_t sq = lattice.pixels_per_square(0);
-      const double x_lo = lattice.windowed() ? lattice.col_of_lon(domain->lon_min)
-                                             : (domain->lon_min - lattice.lon0_deg) / pix;
-      const double x_hi = x_lo + (domain->lon_max - domain->lon_min) / pix;
-      auto i_lo = static_cast<std::int64_t>(std::floor(x_lo)) - sq;
-      auto i_hi = static_cast<std::int64_t>(std::ceil(x_hi)) + sq;
-      if (!lattice.periodic()) {
-        i_lo = std::max<std::int64_t>(0, i_lo);
-        i_hi = std::min(lattice.nx, i_hi);
-      }
-      const double y_s = lattice.row_of_lat(std::max(domain->lat_min, -lattice.lat_max_deg()));
-      const double y_n = lattice.row_of_lat(std::min(domain->lat_max, lattice.lat_max_deg()));
-      const std::int64_t j_lo = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(y_s)) - sq);
-      const std::int64_t j_hi = std::min<std::int64_t>(lattice.ny, static_cast<std::int64_t>(std::ceil(y_n)) + sq);
-      if (i_hi - i_lo < lattice.nx) {
-        co.window.col_first = i_lo;
-        co.window.col_count = i_hi - i_lo;
-      }
-      co.window.row_first = j_lo;
-      co.window.row_count = std::max<std::int64_t>(0, j_hi - j_lo);
-    }
+    if (regional && rot.identity()) co.window = classify_window(lattice, *domain);
     if (!regional) check_mercator_caps(bathy, lattice, rot, options.min_depth_m);  // a region is inside the rows
     PixelClasses pc = classify_pixels(bathy, lattice, rot, co);
     area.wet_vertices = std::move(pc.wet_vertices);

@@ -71,6 +71,11 @@ struct WetArea {
   }
 };
 
+/// The pixels a regional run classifies on an unrotated lattice (README "Regional FE meshes"):
+/// the domain's box and one level-0 square around it (clamped to a window lattice); outside it no
+/// vertex is sampled and every pixel is dry.
+PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
+
 /// Runs the mask stage on `options` as validated at load (config/global_config.cpp: every mask.*
 /// key's range; a negative min_depth_m is a floodplain); seeds as in place_seeds (ConfigError when no
 /// all-wet window is within the radius). Logs "classify: done ...", "fill: done ...",

@@ -23,6 +23,7 @@
 #include "core/bitmap.hpp"
 #include "core/log.hpp"
 #include "core/report.hpp"
+#include "mask/lattice_coords.hpp"
 #include "mesh/mesh.hpp"
 
 namespace aq::mesh {
@@ -41,11 +42,17 @@ struct BoundaryCounts {
 /// when `log` is given.
 BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)>& is_open, const Logger* log);
 
-/// type_boundaries() for the mesh of a regional domain: the edge a -> b is open when the pixel on
-/// the right of its first lattice step (outside the wet area) is set in `open` (mask::WetArea::open:
-/// water at the datum outside the domain, lattice-sized); everything else is land, and so are
-/// diagonals (after the model cleaning) and degenerate edges.
-BoundaryCounts type_domain_boundaries(Mesh& m, const Bitmap& open, const Logger* log);
+/// The pixel on the right of the first lattice step of boundary edge a -> b (wet on the left: the
+/// pixel outside the wet area) in `px`; false for a diagonal (after the model cleaning) or
+/// degenerate edge and for rows beyond the lattice.
+bool edge_right_pixel(const Mesh& m, NodeId a, NodeId b, mask::PixelIJ& px);
+
+/// type_boundaries() for the mesh of a regional domain: the edge a -> b is open when it has a
+/// right pixel (edge_right_pixel) for which `open_water(px)` holds: water at the datum outside the
+/// domain (mask::WetArea::open for the dense engine, the forest's answers for the forest);
+/// everything else is land.
+BoundaryCounts type_domain_boundaries(Mesh& m, const std::function<bool(const mask::PixelIJ&)>& open_water,
+                                      const Logger* log);
 
 /// Counts of a typed mesh.
 BoundaryCounts boundary_counts(const Mesh& m);

@@ -72,16 +72,25 @@ void emit_triangles(const std::vector<quadtree::Leaf>& leaves, const std::vector
   });
 }
 
+bool mesh_needs_centres(const config::MeshOptions& options) { return config::has_triangles(options.elements); }
+
 Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, const PoleRotation& rotation,
                 const raster::Bathymetry& bathy, const config::MeshOptions& options, const Logger& log,
                 Report* report) {
   StageScope stage("mesh", report, log);
-  const Diagonal diagonal = options.diagonal;
-  const bool triangles = config::has_triangles(options.elements);
+  const bool triangles = mesh_needs_centres(options);
 
   Timer t_nodes;
   quadtree::QuadNodes qn = quadtree::build_nodes(leaves, lat, quadtree::NodeOptions{triangles});
   const double nodes_s = t_nodes.wall_s();
+  return build_mesh(leaves, std::move(qn), nodes_s, lat, rotation, bathy, options, log, report, stage);
+}
+
+Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, quadtree::QuadNodes qn, double nodes_s, const Lattice& lat,
+                const PoleRotation& rotation, const raster::Bathymetry& bathy, const config::MeshOptions& options,
+                const Logger& log, Report* report, StageScope& stage) {
+  const Diagonal diagonal = options.diagonal;
+  const bool triangles = config::has_triangles(options.elements);
 
   Mesh mesh;
   mesh.lattice = lat;

@@ -20,6 +20,7 @@
 #include "mesh/mesh.hpp"
 #include "mesh/templates.hpp"
 #include "quadtree/leaves.hpp"
+#include "quadtree/nodes.hpp"
 
 namespace aq::raster {
 class Bathymetry;
@@ -41,6 +42,16 @@ namespace aq::mesh {
 /// not sorted, overlap or are not face-balanced.
 Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, const PoleRotation& rotation,
                 const raster::Bathymetry& bathy, const config::MeshOptions& options, const Logger& log, Report* report);
+
+/// Whether mesh.elements asks for triangles (whose templates need the centre nodes).
+bool mesh_needs_centres(const config::MeshOptions& options);
+
+/// The same from nodes numbered elsewhere (quadtree::build_nodes_from_neighbourhoods: the forest
+/// engine), `nodes_s` the seconds that took; `stage` is the caller's "mesh" stage, whose line this
+/// writes.
+Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, quadtree::QuadNodes nodes, double nodes_s,
+                const Lattice& lat, const PoleRotation& rotation, const raster::Bathymetry& bathy,
+                const config::MeshOptions& options, const Logger& log, Report* report, StageScope& stage);
 
 /// Appends the template triangles of every square to mesh.triangles / triangle_level /
 /// triangle_square, from mesh.squares and mesh.square_midside, the squares' midside `codes`

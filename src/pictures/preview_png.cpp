@@ -215,7 +215,9 @@ void draw_background(cairo_surface_t* surface, const View& v, const mesh::Mesh& 
   const RotatedMapSampler sampler(
       bathy, rotated ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation(),
       rotated ? w : 0, rotated ? h : 0, rlon, rlat);
-  const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), w);
+  // A source read in tiles (a fine tile stack) is not drawn: a picture's pixel holds many of its
+  // cells, and a sample per pixel would read a tile per pixel; the sources below it are.
+  const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), w, true);
   const raster::Bathymetry* b = &bathy;
   const raster::Bathymetry::Columns* c = &cols;
   const RotatedMapSampler* rs = &sampler;

@@ -213,58 +213,68 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
   if (level_depth_rules && bathy == nullptr) {
     throw InternalError("quadtree: depth rules need the bathymetry raster");
   }
-  // The finest level a rule may split: below its level (the size form asks none here).
-  int max_level = 0;
-  for (const config::DepthRule& r : options.depth_rules) max_level = std::max(max_level, r.level);
-  for (const config::BoxRule& r : options.box_rules) max_level = std::max(max_level, r.level);
-  const int top = std::min(levels, max_level) - 1;
-
-  const std::vector<config::DepthRule>& depth_rules = options.depth_rules;
-  const std::vector<config::BoxRule>& box_rules = options.box_rules;
+  const int top = rules_top_level(options, levels);
   for (int l = top; l >= 0; --l) {
     Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
     if (l < top) {  // keep omega monotone after the finer level's splits
       const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
       for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
     }
-    // Rules are sampled at the centres of the level-l squares.
-    const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
-    const double lon0 = lat.lon0_deg;
-    const std::int64_t a0 = lat.square_origin_i(l);  // a window lattice's first level-l column
-    const std::int64_t rows = om.ny();
-    const std::int64_t words = om.words_per_row();
+    apply_rules_level(om, lat, options, rotation, bathy, l, 0, 0);
+  }
+}
+
+int rules_top_level(const config::QuadtreeOptions& options, int levels) {
+  // The finest level a rule may split: below its level (the size form asks none here).
+  int max_level = 0;
+  for (const config::DepthRule& r : options.depth_rules) max_level = std::max(max_level, r.level);
+  for (const config::BoxRule& r : options.box_rules) max_level = std::max(max_level, r.level);
+  return std::min(levels, max_level) - 1;
+}
+
+void apply_rules_level(Bitmap& om, const Lattice& lat, const config::QuadtreeOptions& options,
+                       const PoleRotation& rotation, const raster::Bathymetry* bathy, int l, std::int64_t ax,
+                       std::int64_t bx) {
+  const std::vector<config::DepthRule>& depth_rules = options.depth_rules;
+  const std::vector<config::BoxRule>& box_rules = options.box_rules;
+  // Rules are sampled at the centres of the level-l squares.
+  const double step = lat.step0_deg / static_cast<double>(std::int64_t{1} << l);
+  const double lon0 = lat.lon0_deg;
+  const std::int64_t a0 = lat.square_origin_i(l) + ax;  // a window lattice's first level-l column, and the piece's
+  const std::int64_t rows = om.ny();
+  const std::int64_t words = om.words_per_row();
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
-    shared(om, rows, words, step, lat, lon0, a0, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
-    for (std::int64_t b = 0; b < rows; ++b) {
-      const double centre = square_centre_row(lat, l, b);
-      const double size = square_size_km(lat, l, centre);
-      bool need_box = false, need_depth = false;
-      for (const config::BoxRule& r : box_rules) need_box = need_box || asks_split(r, l, size);
-      for (const config::DepthRule& r : depth_rules) need_depth = need_depth || asks_split(r, l, size);
-      if (!need_box && !need_depth) continue;
-      const double rlat = lat.lat_of_row(centre);
-      std::uint64_t* row = om.row(b);
-      for (std::int64_t w = 0; w < words; ++w) {
-        std::uint64_t bitsleft = row[w];
-        while (bitsleft != 0) {
-          const int t = std::countr_zero(bitsleft);
-          bitsleft &= bitsleft - 1;
-          const std::int64_t a = 64 * w + t;
-          double lon = 0.0, lat_deg = 0.0;
-          rotation.to_geographic(lon0 + (static_cast<double>(a + a0) + 0.5) * step, rlat, lon, lat_deg);
-          bool split = false;
-          if (need_box) {
-            for (const config::BoxRule& r : box_rules)
-              split = split || (asks_split(r, l, size) && in_box(r, lon, lat_deg));
-          }
-          if (!split && need_depth) {
-            const double depth = -bathy->sample(lon, lat_deg);
-            for (const config::DepthRule& r : depth_rules) {
-              split = split || (asks_split(r, l, size) && depth >= r.min_depth_m && depth < r.max_depth_m);
-            }
-          }
-          if (split) row[w] &= ~(1ULL << t);
+    shared(om, rows, words, step, lat, lon0, a0, bx, l, rotation, bathy, depth_rules, box_rules) schedule(dynamic, 16)
+  for (std::int64_t r0 = 0; r0 < rows; ++r0) {
+    const std::int64_t b = bx + r0;
+    const double centre = square_centre_row(lat, l, b);
+    const double size = square_size_km(lat, l, centre);
+    bool need_box = false, need_depth = false;
+    for (const config::BoxRule& r : box_rules) need_box = need_box || asks_split(r, l, size);
+    for (const config::DepthRule& r : depth_rules) need_depth = need_depth || asks_split(r, l, size);
+    if (!need_box && !need_depth) continue;
+    const double rlat = lat.lat_of_row(centre);
+    std::uint64_t* row = om.row(r0);
+    for (std::int64_t w = 0; w < words; ++w) {
+      std::uint64_t bitsleft = row[w];
+      while (bitsleft != 0) {
+        const int t = std::countr_zero(bitsleft);
+        bitsleft &= bitsleft - 1;
+        const std::int64_t a = 64 * w + t;
+        double lon = 0.0, lat_deg = 0.0;
+        rotation.to_geographic(lon0 + (static_cast<double>(a + a0) + 0.5) * step, rlat, lon, lat_deg);
+        bool split = false;
+        if (need_box) {
+          for (const config::BoxRule& r : box_rules)
+            split = split || (asks_split(r, l, size) && in_box(r, lon, lat_deg));
         }
+        if (!split && need_depth) {
+          const double depth = -bathy->sample(lon, lat_deg);
+          for (const config::DepthRule& r : depth_rules) {
+            split = split || (asks_split(r, l, size) && depth >= r.min_depth_m && depth < r.max_depth_m);
+          }
+        }
+        if (split) row[w] &= ~(1ULL << t);
       }
     }
   }
@@ -280,8 +290,6 @@ int level_for_size(const Lattice& lat, double target_km, double row) {
   while (l < lat.levels && exceeds_size_target(square_size_km(lat, l, row), target_km)) ++l;
   return l;
 }
-
-namespace {
 
 // The shortest edge (km) a triangle of a level-(l+1) child of a level-l square of row b may have:
 // the child's shortest side at the parent's poleward edge (along the row: Δλ·cos φ′ there; along
@@ -304,8 +312,6 @@ bool cfl_allows_split(const size::SizeField& field, int l, std::int64_t a, std::
   return !field.has_cfl() || child_edge_km * (1.0 + 1e-9) >= field.cfl_edge_over_square(l, a, b);
 }
 
-}  // namespace
-
 void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field) {
   const int levels = masks.levels();
   if (levels == 0 || !field.active()) return;
@@ -319,45 +325,79 @@ void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeFie
     for (int l = levels - 2; l >= 0; --l)
       band[static_cast<std::size_t>(l)] = bits::reduce(band[static_cast<std::size_t>(l) + 1], true);
   }
-  const bool grid = field.has_grid();
   for (int l = levels - 1; l >= 0; --l) {
     Bitmap& om = masks.omega[static_cast<std::size_t>(l)];
     if (l + 1 < levels) {  // keep omega monotone after the finer level's splits
       const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
       for (std::size_t k = 0; k < om.words().size(); ++k) om.words()[k] &= fine.words()[k];
     }
-    const std::int64_t words = om.words_per_row();
-    const std::int64_t rows = om.ny();
+    apply_size_field_level(om, band_km > 0.0 ? &band[static_cast<std::size_t>(l)] : nullptr, lat, field, l, 0, 0);
+  }
+}
+
+void apply_size_field_level(Bitmap& om, const Bitmap* band, const Lattice& lat, const size::SizeField& field, int l,
+                            std::int64_t a0, std::int64_t b0) {
+  const double band_km = field.band_km();
+  const bool grid = field.has_grid();
+  const std::int64_t words = om.words_per_row();
+  const std::int64_t rows = om.ny();
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(rows * words * 64)) \
-    shared(om, band, field, lat, l, rows, words, band_km, grid) schedule(dynamic, 16)
-    for (std::int64_t b = 0; b < rows; ++b) {
-      const double size = square_size_km(lat, l, square_centre_row(lat, l, b));
-      const double child_edge = child_min_edge_km(lat, l, b);
-      std::uint64_t* row = om.row(b);
-      const bool band_splits = band_km > 0.0 && exceeds_size_target(size, band_km);
-      const std::uint64_t* in_band = band_splits ? band[static_cast<std::size_t>(l)].row(b) : nullptr;
-      for (std::int64_t w = 0; w < words; ++w) {
-        std::uint64_t keep = row[w];
-        std::uint64_t split = in_band != nullptr ? keep & in_band[w] : 0;
-        if (grid) {
-          std::uint64_t left = keep & ~split;
-          while (left != 0) {
-            const int t = std::countr_zero(left);
-            left &= left - 1;
-            if (exceeds_size_target(size, field.grid_min_over_square(l, 64 * w + t, b))) split |= 1ULL << t;
-          }
+    shared(om, band, field, lat, l, rows, words, band_km, grid, a0, b0) schedule(dynamic, 16)
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const std::int64_t b = b0 + r;
+    const double size = square_size_km(lat, l, square_centre_row(lat, l, b));
+    const double child_edge = child_min_edge_km(lat, l, b);
+    std::uint64_t* row = om.row(r);
+    const bool band_splits = band != nullptr && band_km > 0.0 && exceeds_size_target(size, band_km);
+    const std::uint64_t* in_band = band_splits ? band->row(r) : nullptr;
+    for (std::int64_t w = 0; w < words; ++w) {
+      std::uint64_t keep = row[w];
+      std::uint64_t split = in_band != nullptr ? keep & in_band[w] : 0;
+      if (grid) {
+        std::uint64_t left = keep & ~split;
+        while (left != 0) {
+          const int t = std::countr_zero(left);
+          left &= left - 1;
+          if (exceeds_size_target(size, field.grid_min_over_square(l, a0 + 64 * w + t, b))) split |= 1ULL << t;
         }
-        if (field.has_cfl()) {  // the CFL bound is applied last: it refuses splits, never asks one
-          std::uint64_t left = split;
-          while (left != 0) {
-            const int t = std::countr_zero(left);
-            left &= left - 1;
-            if (!cfl_allows_split(field, l, 64 * w + t, b, child_edge)) split &= ~(1ULL << t);
-          }
-        }
-        row[w] = keep & ~split;
       }
+      if (field.has_cfl()) {  // the CFL bound is applied last: it refuses splits, never asks one
+        std::uint64_t left = split;
+        while (left != 0) {
+          const int t = std::countr_zero(left);
+          left &= left - 1;
+          if (!cfl_allows_split(field, l, a0 + 64 * w + t, b, child_edge)) split &= ~(1ULL << t);
+        }
+      }
+      row[w] = keep & ~split;
     }
+  }
+}
+
+void grading_radii(const Lattice& lat, int v, double g, std::vector<std::int64_t>& rx, std::vector<std::int64_t>& ry) {
+  // Radii (in level-v squares) per row: a run of n squares of side a spans n·dx along the row
+  // and n·dy along the column; it keeps the grading when a/(√2·n·d) <= g.
+  const std::int64_t n = lat.nx >> (lat.levels - v), rows = lat.ny >> (lat.levels - v);
+  rx.assign(static_cast<std::size_t>(rows), 0);
+  ry.assign(static_cast<std::size_t>(rows), 0);
+  const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << v) * kDegToRad;
+  for (std::int64_t b = 0; b < rows; ++b) {
+    // Conservative over the square's rows: its size at the equatorward edge, its sides at the
+    // poleward one (the runs are measured at the rows they cross).
+    const double p0 = lat.lat_of_row(static_cast<double>(b * lat.pixels_per_square(v)));
+    const double p1 = lat.lat_of_row(static_cast<double>((b + 1) * lat.pixels_per_square(v)));
+    const double eq = (p0 < 0.0) != (p1 < 0.0) ? 0.0 : std::min(std::fabs(p0), std::fabs(p1));
+    const double pole = std::max(std::fabs(p0), std::fabs(p1));
+    const double c_eq = std::cos(eq * kDegToRad);
+    const double a_km = kEarthRadiusKm * side_rad * (lat.mercator() ? c_eq : std::sqrt(c_eq));
+    const double dx = kEarthRadiusKm * side_rad * std::cos(pole * kDegToRad);
+    const double dy = lat.mercator() ? dx : kEarthRadiusKm * side_rad;
+    const auto radius = [&](double d, std::int64_t cap) {
+      const double r = std::ceil(a_km / (std::sqrt(2.0) * g * std::max(d, 1e-9)) - 1e-9);
+      return std::min<std::int64_t>(cap, std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(r, 1e12))));
+    };
+    rx[static_cast<std::size_t>(b)] = radius(dx, n);
+    ry[static_cast<std::size_t>(b)] = radius(dy, rows);
   }
 }
 
@@ -367,81 +407,72 @@ GradeStats grade_levels(LevelMasks& masks, const Lattice& lat, const size::SizeF
   const double g = field.gradation();
   if (levels < 2 || !field.has_grid() || !(g > 0.0)) return st;
   for (int v = levels - 1; v >= 1; --v) {
-    const Bitmap& om = masks.omega[static_cast<std::size_t>(v)];
-    const Bitmap& any = masks.any_at(v);
-    const std::int64_t n = om.nx(), rows = om.ny(), words = om.words_per_row();
-    // Radii (in level-v squares) per row: a run of n squares of side a spans n·dx along the row
-    // and n·dy along the column; it keeps the grading when a/(√2·n·d) <= g.
-    std::vector<std::int64_t> rx(static_cast<std::size_t>(rows)), ry(static_cast<std::size_t>(rows));
-    const double side_rad = lat.step0_deg / static_cast<double>(std::int64_t{1} << v) * kDegToRad;
-    for (std::int64_t b = 0; b < rows; ++b) {
-      // Conservative over the square's rows: its size at the equatorward edge, its sides at the
-      // poleward one (the runs are measured at the rows they cross).
-      const double p0 = lat.lat_of_row(static_cast<double>(b * lat.pixels_per_square(v)));
-      const double p1 = lat.lat_of_row(static_cast<double>((b + 1) * lat.pixels_per_square(v)));
-      const double eq = (p0 < 0.0) != (p1 < 0.0) ? 0.0 : std::min(std::fabs(p0), std::fabs(p1));
-      const double pole = std::max(std::fabs(p0), std::fabs(p1));
-      const double c_eq = std::cos(eq * kDegToRad);
-      const double a_km = kEarthRadiusKm * side_rad * (lat.mercator() ? c_eq : std::sqrt(c_eq));
-      const double dx = kEarthRadiusKm * side_rad * std::cos(pole * kDegToRad);
-      const double dy = lat.mercator() ? dx : kEarthRadiusKm * side_rad;
-      const auto radius = [&](double d, std::int64_t cap) {
-        const double r = std::ceil(a_km / (std::sqrt(2.0) * g * std::max(d, 1e-9)) - 1e-9);
-        return std::min<std::int64_t>(cap, std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(r, 1e12))));
-      };
-      rx[static_cast<std::size_t>(b)] = radius(dx, n);
-      ry[static_cast<std::size_t>(b)] = radius(dy, rows);
-    }
-    if (v == levels - 1) st.radius_at_equator = rx[static_cast<std::size_t>(rows / 2)];
-    // Split squares of level v (holding finer leaves), row by row.
-    Bitmap split(n, rows);
-    for (std::int64_t b = 0; b < rows; ++b)
-      for (std::int64_t w = 0; w < words; ++w) split.row(b)[w] = any.row(b)[w] & ~om.row(b)[w];
-    // T: the split squares dilated by (rx, ry) of the target row.
-    Bitmap near(n, rows);
+    const GradeStats s = grade_level(masks.omega, masks.any_at(v), lat, field, v);
+    st.splits += s.splits;
+    st.cfl_refused += s.cfl_refused;
+    if (v == levels - 1) st.radius_at_equator = s.radius_at_equator;
+  }
+  return st;
+}
+
+GradeStats grade_level(std::vector<Bitmap>& omega, const Bitmap& any, const Lattice& lat, const size::SizeField& field,
+                       int v) {
+  GradeStats st;
+  const double g = field.gradation();
+  const Bitmap& om = omega[static_cast<std::size_t>(v)];
+  const std::int64_t n = om.nx(), rows = om.ny(), words = om.words_per_row();
+  std::vector<std::int64_t> rx, ry;
+  grading_radii(lat, v, g, rx, ry);
+  st.radius_at_equator = rx[static_cast<std::size_t>(rows / 2)];
+  // Split squares of level v (holding finer leaves), row by row.
+  Bitmap split(n, rows);
+  for (std::int64_t b = 0; b < rows; ++b)
+    for (std::int64_t w = 0; w < words; ++w) split.row(b)[w] = any.row(b)[w] & ~om.row(b)[w];
+  // T: the split squares dilated by (rx, ry) of the target row.
+  Bitmap near(n, rows);
 #pragma omp parallel default(none) if (quadtree::parallel_worth(rows * words * 16)) shared(split, near, rx, ry, n, rows, words)
-    {
-      Words acc(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
+  {
+    Words acc(static_cast<std::size_t>(words)), tmp(static_cast<std::size_t>(words));
 #pragma omp for schedule(static)
-      for (std::int64_t b = 0; b < rows; ++b) {
-        std::fill(acc.begin(), acc.end(), 0ULL);
-        const std::int64_t r = ry[static_cast<std::size_t>(b)];
-        for (std::int64_t q = std::max<std::int64_t>(0, b - r); q <= std::min(rows - 1, b + r); ++q)
-          for (std::int64_t w = 0; w < words; ++w) acc[static_cast<std::size_t>(w)] |= split.row(q)[w];
-        bits::dilate_row(acc.data(), near.row(b), tmp.data(), n, rx[static_cast<std::size_t>(b)]);
-      }
+    for (std::int64_t b = 0; b < rows; ++b) {
+      std::fill(acc.begin(), acc.end(), 0ULL);
+      const std::int64_t r = ry[static_cast<std::size_t>(b)];
+      for (std::int64_t q = std::max<std::int64_t>(0, b - r); q <= std::min(rows - 1, b + r); ++q)
+        for (std::int64_t w = 0; w < words; ++w) acc[static_cast<std::size_t>(w)] |= split.row(q)[w];
+      bits::dilate_row(acc.data(), near.row(b), tmp.data(), n, rx[static_cast<std::size_t>(b)]);
     }
-    // Their parents (level v-1) are split, unless the CFL bound refuses it.
-    const Bitmap parents = bits::reduce(near, true);
-    Bitmap& up = masks.omega[static_cast<std::size_t>(v) - 1];
-    const std::int64_t prow = up.ny(), pwords = up.words_per_row();
-    std::int64_t splits = 0, refused = 0;
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(prow * pwords * 16))     shared(up, parents, field, lat, v, prow, pwords) reduction(+ : splits, refused) schedule(static)
-    for (std::int64_t b = 0; b < prow; ++b) {
-      const double child_edge = child_min_edge_km(lat, v - 1, b);
-      std::uint64_t* row = up.row(b);
-      for (std::int64_t w = 0; w < pwords; ++w) {
-        std::uint64_t hit = row[w] & parents.row(b)[w];
-        std::uint64_t left = hit;
-        while (left != 0) {
-          const int t = std::countr_zero(left);
-          left &= left - 1;
-          if (!cfl_allows_split(field, v - 1, 64 * w + t, b, child_edge)) {
-            hit &= ~(1ULL << t);
-            ++refused;
-          }
+  }
+  // Their parents (level v-1) are split, unless the CFL bound refuses it.
+  const Bitmap parents = bits::reduce(near, true);
+  Bitmap& up = omega[static_cast<std::size_t>(v) - 1];
+  const std::int64_t prow = up.ny(), pwords = up.words_per_row();
+  std::int64_t splits = 0, refused = 0;
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(prow * pwords * 16)) \
+    shared(up, parents, field, lat, v, prow, pwords) reduction(+ : splits, refused) schedule(static)
+  for (std::int64_t b = 0; b < prow; ++b) {
+    const double child_edge = child_min_edge_km(lat, v - 1, b);
+    std::uint64_t* row = up.row(b);
+    for (std::int64_t w = 0; w < pwords; ++w) {
+      std::uint64_t hit = row[w] & parents.row(b)[w];
+      std::uint64_t left = hit;
+      while (left != 0) {
+        const int t = std::countr_zero(left);
+        left &= left - 1;
+        if (!cfl_allows_split(field, v - 1, 64 * w + t, b, child_edge)) {
+          hit &= ~(1ULL << t);
+          ++refused;
         }
-        splits += bits::popcount64(hit);
-        row[w] &= ~hit;
       }
+      splits += bits::popcount64(hit);
+      row[w] &= ~hit;
     }
-    st.splits += splits;
-    st.cfl_refused += refused;
-    for (int l = v - 2; l >= 0; --l) {  // keep omega monotone
-      Bitmap& o = masks.omega[static_cast<std::size_t>(l)];
-      const Bitmap fine = bits::reduce(masks.omega[static_cast<std::size_t>(l) + 1], false);
-      for (std::size_t k = 0; k < o.words().size(); ++k) o.words()[k] &= fine.words()[k];
-    }
+  }
+  st.splits = splits;
+  st.cfl_refused = refused;
+  for (int l = v - 2; l >= 0; --l) {  // keep omega monotone
+    Bitmap& o = omega[static_cast<std::size_t>(l)];
+    const Bitmap fine = bits::reduce(omega[static_cast<std::size_t>(l) + 1], false);
+    for (std::size_t k = 0; k < o.words().size(); ++k) o.words()[k] &= fine.words()[k];
   }
   return st;
 }

@@ -135,6 +135,16 @@ void apply_coast_band(LevelMasks& masks, int coast_band);
 void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
                             const PoleRotation& rotation, const raster::Bathymetry* bathy);
 
+/// The finest level apply_refinement_rules splits (the level form: one below the rule's level),
+/// -1 when no rule asks a level.
+[[nodiscard]] int rules_top_level(const config::QuadtreeOptions& options, int levels);
+/// One level l of apply_refinement_rules on a piece of the lattice: `om` holds the level-l squares
+/// [ax, ax + om.nx()) × [bx, bx + om.ny()) (omega already monotone from the finer level); clears
+/// those whose centre a level rule of level l + 1 holds. Rules must have been validated.
+void apply_rules_level(Bitmap& om, const Lattice& lat, const config::QuadtreeOptions& options,
+                       const PoleRotation& rotation, const raster::Bathymetry* bathy, int l, std::int64_t ax,
+                       std::int64_t bx);
+
 /// Mean Earth radius (km) used for the physical size of lattice squares.
 inline constexpr double kEarthRadiusKm = 6371.0088;
 
@@ -165,6 +175,28 @@ inline constexpr double kEarthRadiusKm = 6371.0088;
 /// quadtree.coast_size_km its band term, so those keys keep their meaning. No-op for an inactive field.
 void apply_size_field(LevelMasks& masks, const Lattice& lat, const size::SizeField& field);
 
+/// The shortest edge (km) a triangle of a level-(l+1) child of a level-l square of row b may have:
+/// the child's shortest side at the parent's poleward edge (along the row: Δλ·cos φ′ there; along
+/// the column: the Mercator side or Δφ), halved when the child can hold hanging nodes (l+1 < L).
+[[nodiscard]] double child_min_edge_km(const Lattice& lat, int l, std::int64_t b);
+
+/// Whether the CFL edge bound of `field` lets the level-l square (a, b) be split: its children's
+/// shortest possible edge (child_min_edge_km) is not below the bound anywhere over the square.
+[[nodiscard]] bool cfl_allows_split(const size::SizeField& field, int l, std::int64_t a, std::int64_t b,
+                                    double child_edge_km);
+
+/// The radii grade_levels keeps around a split level-v square, per row b of level-v squares:
+/// rx[b] squares along the row (at most the row's length), ry[b] along the column (at most the
+/// rows), for the gradation g > 0 (see grade_levels).
+void grading_radii(const Lattice& lat, int v, double g, std::vector<std::int64_t>& rx, std::vector<std::int64_t>& ry);
+
+/// One level of apply_size_field: `om` holds the level-l squares [a0, a0 + om.nx()) ×
+/// [b0, b0 + om.ny()) of the lattice (omega already kept monotone from the finer level); splits
+/// (clears) those the field asks, `band` the band pyramid's bits of the same squares (null: no
+/// band term). The forest engine calls it on pieces of the lattice.
+void apply_size_field_level(Bitmap& om, const Bitmap* band, const Lattice& lat, const size::SizeField& field, int l,
+                            std::int64_t a0, std::int64_t b0);
+
 /// What grade_levels did.
 struct GradeStats {
   std::int64_t splits = 0;             ///< squares split to keep the grading
@@ -184,6 +216,13 @@ struct GradeStats {
 /// coast, a level rule, the field). It implies the corner 2:1 balance. Only splits; one pass,
 /// fine to coarse. A split the field's CFL edge bound refuses is not made (CFL last).
 GradeStats grade_levels(LevelMasks& masks, const Lattice& lat, const size::SizeField& field);
+
+/// One level v (1 <= v < omega.size()) of grade_levels: the level-v squares holding finer leaves
+/// (`any` & ~omega[v]) split every omega[v-1] square within the grading radii (CFL permitting),
+/// then omega stays monotone down to level 0. `omega` are the pyramid's levels 0..v (or more) of
+/// the whole lattice. The forest engine runs it on its replicated coarse levels.
+GradeStats grade_level(std::vector<Bitmap>& omega, const Bitmap& any, const Lattice& lat, const size::SizeField& field,
+                       int v);
 
 /// Leaves of the pyramid in the deterministic order. Parallel over level-0 squares.
 std::vector<Leaf> extract_leaves(const LevelMasks& masks, const Lattice& lat);

@@ -69,39 +69,57 @@ bool covered(const Bitmap& cov, std::int64_t i, std::int64_t j) {
   return cov.get(wrap_index(i, cov.nx()), j);
 }
 
-/// Boundary edges of one leaf, in side order S, E, N, W; writes up to 8 edges, returns the count.
-int leaf_boundary(const Bitmap& cov, const Box& q, const std::array<NodeId, 4>& c, const std::array<NodeId, 4>& m,
-                  std::array<NodeId, 2>* out) {
+/// The 8 "filled across" bits of a leaf (LeafNeighbourhood::covered) from a coverage bitmap.
+std::uint8_t covered_bits(const Bitmap& cov, const Box& q) {
   const std::int64_t h = q.s / 2;
+  const std::array<std::array<std::int64_t, 2>, 8> px{{{q.i0, q.j0 - 1},
+                                                       {q.i0 + h, q.j0 - 1},
+                                                       {q.i0 + q.s, q.j0},
+                                                       {q.i0 + q.s, q.j0 + h},
+                                                       {q.i0 + h, q.j0 + q.s},
+                                                       {q.i0, q.j0 + q.s},
+                                                       {q.i0 - 1, q.j0 + h},
+                                                       {q.i0 - 1, q.j0}}};
+  std::uint8_t bits = 0;
+  for (std::size_t k = 0; k < 8; ++k)
+    if (covered(cov, px[k][0], px[k][1])) bits = static_cast<std::uint8_t>(bits | (1U << k));
+  return bits;
+}
+
+/// Boundary edges of one leaf, in side order S, E, N, W, from its "filled across" bits
+/// (LeafNeighbourhood::covered); writes up to 8 edges, returns the count.
+int leaf_boundary(std::uint8_t across, const std::array<NodeId, 4>& c, const std::array<NodeId, 4>& m,
+                  std::array<NodeId, 2>* out) {
   int n = 0;
   auto emit = [&](NodeId a, NodeId b) { out[n++] = {a, b}; };
+  const auto in = [across](int k) { return ((across >> k) & 1U) != 0; };
   // S: across is row j0 - 1; runs SW -> SE.
   if (m[0] < 0) {
-    if (!covered(cov, q.i0, q.j0 - 1)) emit(c[0], c[1]);
+    if (!in(0)) emit(c[0], c[1]);
   } else {
-    if (!covered(cov, q.i0, q.j0 - 1)) emit(c[0], m[0]);
-    if (!covered(cov, q.i0 + h, q.j0 - 1)) emit(m[0], c[1]);
+    if (!in(0)) emit(c[0], m[0]);
+    if (!in(1)) emit(m[0], c[1]);
   }
   // E: across is column i0 + s; runs SE -> NE.
   if (m[1] < 0) {
-    if (!covered(cov, q.i0 + q.s, q.j0)) emit(c[1], c[2]);
+    if (!in(2)) emit(c[1], c[2]);
   } else {
-    if (!covered(cov, q.i0 + q.s, q.j0)) emit(c[1], m[1]);
-    if (!covered(cov, q.i0 + q.s, q.j0 + h)) emit(m[1], c[2]);
+    if (!in(2)) emit(c[1], m[1]);
+    if (!in(3)) emit(m[1], c[2]);
   }
   // N: across is row j0 + s; runs NE -> NW.
   if (m[2] < 0) {
-    if (!covered(cov, q.i0, q.j0 + q.s)) emit(c[2], c[3]);
+    if (!in(5)) emit(c[2], c[3]);
   } else {
-    if (!covered(cov, q.i0 + h, q.j0 + q.s)) emit(c[2], m[2]);
-    if (!covered(cov, q.i0, q.j0 + q.s)) emit(m[2], c[3]);
+    if (!in(4)) emit(c[2], m[2]);
+    if (!in(5)) emit(m[2], c[3]);
   }
   // W: across is column i0 - 1; runs NW -> SW.
   if (m[3] < 0) {
-    if (!covered(cov, q.i0 - 1, q.j0)) emit(c[3], c[0]);
+    if (!in(7)) emit(c[3], c[0]);
   } else {
-    if (!covered(cov, q.i0 - 1, q.j0 + h)) emit(c[3], m[3]);
-    if (!covered(cov, q.i0 - 1, q.j0)) emit(m[3], c[0]);
+    if (!in(6)) emit(c[3], m[3]);
+    if (!in(7)) emit(m[3], c[0]);
   }
   return n;
 }
@@ -144,6 +162,145 @@ std::vector<std::array<std::int64_t, 2>> find_pinches(const Bitmap& filled) {
     all.insert(all.end(), p.begin(), p.end());
   }
   return all;
+}
+
+// Steps 6 and 7 of the numbering: the boundary edges of every leaf (from its "filled across" bits),
+// their node flags, and the loops they form (at a pinch a loop takes the left turn).
+static void add_boundary(QuadNodes& out, const std::vector<std::uint8_t>& across, std::int64_t nx, std::int64_t ny) {
+  const auto nleaves = static_cast<std::int64_t>(out.corners.size());
+  const std::int64_t nnodes = out.node_count();
+  std::vector<std::array<NodeId, 2>> edges;
+  {
+    const int blocks = block_count(nleaves, 8);
+    std::vector<std::int64_t> block_edges(static_cast<std::size_t>(blocks), 0);
+    std::vector<std::uint8_t> per_leaf(static_cast<std::size_t>(nleaves));
+    for_each_block(nleaves, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
+      std::array<std::array<NodeId, 2>, 8> buf{};
+      std::int64_t n = 0;
+      for (std::int64_t f = begin; f < end; ++f) {
+        const auto k = static_cast<std::size_t>(f);
+        const int c = leaf_boundary(across[k], out.corners[k], out.midside[k], buf.data());
+        per_leaf[k] = static_cast<std::uint8_t>(c);
+        n += c;
+      }
+      block_edges[static_cast<std::size_t>(t)] = n;
+    });
+    const std::int64_t total = exclusive_scan_in_place(block_edges);
+    edges.resize(static_cast<std::size_t>(total));
+    for_each_block(nleaves, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
+      auto pos = static_cast<std::size_t>(block_edges[static_cast<std::size_t>(t)]);
+      for (std::int64_t f = begin; f < end; ++f) {
+        const auto k = static_cast<std::size_t>(f);
+        if (per_leaf[k] == 0) continue;
+        pos += static_cast<std::size_t>(leaf_boundary(across[k], out.corners[k], out.midside[k], &edges[pos]));
+      }
+    });
+  }
+  for (const auto& e : edges) {
+    out.node_flags[static_cast<std::size_t>(e[0])] |= kBoundaryNode;
+    out.node_flags[static_cast<std::size_t>(e[1])] |= kBoundaryNode;
+  }
+
+  // 7. Loops: follow each edge's successor; at a pinch take the left turn.
+  const auto delta_i = [&](const std::array<NodeId, 2>& e) {  // seam-unwrapped I difference
+    std::int64_t dx = out.node_i[static_cast<std::size_t>(e[1])] - out.node_i[static_cast<std::size_t>(e[0])];
+    if (dx > nx / 2) dx -= nx;
+    if (dx < -nx / 2) dx += nx;
+    return dx;
+  };
+  const auto direction = [&](const std::array<NodeId, 2>& e) {
+    const std::int64_t dy = out.node_j[static_cast<std::size_t>(e[1])] - out.node_j[static_cast<std::size_t>(e[0])];
+    return std::array<int, 2>{sign(delta_i(e)), sign(dy)};
+  };
+  // Outgoing boundary edges of every node: one, or two at a pinch (kept in the order of their end node).
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  if (edges.size() >= kNone) throw InternalError("quadtree nodes: too many boundary edges");
+  std::vector<std::uint32_t> out1(static_cast<std::size_t>(nnodes), kNone),
+      out2(static_cast<std::size_t>(nnodes), kNone);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto a = static_cast<std::size_t>(edges[e][0]);
+    if (out1[a] == kNone) {
+      out1[a] = static_cast<std::uint32_t>(e);
+    } else if (out2[a] == kNone) {
+      out2[a] = static_cast<std::uint32_t>(e);
+      if (edges[out2[a]][1] < edges[out1[a]][1]) std::swap(out1[a], out2[a]);
+    } else {
+      throw InternalError(fmt::format("quadtree nodes: node {} has more than two outgoing boundary edges", a));
+    }
+  }
+  const auto successor = [&](std::size_t e) -> std::size_t {
+    const auto b = static_cast<std::size_t>(edges[e][1]);
+    if (out1[b] != kNone && out2[b] == kNone) return out1[b];
+    if (out2[b] != kNone) {
+      const std::array<int, 2> in = direction(edges[e]);
+      const std::array<int, 2> left{-in[1], in[0]};
+      if (direction(edges[out1[b]]) == left) return out1[b];
+      if (direction(edges[out2[b]]) == left) return out2[b];
+    }
+    throw InternalError(
+        fmt::format("quadtree nodes: boundary at node {} (I {}, J {}) has {} outgoing edges and no left turn (leaves "
+                    "not balanced?)",
+                    b, out.node_i[b], out.node_j[b], (out1[b] != kNone) + (out2[b] != kNone)));
+  };
+  // Loops start from the unused edge with the smallest (a, b).
+  std::vector<std::uint32_t> order;
+  order.reserve(edges.size());
+  for (std::size_t v = 0; v < out1.size(); ++v) {
+    if (out1[v] != kNone) order.push_back(out1[v]);
+    if (out2[v] != kNone) order.push_back(out2[v]);
+  }
+  std::vector<std::uint8_t> used(edges.size(), 0);
+  out.boundary_edges.reserve(edges.size());
+  out.boundary_edge_loop.reserve(edges.size());
+  struct Extent {
+    std::int64_t area = 0, edges = 0;
+  };
+  std::vector<Extent> extents;
+  for (const std::uint32_t first : order) {
+    const std::size_t e0 = first;
+    if (used[e0] != 0) continue;
+    const auto id = static_cast<std::int32_t>(out.loops.size());
+    LoopInfo info;
+    info.first_edge = static_cast<std::int64_t>(out.boundary_edges.size());
+    std::int64_t x = out.node_i[static_cast<std::size_t>(edges[e0][0])];
+    const std::int64_t x_start = x;
+    std::int64_t xmin = x, xmax = x;
+    std::int64_t ymin = std::numeric_limits<std::int64_t>::max(), ymax = std::numeric_limits<std::int64_t>::min();
+    bool all_south = true, all_north = true;
+    std::size_t e = e0;
+    do {
+      if (used[e] != 0) {
+        throw InternalError(fmt::format("quadtree nodes: boundary loop {} meets edge {} twice", id, e));
+      }
+      used[e] = 1;
+      out.boundary_edges.push_back(edges[e]);
+      out.boundary_edge_loop.push_back(id);
+      const std::int64_t y = out.node_j[static_cast<std::size_t>(edges[e][0])];
+      ymin = std::min(ymin, y);
+      ymax = std::max(ymax, y);
+      all_south = all_south && y == 0;
+      all_north = all_north && y == ny;
+      x += delta_i(edges[e]);
+      xmin = std::min(xmin, x);
+      xmax = std::max(xmax, x);
+      e = successor(e);
+    } while (e != e0);
+    info.edge_count = static_cast<std::int64_t>(out.boundary_edges.size()) - info.first_edge;
+    info.pole = all_south || all_north;
+    const std::int64_t width = (x != x_start) ? nx : (xmax - xmin);
+    extents.push_back(Extent{width * (ymax - ymin), info.edge_count});
+    out.loops.push_back(info);
+  }
+  if (!out.loops.empty()) {
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < extents.size(); ++k) {
+      if (extents[k].area > extents[best].area ||
+          (extents[k].area == extents[best].area && extents[k].edges > extents[best].edges)) {
+        best = k;
+      }
+    }
+    out.loops[best].outer = true;
+  }
 }
 
 QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const NodeOptions& options) {
@@ -259,139 +416,15 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
     if (out.centre[k] >= 0) out.node_flags[static_cast<std::size_t>(out.centre[k])] |= kCentreNode;
   }
 
-  // 6. Boundary edges: count per block, prefix sums, fill in leaf order.
-  std::vector<std::array<NodeId, 2>> edges;
+  // 6. Boundary edges, and 7. their loops.
   {
+    std::vector<std::uint8_t> across(static_cast<std::size_t>(nleaves));
     const int blocks = block_count(nleaves, 8);
-    std::vector<std::int64_t> block_edges(static_cast<std::size_t>(blocks), 0);
-    std::vector<std::uint8_t> per_leaf(static_cast<std::size_t>(nleaves));
-    for_each_block(nleaves, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
-      std::array<std::array<NodeId, 2>, 8> buf{};
-      std::int64_t n = 0;
-      for (std::int64_t f = begin; f < end; ++f) {
-        const auto k = static_cast<std::size_t>(f);
-        const int c = leaf_boundary(cov, box_of(lat, leaves[k]), out.corners[k], out.midside[k], buf.data());
-        per_leaf[k] = static_cast<std::uint8_t>(c);
-        n += c;
-      }
-      block_edges[static_cast<std::size_t>(t)] = n;
+    for_each_block(nleaves, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+      for (std::int64_t f = begin; f < end; ++f)
+        across[static_cast<std::size_t>(f)] = covered_bits(cov, box_of(lat, leaves[static_cast<std::size_t>(f)]));
     });
-    const std::int64_t total = exclusive_scan_in_place(block_edges);
-    edges.resize(static_cast<std::size_t>(total));
-    for_each_block(nleaves, blocks, [&](int t, std::int64_t begin, std::int64_t end) {
-      auto pos = static_cast<std::size_t>(block_edges[static_cast<std::size_t>(t)]);
-      for (std::int64_t f = begin; f < end; ++f) {
-        const auto k = static_cast<std::size_t>(f);
-        if (per_leaf[k] == 0) continue;
-        pos += static_cast<std::size_t>(
-            leaf_boundary(cov, box_of(lat, leaves[k]), out.corners[k], out.midside[k], &edges[pos]));
-      }
-    });
-  }
-  for (const auto& e : edges) {
-    out.node_flags[static_cast<std::size_t>(e[0])] |= kBoundaryNode;
-    out.node_flags[static_cast<std::size_t>(e[1])] |= kBoundaryNode;
-  }
-
-  // 7. Loops: follow each edge's successor; at a pinch take the left turn.
-  const auto delta_i = [&](const std::array<NodeId, 2>& e) {  // seam-unwrapped I difference
-    std::int64_t dx = out.node_i[static_cast<std::size_t>(e[1])] - out.node_i[static_cast<std::size_t>(e[0])];
-    if (dx > nx / 2) dx -= nx;
-    if (dx < -nx / 2) dx += nx;
-    return dx;
-  };
-  const auto direction = [&](const std::array<NodeId, 2>& e) {
-    const std::int64_t dy = out.node_j[static_cast<std::size_t>(e[1])] - out.node_j[static_cast<std::size_t>(e[0])];
-    return std::array<int, 2>{sign(delta_i(e)), sign(dy)};
-  };
-  // Outgoing boundary edges of every node: one, or two at a pinch (kept in the order of their end node).
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  if (edges.size() >= kNone) throw InternalError("quadtree nodes: too many boundary edges");
-  std::vector<std::uint32_t> out1(static_cast<std::size_t>(nnodes), kNone),
-      out2(static_cast<std::size_t>(nnodes), kNone);
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const auto a = static_cast<std::size_t>(edges[e][0]);
-    if (out1[a] == kNone) {
-      out1[a] = static_cast<std::uint32_t>(e);
-    } else if (out2[a] == kNone) {
-      out2[a] = static_cast<std::uint32_t>(e);
-      if (edges[out2[a]][1] < edges[out1[a]][1]) std::swap(out1[a], out2[a]);
-    } else {
-      throw InternalError(fmt::format("quadtree nodes: node {} has more than two outgoing boundary edges", a));
-    }
-  }
-  const auto successor = [&](std::size_t e) -> std::size_t {
-    const auto b = static_cast<std::size_t>(edges[e][1]);
-    if (out1[b] != kNone && out2[b] == kNone) return out1[b];
-    if (out2[b] != kNone) {
-      const std::array<int, 2> in = direction(edges[e]);
-      const std::array<int, 2> left{-in[1], in[0]};
-      if (direction(edges[out1[b]]) == left) return out1[b];
-      if (direction(edges[out2[b]]) == left) return out2[b];
-    }
-    throw InternalError(
-        fmt::format("quadtree nodes: boundary at node {} (I {}, J {}) has {} outgoing edges and no left turn (leaves "
-                    "not balanced?)",
-                    b, out.node_i[b], out.node_j[b], (out1[b] != kNone) + (out2[b] != kNone)));
-  };
-  // Loops start from the unused edge with the smallest (a, b).
-  std::vector<std::uint32_t> order;
-  order.reserve(edges.size());
-  for (std::size_t v = 0; v < out1.size(); ++v) {
-    if (out1[v] != kNone) order.push_back(out1[v]);
-    if (out2[v] != kNone) order.push_back(out2[v]);
-  }
-  std::vector<std::uint8_t> used(edges.size(), 0);
-  out.boundary_edges.reserve(edges.size());
-  out.boundary_edge_loop.reserve(edges.size());
-  struct Extent {
-    std::int64_t area = 0, edges = 0;
-  };
-  std::vector<Extent> extents;
-  for (const std::uint32_t first : order) {
-    const std::size_t e0 = first;
-    if (used[e0] != 0) continue;
-    const auto id = static_cast<std::int32_t>(out.loops.size());
-    LoopInfo info;
-    info.first_edge = static_cast<std::int64_t>(out.boundary_edges.size());
-    std::int64_t x = out.node_i[static_cast<std::size_t>(edges[e0][0])];
-    const std::int64_t x_start = x;
-    std::int64_t xmin = x, xmax = x;
-    std::int64_t ymin = std::numeric_limits<std::int64_t>::max(), ymax = std::numeric_limits<std::int64_t>::min();
-    bool all_south = true, all_north = true;
-    std::size_t e = e0;
-    do {
-      if (used[e] != 0) {
-        throw InternalError(fmt::format("quadtree nodes: boundary loop {} meets edge {} twice", id, e));
-      }
-      used[e] = 1;
-      out.boundary_edges.push_back(edges[e]);
-      out.boundary_edge_loop.push_back(id);
-      const std::int64_t y = out.node_j[static_cast<std::size_t>(edges[e][0])];
-      ymin = std::min(ymin, y);
-      ymax = std::max(ymax, y);
-      all_south = all_south && y == 0;
-      all_north = all_north && y == ny;
-      x += delta_i(edges[e]);
-      xmin = std::min(xmin, x);
-      xmax = std::max(xmax, x);
-      e = successor(e);
-    } while (e != e0);
-    info.edge_count = static_cast<std::int64_t>(out.boundary_edges.size()) - info.first_edge;
-    info.pole = all_south || all_north;
-    const std::int64_t width = (x != x_start) ? nx : (xmax - xmin);
-    extents.push_back(Extent{width * (ymax - ymin), info.edge_count});
-    out.loops.push_back(info);
-  }
-  if (!out.loops.empty()) {
-    std::size_t best = 0;
-    for (std::size_t k = 1; k < extents.size(); ++k) {
-      if (extents[k].area > extents[best].area ||
-          (extents[k].area == extents[best].area && extents[k].edges > extents[best].edges)) {
-        best = k;
-      }
-    }
-    out.loops[best].outer = true;
+    add_boundary(out, across, nx, ny);
   }
 
   // 8. Pinch vertices of the covered pixels.
@@ -401,6 +434,124 @@ QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const
     }
     out.pinch_nodes.push_back(vr.rank(p[0], p[1]));
   }
+  return out;
+}
+
+std::vector<LeafNeighbourhood> leaf_neighbourhoods(const std::vector<Leaf>& leaves, const Lattice& lat) {
+  const Bitmap cov = leaf_coverage(leaves, lat);
+  const std::int64_t nx = lat.nx, ny = lat.ny;
+  Bitmap vb(nx, ny + 1);
+  for (const Leaf& f : leaves) {
+    const Box q = box_of(lat, f);
+    const std::int64_t i1 = wrap_index(q.i0 + q.s, nx);
+    vb.set(q.i0, q.j0);
+    vb.set(i1, q.j0);
+    vb.set(i1, q.j0 + q.s);
+    vb.set(q.i0, q.j0 + q.s);
+  }
+  std::vector<LeafNeighbourhood> out(leaves.size());
+  const auto pinch_at = [&](std::int64_t I, std::int64_t J) {
+    if (J <= 0 || J >= ny) return false;
+    const bool ne = covered(cov, I, J), nw = covered(cov, I - 1, J), se = covered(cov, I, J - 1),
+               sw = covered(cov, I - 1, J - 1);
+    return (ne && sw && !nw && !se) || (nw && se && !ne && !sw);
+  };
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    const Box q = box_of(lat, leaves[k]);
+    LeafNeighbourhood& n = out[k];
+    if (q.s >= 2) {
+      const std::int64_t h = q.s / 2;
+      if (vb.get(q.i0 + h, q.j0)) n.midside |= kSideS;
+      if (vb.get(wrap_index(q.i0 + q.s, nx), q.j0 + h)) n.midside |= kSideE;
+      if (vb.get(q.i0 + h, q.j0 + q.s)) n.midside |= kSideN;
+      if (vb.get(q.i0, q.j0 + h)) n.midside |= kSideW;
+    }
+    n.covered = covered_bits(cov, q);
+    const std::array<std::array<std::int64_t, 2>, 4> c{
+        {{q.i0, q.j0}, {q.i0 + q.s, q.j0}, {q.i0 + q.s, q.j0 + q.s}, {q.i0, q.j0 + q.s}}};
+    for (std::size_t m = 0; m < 4; ++m)
+      if (pinch_at(c[m][0], c[m][1])) n.pinch = static_cast<std::uint8_t>(n.pinch | (1U << m));
+  }
+  return out;
+}
+
+QuadNodes build_nodes_from_neighbourhoods(const std::vector<Leaf>& leaves, const std::vector<LeafNeighbourhood>& nb,
+                                          const Lattice& lat, const NodeOptions& options) {
+  if (nb.size() != leaves.size()) throw InternalError("quadtree nodes: one neighbourhood per leaf");
+  if (!leaves_sorted(leaves, lat)) throw InternalError("quadtree nodes: leaves are not in the deterministic order");
+  const std::int64_t nx = lat.nx, ny = lat.ny;
+  const auto nleaves = static_cast<std::int64_t>(leaves.size());
+  const auto key = [nx](std::int64_t i, std::int64_t j) { return j * nx + wrap_index(i, nx); };
+  QuadNodes out;
+  // 1-3. Corners, midside codes (given), centres; the vertex keys (J, I) sorted and unique.
+  std::vector<std::int64_t> v;
+  v.reserve(static_cast<std::size_t>(4 * nleaves));
+  out.midside_code.resize(static_cast<std::size_t>(nleaves));
+  for (std::int64_t f = 0; f < nleaves; ++f) {
+    const auto k = static_cast<std::size_t>(f);
+    const Box q = box_of(lat, leaves[k]);
+    v.push_back(key(q.i0, q.j0));
+    v.push_back(key(q.i0 + q.s, q.j0));
+    v.push_back(key(q.i0 + q.s, q.j0 + q.s));
+    v.push_back(key(q.i0, q.j0 + q.s));
+    out.midside_code[k] = q.s >= 2 ? nb[k].midside : 0;
+    if (options.centres && out.midside_code[k] != 0) v.push_back(key(q.i0 + q.s / 2, q.j0 + q.s / 2));
+  }
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  // 4. Numbering by (J, I).
+  const auto nnodes = static_cast<std::int64_t>(v.size());
+  out.node_i.resize(v.size());
+  out.node_j.resize(v.size());
+  out.node_flags.resize(v.size());
+#pragma omp parallel for default(none) if (quadtree::parallel_worth(nnodes)) shared(v, out, nnodes, nx, ny) \
+    schedule(static)
+  for (std::int64_t n = 0; n < nnodes; ++n) {
+    const auto p = static_cast<std::size_t>(n);
+    const std::int64_t i = v[p] % nx, j = v[p] / nx;
+    out.node_i[p] = i;
+    out.node_j[p] = j;
+    out.node_flags[p] = static_cast<std::uint8_t>(((j == 0 || j == ny) ? kPoleNode : 0) | (i == 0 ? kSeamNode : 0));
+  }
+  const auto id = [&v](std::int64_t k) {
+    const auto it = std::lower_bound(v.begin(), v.end(), k);
+    if (it == v.end() || *it != k) throw InternalError("quadtree nodes: a leaf vertex has no node");
+    return static_cast<NodeId>(it - v.begin());
+  };
+  // 5. Node ids per leaf.
+  out.corners.resize(static_cast<std::size_t>(nleaves));
+  out.midside.resize(static_cast<std::size_t>(nleaves));
+  out.centre.resize(static_cast<std::size_t>(nleaves));
+  const bool centres = options.centres;
+  const int blocks = block_count(nleaves, 16);
+  for_each_block(nleaves, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+    for (std::int64_t f = begin; f < end; ++f) {
+      const auto k = static_cast<std::size_t>(f);
+      const Box q = box_of(lat, leaves[k]);
+      const std::int64_t i1 = q.i0 + q.s, j1 = q.j0 + q.s, h = q.s / 2;
+      out.corners[k] = {id(key(q.i0, q.j0)), id(key(i1, q.j0)), id(key(i1, j1)), id(key(q.i0, j1))};
+      const std::uint8_t code = out.midside_code[k];
+      out.midside[k] = {(code & kSideS) ? id(key(q.i0 + h, q.j0)) : -1, (code & kSideE) ? id(key(i1, q.j0 + h)) : -1,
+                        (code & kSideN) ? id(key(q.i0 + h, j1)) : -1, (code & kSideW) ? id(key(q.i0, q.j0 + h)) : -1};
+      out.centre[k] = (centres && code != 0) ? id(key(q.i0 + h, q.j0 + h)) : -1;
+    }
+  });
+  for (std::int64_t f = 0; f < nleaves; ++f) {
+    const auto k = static_cast<std::size_t>(f);
+    for (const NodeId m : out.midside[k])
+      if (m >= 0) out.node_flags[static_cast<std::size_t>(m)] |= kMidsideNode;
+    if (out.centre[k] >= 0) out.node_flags[static_cast<std::size_t>(out.centre[k])] |= kCentreNode;
+  }
+  // 6-7. Boundary edges and loops.
+  std::vector<std::uint8_t> across(static_cast<std::size_t>(nleaves));
+  for (std::size_t k = 0; k < across.size(); ++k) across[k] = nb[k].covered;
+  add_boundary(out, across, nx, ny);
+  // 8. Pinch vertices, ascending (each is a corner of both of its filled pixels' leaves).
+  for (std::size_t k = 0; k < nb.size(); ++k)
+    for (std::size_t m = 0; m < 4; ++m)
+      if (((nb[k].pinch >> m) & 1U) != 0) out.pinch_nodes.push_back(out.corners[k][m]);
+  std::sort(out.pinch_nodes.begin(), out.pinch_nodes.end());
+  out.pinch_nodes.erase(std::unique(out.pinch_nodes.begin(), out.pinch_nodes.end()), out.pinch_nodes.end());
   return out;
 }
 

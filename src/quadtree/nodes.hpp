@@ -102,6 +102,32 @@ struct QuadNodes {
 /// O(leaves + N/64), parallel except loop tracing.
 QuadNodes build_nodes(const std::vector<Leaf>& leaves, const Lattice& lat, const NodeOptions& options = {});
 
+/// What a leaf's neighbourhood holds — all that the numbering needs beyond the leaf itself, so
+/// that nodes can be numbered without any bitmap of the lattice (the forest engine finds it over
+/// its ghost layer, forest/mesh_nodes.hpp):
+///   midside  SideBits: the midpoint of the side is a corner of another leaf;
+///   covered  bit k: the pixel across the side at k is filled —
+///            0 S at i0, 1 S at i0 + s/2, 2 E at j0, 3 E at j0 + s/2,
+///            4 N at i0 + s/2, 5 N at i0, 6 W at j0 + s/2, 7 W at j0
+///            (the pixels just outside the leaf of side s at (i0, j0); columns wrap, rows beyond
+///            the lattice are not filled);
+///   pinch    bit c: corner c (0 SW, 1 SE, 2 NE, 3 NW) is a pinch vertex of the filled set.
+struct LeafNeighbourhood {
+  std::uint8_t midside = 0;
+  std::uint8_t covered = 0;
+  std::uint8_t pinch = 0;
+};
+
+/// The neighbourhoods of `leaves` from a coverage bitmap of the lattice (the reference for
+/// build_nodes_from_neighbourhoods; the same rules as build_nodes).
+std::vector<LeafNeighbourhood> leaf_neighbourhoods(const std::vector<Leaf>& leaves, const Lattice& lat);
+
+/// build_nodes from the leaves and their neighbourhoods alone: the same QuadNodes, with no bitmap
+/// of the lattice (nodes numbered by sorting their (J, I) keys). `leaves` must be in the
+/// deterministic order (InternalError otherwise).
+QuadNodes build_nodes_from_neighbourhoods(const std::vector<Leaf>& leaves, const std::vector<LeafNeighbourhood>& nb,
+                                          const Lattice& lat, const NodeOptions& options = {});
+
 /// Node at lattice vertex (I mod nx, J), or -1; O(log nodes).
 NodeId find_node(const QuadNodes& nodes, const Lattice& lat, std::int64_t i, std::int64_t j);
 

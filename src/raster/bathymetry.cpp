@@ -11,11 +11,14 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <future>
 #include <limits>
+#include <list>
 #include <mutex>
+#include <unordered_map>
 
 #include "core/error.hpp"
 #include "core/input_files.hpp"
@@ -198,6 +201,83 @@ struct Bathymetry::Impl {
   mutable std::vector<RowStats> stats_rows;  // streamed: per normalised row, filled by the first pass
   mutable bool stats_done = false;
 
+  // Tiled: normalised tiles of kTileCells × kTileCells values by key ty·ntx + tx, least recently
+  // used first in `lru`. Reads go through `io` (GDAL datasets are not thread-safe).
+  struct Tile {
+    std::vector<float> v;
+    std::list<std::int64_t>::iterator at;
+  };
+  mutable std::mutex tiles_io;
+  mutable std::unordered_map<std::int64_t, Tile> tiles;
+  mutable std::list<std::int64_t> lru;
+  std::int64_t max_tiles = 0;
+
+  [[nodiscard]] std::int64_t tiles_x() const { return (info.ncols + kTileCells - 1) / kTileCells; }
+
+  // The values of tile (tx, ty), read when it is not cached (the least recently used one goes);
+  // the caller holds tiles_io.
+  [[nodiscard]] const std::vector<float>& tile_locked(std::int64_t tx, std::int64_t ty) const {
+    const std::int64_t key = ty * tiles_x() + tx;
+    auto it = tiles.find(key);
+    if (it == tiles.end()) {
+      Tile t;
+      read_tile(tx, ty, t.v);
+      ++info.tiles_read;
+      if (static_cast<std::int64_t>(tiles.size()) >= max_tiles && !lru.empty()) {
+        tiles.erase(lru.front());
+        lru.pop_front();
+      }
+      lru.push_back(key);
+      t.at = std::prev(lru.end());
+      it = tiles.emplace(key, std::move(t)).first;
+    } else {
+      lru.splice(lru.end(), lru, it->second.at);
+    }
+    return it->second.v;
+  }
+
+  // Value (c, r) of a tiled raster (0 <= c < ncols, 0 <= r < nrows).
+  [[nodiscard]] float tile_value(std::int64_t c, std::int64_t r) const {
+    const std::int64_t tx = c / kTileCells, ty = r / kTileCells;
+    const std::lock_guard<std::mutex> lock(tiles_io);
+    return tile_locked(tx, ty)[static_cast<std::size_t>((r - ty * kTileCells) * kTileCells + (c - tx * kTileCells))];
+  }
+
+  // Values [c, c + n) × [r, r + rows) of one tile into out (row stride `stride`).
+  void tile_rows(std::int64_t c, std::int64_t n, std::int64_t r, std::int64_t rows, float* out,
+                 std::int64_t stride) const {
+    const std::int64_t tx = c / kTileCells, ty = r / kTileCells;
+    const std::lock_guard<std::mutex> lock(tiles_io);
+    const float* tv = tile_locked(tx, ty).data();
+    for (std::int64_t y = 0; y < rows; ++y)
+      std::copy_n(tv + (r + y - ty * kTileCells) * kTileCells + (c - tx * kTileCells), n, out + y * stride);
+  }
+
+  // Reads tile (tx, ty) normalised (south-up rows; NaN past the raster's last row or column).
+  void read_tile(std::int64_t tx, std::int64_t ty, std::vector<float>& out) const {
+    const std::int64_t c0 = tx * kTileCells, r0 = ty * kTileCells;
+    const std::int64_t nc = std::min(kTileCells, info.ncols - c0), nr = std::min(kTileCells, info.nrows - r0);
+    out.assign(static_cast<std::size_t>(kTileCells * kTileCells), std::numeric_limits<float>::quiet_NaN());
+    std::vector<float> raw(static_cast<std::size_t>(nc * nr));
+    const std::int64_t y0 = info.north_up ? info.height - (r0 + nr) : r0;  // stored rows y0 .. y0 + nr - 1
+    {
+      const std::lock_guard<std::mutex> lock(io);
+      if (band->RasterIO(GF_Read, static_cast<int>(c0), static_cast<int>(y0), static_cast<int>(nc),
+                         static_cast<int>(nr), raw.data(), static_cast<int>(nc), static_cast<int>(nr), GDT_Float32, 0,
+                         0, nullptr) != CE_None)
+        throw InputError(fmt::format("{}: read error at rows {}..{}, columns {}..{}{}", info.path, y0, y0 + nr - 1, c0,
+                                     c0 + nc - 1, gdal_message()));
+    }
+    std::int64_t implausible = 0;
+    for (std::int64_t k = 0; k < nr; ++k) {
+      const std::int64_t y = y0 + k;                                   // stored row
+      const std::int64_t r = info.north_up ? info.height - 1 - y : y;  // normalised row
+      for (std::int64_t c = 0; c < nc; ++c)
+        out[static_cast<std::size_t>((r - r0) * kTileCells + c)] =
+            normalise(raw[static_cast<std::size_t>(k * nc + c)], implausible);
+    }
+  }
+
   [[nodiscard]] std::size_t idx(std::int64_t c, std::int64_t r) const {
     return static_cast<std::size_t>((r - row_lo) * held_nc + c);
   }
@@ -371,7 +451,7 @@ struct Bathymetry::Impl {
     r0 = std::min<std::int64_t>(static_cast<std::int64_t>(std::floor(y)), n - 1);
     u = y - static_cast<double>(r0);
     r1 = std::min<std::int64_t>(r0 + 1, n - 1);
-    return info.streamed || (r0 >= row_lo && r1 < row_hi);  // a latitude window: NaN outside
+    return info.streamed || info.tiled || (r0 >= row_lo && r1 < row_hi);  // a latitude window: NaN outside
   }
 
   [[nodiscard]] double bilinear(std::int64_t c0, std::int64_t c1, double t, std::int64_t r0, std::int64_t r1,
@@ -409,6 +489,8 @@ struct Bathymetry::Impl {
     if (!col(lon, c0, c1, t) || !row(lat, r0, r1, u)) return kNaN;
     if (info.streamed)
       return bilinear4(read_value(c0, r0), read_value(c1, r0), read_value(c0, r1), read_value(c1, r1), t, u);
+    if (info.tiled)
+      return bilinear4(tile_value(c0, r0), tile_value(c1, r0), tile_value(c0, r1), tile_value(c1, r1), t, u);
     if (interp == Interpolation::kBicubic && !fx.empty()) return bicubic(c0, c1, t, r0, r1, u);
     return bilinear(c0, c1, t, r0, r1, u);
   }
@@ -535,6 +617,7 @@ float Bathymetry::value(std::int64_t c, std::int64_t r) const {
   if (c < 0 || c >= i.ncols || r < impl_->row_lo || r >= (i.streamed ? i.nrows : impl_->row_hi))
     return std::numeric_limits<float>::quiet_NaN();
   if (i.streamed) return impl_->read_value(c, r);
+  if (i.tiled) return impl_->tile_value(c, r);
   c = impl_->local_col(c);
   return c < 0 ? std::numeric_limits<float>::quiet_NaN() : impl_->v[impl_->idx(c, r)];
 }
@@ -546,6 +629,25 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
   std::fill(out, out + nc * nr, std::numeric_limits<float>::quiet_NaN());
   const std::int64_t a = std::max(r_lo, im.row_lo), b = std::min(r_lo + nr, i.streamed ? i.nrows : im.row_hi);
   if (a >= b) return;
+  if (i.tiled) {  // tile by tile: one lock per tile and row piece
+    for (std::int64_t k0 = 0; k0 < nc;) {
+      std::int64_t c = c_lo + k0;
+      if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
+      if (c < 0 || c >= i.ncols) {
+        ++k0;
+        continue;
+      }
+      const std::int64_t tx = c / kTileCells;
+      const std::int64_t run = std::min({nc - k0, (tx + 1) * kTileCells - c, i.ncols - c});
+      for (std::int64_t r = a; r < b;) {
+        const std::int64_t ty = r / kTileCells, rows = std::min(b, (ty + 1) * kTileCells) - r;
+        im.tile_rows(c, run, r, rows, out + (r - r_lo) * nc + k0, nc);
+        r += rows;
+      }
+      k0 += run;
+    }
+    return;
+  }
   std::vector<float> rows;
   if (i.streamed) {
     rows.resize(static_cast<std::size_t>((b - a) * i.ncols));
@@ -623,9 +725,10 @@ void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std
   im->stream(wanted, work, nullptr, progress, "bands of raster rows");
 }
 
-Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n) const {
-  if (stack_) return stack_->prepare_columns(lons, n);
+Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t n, bool skip_tiled) const {
+  if (stack_) return stack_->prepare_columns(lons, n, skip_tiled);
   Columns c;
+  c.skip_tiled = skip_tiled;
   c.c0.resize(static_cast<std::size_t>(n));
   c.c1.resize(c.c0.size());
   c.t.resize(c.c0.size());
@@ -655,6 +758,20 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
     std::vector<float> rows(static_cast<std::size_t>((r1 - r0 + 1) * im.info.ncols));
     im.read_rows(r0, r1 - r0 + 1, rows.data());
     fill_row(rows.data(), rows.data() + (r1 - r0) * im.info.ncols, cols, u, out);
+    return;
+  }
+  if (im.info.tiled && cols.skip_tiled) {
+    std::fill(out, out + n, std::numeric_limits<float>::quiet_NaN());
+    return;
+  }
+  if (im.info.tiled) {  // fill_row's formula on the tiles' values
+    for (std::int64_t k = 0; k < n; ++k) {
+      const auto s = static_cast<std::size_t>(k);
+      const std::int64_t c0 = cols.c0[s], c1 = cols.c1[s];
+      out[k] = c0 < 0 ? std::numeric_limits<float>::quiet_NaN()
+                      : static_cast<float>(bilinear4(im.tile_value(c0, r0), im.tile_value(c1, r0),
+                                                     im.tile_value(c0, r1), im.tile_value(c1, r1), cols.t[s], u));
+    }
     return;
   }
   if (im.interp != Interpolation::kBicubic || im.fx.empty()) {
@@ -743,6 +860,47 @@ void Bathymetry::ensure_statistics(const ProgressFn& progress) const {
   // A pass that samples no row still reads every band for the statistics (sample_rows).
   sample_rows(
       prepare_columns(nullptr, 0), nullptr, 0, [](std::int64_t, const float*) {}, progress);
+}
+
+bool Bathymetry::surely_empty(std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi) const {
+  if (stack_) return false;
+  const Impl& im = *impl_;
+  const auto& i = im.info;
+  if (im.band == nullptr) return false;  // held: not asked (its bounds are exact)
+  r_lo = std::max<std::int64_t>(r_lo, 0);
+  r_hi = std::min(r_hi, i.nrows - 1);
+  if (r_lo > r_hi) return true;
+  // Columns: one piece, or two across the seam of a global raster.
+  std::vector<std::array<std::int64_t, 2>> pieces;
+  if (i.global_lon) {
+    if (c_hi - c_lo + 1 >= i.ncols) {
+      pieces.push_back({0, i.ncols - 1});
+    } else {
+      const std::int64_t a = ((c_lo % i.ncols) + i.ncols) % i.ncols, b = ((c_hi % i.ncols) + i.ncols) % i.ncols;
+      if (a <= b) {
+        pieces.push_back({a, b});
+      } else {
+        pieces.push_back({a, i.ncols - 1});
+        pieces.push_back({0, b});
+      }
+    }
+  } else {
+    c_lo = std::max<std::int64_t>(c_lo, 0);
+    c_hi = std::min(c_hi, i.ncols - 1);
+    if (c_lo > c_hi) return true;
+    pieces.push_back({c_lo, c_hi});
+  }
+  const std::int64_t y0 = i.north_up ? i.height - 1 - r_hi : r_lo, ny = r_hi - r_lo + 1;
+  const std::lock_guard<std::mutex> lock(im.io);
+  for (const auto& p : pieces) {
+    double pct = 0.0;
+    const int st = GDALGetDataCoverageStatus(im.band, static_cast<int>(p[0]), static_cast<int>(y0),
+                                             static_cast<int>(p[1] - p[0] + 1), static_cast<int>(ny), 0, &pct);
+    if ((st & GDAL_DATA_COVERAGE_STATUS_EMPTY) == 0 || (st & GDAL_DATA_COVERAGE_STATUS_DATA) != 0 ||
+        (st & GDAL_DATA_COVERAGE_STATUS_UNIMPLEMENTED) != 0)
+      return false;
+  }
+  return true;
 }
 
 std::vector<std::string> raster_files(const std::string& path) {
@@ -1064,6 +1222,22 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
       }
     }
   }
+  // Tiled: values read in tiles on demand when what would be held is too large (the whole raster
+  // is addressed then, the window only bounds what the caller samples).
+  if (!info.streamed && o.interpolation == Interpolation::kBilinear && o.tiles_above_bytes > 0 &&
+      estimate_raster_bytes(im->held_nc, im->row_hi - im->row_lo) > o.tiles_above_bytes) {
+    info.tiled = true;
+    im->row_lo = 0;
+    im->row_hi = info.nrows;
+    im->col_lo = 0;
+    im->held_nc = info.ncols;
+    const std::int64_t tile_bytes = kTileCells * kTileCells * static_cast<std::int64_t>(sizeof(float));
+    im->max_tiles = std::max<std::int64_t>(16, o.tile_cache_bytes / tile_bytes);
+    info.tile_cache_bytes = im->max_tiles * tile_bytes;
+    info.memory_bytes = info.tile_cache_bytes;
+    info.min_m = info.max_m = info.mean_m = kNaN;
+    info.valid_count = -1;
+  }
   info.held_cols = im->held_nc;
   info.held_rows = im->row_hi - im->row_lo;
   info.held_col_first = im->col_lo;
@@ -1090,7 +1264,8 @@ RasterPlan plan_raster(const OpenOptions& options) {
   p.block_rows = i.block_rows;
   p.band_rows = i.band_rows;
   const std::int64_t factor = options.interpolation == Interpolation::kBicubic ? 4 : 1;
-  p.bytes = i.streamed ? i.memory_bytes : estimate_raster_bytes(i.held_cols, i.held_rows) * factor + (64LL << 20);
+  p.bytes =
+      i.streamed || i.tiled ? i.memory_bytes : estimate_raster_bytes(i.held_cols, i.held_rows) * factor + (64LL << 20);
   return p;
 }
 
@@ -1098,7 +1273,7 @@ Bathymetry Bathymetry::open(const OpenOptions& o, const Logger& log) {
   auto im = open_header(o);
   RasterInfo& info = im->info;
   const std::int64_t h = info.height;
-  if (info.streamed) {
+  if (info.streamed || info.tiled) {
     if (!info.global_lon && o.warn_partial_coverage) {
       log.warn("{}: the raster covers longitudes {:.4f}..{:.4f} only; the rest of the lattice is dry", o.path,
                info.lon_first, info.lon_first + static_cast<double>(info.ncols - 1) * info.dlon);

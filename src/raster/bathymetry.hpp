@@ -57,7 +57,16 @@ struct OpenOptions {
   /// Warn that a raster not covering 360° leaves the rest of the lattice dry (off for a source
   /// above another one, whose uncovered part the sources below fill).
   bool warn_partial_coverage = true;
+  /// Read in tiles on demand (RasterInfo::tiled) when the values held would take more than this
+  /// many bytes as float32 and the raster is not streamed; 0 = never (the forest engine sets it, so
+  /// that a stack of fine tiles over a whole coast is read only where it is sampled).
+  std::int64_t tiles_above_bytes = 0;
+  /// Tiled: the most bytes of tiles kept at once (the least recently used go first).
+  std::int64_t tile_cache_bytes = std::int64_t{256} << 20;
 };
+
+/// Tiles of a tiled raster are kTileCells × kTileCells values.
+constexpr std::int64_t kTileCells = 128;
 
 /// A raster larger than this (as float32) is streamed when the caller allows it (1 GiB: ETOPO5
 /// 37 MB and a 1' raster 0.9 GB are held whole, 30" 3.7 GB and 15" 15 GB are streamed).
@@ -88,6 +97,9 @@ struct RasterInfo {
   std::int64_t block_rows = 0;    ///< the file's block height (rows)
   std::int64_t band_rows = 0;     ///< streamed: stored rows per band read
   std::int64_t passes = 0;        ///< streamed: full or partial passes over the file so far
+  bool tiled = false;             ///< values read in tiles on demand and cached (OpenOptions::tiles_above_bytes)
+  std::int64_t tile_cache_bytes = 0;    ///< tiled: the cache's bound
+  mutable std::int64_t tiles_read = 0;  ///< tiled: tiles read so far (with repeats after eviction)
   /// Held whole: the window read (OpenOptions lat/lon window), in normalised columns and rows;
   /// the whole raster when no window was asked (held_cols = ncols, held_rows = nrows).
   std::int64_t held_cols = 0, held_rows = 0;
@@ -176,8 +188,11 @@ class Bathymetry {
     std::vector<double> lon;           ///< the longitudes (for bicubic)
     /// Several sources: the columns of each source and of each blend-distance field.
     std::vector<Columns> sources, distances;
+    /// A source read in tiles gives NaN on these columns (the sources below it answer): for a
+    /// picture, whose sparse samples would read a tile each.
+    bool skip_tiled = false;
   };
-  [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n) const;
+  [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n, bool skip_tiled = false) const;
   void sample_row(const Columns& cols, double lat_deg, float* out) const;
 
   /// Many rows at once: for k < n, sink(k, values) where values[0..cols) = sample_row(cols,
@@ -201,6 +216,11 @@ class Bathymetry {
   /// Values of columns c_lo..c_lo+nc-1 (wrapping on a global raster) and rows r_lo..r_lo+nr-1
   /// into out (row-major, row r_lo first); NaN outside. Streamed: one read of those rows.
   void values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const;
+
+  /// Whether a source has no data at all in the normalised cells [c_lo, c_hi] × [r_lo, r_hi] (both
+  /// inclusive, columns unwrapped: they wrap on a global raster), as GDAL's data coverage knows it
+  /// without reading (a VRT's tiles: its sources' footprints); false when it cannot tell.
+  [[nodiscard]] bool surely_empty(std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi) const;
 
  private:
   struct Impl;

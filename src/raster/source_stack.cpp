@@ -201,10 +201,11 @@ void Bathymetry::Stack::points_from(std::size_t k, const double* lon_deg, const 
   }
 }
 
-Bathymetry::Columns Bathymetry::Stack::prepare_columns(const double* lons, std::int64_t n) const {
+Bathymetry::Columns Bathymetry::Stack::prepare_columns(const double* lons, std::int64_t n, bool skip_tiled) const {
   Columns c;
   c.lon.assign(lons, lons + n);
-  for (const Bathymetry& s : sources) c.sources.push_back(s.prepare_columns(lons, n));
+  c.skip_tiled = skip_tiled;
+  for (const Bathymetry& s : sources) c.sources.push_back(s.prepare_columns(lons, n, skip_tiled));
   for (const Bathymetry& d : distances) c.distances.push_back(d.prepare_columns(lons, n));
   return c;
 }
@@ -336,11 +337,11 @@ Bathymetry Bathymetry::open_sources(const std::vector<OpenOptions>& sources, dou
     OpenOptions o = sources[k];
     o.warn_partial_coverage = o.warn_partial_coverage && k + 1 == sources.size();
     open_ones.push_back(open(o, log));
-    if (blend_km > 0.0 && k + 1 < sources.size() && open_ones.back().info().streamed)
+    if (blend_km > 0.0 && k + 1 < sources.size() && (open_ones.back().info().streamed || open_ones.back().info().tiled))
       throw InputError(fmt::format(
           "{}: input.blend_km = {} needs the distance to this raster's data edge, held whole beside it, but the "
-          "raster is streamed (too large to hold); blend only below a smaller source, or set input.blend_km = 0",
-          sources[k].path, blend_km));
+          "raster is {} (too large to hold); blend only below a smaller source, or set input.blend_km = 0",
+          sources[k].path, blend_km, open_ones.back().info().streamed ? "streamed" : "read in tiles"));
   }
   return stack(std::move(open_ones), blend_km);
 }

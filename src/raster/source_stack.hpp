@@ -30,7 +30,7 @@ struct Bathymetry::Stack {
 
   [[nodiscard]] double sample(double lon_deg, double lat_deg) const;
   void sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out, int* code) const;
-  [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n) const;
+  [[nodiscard]] Columns prepare_columns(const double* lons, std::int64_t n, bool skip_tiled) const;
   void sample_row(const Columns& cols, double lat_deg, float* out) const;
   void sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
                    const ProgressFn& progress) const;

@@ -8,7 +8,8 @@
 namespace aq::raster {
 
 ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block) : info_(bathy.info()) {
-  if (info_.streamed || !bathy.samples_bilinear() || info_.ncols <= 0 || info_.nrows <= 0 || block < 1) return;
+  if (info_.streamed || info_.tiled || !bathy.samples_bilinear() || info_.ncols <= 0 || info_.nrows <= 0 || block < 1)
+    return;
   available_ = true;
   const std::int64_t nc = info_.ncols, nr = info_.nrows;
   Level& l0 = levels_.emplace_back();

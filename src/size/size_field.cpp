@@ -187,6 +187,21 @@ bool needs_grid(const config::GlobalConfig& c) {
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report, const mask::CoastSources& coast_sources) {
+  return build_size_field(
+      [&](const FieldGrid& grid) {
+        FieldCells cells;
+        cells.filled = grid.filled_counts(filled);
+        cells.coast =
+            coast_sources.plain() ? coast_cells(grid, cells.filled) : shore_cells(grid, filled, coast_sources);
+        if (coast_sources.sea != nullptr) cells.sea = grid.filled_counts(*coast_sources.sea);
+        return cells;
+      },
+      lat, c, rotation, bathy, log, report);
+}
+
+SizeField build_size_field(const std::function<FieldCells(const FieldGrid&)>& field_cells, const Lattice& lat,
+                           const config::GlobalConfig& c, const PoleRotation& rotation, const raster::Bathymetry* bathy,
+                           const Logger& log, Report* report) {
   const config::SizeOptions& s = c.size;
   const double band_km = c.quadtree.coast_size_km;
   const int band_radius = std::max(c.quadtree.coast_band, 1);
@@ -199,18 +214,18 @@ SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const confi
   Timer t_total;
   const FieldGrid grid(lat, choose_grid_level(lat, s.grid_level));
   const auto n = static_cast<std::size_t>(grid.cells());
-  const std::vector<std::int32_t> counts = grid.filled_counts(filled);
-  std::vector<std::uint8_t> water(n);
-  for (std::size_t k = 0; k < n; ++k) water[k] = counts[k] > 0 ? 1 : 0;
   // The coast (mask/coast.hpp): cells holding land, not the open water beyond the domain edge;
   // with a floodplain the land at the datum, so the coast terms measure from the shoreline.
-  const std::vector<std::uint8_t> coast =
-      coast_sources.plain() ? coast_cells(grid, counts) : shore_cells(grid, filled, coast_sources);
+  const FieldCells cells = field_cells(grid);
+  const std::vector<std::int32_t>& counts = cells.filled;
+  const std::vector<std::uint8_t>& coast = cells.coast;
+  std::vector<std::uint8_t> water(n);
+  for (std::size_t k = 0; k < n; ++k) water[k] = counts[k] > 0 ? 1 : 0;
   // With a floodplain: the cells holding sea (what the coast and feature terms size) and those
   // holding floodplain pixels (what the inland and elevation terms size).
   std::vector<std::uint8_t> sea_cells, floodplain_cells;
-  if (coast_sources.sea != nullptr) {
-    const std::vector<std::int32_t> sea_counts = grid.filled_counts(*coast_sources.sea);
+  if (!cells.sea.empty()) {
+    const std::vector<std::int32_t>& sea_counts = cells.sea;
     sea_cells.resize(n);
     floodplain_cells.resize(n);
     for (std::size_t k = 0; k < n; ++k) {

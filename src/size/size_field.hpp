@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -102,6 +103,21 @@ struct SizeFieldStats {
 SizeField build_size_field(const Bitmap& filled, const Lattice& lat, const config::GlobalConfig& c,
                            const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                            Report* report, const mask::CoastSources& coast = {});
+
+/// What the field takes of the filled set on its grid (the forest engine sums them over its
+/// patches and ranks): per cell, the filled pixels (FieldGrid::filled_counts), whether it is a
+/// coast cell (see above: size/terms.hpp coast_cells or shore_cells) and, with a floodplain only,
+/// its sea pixels (empty otherwise).
+struct FieldCells {
+  std::vector<std::int32_t> filled;
+  std::vector<std::uint8_t> coast;
+  std::vector<std::int32_t> sea;
+};
+
+/// The same with the filled set given as its cells on the field's grid.
+SizeField build_size_field(const std::function<FieldCells(const FieldGrid&)>& field_cells, const Lattice& lat,
+                           const config::GlobalConfig& c, const PoleRotation& rotation, const raster::Bathymetry* bathy,
+                           const Logger& log, Report* report);
 
 /// Whether `q` has depth or box rules in the size form (size_km > 0): terms of the field.
 [[nodiscard]] bool has_size_rules(const config::QuadtreeOptions& q);

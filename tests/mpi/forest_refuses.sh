@@ -1,0 +1,29 @@
+#!/bin/bash
+# Bad input on the forest engine under `mpirun -np NP` (ctest label mpi): every rank ends with the
+# configuration error's exit code 2, the message is printed once and names the key, and no file is
+# written. Cases: a floodplain (mask.min_depth_m < 0, dense engine only) and a coastal band wider
+# than the forest's patches.
+#   forest_refuses.sh AQUATORIA MPIEXEC NP OUTDIR CONFIG
+set -uo pipefail
+bin=$1 mpiexec=$2 np=$3 out=$4 cfg=$5
+fail=0
+check() {  # check NAME EXPECTED-TEXT --set ...
+  local name=$1 text=$2
+  shift 2
+  rm -rf "$out/$name"
+  "$mpiexec" --oversubscribe -np "$np" "$bin" mesh -c "$cfg" --set quadtree.engine=forest "$@" -o "$out/$name" \
+    >"$out/$name.log" 2>&1
+  local rc=$?
+  if [ $rc != 2 ]; then echo "FAIL $name: exit $rc, not 2"; cat "$out/$name.log"; fail=1; fi
+  local n
+  n=$(grep -c "^error: .*$text" "$out/$name.log")
+  if [ "$n" != 1 ]; then echo "FAIL $name: '$text' printed $n times, not once"; cat "$out/$name.log"; fail=1; fi
+  if [ -d "$out/$name" ] && [ -n "$(ls -A "$out/$name")" ]; then
+    echo "FAIL $name: files written:"; ls "$out/$name"; fail=1
+  fi
+}
+mkdir -p "$out"
+check floodplain "mask.min_depth_m = -5: a floodplain" --set mask.min_depth_m=-5
+check band "quadtree.coast_band = 40: the forest engine needs at most" --set quadtree.coast_band=40
+[ $fail = 0 ] && echo "OK: refused on $np rank(s) with exit 2, one message, no files"
+exit $fail
