@@ -17,6 +17,7 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/key_list.hpp"
 #include "app/mesh_run.hpp"
 #include "app/provenance.hpp"
 #include "config/load.hpp"
@@ -46,6 +47,7 @@ struct MeshArgs {
   std::optional<std::string> config;
   std::vector<std::string> sets;
   std::string out_dir;
+  bool keys = false;
 };
 
 // The seed's published counts for its reference runs on ETOPO2 (seed 002 Figs. 6, 7, 10).
@@ -223,7 +225,14 @@ void add_mesh_command(CLI::App& app, Context& ctx) {
       "Configuration file (TOML); see configs/example.toml");
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
-  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_mesh(*args, ctx.log); }; });
+  cmd->add_flag("--keys", args->keys, "List every configuration key with its default and values, and exit");
+  cmd->callback([&ctx, args] {
+    ctx.run = [&ctx, args] {
+      if (!args->keys) return run_mesh(*args, ctx.log);
+      print_keys(config::global_key_info(), stdout);
+      return 0;
+    };
+  });
 }
 
 }  // namespace aq::app

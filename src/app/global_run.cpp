@@ -14,7 +14,9 @@
 #include "core/error.hpp"
 #include "core/timer.hpp"
 #include "core/types.hpp"
+#include "mask/carving.hpp"
 #include "mask/domain.hpp"
+#include "mask/dropped_seas.hpp"
 #include "mask/global_run_file.hpp"
 #include "mask/passages.hpp"
 #include "mesh/boundaries.hpp"
@@ -98,8 +100,9 @@ std::int64_t estimate_triangles(const Lattice& l) {
 
 double gb(std::int64_t bytes) { return static_cast<double>(bytes) / 1e9; }
 
-// Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto and
-// AQ_RASTER_BAND_ROWS = rows per band, so that tests can compare the streamed and whole paths;
+// Hidden test knobs (not configuration keys): AQ_RASTER_STREAMING = always | never | auto,
+// AQ_RASTER_BAND_ROWS = rows per band and AQ_RASTER_MAP = never (streamed through GDAL reads,
+// not the file map), so that tests can compare the streamed and whole paths;
 // AQ_RASTER_WHOLE=1 reads a regional run's rasters whole (tests compare with the window read);
 // AQ_RASTER_TILES_ABOVE (below) reads them in tiles.
 void apply_test_knobs(raster::OpenOptions& ro) {
@@ -114,6 +117,7 @@ void apply_test_knobs(raster::OpenOptions& ro) {
   // AQ_RASTER_TILES_ABOVE = bytes: read rasters above that size in tiles (tests compare with held).
   if (const char* s = std::getenv("AQ_RASTER_TILES_ABOVE"))
     ro.tiles_above_bytes = std::max<std::int64_t>(0, std::atoll(s));
+  if (const char* s = std::getenv("AQ_RASTER_MAP"); s != nullptr && std::string(s) == "never") ro.map_file = false;
 }
 
 // Level-0 squares of padding around the domain on a window lattice (never inside the domain, so
@@ -175,6 +179,7 @@ static double forest_bytes(const Lattice& l, double triangles, int ranks) {
 GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
   GlobalSetup s;
   s.masks_kept = o.keep_masks;
+  mask::check_passage_names(c.mask);  // a misspelt passage fails before anything is read
   s.lattice = c.quadtree.lattice == LatticeKind::kMercator
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
@@ -391,6 +396,65 @@ static void warn_threshold_depth_nodes(const mesh::Mesh& m, double h, const Logg
            h == 0.0 ? " (ice shelves have 0 m in ETOPO-class rasters)" : "", lon_min, lon_max, lat_min, lat_max, h);
 }
 
+// The carving of passages, channels and blockages (mask/carving.hpp): planned on the raw raster,
+// then installed on it, so that every later sample (classification, node depths, size field,
+// pictures) sees the carved bathymetry. Nothing to do (no stage line) when nothing is asked.
+static void carve(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report) {
+  const config::MaskOptions& m = c.mask;
+  if (m.passages_open.empty() && m.transects.empty() && m.channels.empty()) return;
+  StageScope stage("carve", report, log);
+  run.carving = mask::plan_carving(m, run.setup.lattice, run.setup.rotation, *run.bathy);
+  run.bathy->set_edits(run.carving.edits);
+  for (const std::string& line : mask::describe_carving(run.carving)) log.info("carve: {}", line);
+  if (report != nullptr) (*report)["carving"] = mask::carving_json(run.carving);
+  std::size_t passages = 0, channels = 0, blockages = 0;
+  for (const mask::CarvedLine& l : run.carving.lines) {
+    passages += l.kind == mask::LineKind::kPassage ? 1 : 0;
+    channels += l.kind == mask::LineKind::kChannel ? 1 : 0;
+    blockages += l.kind == mask::LineKind::kBlockage ? 1 : 0;
+  }
+  stage.done(
+      fmt::format("{} passage(s) and {} channel(s) carved open, {} blockage(s) kept dry, before the "
+                  "classification (K = {}, h = {:g} m)",
+                  passages, channels, blockages, m.cursor, m.min_depth_m));
+}
+
+// Every wet component the fill left out above mask.warn_dropped_km2, named, with its area, what
+// cut it and the key that keeps it (mask/dropped_seas.hpp); all of them in the report.
+static void warn_dropped_seas(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report) {
+  StageScope stage("dropped", report, log);
+  const mask::WetArea& a = run.area;
+  const mask::DroppedSeas d =
+      mask::find_dropped_seas(a.wet, a.filled, run.setup.lattice, run.setup.rotation, c.mask.cursor,
+                              c.mask.warn_dropped_km2, c.mask.passages_open, &run.domain);
+  for (const mask::DroppedSea& s : d.large) log.warn("dropped: {}", mask::describe(s, c.mask.cursor));
+  if (report != nullptr) (*report)["mask"]["dropped"] = mask::dropped_json(d);
+  double large = 0.0;
+  for (const mask::DroppedSea& s : d.large) large += s.area_km2;
+  stage.done(
+      fmt::format("{} wet component(s) left out by the fill, {:.4g} km² in all; {} above mask.warn_dropped_km2 = "
+                  "{:g} km² ({:.4g} km²) named above",
+                  d.components, d.area_km2, d.large.size(), c.mask.warn_dropped_km2, large));
+}
+
+// A seed whose fill does not join the first seed's: the mesh has separate parts (each typed as a
+// mesh of its own: its outer coast mainland, mesh/boundaries.hpp). Intended for a closed sea, an
+// accident otherwise: said, with the pieces' sizes.
+static void warn_separate_seeds(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report) {
+  const mask::WetArea& a = run.area;
+  Json parts = Json::array();
+  for (const mask::SeedInfo& s : a.seeds) {
+    if (s.index == 0 || s.same_fill_as >= 0 || s.windows_reached == 0) continue;
+    log.warn(
+        "seeds: mask.seeds[{}] = ({}, {}) fills {} cursor window(s) not connected to the part of mask.seeds[0] "
+        "at K = {}: the mesh has a separate part there (meshed apart, its own coast mainland); if it should join "
+        "the rest, open the passage between them (mask.passages_open, mask.transects) or use a smaller mask.cursor",
+        s.index, s.requested.lon_deg, s.requested.lat_deg, s.windows_reached, c.mask.cursor);
+    parts.push_back(Json{{"seed", s.index}, {"windows", s.windows_reached}});
+  }
+  if (report != nullptr && !parts.empty()) (*report)["warnings"]["seeds_in_separate_parts"] = parts;
+}
+
 // One source for the log: "source 1 (highest priority) PATH: W x H, 0.5', whole (N MB), lon..lon, lat..lat".
 static std::string source_line(const raster::Bathymetry& b, std::size_t k) {
   const auto& i = b.info();
@@ -398,7 +462,9 @@ static std::string source_line(const raster::Bathymetry& b, std::size_t k) {
   const double lat1 = i.lat_first + static_cast<double>(i.nrows - 1) * i.dlat;
   return fmt::format("source {}{} {}: {} x {}, {:.4g}' x {:.4g}', {} registration, {} ({} MB); {}, {:.4f}..{:.4f}°N",
                      k + 1, k == 0 ? " (highest priority)" : "", i.path, i.ncols, i.nrows, i.dlon * 60.0,
-                     i.dlat * 60.0, i.registration, i.streamed ? "streamed" : "held whole", i.memory_bytes >> 20,
+                     i.dlat * 60.0, i.registration,
+                     i.tiled ? "in tiles on demand, cache" : i.streamed ? "streamed" : "held whole",
+                     i.memory_bytes >> 20,
                      i.global_lon ? std::string("all longitudes") : fmt::format("{:.4f}..{:.4f}°E", i.lon_first, lon1),
                      i.lat_first, lat1);
 }
@@ -430,6 +496,7 @@ static Json source_json(const raster::Bathymetry& b) {
               {"min_m", i.min_m},
               {"max_m", i.max_m},
               {"streamed", i.streamed},
+              {"mapped", i.mapped},
               {"memory_bytes", i.memory_bytes}};
 }
 
@@ -509,6 +576,7 @@ static void open_inputs(GlobalRun& run, const config::GlobalConfig& c, const Glo
       (*report)["lattice"]["global_because"] = setup.lattice_note;
   }
 
+  carve(run, c, log, report);
   run.domain = mask::make_domain(c.domain, lat, rot, dense_domain);
   if (run.domain.regional()) {
     if (dense_domain)  // (the forest counts its domain's pixels over its patches, and logs them)
@@ -588,9 +656,12 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
   input_json(bathy, c, report);
   const mask::WetArea& area = run.area;
   if (c.mask.passages && !area.passages.empty()) {
-    log.info("critical passages (open = the filled ocean connects both sides):");
+    log.info("critical passages{} (open = the filled ocean connects both sides):",
+             run.domain.regional() ? " inside the domain" : "");
     for (const auto& line : mask::format_passage_table(area.passages)) log.info("  {}", line);
   }
+  warn_dropped_seas(run, c, log, report);
+  warn_separate_seeds(run, c, log, report);
   // The coast beyond Ω_L's edge (mask/coast.hpp): not the open water beyond a regional domain,
   // and with a floodplain the shoreline at the datum.
   const mask::CoastSources coast = area.coast();
@@ -678,7 +749,18 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
 static void type_regional_boundaries(GlobalRun& run, const std::function<bool(const mask::PixelIJ&)>& open_water,
                                      const Logger& log, Report* report) {
   StageScope stage("boundaries", report, log);
-  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, open_water, &log);
+  // A river inflow: an open edge whose outside pixel's centre lies in the corridor of a channel
+  // line (mask.channels) that crosses the domain's edge there.
+  const raster::ElevationEdits* edits = run.bathy->edits();
+  const PoleRotation& rot = run.setup.rotation;
+  const Lattice& lattice = run.mesh.lattice;
+  const auto river = [&](const mask::PixelIJ& px) {
+    if (edits == nullptr) return false;
+    const mask::LonLat g = mask::lattice_to_geographic(rot, mask::pixel_center_lattice_deg(lattice, px));
+    const int k = edits->corridor_at(g.lon_deg, g.lat_deg);
+    return k >= 0 && run.carving.lines[static_cast<std::size_t>(k)].kind == mask::LineKind::kChannel;
+  };
+  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, open_water, &log, river);
   if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(run.mesh, counts);
   stage.done(mesh::describe(counts));
 }
@@ -890,6 +972,11 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   }
   run.mesh = mesh::build_mesh(run.leaves, setup.lattice, setup.rotation, *run.bathy, c.mesh, log, report);
   run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
+  // The leaves go with the bitmaps (184 MB at 15", alive at the write stage's peak) unless a file
+  // reads them after the mesh (mesh_run.cpp): the global run file, which keeps the masks, or the
+  // preview's size colours, whose range is taken over the leaves.
+  const bool png = c.output.writes(config::OutputFormat::kPng);
+  if (!keep_masks && !(png && run.size_field.has_grid())) std::vector<quadtree::Leaf>().swap(run.leaves);
   if (run.domain.regional()) type_regional_boundaries_dense(run, log, report);
   finish_mesh(run, c, setup, log, report, statistics, keep_masks);
   return run;

@@ -16,12 +16,13 @@
 #include "core/log.hpp"
 #include "core/report.hpp"
 #include "core/rotation.hpp"
+#include "mask/carving.hpp"
 #include "mask/wet_area.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/statistics.hpp"
 #include "quadtree/leaves.hpp"
-#include "size/size_field.hpp"
 #include "raster/bathymetry.hpp"
+#include "size/size_field.hpp"
 
 namespace aq::app {
 
@@ -72,6 +73,7 @@ void log_memory_estimate(const GlobalSetup& s, const Logger& log);
 struct GlobalRun {
   GlobalSetup setup;
   std::optional<raster::Bathymetry> bathy;
+  mask::Carving carving;  ///< passages, channels and blockages carved into `bathy` (mask/carving.hpp)
   mask::Domain domain;  ///< the meshed region (global: nothing inside)
   mask::WetArea area;
   std::string area_file;          ///< the global run file `area` was read from; "" = computed by the mask stage
@@ -112,7 +114,8 @@ GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& se
 /// With `keep_masks = false` the lattice bitmaps of `area` (wet_vertices, wet, coastal, filled:
 /// 4 bits per pixel, 1.9 GB at 15") are freed as soon as the quadtree has its leaves (`wet` after
 /// a regional run's boundary typing); their counts stay. The mesh, its checks and every file but
-/// the global run file (`tif`) need none of them.
+/// the global run file (`tif`) need none of them. The leaves go too once the mesh is built, unless
+/// a preview colours by the size field (its range is taken over the leaves).
 GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                               Report* report, bool statistics = true, bool reuse = false, bool keep_masks = true);
 

@@ -74,8 +74,8 @@ void check_mesh_output_options(const config::OutputOptions& options, ElementKind
 /// (pole cap or merged pole row; one log line per changed pole, and the "geographic_mesh" report section when `report`
 /// is given); msh (the λ–φ plane) and png draw the lattice mesh. Throws ConfigError on bad options (before writing
 /// anything), OutputError naming the file on write failures. The UGRID writer (netCDF/HDF5, which are not thread-safe)
-/// runs on a thread of its own while the others run on this one (info.concurrent), unless the raster is streamed (its
-/// reads go through GDAL, whose netCDF driver the preview would call meanwhile). The log lines, the returned files and
+/// runs on a thread of its own while the others run on this one (info.concurrent), unless the raster is streamed and a
+/// preview is written (its reads go through GDAL, whose netCDF driver the preview would call meanwhile). The log lines, the returned files and
 /// the error thrown are those of writing one file after another (output_jobs.hpp); every temporary path is reserved and
 /// every mesh built on this thread.
 std::vector<WrittenFile> write_mesh_outputs(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,

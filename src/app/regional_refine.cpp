@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string box_text(const curvilinear::RefineBox& b) {
+std::string refine_box_text(const curvilinear::RefineBox& b) {
   return fmt::format("[{}, {}, {}, {}]", b.i_left, b.i_right, b.j_bottom, b.j_top);
 }
 
@@ -129,7 +129,7 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   g.parent = io::read_roms_grid_fields(n.parent);
   if (const std::string bad = handoff::refinement_box_problem(g.box, g.parent.L, g.parent.M); !bad.empty())
     throw ConfigError(fmt::format("{}: nesting.parent_box = {} in nesting.parent = {}: {}", config_source,
-                                  box_text(g.box), n.parent, bad));
+                                  refine_box_text(g.box), n.parent, bad));
 
   curvilinear::RegionalResult& r = g.result;
   r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, n.parent, g.projection_source);

@@ -261,6 +261,47 @@ const S& schema() {
         "mask", "remove_pinches", [](GlobalConfig& c) -> bool& { return c.mask.remove_pinches; }, {}, "");
     t.add<bool>(
         "mask", "passages", [](GlobalConfig& c) -> bool& { return c.mask.passages; }, {}, "");
+    t.add<std::vector<std::string>>(
+        "mask", "passages_open", [](GlobalConfig& c) -> std::vector<std::string>& { return c.mask.passages_open; },
+        [](const std::vector<std::string>& v) {
+          for (std::size_t k = 0; k < v.size(); ++k) {
+            if (v[k].empty()) return fmt::format("element {} is empty: give a passage name, e.g. \"Gibraltar\"", k);
+            for (std::size_t q = 0; q < k; ++q)
+              if (v[q] == v[k]) return fmt::format("\"{}\" is given twice", v[k]);
+          }
+          return std::string();
+        },
+        "passages of the built-in table carved open");
+    const auto line_file = [&t](const char* name, std::string& (*f)(GlobalConfig&)) {
+      t.add_custom(
+          "mask", name,
+          [name, f](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+            const std::string key = std::string("mask.") + name;
+            std::string text;
+            if (auto err = detail::convert(v, text)) return p.add(o, key, *err);
+            std::filesystem::path path(text);
+            if (!text.empty() && path.is_relative()) path = o.base_dir / path;
+            f(c) = text.empty() ? text : path.lexically_normal().string();
+            if (!text.empty())
+              if (const std::string bad = detail::input_path_problem(f(c)); !bad.empty()) p.add(o, key, bad);
+          },
+          [f](const GlobalConfig& c) { return Json(f(const_cast<GlobalConfig&>(c))); }, "");
+    };
+    line_file("transects", [](GlobalConfig& c) -> std::string& { return c.mask.transects; });
+    t.add<std::string>(
+        "mask", "transects_layer", [](GlobalConfig& c) -> std::string& { return c.mask.transects_layer; }, {}, "");
+    line_file("channels", [](GlobalConfig& c) -> std::string& { return c.mask.channels; });
+    t.add<std::string>(
+        "mask", "channels_layer", [](GlobalConfig& c) -> std::string& { return c.mask.channels_layer; }, {}, "");
+    t.add<double>(
+        "mask", "channel_width_m", [](GlobalConfig& c) -> double& { return c.mask.channel_width_m; },
+        [](const double& v) { return in_range(v, 0.0, 1e6); }, "");
+    t.add<double>(
+        "mask", "channel_depth_m", [](GlobalConfig& c) -> double& { return c.mask.channel_depth_m; },
+        [](const double& v) { return in_range(v, 0.01, 12000.0); }, "");
+    t.add<double>(
+        "mask", "warn_dropped_km2", [](GlobalConfig& c) -> double& { return c.mask.warn_dropped_km2; },
+        [](const double& v) { return in_range(v, 0.0, 1e9); }, "");
     // [quadtree]
     t.add<double>(
         "quadtree", "step_deg", [](GlobalConfig& c) -> double& { return c.quadtree.step_deg; },

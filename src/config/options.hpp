@@ -46,6 +46,20 @@ struct MaskOptions {
   Sampling sampling = Sampling::kVertex;  ///< the seed's vertex rule or the deepest raster cell
   bool remove_pinches = false;      ///< take pixels out until no pinch vertex is left
   bool passages = true;             ///< report the critical-passage table
+  /// Passages of the built-in table (names or aliases, mask/passages.hpp) carved open: a channel
+  /// at least K pixels wide along the strait's deepest path (README "Passages, channels and rivers").
+  std::vector<std::string> passages_open;
+  /// GDAL/OGR line file of user passages (carved open) and land blockages (kept dry), attribute
+  /// `kind` = "passage" (default) or "blockage"; "" = none. `transects_layer`: "" = the first layer.
+  std::string transects, transects_layer;
+  /// GDAL/OGR line file of channels and rivers burned in before the fill; "" = none.
+  std::string channels, channels_layer;
+  /// Width (m) of a channel line without a width_m attribute; 0 = the narrowest the fill keeps (K pixels).
+  double channel_width_m = 0.0;
+  /// Depth (m, positive down) of a channel line without depth_m, and of a transect the raster closes.
+  double channel_depth_m = 10.0;
+  /// Warn, naming it, for every wet component the fill leaves out whose area exceeds this (km², WGS84).
+  double warn_dropped_km2 = 1e4;
 };
 
 // A depth or box rule asks either a level (`level`) or a size (`size_km` > 0, with level = 0):

@@ -13,7 +13,7 @@ namespace {
 
 using detail::Origin;
 using detail::Problems;
-using S = detail::Schema<RegionalConfig>;
+using RegionalSchema = detail::Schema<RegionalConfig>;
 
 // TOML scalar -> the izogrid preamble's text form.
 std::optional<std::string> scalar_text(const toml::value& v) {
@@ -26,9 +26,9 @@ std::optional<std::string> scalar_text(const toml::value& v) {
 
 Json param_json(const curvilinear::RegionalParams& p, const std::string& key);
 
-const S& schema() {
-  static const S s = [] {
-    S t;
+const RegionalSchema& regional_schema() {
+  static const RegionalSchema s = [] {
+    RegionalSchema t;
     t.add<std::string>(
         "regional", "name", [](RegionalConfig& c) -> std::string& { return c.name; },
         [](const std::string& v) {
@@ -358,9 +358,9 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
       c.contour_file = cf.lexically_normal().string();
       p.set_fallback(fmt::format("{} (regional.contour_file) or built-in default", c.contour_file));
     }
-    schema().apply(c, doc, file.string(), base, p);
+    regional_schema().apply(c, doc, file.string(), base, p);
   }
-  for (const auto& o : overrides) schema().apply_override(c, o, p);
+  for (const auto& o : overrides) regional_schema().apply_override(c, o, p);
   const auto apply_corners = [&p](const std::vector<int>& numbers, std::size_t points, std::vector<bool>& corner,
                                   const char* key, const char* points_key) {
     if (numbers.empty()) return;
@@ -405,7 +405,7 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
     p.add_key(key == "points" ? "regional.control_points" : "regional." + key, msg);
   p.throw_if_any(out.source);
   c.params.source = out.source;
-  out.echo = schema().echo(c);
+  out.echo = regional_schema().echo(c);
   return out;
 }
 
@@ -431,8 +431,8 @@ std::vector<KeyProblem> stop_stage_problems(const RegionalConfig& c, curvilinear
   return out;
 }
 
-std::vector<KeyInfo> regional_key_info() { return schema().infos<KeyInfo>(); }
+std::vector<KeyInfo> regional_key_info() { return regional_schema().infos<KeyInfo>(); }
 
-std::vector<std::string> regional_keys() { return schema().names(); }
+std::vector<std::string> regional_keys() { return regional_schema().names(); }
 
 }  // namespace aq::config

@@ -55,7 +55,7 @@ enum Extra : unsigned {
   kLat = 1u << 5,      // standard_name latitude
 };
 
-struct VarSpec {
+struct ContactVarSpec {
   const char* name;
   nc_type type;
   Dim dim;
@@ -65,7 +65,7 @@ struct VarSpec {
 };
 
 // In the order of c_contact.m.
-constexpr VarSpec kVars[] = {
+constexpr ContactVarSpec kContactVars[] = {
     {"spherical", NC_INT, Dim::kScalar, "grid type logical switch", nullptr, kNone},
     {"Lm", NC_INT, Dim::kGrids, "number of interior RHO-points in the I-direction", nullptr, kNone},
     {"Mm", NC_INT, Dim::kGrids, "number of interior RHO-points in the J-direction", nullptr, kNone},
@@ -176,7 +176,7 @@ RomsGridFields read_roms_grid_fields(const fs::path& path) {
 const std::vector<std::string>& contact_variables() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
-    for (const VarSpec& v : kVars) n.emplace_back(v.name);
+    for (const ContactVarSpec& v : kContactVars) n.emplace_back(v.name);
     return n;
   }();
   return names;
@@ -214,7 +214,7 @@ void write_contact(const fs::path& path, const ContactFile& d) {
   nc_check<OutputError>(nc_def_dim(id, "nQweights", 9, &dq), path, "dimension nQweights");
   nc_check<OutputError>(nc_def_dim(id, "datum", n, &dd), path, "dimension datum");
   std::vector<int> vars;
-  for (const VarSpec& v : kVars) {
+  for (const ContactVarSpec& v : kContactVars) {
     int dims[2] = {-1, -1};
     int nd = 1;
     switch (v.dim) {
@@ -265,8 +265,8 @@ void write_contact(const fs::path& path, const ContactFile& d) {
     vars.push_back(var);
   }
   const auto var_of = [&](const char* name) {
-    for (std::size_t k = 0; k < std::size(kVars); ++k)
-      if (std::string(kVars[k].name) == name) return vars[k];
+    for (std::size_t k = 0; k < std::size(kContactVars); ++k)
+      if (std::string(kContactVars[k].name) == name) return vars[k];
     throw InternalError(fmt::format("write_contact: no variable {}", name));
   };
   {

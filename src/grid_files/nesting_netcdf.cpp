@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct VarSpec {
+struct NestingVarSpec {
   const char* name;
   nc_type type;
   bool per_vertex;
@@ -26,7 +26,7 @@ struct VarSpec {
   const char* units;  // nullptr: none
 };
 
-constexpr VarSpec kVars[] = {
+constexpr NestingVarSpec kNestingVars[] = {
     {"point_type", NC_BYTE, false, "C-grid point type of the boundary point", nullptr},
     {"boundary", NC_BYTE, false, "ROMS open boundary of the point", nullptr},
     {"xi_index", NC_INT, false, "0-based xi index into the point type's ROMS array", nullptr},
@@ -63,7 +63,7 @@ void write_nesting(const fs::path& path, const NestingFile& d) {
   nc_check<OutputError>(nc_def_dim(id, "point", n, &dim_p), path, "dimension point");  // 0: unlimited, empty
   nc_check<OutputError>(nc_def_dim(id, "vertex", 3, &dim_v), path, "dimension vertex");
   std::vector<int> vars;
-  for (const VarSpec& v : kVars) {
+  for (const NestingVarSpec& v : kNestingVars) {
     int var = -1;
     const int dims[2] = {dim_p, dim_v};
     nc_check<OutputError>(nc_def_var(id, v.name, v.type, v.per_vertex ? 2 : 1, dims, &var), path,
@@ -144,7 +144,7 @@ NestingFile read_nesting(const fs::path& path) {
     int dims[NC_MAX_VAR_DIMS];
     nc_check<InputError>(nc_inq_var(id, v, nullptr, nullptr, &ndims, dims, nullptr), path, name);
     bool ok = false, per_vertex = false;
-    for (const VarSpec& spec : kVars) {
+    for (const NestingVarSpec& spec : kNestingVars) {
       if (std::string_view(spec.name) != name) continue;
       per_vertex = spec.per_vertex;
       ok = ndims == (per_vertex ? 2 : 1) && dims[0] == dim_p;
@@ -159,7 +159,7 @@ NestingFile read_nesting(const fs::path& path) {
     return v;
   };
   if (n > 0)  // every variable's shape first: n then is the length of data that is in the file
-    for (const VarSpec& spec : kVars) (void)var(spec.name);
+    for (const NestingVarSpec& spec : kNestingVars) (void)var(spec.name);
   NestingFile d;
   d.point_type.resize(n);
   d.boundary.resize(n);

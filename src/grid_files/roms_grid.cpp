@@ -64,7 +64,7 @@ class File {
   int id_ = -1;
 };
 
-struct VarSpec {
+struct RomsVarSpec {
   const char* name;
   int family;  // 0 rho, 1 psi, 2 u, 3 v
   const char* long_name;
@@ -74,7 +74,7 @@ struct VarSpec {
 };
 
 constexpr std::array<const char*, 4> kFamily = {"rho", "psi", "u", "v"};
-constexpr std::array<const char*, 5> kReserved = {"type", "Conventions", "title", "history", "source"};
+constexpr std::array<const char*, 5> kRomsReserved = {"type", "Conventions", "title", "history", "source"};
 
 }  // namespace
 
@@ -104,7 +104,7 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
     throw InternalError(fmt::format("write_roms_grid {}: array sizes do not match the {} x {} ρ grid", path.string(),
                                     g.L + 1, g.M + 1));
   for (const auto& [key, value] : d.attributes)
-    for (const char* r : kReserved)
+    for (const char* r : kRomsReserved)
       if (key.empty() || key == r)
         throw InternalError(
             fmt::format("write_roms_grid {}: attribute name '{}' is reserved or empty", path.string(), key));
@@ -140,7 +140,7 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
   nc.text(v_hraw, "coordinates", "lon_rho lat_rho");
 
   // The ρ fields after hraw, in the CDL's order.
-  const std::array<VarSpec, 7> rho_fields = {{
+  const std::array<RomsVarSpec, 7> rho_fields = {{
       {"h", 0, "Final bathymetry at RHO-points", "meter", "sea_floor_depth_below_mean_sea_level", true},
       {"f", 0, "Coriolis parameter at RHO-points", "second-1", "coriolis_parameter", true},
       {"pm", 0, "curvilinear coordinate metric in XI", "meter-1", "", true},
@@ -151,7 +151,7 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
   }};
   const std::array<const std::vector<double>*, 7> rho_data = {&d.h, &g.f, &g.pm, &g.pn, &g.dndx, &g.dmde, &g.angle};
   std::array<int, 7> rho_vars{};
-  const auto define = [&](const VarSpec& s) {
+  const auto define = [&](const RomsVarSpec& s) {
     const int v = nc.var(s.name, NC_DOUBLE, fdims[static_cast<std::size_t>(s.family)]);
     nc.text(v, "long_name", s.long_name);
     if (*s.units) nc.text(v, "units", s.units);
@@ -236,7 +236,7 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
 
 void write_updated_roms_grid(const fs::path& source, const fs::path& path, const RomsGridUpdate& u) {
   for (const auto& [key, value] : u.attributes)
-    for (const char* r : kReserved)
+    for (const char* r : kRomsReserved)
       if (key.empty() || key == r)
         throw InternalError(
             fmt::format("write_updated_roms_grid {}: attribute name '{}' is reserved or empty", path.string(), key));

@@ -19,10 +19,11 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kDefaultTitle = "aquatoria planar orthogonal curvilinear grid (xygrid)";
-constexpr std::array<const char*, 6> kReserved = {"Conventions", "title", "history", "aquatoria_file", "dxi", "deta"};
+constexpr std::array<const char*, 6> kXygridReserved = {"Conventions",    "title", "history",
+                                                        "aquatoria_file", "dxi",   "deta"};
 
 bool is_reserved(const std::string& key) {
-  for (const char* r : kReserved) {
+  for (const char* r : kXygridReserved) {
     if (key == r) return true;
   }
   return false;
@@ -33,7 +34,7 @@ void put_double(int nc, int var, const char* name, double value, const fs::path&
                         fmt::format("attribute {}", name));
 }
 
-int def_var(int nc, const char* name, const std::vector<int>& dims, const fs::path& path) {
+int def_xygrid_var(int nc, const char* name, const std::vector<int>& dims, const fs::path& path) {
   int var = -1;
   nc_check<OutputError>(nc_def_var(nc, name, NC_DOUBLE, static_cast<int>(dims.size()), dims.data(), &var), path,
                         fmt::format("define variable {}", name));
@@ -109,11 +110,11 @@ void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::G
   nc_check<OutputError>(nc_def_dim(id, "xi_s", static_cast<std::size_t>(g.nx_pts), &dim_xi), path, "dimension xi_s");
   nc_check<OutputError>(nc_def_dim(id, "eta_s", static_cast<std::size_t>(g.ny_pts), &dim_eta), path, "dimension eta_s");
 
-  const int var_x = def_var(id, "x", {dim_eta, dim_xi}, path);
+  const int var_x = def_xygrid_var(id, "x", {dim_eta, dim_xi}, path);
   put_text(id, var_x, "long_name", "x coordinate of supergrid nodes in the projection plane", path);
   put_text(id, var_x, "standard_name", "projection_x_coordinate", path);
   put_text(id, var_x, "units", data.units, path);
-  const int var_y = def_var(id, "y", {dim_eta, dim_xi}, path);
+  const int var_y = def_xygrid_var(id, "y", {dim_eta, dim_xi}, path);
   put_text(id, var_y, "long_name", "y coordinate of supergrid nodes in the projection plane", path);
   put_text(id, var_y, "standard_name", "projection_y_coordinate", path);
   put_text(id, var_y, "units", data.units, path);
@@ -123,7 +124,7 @@ void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::G
     int dim_it = -1;
     nc_check<OutputError>(nc_def_dim(id, "iteration", data.residual_history.size(), &dim_it), path,
                           "dimension iteration");
-    var_hist = def_var(id, "residual_history", {dim_it}, path);
+    var_hist = def_xygrid_var(id, "residual_history", {dim_it}, path);
     put_text(id, var_hist, "long_name",
              "Laplace fill convergence: SOR max |dq|/extent per iteration, or the direct solver's final residual",
              path);
@@ -147,8 +148,8 @@ void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::G
         throw InternalError(fmt::format("write_xygrid {}: field {} has {} values, expected {}", path.string(), f->name,
                                         f->values.size(), expect));
       }
-      const int var = def_var(id, f->name.c_str(),
-                              cell ? std::vector<int>{dim_yc, dim_xc} : std::vector<int>{dim_eta, dim_xi}, path);
+      const int var = def_xygrid_var(id, f->name.c_str(),
+                                     cell ? std::vector<int>{dim_yc, dim_xc} : std::vector<int>{dim_eta, dim_xi}, path);
       put_text(id, var, "long_name", f->long_name, path);
       put_text(id, var, "units", "1", path);
       put_double(id, var, "_FillValue", std::numeric_limits<double>::quiet_NaN(), path);

@@ -25,7 +25,7 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::string lower(std::string_view s) {
+std::string lowercase(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
@@ -71,7 +71,7 @@ bool parse_int(std::string_view s, int& out) {
 }
 
 bool parse_bool(std::string_view s, bool& out) {
-  const std::string v = lower(s);
+  const std::string v = lowercase(s);
   if (v == "true" || v == "yes" || v == "1" || v == "on") {
     out = true;
     return true;
@@ -244,7 +244,7 @@ const std::map<std::string, KeySetter>& setters() {
 // Corner label: 0 = none, 1 = SE, 2 = NE, 3 = NW, 4 = '<' without a recognised name,
 // -1 = "south-west" (only allowed on the first point).
 int corner_label(std::string_view label) {
-  std::string s = lower(trim(label));
+  std::string s = lowercase(trim(label));
   const bool arrow = !s.empty() && s.front() == '<';
   if (arrow) s = std::string(trim(std::string_view(s).substr(1)));
   auto starts = [&](const char* name) { return s.rfind(name, 0) == 0; };
@@ -310,7 +310,7 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
               fmt::format("{}: '{}' is not key=value (or the end-of-preamble line '---' is missing)", where, tok));
           continue;
         }
-        const std::string key = lower(tok.substr(0, eq));
+        const std::string key = lowercase(tok.substr(0, eq));
         const std::string_view value = tok.substr(eq + 1);
         const auto it = setters().find(key);
         if (it == setters().end()) {

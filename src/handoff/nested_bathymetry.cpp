@@ -14,7 +14,7 @@ namespace aq::handoff {
 
 namespace {
 
-int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int floor_divide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 std::size_t idx(int i, int j, int ni) {
   return static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i);
@@ -77,7 +77,7 @@ NestedMaskStats nest_masks(const curvilinear::RefineBox& box, int pL, int pM, st
   for (int j = 0; j < nj; ++j)
     for (int i = 0; i < ni; ++i) {
       if (i != 0 && i != ni - 1 && j != 0 && j != nj - 1) continue;
-      const int I = box.i_left + floor_div(2 * i - 1, 2 * r), J = box.j_bottom + floor_div(2 * j - 1, 2 * r);
+      const int I = box.i_left + floor_divide(2 * i - 1, 2 * r), J = box.j_bottom + floor_divide(2 * j - 1, 2 * r);
       const std::uint8_t want = parent_rho[idx(I, J, pni)];
       if (child_rho[idx(i, j, ni)] == want) continue;
       child_rho[idx(i, j, ni)] = want;

@@ -1,7 +1,10 @@
 // Word-parallel bitmap row primitives (see bit_rows.hpp).
 #include "mask/bit_rows.hpp"
 
+#include <algorithm>
 #include <bit>
+
+#include "core/bitmap.hpp"
 
 namespace aq::mask::bits {
 
@@ -111,10 +114,10 @@ std::int64_t count_range(const std::uint64_t* row, std::int64_t a, std::int64_t 
   const std::int64_t wa = word_of(a), wb = word_of(b - 1);
   const std::uint64_t ma = from_bit(bit_of(a));
   const std::uint64_t mb = low_mask(bit_of(b - 1) + 1);
-  if (wa == wb) return std::popcount(row[wa] & ma & mb);
-  std::int64_t n = std::popcount(row[wa] & ma);
-  for (std::int64_t w = wa + 1; w < wb; ++w) n += std::popcount(row[w]);
-  return n + std::popcount(row[wb] & mb);
+  if (wa == wb) return popcount64(row[wa] & ma & mb);
+  std::int64_t n = popcount64(row[wa] & ma);
+  for (std::int64_t w = wa + 1; w < wb; ++w) n += popcount64(row[w]);
+  return n + popcount64(row[wb] & mb);
 }
 
 std::int64_t count_range_and(const std::uint64_t* x, const std::uint64_t* y, std::int64_t a, std::int64_t b) {
@@ -122,10 +125,10 @@ std::int64_t count_range_and(const std::uint64_t* x, const std::uint64_t* y, std
   const std::int64_t wa = word_of(a), wb = word_of(b - 1);
   const std::uint64_t ma = from_bit(bit_of(a));
   const std::uint64_t mb = low_mask(bit_of(b - 1) + 1);
-  if (wa == wb) return std::popcount(x[wa] & y[wa] & ma & mb);
-  std::int64_t n = std::popcount(x[wa] & y[wa] & ma);
-  for (std::int64_t w = wa + 1; w < wb; ++w) n += std::popcount(x[w] & y[w]);
-  return n + std::popcount(x[wb] & y[wb] & mb);
+  if (wa == wb) return popcount64(x[wa] & y[wa] & ma & mb);
+  std::int64_t n = popcount64(x[wa] & y[wa] & ma);
+  for (std::int64_t w = wa + 1; w < wb; ++w) n += popcount64(x[w] & y[w]);
+  return n + popcount64(x[wb] & y[wb] & mb);
 }
 
 void rotate_row(const std::uint64_t* src, std::uint64_t* dst, std::int64_t n, std::int64_t shift, Combine op) {
@@ -133,7 +136,29 @@ void rotate_row(const std::uint64_t* src, std::uint64_t* dst, std::int64_t n, st
   std::int64_t s = shift % n;
   if (s < 0) s += n;
   const std::int64_t nw = words_for(n);
-  for (std::int64_t w = 0; w < nw; ++w) {
+  // The whole words whose source bits [i0 + s, i0 + s + 64) lie inside the row: one loop of
+  // shifts (what read_bits gives for them); the rest, near the seam and the row's end, below.
+  const std::int64_t fast = std::min(nw, (n - s) / 64);
+  if (fast > 0) {
+    const std::int64_t k = s >> 6;
+    const int off = bit_of(s);
+    const auto combine = [&](auto f) {
+      for (std::int64_t w = 0; w < fast; ++w)
+        f(dst[w], off == 0 ? src[k + w] : (src[k + w] >> off) | (src[k + w + 1] << (64 - off)));
+    };
+    switch (op) {
+      case Combine::kCopy:
+        combine([](std::uint64_t& d, std::uint64_t v) { d = v; });
+        break;
+      case Combine::kAnd:
+        combine([](std::uint64_t& d, std::uint64_t v) { d &= v; });
+        break;
+      case Combine::kOr:
+        combine([](std::uint64_t& d, std::uint64_t v) { d |= v; });
+        break;
+    }
+  }
+  for (std::int64_t w = std::max<std::int64_t>(fast, 0); w < nw; ++w) {
     const std::int64_t i0 = w << 6;
     const int len = static_cast<int>(n - i0 < 64 ? n - i0 : 64);
     std::int64_t start = i0 + s;

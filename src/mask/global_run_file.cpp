@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kFormat[] = "aquatoria global run 1";
-constexpr std::uint8_t kFilled = 1, kWet = 2, kCoastal = 4;
+constexpr std::uint8_t kFilledBit = 1, kWetBit = 2, kCoastalBit = 4;
 constexpr std::uint8_t kNoLevel = 255;
 constexpr char kNotAFile[] = "n/a (not a plain file)";
 
@@ -106,6 +106,30 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
   // Listed only when not the default (12000 m), so files written before the key existed still match.
   if (c.input.max_abs_elevation_m != config::InputOptions{}.max_abs_elevation_m)
     items.insert(items.begin() + 7, {"input.max_abs_elevation_m", number(c.input.max_abs_elevation_m)});
+  // The carving (mask/carving.hpp), listed only when asked, so files written before it still match:
+  // the names, the line files by path, size and time, and the defaults they take.
+  const config::MaskOptions& m = c.mask;
+  if (!m.passages_open.empty()) {
+    std::string names;
+    for (const std::string& n : m.passages_open) names += (names.empty() ? "" : ", ") + n;
+    items.push_back({"mask.passages_open", "[" + names + "]"});
+  }
+  const auto line_file = [&](const char* key, const std::string& path, const std::string& layer) {
+    if (path.empty()) return;
+    const fs::path f = fs::absolute(path).lexically_normal();
+    std::string entry = f.string() + " " + kNotAFile;
+    if (fs::is_regular_file(f, ec)) {
+      const auto bytes = fs::file_size(f, ec);
+      const auto time = fs::last_write_time(f, ec);
+      if (!ec) entry = fmt::format("{} {} bytes, mtime {}", f.string(), bytes, time.time_since_epoch().count());
+    }
+    items.push_back({key, entry + (layer.empty() ? std::string() : ", layer " + layer)});
+  };
+  line_file("mask.transects", m.transects, m.transects_layer);
+  line_file("mask.channels", m.channels, m.channels_layer);
+  if (!m.transects.empty() || !m.channels.empty())
+    items.push_back({"mask.channel_defaults",
+                     fmt::format("width {} m, depth {} m", number(m.channel_width_m), number(m.channel_depth_m))});
   return items;
 }
 
@@ -164,8 +188,8 @@ void write_global_run_file(const fs::path& path, const WetArea& area, const Latt
       const std::int64_t j = ny - 1 - (r0 + r);
       std::uint8_t* out = flags + r * nx;
       for (std::int64_t i = 0; i < nx; ++i) {
-        out[i] = static_cast<std::uint8_t>((f->get(i, j) ? kFilled : 0) | (w->get(i, j) ? kWet : 0) |
-                                           (co->get(i, j) ? kCoastal : 0));
+        out[i] = static_cast<std::uint8_t>((f->get(i, j) ? kFilledBit : 0) | (w->get(i, j) ? kWetBit : 0) |
+                                           (co->get(i, j) ? kCoastalBit : 0));
       }
       std::copy_n(lv + (j - j_low) * nx, nx, level + r * nx);
     }
@@ -220,9 +244,9 @@ GlobalRunFile read_global_run_file(const fs::path& path, const config::GlobalCon
       const std::int64_t j = ny - 1 - (r0 + r);
       const std::uint8_t* row = in + r * nx;
       for (std::int64_t i = 0; i < nx; ++i) {
-        if ((row[i] & kFilled) != 0) pa->filled.set(i, j);
-        if ((row[i] & kWet) != 0) pa->wet.set(i, j);
-        if ((row[i] & kCoastal) != 0) pa->coastal.set(i, j);
+        if ((row[i] & kFilledBit) != 0) pa->filled.set(i, j);
+        if ((row[i] & kWetBit) != 0) pa->wet.set(i, j);
+        if ((row[i] & kCoastalBit) != 0) pa->coastal.set(i, j);
       }
     }
   }

@@ -56,7 +56,8 @@ void for_each_piece(Run run, std::int64_t nx, F&& f) {
 // fills (component counting).
 class SpanFiller {
  public:
-  FloodCount fill(Bitmap& rem, PixelIJ s, Bitmap* reached, const Bitmap* probe) {
+  FloodCount fill(Bitmap& rem, PixelIJ s, Bitmap* reached, const Bitmap* probe, const RunVisitor* visit = nullptr) {
+    visit_ = visit;
     FloodCount fc;
     if (s.j < 0 || s.j >= rem.ny() || s.i < 0 || s.i >= rem.nx() || !rem.get(s.i, s.j)) return fc;
     const std::int64_t nx = rem.nx(), ny = rem.ny();
@@ -89,6 +90,7 @@ class SpanFiller {
     const Run run = run_containing(rem.row(j), nx, p);
     for_each_piece(run, nx, [&](std::int64_t a, std::int64_t b) {
       bits::clear_range(rem.row(j), a, b);
+      if (visit_ != nullptr) (*visit_)(j, a, b);
       if (reached != nullptr) bits::set_range(reached->row(j), a, b);
       if (probe != nullptr) fc.probe_hits += bits::count_range(probe->row(j), a, b);
     });
@@ -97,6 +99,7 @@ class SpanFiller {
   }
 
   std::vector<Span> stack_;
+  const RunVisitor* visit_ = nullptr;
 };
 
 // Preconditions of the fill's entry points; the configuration's values (mask.cursor 1..64,
@@ -172,6 +175,11 @@ Bitmap dilate_windows(const Bitmap& windows, int k) {
 FloodCount flood_consume(Bitmap& remaining, PixelIJ start, Bitmap* reached, const Bitmap* probe) {
   SpanFiller f;
   return f.fill(remaining, start, reached, probe);
+}
+
+std::int64_t flood_consume_runs(Bitmap& remaining, PixelIJ start, const RunVisitor& visit) {
+  SpanFiller f;
+  return f.fill(remaining, start, nullptr, nullptr, &visit).cells;
 }
 
 Bitmap flood_fill(const Bitmap& mask, std::span<const PixelIJ> starts) {

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -50,6 +51,11 @@ struct FloodCount {
 /// every reached cell is cleared in `remaining` and, when given, set in `reached`; hits of
 /// `probe` are counted. A start cell that is clear in `remaining` gives a zero count.
 FloodCount flood_consume(Bitmap& remaining, PixelIJ start, Bitmap* reached = nullptr, const Bitmap* probe = nullptr);
+
+/// Like flood_consume, calling visit(j, a, b) for every run of cells [a, b) of row j it takes (a
+/// run across the seam as its two pieces), in the fill's order; returns the cells taken.
+using RunVisitor = std::function<void(std::int64_t j, std::int64_t a, std::int64_t b)>;
+std::int64_t flood_consume_runs(Bitmap& remaining, PixelIJ start, const RunVisitor& visit);
 
 /// The cells of `mask` 4-connected (periodic in i) to any of the start cells.
 Bitmap flood_fill(const Bitmap& mask, std::span<const PixelIJ> starts);

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <string_view>
 
 #include "core/types.hpp"
 #include "mask/lattice_coords.hpp"
@@ -15,74 +17,92 @@ namespace aq::mask {
 namespace {
 
 // Boxes are {lon_min, lon_max, lat_min, lat_max} in geographic degrees (east and north positive).
+// The depth after the boxes is the strait's nominal sill depth (m; charts and the oceanographic
+// literature, rounded): the depth a carved channel gets where the raster has no path deeper than
+// mask.min_depth_m between the sides (ETOPO5's Bosphorus is land). Names after it are aliases.
 // Each box spans the strait; sides A and B are open water at its two ends. Inside each box the
 // only water route between the sides is the strait itself (alternative routes, e.g. around
 // Iceland, Newfoundland, Taiwan or Sicily, leave the box). Checked on ETOPO5: every 5' sample
 // point of every side box is water (<= 0 m), and on the ETOPO5 wet pixels at 1.875' every passage
 // is open except the Bosphorus, which ETOPO5 does not have (+2..+6 m across 28.7-29.5°E at
-// 41.08-41.17°N); see tests/integration/mask_etopo5_test.cpp.
+// 41.08-41.17°N), and the Little Belt, whose 5' cells meet only at a corner; see
+// tests/integration/mask_etopo5_test.cpp.
 // clang-format off
-constexpr std::array<Passage, 30> kPassages{{
-    {"Gibraltar", "Gulf of Cadiz", "Alboran Sea",
-     {-7.0, -4.0, 35.0, 37.0}, {-7.0, -6.4, 35.6, 36.4}, {-4.8, -4.0, 35.6, 36.3}},
+constexpr std::array<Passage, 37> kPassages{{
+    {"Gibraltar", "Gulf of Cadiz", "Mediterranean Sea",
+     {-7.0, -4.0, 35.0, 37.0}, {-7.0, -6.4, 35.6, 36.4}, {-4.8, -4.0, 35.6, 36.3}, 284.0, "Strait of Gibraltar"},
     {"Bosphorus", "Sea of Marmara", "Black Sea",
-     {28.3, 29.6, 40.6, 41.6}, {28.3, 28.9, 40.65, 40.9}, {29.0, 29.6, 41.35, 41.6}},
+     {28.3, 29.6, 40.6, 41.6}, {28.3, 28.9, 40.65, 40.9}, {29.0, 29.6, 41.35, 41.6}, 35.0, "Bosporus|Istanbul Strait"},
     {"Bering", "Bering Sea", "Chukchi Sea",
-     {-171.0, -167.0, 64.0, 67.3}, {-170.5, -168.0, 64.2, 64.8}, {-170.5, -167.5, 66.5, 67.2}},
+     {-171.0, -167.0, 64.0, 67.3}, {-170.5, -168.0, 64.2, 64.8}, {-170.5, -167.5, 66.5, 67.2}, 50.0, "Bering Strait"},
     {"Bab-el-Mandeb", "Red Sea", "Gulf of Aden",
-     {42.0, 44.5, 11.7, 14.9}, {42.2, 42.9, 13.9, 14.5}, {43.6, 44.4, 11.8, 12.3}},
+     {42.0, 44.5, 11.7, 14.9}, {42.2, 42.9, 13.9, 14.5}, {43.6, 44.4, 11.8, 12.3}, 137.0, "Bab el Mandeb|Bab al-Mandab"},
     {"Hormuz", "Persian Gulf", "Gulf of Oman",
-     {54.8, 57.8, 24.8, 27.0}, {54.8, 55.6, 26.0, 26.4}, {57.0, 57.8, 24.8, 25.4}},
+     {54.8, 57.8, 24.8, 27.0}, {54.8, 55.6, 26.0, 26.4}, {57.0, 57.8, 24.8, 25.4}, 70.0, "Strait of Hormuz"},
     {"Malacca/Singapore", "Strait of Malacca", "South China Sea",
-     {100.3, 105.3, 0.8, 3.3}, {100.3, 101.0, 2.7, 3.3}, {104.6, 105.3, 1.5, 2.2}},
+     {100.3, 105.3, 0.8, 3.3}, {100.3, 101.0, 2.7, 3.3}, {104.6, 105.3, 1.5, 2.2}, 25.0, "Malacca|Singapore|Strait of Malacca|Singapore Strait"},
     {"Lombok", "Indian Ocean", "Bali Sea",
-     {115.2, 116.3, -9.6, -7.6}, {115.3, 116.2, -9.6, -9.1}, {115.3, 116.2, -8.0, -7.6}},
+     {115.2, 116.3, -9.6, -7.6}, {115.3, 116.2, -9.6, -9.1}, {115.3, 116.2, -8.0, -7.6}, 250.0, "Lombok Strait"},
     {"Torres", "Arafura Sea", "Coral Sea",
-     {140.5, 144.0, -11.0, -9.0}, {140.5, 141.3, -10.8, -10.0}, {143.3, 144.0, -10.5, -9.8}},
+     {140.5, 144.0, -11.0, -9.0}, {140.5, 141.3, -10.8, -10.0}, {143.3, 144.0, -10.5, -9.8}, 10.0, "Torres Strait"},
     {"Bass", "Indian Ocean", "Tasman Sea",
-     {142.0, 149.8, -41.0, -38.9}, {142.0, 142.8, -40.3, -39.4}, {149.0, 149.8, -40.3, -39.2}},
+     {142.0, 149.8, -41.0, -38.9}, {142.0, 142.8, -40.3, -39.4}, {149.0, 149.8, -40.3, -39.2}, 50.0, "Bass Strait"},
     {"Fram", "Greenland Sea", "Arctic Ocean",
-     {-10.0, 8.0, 76.0, 82.5}, {-5.0, 5.0, 76.0, 77.0}, {-5.0, 5.0, 81.5, 82.5}},
+     {-10.0, 8.0, 76.0, 82.5}, {-5.0, 5.0, 76.0, 77.0}, {-5.0, 5.0, 81.5, 82.5}, 2500.0, "Fram Strait"},
     {"Nares", "Baffin Bay", "Lincoln Sea",
-     {-78.0, -50.0, 76.5, 83.2}, {-76.0, -72.0, 76.5, 77.2}, {-60.0, -54.0, 82.6, 83.2}},
+     {-78.0, -50.0, 76.5, 83.2}, {-76.0, -72.0, 76.5, 77.2}, {-60.0, -54.0, 82.6, 83.2}, 220.0, "Nares Strait"},
     {"Davis", "Labrador Sea", "Baffin Bay",
-     {-64.0, -54.0, 63.5, 70.0}, {-60.0, -56.0, 63.5, 64.5}, {-62.0, -58.0, 69.0, 70.0}},
+     {-64.0, -54.0, 63.5, 70.0}, {-60.0, -56.0, 63.5, 64.5}, {-62.0, -58.0, 69.0, 70.0}, 640.0, "Davis Strait"},
     {"Belle Isle", "Gulf of St. Lawrence", "Labrador Sea",
-     {-58.6, -54.2, 50.4, 52.4}, {-58.6, -57.9, 50.4, 50.9}, {-55.0, -54.2, 51.8, 52.3}},
+     {-58.6, -54.2, 50.4, 52.4}, {-58.6, -57.9, 50.4, 50.9}, {-55.0, -54.2, 51.8, 52.3}, 60.0, "Strait of Belle Isle"},
     {"Florida", "Gulf of Mexico", "Atlantic Ocean",
-     {-84.5, -79.4, 22.8, 26.5}, {-84.5, -83.5, 23.5, 24.3}, {-79.9, -79.5, 25.2, 26.3}},
+     {-84.5, -79.4, 22.8, 26.5}, {-84.5, -83.5, 23.5, 24.3}, {-79.9, -79.5, 25.2, 26.3}, 750.0, "Straits of Florida|Florida Straits"},
     {"Yucatan", "Caribbean Sea", "Gulf of Mexico",
-     {-87.0, -84.8, 20.2, 23.8}, {-86.5, -85.5, 20.2, 20.8}, {-86.5, -85.5, 23.0, 23.8}},
+     {-87.0, -84.8, 20.2, 23.8}, {-86.5, -85.5, 20.2, 20.8}, {-86.5, -85.5, 23.0, 23.8}, 2000.0, "Yucatan Channel|Yucatán"},
     {"Drake", "Pacific Ocean", "Scotia Sea",
-     {-72.0, -56.0, -61.0, -56.2}, {-72.0, -70.0, -60.0, -57.0}, {-58.0, -56.0, -59.0, -57.0}},
+     {-72.0, -56.0, -61.0, -56.2}, {-72.0, -70.0, -60.0, -57.0}, {-58.0, -56.0, -59.0, -57.0}, 3000.0, "Drake Passage"},
     {"Denmark", "Irminger Sea", "Iceland Sea",
-     {-33.0, -17.0, 64.0, 68.5}, {-33.0, -28.0, 64.0, 65.0}, {-22.0, -17.0, 67.5, 68.5}},
+     {-33.0, -17.0, 64.0, 68.5}, {-33.0, -28.0, 64.0, 65.0}, {-22.0, -17.0, 67.5, 68.5}, 620.0, "Denmark Strait"},
     {"Dover", "English Channel", "North Sea",
-     {0.0, 2.8, 50.2, 51.8}, {0.0, 0.8, 50.2, 50.6}, {2.0, 2.8, 51.4, 51.8}},
+     {0.0, 2.8, 50.2, 51.8}, {0.0, 0.8, 50.2, 50.6}, {2.0, 2.8, 51.4, 51.8}, 35.0, "Strait of Dover|Dover Strait|Pas de Calais"},
     {"Danish straits", "Kattegat", "Baltic Sea",
-     {9.5, 13.6, 54.3, 57.0}, {11.0, 11.8, 56.5, 57.0}, {12.8, 13.6, 54.75, 55.2}},
+     {9.5, 13.6, 54.3, 57.0}, {11.0, 11.8, 56.5, 57.0}, {12.8, 13.6, 54.75, 55.2}, 18.0, "Belts|Danish Straits"},
     {"Kerch", "Black Sea", "Sea of Azov",
-     {35.8, 37.2, 44.5, 46.0}, {36.2, 37.0, 44.5, 44.85}, {36.0, 36.8, 45.6, 46.0}},
+     {35.8, 37.2, 44.5, 46.0}, {36.2, 37.0, 44.5, 44.85}, {36.0, 36.8, 45.6, 46.0}, 5.0, "Kerch Strait"},
     {"Tsugaru", "Sea of Japan", "Pacific Ocean",
-     {138.8, 142.6, 40.9, 41.9}, {138.8, 139.6, 41.0, 41.6}, {141.8, 142.6, 41.0, 41.6}},
+     {138.8, 142.6, 40.9, 41.9}, {138.8, 139.6, 41.0, 41.6}, {141.8, 142.6, 41.0, 41.6}, 130.0, "Tsugaru Strait"},
     {"Korea", "East China Sea", "Sea of Japan",
-     {127.8, 131.2, 33.3, 35.8}, {127.8, 128.8, 33.5, 34.2}, {130.3, 131.2, 35.2, 35.8}},
+     {127.8, 131.2, 33.3, 35.8}, {127.8, 128.8, 33.5, 34.2}, {130.3, 131.2, 35.2, 35.8}, 120.0, "Korea Strait|Tsushima"},
     {"La Perouse", "Sea of Japan", "Sea of Okhotsk",
-     {140.3, 143.4, 45.1, 46.2}, {140.3, 141.0, 45.6, 46.2}, {142.7, 143.4, 45.2, 45.8}},
+     {140.3, 143.4, 45.1, 46.2}, {140.3, 141.0, 45.6, 46.2}, {142.7, 143.4, 45.2, 45.8}, 55.0, "La Pérouse|Soya|Soya Strait"},
     {"Taiwan", "East China Sea", "South China Sea",
-     {118.5, 121.4, 22.3, 26.2}, {120.4, 121.2, 25.6, 26.2}, {118.5, 119.5, 22.3, 22.9}},
+     {118.5, 121.4, 22.3, 26.2}, {120.4, 121.2, 25.6, 26.2}, {118.5, 119.5, 22.3, 22.9}, 60.0, "Taiwan Strait"},
     {"Messina", "Tyrrhenian Sea", "Ionian Sea",
-     {15.2, 16.0, 37.55, 38.7}, {15.3, 15.75, 38.35, 38.7}, {15.35, 15.9, 37.55, 37.85}},
+     {15.2, 16.0, 37.55, 38.7}, {15.3, 15.75, 38.35, 38.7}, {15.35, 15.9, 37.55, 37.85}, 80.0, "Strait of Messina"},
     {"Sicily", "Western Mediterranean", "Eastern Mediterranean",
-     {10.0, 14.0, 35.5, 38.4}, {10.0, 11.0, 37.6, 38.4}, {13.0, 14.0, 35.9, 36.6}},
+     {10.0, 14.0, 35.5, 38.4}, {10.0, 11.0, 37.6, 38.4}, {13.0, 14.0, 35.9, 36.6}, 430.0, "Strait of Sicily|Sicily Channel"},
     {"Luzon", "South China Sea", "Philippine Sea",
-     {118.5, 123.5, 18.8, 21.8}, {118.5, 119.5, 19.5, 21.0}, {122.5, 123.5, 19.5, 21.0}},
+     {118.5, 123.5, 18.8, 21.8}, {118.5, 119.5, 19.5, 21.0}, {122.5, 123.5, 19.5, 21.0}, 2400.0, "Luzon Strait|Bashi Channel"},
     {"Hudson", "Hudson Bay", "Labrador Sea",
-     {-82.0, -62.5, 60.0, 64.0}, {-82.0, -80.8, 61.0, 61.5}, {-63.8, -62.5, 60.8, 61.5}},
+     {-82.0, -62.5, 60.0, 64.0}, {-82.0, -80.8, 61.0, 61.5}, {-63.8, -62.5, 60.8, 61.5}, 200.0, "Hudson Strait"},
     {"Barrow", "Lancaster Sound", "Viscount Melville Sound",
-     {-104.0, -83.0, 73.5, 75.0}, {-85.0, -83.0, 74.0, 74.4}, {-104.0, -101.0, 74.2, 74.6}},
+     {-104.0, -83.0, 73.5, 75.0}, {-85.0, -83.0, 74.0, 74.4}, {-104.0, -101.0, 74.2, 74.6}, 125.0, "Barrow Strait"},
     {"Juan de Fuca", "Pacific Ocean", "Salish Sea",
-     {-126.0, -122.8, 47.9, 48.7}, {-126.0, -125.2, 47.9, 48.4}, {-123.3, -122.8, 48.15, 48.35}},
+     {-126.0, -122.8, 47.9, 48.7}, {-126.0, -125.2, 47.9, 48.4}, {-123.3, -122.8, 48.15, 48.35}, 55.0, "Strait of Juan de Fuca"},
+    {"Dardanelles", "Aegean Sea", "Sea of Marmara",
+     {25.8, 27.8, 39.85, 40.7}, {25.8, 26.1, 39.85, 40.1}, {27.2, 27.8, 40.45, 40.65}, 60.0, "Canakkale|Çanakkale|Hellespont"},
+    {"Oresund", "Kattegat", "Baltic Sea",
+     {12.2, 13.2, 55.3, 56.22}, {12.25, 12.48, 56.12, 56.22}, {12.5, 13.0, 55.3, 55.4}, 8.0, "Øresund|Öresund|The Sound"},
+    {"Great Belt", "Kattegat", "Kiel Bay",
+     {10.6, 11.4, 54.95, 56.05}, {10.8, 11.05, 55.95, 56.05}, {10.7, 10.95, 54.96, 55.04}, 16.0, "Storebælt|Storebaelt"},
+    {"Little Belt", "Kattegat", "Kiel Bay",
+     {9.4, 10.2, 54.9, 55.75}, {9.85, 10.15, 55.62, 55.72}, {9.95, 10.2, 54.9, 55.0}, 10.0, "Lillebælt|Lillebaelt"},
+    {"Chesapeake", "Atlantic Ocean", "Chesapeake Bay",
+     {-76.6, -75.3, 36.8, 37.9}, {-75.7, -75.4, 36.9, 37.1}, {-76.4, -76.1, 37.6, 37.9}, 15.0, "Chesapeake Bay"},
+    {"Delaware", "Atlantic Ocean", "Delaware Bay",
+     {-75.7, -74.7, 38.6, 39.5}, {-75.0, -74.75, 38.6, 38.75}, {-75.45, -75.3, 39.12, 39.28}, 15.0, "Delaware Bay"},
+    {"Gorlo", "White Sea", "Barents Sea",
+     {38.0, 44.5, 65.2, 68.0}, {38.0, 39.0, 65.3, 65.7}, {42.0, 43.5, 67.3, 67.8}, 40.0, "Gorlo Strait|White Sea"},
 }};
 // clang-format on
 
@@ -112,6 +132,31 @@ bool GeoBox::contains(double lon_deg, double lat_deg) const {
 }
 
 std::span<const Passage> critical_passages() { return kPassages; }
+
+namespace {
+bool same_name(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const auto x = static_cast<unsigned char>(a[k]), y = static_cast<unsigned char>(b[k]);
+    const auto lx = x < 0x80 ? std::tolower(x) : x, ly = y < 0x80 ? std::tolower(y) : y;
+    if (lx != ly) return false;
+  }
+  return true;
+}
+}  // namespace
+
+const Passage* find_passage(const std::string& name) {
+  for (const Passage& p : kPassages) {
+    if (same_name(p.name, name)) return &p;
+    std::string_view rest = p.aliases;
+    while (!rest.empty()) {
+      const std::size_t bar = rest.find('|');
+      if (same_name(rest.substr(0, bar), name)) return &p;
+      rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
+    }
+  }
+  return nullptr;
+}
 
 const char* passage_status_name(PassageStatus s) {
   switch (s) {
@@ -369,6 +414,7 @@ Json to_json(std::span<const PassageResult> results) {
                        {"filled_in_box", r.filled_in_box},
                        {"filled_side_a", r.filled_side_a},
                        {"filled_side_b", r.filled_side_b},
+                       {"carved", r.carved},
                        {"note", r.note}});
   }
   return arr;

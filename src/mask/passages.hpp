@@ -38,10 +38,20 @@ struct Passage {
   const char* side_b_name = "";
   GeoBox box;             ///< across the strait, holding both sides
   GeoBox side_a, side_b;  ///< open water at the two ends, inside the box
+  /// Nominal sill depth (m, positive down) of the strait: a carved channel's depth where the
+  /// raster has no path between the sides deeper than mask.min_depth_m (mask/carving.hpp).
+  double sill_depth_m = 0.0;
+  const char* aliases = "";  ///< other names it is found by, separated by '|'
 };
 
-/// The built-in table of the 30 critical passages of ARCHITECTURE §4.3, boxes checked on ETOPO5.
+/// The built-in table: the 30 critical passages of ARCHITECTURE §4.3 and the Dardanelles, the
+/// three Danish belts (Øresund, Great Belt, Little Belt), the mouths of Chesapeake and Delaware
+/// bays and the Gorlo of the White Sea; boxes checked on ETOPO5.
 std::span<const Passage> critical_passages();
+
+/// The passage of the table called `name` (its name or an alias; ASCII letters compared without
+/// case), or null.
+const Passage* find_passage(const std::string& name);
 
 enum class PassageStatus { kOpen, kClosed, kNotResolvable };
 /// "open", "closed", "not resolvable".
@@ -56,6 +66,7 @@ struct PassageResult {
   std::int64_t filled_side_a = 0;  ///< filled pixels with centre in side A
   std::int64_t filled_side_b = 0;
   std::string note;  ///< why closed / not resolvable; empty when open
+  bool carved = false;  ///< named in mask.passages_open (carved open before the fill)
 };
 
 /// Judges one passage on the filled bitmap (nx × ny of the lattice).

@@ -17,6 +17,23 @@ namespace {
 
 Json lonlat_json(LonLat p) { return Json::array({p.lon_deg, p.lat_deg}); }
 
+// Whether the pixels under the box's corners and centre are all inside the domain.
+bool box_in_domain(const GeoBox& b, const Domain& d, const Lattice& lat, const PoleRotation& rot) {
+  const double cx = 0.5 * (b.lon_min_deg + b.lon_max_deg), cy = 0.5 * (b.lat_min_deg + b.lat_max_deg);
+  for (const auto& [x, y] : {std::pair{b.lon_min_deg, b.lat_min_deg},
+                             {b.lon_max_deg, b.lat_min_deg},
+                             {b.lon_min_deg, b.lat_max_deg},
+                             {b.lon_max_deg, b.lat_max_deg},
+                             {cx, cy}}) {
+    double px = 0.0, py = 0.0;
+    deg_to_lattice_xy(lat, geographic_to_lattice(rot, {x, y}), px, py);
+    if (!on_lattice(lat, px, py)) return false;
+    const auto i = static_cast<std::int64_t>(std::floor(px)), j = static_cast<std::int64_t>(std::floor(py));
+    if (!d.contains(std::min(i, lat.nx - 1), std::min(j, lat.ny - 1))) return false;
+  }
+  return true;
+}
+
 // The sea pixels (wet at the datum, in Ω_L) not 4-connected through sea to a seed window: water
 // below the datum the fill reached across the floodplain (WetArea::inland_sea_*).
 void find_inland_sea(WetArea& area, const Lattice& lattice, const PoleRotation& rot, int k) {
@@ -179,9 +196,20 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
       stage.done(fmt::format("{} pinch vertices (mask.remove_pinches = false)", area.pinches.total));
     }
   }
-  if (options.passages && !regional) {
+  // The table's passages (a regional run: those whose box lies in the domain), marked when carved.
+  std::vector<Passage> table;
+  for (const Passage& p : critical_passages())
+    if (!regional || box_in_domain(p.box, *domain, lattice, rot)) table.push_back(p);
+  if (options.passages && !table.empty()) {
     StageScope stage("passages", report, log);
-    area.passages = judge_passages(critical_passages(), area.filled, lattice, rot);
+    area.passages = judge_passages(table, area.filled, lattice, rot);
+    for (PassageResult& r : area.passages)
+      for (const std::string& n : options.passages_open)
+        if (const Passage* f = find_passage(n); f != nullptr && r.name == f->name) {
+          r.carved = true;
+          r.note = r.note.empty() ? std::string("carved (mask.passages_open)")
+                                  : "carved (mask.passages_open), but " + r.note;
+        }
     int open = 0, closed = 0;
     for (const PassageResult& p : area.passages) {
       open += p.status == PassageStatus::kOpen ? 1 : 0;

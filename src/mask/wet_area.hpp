@@ -83,9 +83,10 @@ PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
 /// when `report` is given, adds those stages and a "mask" section (see wet_area_json).
 /// With a regional `domain` the fill runs on wet ∩ domain from the seeds regional_seeds gives
 /// (`wet` stays the whole classification; the open boundary is where the outside is wet at the
-/// datum: `open`) and
-/// the passage table is not made; `open` is set. With h < 0 the pixels are classified a second time
-/// at the datum (0 m, the same rule and window) for `datum_wet` and `sea`.
+/// datum: `open`, which is set) and the passage table holds the passages whose box lies inside the
+/// domain. Passages named in options.passages_open are marked carved (the carving itself is
+/// mask/carving.hpp's, before). With h < 0 the pixels are classified a second time at the datum
+/// (0 m, the same rule and window) for `datum_wet` and `sea`.
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                          const config::MaskOptions& options, const Logger& log, Report* report,
                          const Domain* domain = nullptr);

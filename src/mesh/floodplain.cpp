@@ -16,7 +16,7 @@ namespace aq::mesh {
 namespace {
 
 // WGS84 area (m², unsigned) of a polygon of up to 4 (lon, lat) vertices.
-double polygon_area_m2(const std::array<std::array<double, 2>, 4>& p, int n) {
+double lonlat_polygon_area_m2(const std::array<std::array<double, 2>, 4>& p, int n) {
   GeographicLib::PolygonArea poly(GeographicLib::Geodesic::WGS84());
   for (int v = 0; v < n; ++v) poly.AddPoint(p[static_cast<std::size_t>(v)][1], p[static_cast<std::size_t>(v)][0]);
   double perimeter = 0.0, area = 0.0;
@@ -46,7 +46,7 @@ double area_above_datum_m2(const Mesh& m, const std::array<NodeId, 3>& t) {
   };
   if (above == 3) {
     p = {node(0), node(1), node(2), {}};
-    return polygon_area_m2(p, 3);
+    return lonlat_polygon_area_m2(p, 3);
   }
   // The corner alone on its side of the datum: k (above == 1: the node above; 2: the one at or below).
   std::size_t k = 0;
@@ -55,10 +55,10 @@ double area_above_datum_m2(const Mesh& m, const std::array<NodeId, 3>& t) {
   const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
   if (above == 1) {
     p = {node(k), cut(k, a), cut(k, b), {}};
-    return polygon_area_m2(p, 3);
+    return lonlat_polygon_area_m2(p, 3);
   }
   p = {cut(k, a), node(a), node(b), cut(k, b)};
-  return polygon_area_m2(p, 4);
+  return lonlat_polygon_area_m2(p, 4);
 }
 
 }  // namespace

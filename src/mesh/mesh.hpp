@@ -50,7 +50,8 @@ struct BoundaryLoop {
 enum class BoundaryType : std::uint8_t {
   kMainland = 0,  ///< land: on a loop that has open segments, or the outer loop
   kIsland = 1,    ///< a closed land loop that is not the mainland
-  kOpen = 2,      ///< on the domain edge, in water
+  kOpen = 2,      ///< on the domain edge, in water: an elevation (tide) boundary
+  kRiver = 3,  ///< on the domain edge where a channel line (mask.channels) crosses it: a flux (river inflow) boundary
 };
 
 /// A typed piece of a boundary loop: an open segment (nodes in loop order, water on the left,

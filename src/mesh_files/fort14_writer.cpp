@@ -48,8 +48,11 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
   };
   if (mesh.typed) {
     std::int64_t nope = 0, neta = 0, nbou = 0, nvel = 0, edges = 0;
+    const auto in_open_list = [&options](const mesh::BoundarySegment& sg) {
+      return sg.type == mesh::BoundaryType::kOpen || (options.rivers_open && sg.type == mesh::BoundaryType::kRiver);
+    };
     for (const auto& sg : mesh.segments) {
-      if (sg.type == mesh::BoundaryType::kOpen) {
+      if (in_open_list(sg)) {
         ++nope;
         neta += static_cast<std::int64_t>(sg.nodes.size());
       } else {
@@ -61,8 +64,11 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
     f.print("{} ! NOPE = number of open boundaries\n{} ! NETA = total number of open boundary nodes\n", nope, neta);
     std::int64_t k = 0;
     for (const auto& sg : mesh.segments) {
-      if (sg.type != mesh::BoundaryType::kOpen) continue;
-      f.print("{} 0 ! open boundary {}\n", sg.nodes.size(), ++k);
+      if (!in_open_list(sg)) continue;
+      if (sg.type == mesh::BoundaryType::kRiver)
+        f.print("{} 0 ! open boundary {} (river inflow)\n", sg.nodes.size(), ++k);
+      else
+        f.print("{} 0 ! open boundary {}\n", sg.nodes.size(), ++k);
       for (const NodeId n : sg.nodes) {
         fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
         f.maybe_flush();
@@ -72,11 +78,17 @@ WriteStats write_fort14(const mesh::Mesh& mesh, const std::filesystem::path& pat
             options.land_count_name, nvel);
     k = 0;
     for (const auto& sg : mesh.segments) {
-      if (sg.type == mesh::BoundaryType::kOpen) continue;
-      const bool island = sg.type == mesh::BoundaryType::kIsland;
+      if (in_open_list(sg)) continue;
+      const bool island = sg.type == mesh::BoundaryType::kIsland, river = sg.type == mesh::BoundaryType::kRiver;
       f.print("{} {} ! land boundary {} ({})\n", sg.nodes.size() + (sg.closed ? 1 : 0),
-              island ? options.island_type : options.mainland_type, ++k,
-              island ? "island" : sg.closed ? "mainland, closed" : "mainland");
+              river    ? options.river_type
+              : island ? options.island_type
+                       : options.mainland_type,
+              ++k,
+              river       ? "river inflow: specified normal flux"
+              : island    ? "island"
+              : sg.closed ? "mainland, closed"
+                          : "mainland");
       for (const NodeId n : sg.nodes) {
         fmt::format_to(std::back_inserter(buf), FMT_COMPILE("{}\n"), n + 1);
         f.maybe_flush();

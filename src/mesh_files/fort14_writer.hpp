@@ -48,6 +48,12 @@ struct Fort14Options {
   /// Regional meshes (Mesh::typed): the land boundary types of mainland pieces and islands
   /// (ADCIRC IBTYPE 20 / 21; SCHISM's land flag 0 / 1).
   int mainland_type = 20, island_type = 21;
+  /// River inflows (mesh::BoundaryType::kRiver): in the land list with this IBTYPE (ADCIRC 22:
+  /// specified normal flux, essential, free tangential slip; fort.15 then needs NFFR and a flux per
+  /// node), or, with rivers_open, in the open list (SCHISM: a flow boundary is an open boundary,
+  /// its ifltype set in bctides.in).
+  int river_type = 22;
+  bool rivers_open = false;
 };
 
 /// Writes the triangles of `mesh` to `path` (a temporary path of an OutputSet). Throws

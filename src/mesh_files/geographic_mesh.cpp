@@ -19,8 +19,6 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-constexpr double kAuthalicRadiusKm = 6371.0072;  // WGS84's authalic sphere: areas of the island
-
 // One pole of the lattice system: its row, the level-0 row next to it and the test of whether
 // a square lies in that row.
 struct PoleRows {

@@ -62,6 +62,9 @@ inline constexpr std::array<EnumName<PoleMethod>, 2> kPoleMethodNames{{
     {PoleMethod::kMerge, "merge", "the pole row merged into one node"},
 }};
 constexpr std::span<const EnumName<PoleMethod>> enum_names(PoleMethod) { return kPoleMethodNames; }
+/// Radius (km) of WGS84's authalic sphere (the sphere of the same area): sizes and areas on the
+/// unit sphere in km.
+inline constexpr double kAuthalicRadiusKm = 6371.0072;
 
 /// What was done at one pole.
 struct PoleChange {

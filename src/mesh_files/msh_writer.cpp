@@ -24,8 +24,8 @@ namespace aq::io {
 namespace {
 
 constexpr int kTypeLine = 1, kTypeTriangle = 2, kTypeQuad = 3;
-constexpr int kCurveCoast = 1, kCurveSeam = 2, kCurveSeamCopy = 3, kCurveOpen = 4, kCurveIsland = 5;
-constexpr int kPhysCoast = 1, kPhysOcean = 2, kPhysOceanSquares = 3, kPhysOpen = 4, kPhysIsland = 5;
+constexpr int kCurveCoast = 1, kCurveSeam = 2, kCurveSeamCopy = 3, kCurveOpen = 4, kCurveIsland = 5, kCurveRiver = 6;
+constexpr int kPhysCoast = 1, kPhysOcean = 2, kPhysOceanSquares = 3, kPhysOpen = 4, kPhysIsland = 5, kPhysRiver = 6;
 
 // Writes MSH tokens either as ASCII words separated by spaces or as native binary values.
 class MshOut {
@@ -166,8 +166,9 @@ class Blocks {
     if (typed) {  // one curve per boundary type (README "Regional FE meshes")
       for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e)
         typed_edges_[static_cast<std::size_t>(mesh.boundary_edge_type[e])].push_back(e);
-      const int curve[3] = {kCurveCoast, kCurveIsland, kCurveOpen}, phys[3] = {kPhysCoast, kPhysIsland, kPhysOpen};
-      for (const std::size_t t : {std::size_t{0}, std::size_t{2}, std::size_t{1}}) {
+      const int curve[4] = {kCurveCoast, kCurveIsland, kCurveOpen, kCurveRiver};
+      const int phys[4] = {kPhysCoast, kPhysIsland, kPhysOpen, kPhysRiver};
+      for (const std::size_t t : {std::size_t{0}, std::size_t{2}, std::size_t{1}, std::size_t{3}}) {
         if (typed_edges_[t].empty()) continue;
         Block b{BlockKind::kCoast, 1, curve[t], kTypeLine, 2};
         b.physical = phys[t];
@@ -307,11 +308,11 @@ class Blocks {
   const mesh::Mesh& mesh_;
   const NodeSet& nodes_;
   std::vector<Block> list_;
-  std::array<std::vector<std::size_t>, 3> typed_edges_;  ///< by mesh::BoundaryType
+  std::array<std::vector<std::size_t>, 4> typed_edges_;  ///< by mesh::BoundaryType
   std::int64_t dropped_ = 0;
 };
 
-void write_header(MshOut& out, ElementKinds kinds, bool typed) {
+void write_header(MshOut& out, ElementKinds kinds, bool typed, bool rivers) {
   FileWriter& f = out.file();
   f.text("$MeshFormat\n");
   if (out.binary()) {
@@ -324,10 +325,11 @@ void write_header(MshOut& out, ElementKinds kinds, bool typed) {
   f.text("$EndMeshFormat\n");
   // Physical names are ASCII in both modes.
   const bool both = kinds == ElementKinds::kBoth;
-  f.print("$PhysicalNames\n{}\n", (both ? 3 : 2) + (typed ? 2 : 0));
+  f.print("$PhysicalNames\n{}\n", (both ? 3 : 2) + (typed ? 2 : 0) + (rivers ? 1 : 0));
   f.print("1 {} \"{}\"\n2 {} \"ocean\"\n", kPhysCoast, typed ? "mainland" : "coast", kPhysOcean);
   if (both) f.print("2 {} \"ocean_squares\"\n", kPhysOceanSquares);
   if (typed) f.print("1 {} \"open\"\n1 {} \"island\"\n", kPhysOpen, kPhysIsland);
+  if (rivers) f.print("1 {} \"river\"\n", kPhysRiver);
   f.text("$EndPhysicalNames\n");
 }
 
@@ -598,7 +600,10 @@ WriteStats write_msh(const mesh::Mesh& mesh, const std::filesystem::path& path, 
 
   FileWriter file(path);
   MshOut out(file, options.binary);
-  write_header(out, options.elements, mesh.typed && mesh.boundary_edge_type.size() == mesh.boundary_edges.size());
+  const bool typed = mesh.typed && mesh.boundary_edge_type.size() == mesh.boundary_edges.size();
+  write_header(out, options.elements, typed,
+               typed && std::find(mesh.boundary_edge_type.begin(), mesh.boundary_edge_type.end(),
+                                  mesh::BoundaryType::kRiver) != mesh.boundary_edge_type.end());
   write_entities(out, mesh, nodes, blocks, options.elements);
   write_nodes(out, mesh, nodes);
   write_elements(out, blocks);

@@ -21,13 +21,14 @@ WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::pat
   o.land_count_name = "NLAND";
   o.mainland_type = 0;  // SCHISM's land flag: 0 land, 1 island
   o.island_type = 1;
+  o.rivers_open = true;  // SCHISM: a river is an open (flow) boundary; bctides.in sets its ifltype
   return write_fort14(mesh, path, o);
 }
 
 WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::path& path, const std::string& title) {
   std::int64_t nope = 0, neta = 0;
   for (const auto& s : mesh.segments)
-    if (s.type == mesh::BoundaryType::kOpen) {
+    if (s.type == mesh::BoundaryType::kOpen || s.type == mesh::BoundaryType::kRiver) {
       ++nope;
       neta += static_cast<std::int64_t>(s.nodes.size());
     }
@@ -40,6 +41,13 @@ WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::p
   f.print("{} !nope: # of open boundaries\n", nope);
   std::int64_t k = 0;
   for (const auto& s : mesh.segments) {
+    if (s.type == mesh::BoundaryType::kRiver) {  // in hgrid.gr3's order: the open list holds both
+      f.print(
+          "{} 0 2 0 0 !open boundary {}: # of nodes, iettype 0, ifltype 2 (river inflow: constant discharge), "
+          "T and S none\n0. !discharge [m^3/s], negative into the domain: set the river's flow\n",
+          s.nodes.size(), ++k);
+      continue;
+    }
     if (s.type != mesh::BoundaryType::kOpen) continue;
     f.print("{} 3 0 0 0 !open boundary {}: # of nodes, iettype 3 (tidal elevation), ifltype 0, T and S none\nM2\n",
             s.nodes.size(), ++k);

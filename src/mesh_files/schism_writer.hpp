@@ -58,13 +58,14 @@ struct SchismTimeStep {
 SchismTimeStep schism_time_step(const mesh::Mesh& mesh);
 
 /// Writes the triangles of `mesh` in SCHISM's hgrid layout to `path` (used for both hgrid.gr3
-/// and hgrid.ll). Throws like write_fort14. WriteStats::boundary_edges counts the land boundary
-/// edges.
+/// and hgrid.ll); river inflows are open boundaries there (in the segments' order). Throws like
+/// write_fort14. WriteStats::boundary_edges counts the land boundary edges.
 /// A `bctides.in` skeleton for a regional mesh (Mesh::typed): no tidal potential, M2 (frequency
 /// 1.405189025e-4 rad/s, nodal factor 1, argument 0) on every open segment of the hgrid, in its
 /// order, with amplitude 0 and phase 0 at each node (iettype 3, ifltype 0: fill in the
-/// amplitudes and phases, or add constituents). Throws InternalError for a mesh without open
-/// segments.
+/// amplitudes and phases, or add constituents); a river inflow's boundary is iettype 0, ifltype 2
+/// (constant discharge) with a discharge of 0 to fill in. Throws InternalError for a mesh without
+/// open segments.
 WriteStats write_schism_bctides(const mesh::Mesh& mesh, const std::filesystem::path& path, const std::string& title);
 
 WriteStats write_schism_hgrid(const mesh::Mesh& mesh, const std::filesystem::path& path,

@@ -25,7 +25,6 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-constexpr double kAuthalicRadiusKm = 6371.0072;
 // Loops over fewer items run on one thread: under load, waking the team costs more than the work.
 constexpr std::int64_t kParallelMin = 200000;
 

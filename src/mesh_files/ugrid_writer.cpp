@@ -9,13 +9,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
+#include <type_traits>
 #include <unordered_set>
 #include <vector>
 
 #include "core/error.hpp"
 #include "core/rotation.hpp"
 #include "core/types.hpp"
+#include "io/deflate_ahead.hpp"
 #include "io/depth.hpp"
 #include "io/netcdf_file.hpp"
 #include "mesh_files/geographic_mesh.hpp"
@@ -24,7 +27,9 @@ namespace aq::io {
 
 namespace {
 
-constexpr std::int64_t kChunk = std::int64_t{1} << 20;  // rows per nc_put_vara call
+// Rows per nc_put_vara call. HDF5 places the chunks in the file as its chunk cache flushes them,
+// so this also fixes the file's bytes: another value writes the same data in another layout.
+constexpr std::int64_t kChunk = std::int64_t{1} << 20;
 constexpr char kWgs84Wkt[] =
     "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],PRIMEM[\"Greenwich\",0],"
     "UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
@@ -41,6 +46,7 @@ class NcWriter {
     check(nc_create(path_.c_str(), mode, &id_), "cannot create");
     int old = 0;
     check(nc_set_fill(id_, NC_NOFILL, &old), "nc_set_fill");
+    if (deflate_ > 0) ahead_.emplace();
   }
   ~NcWriter() {
     if (id_ >= 0) nc_abort(id_);
@@ -68,12 +74,14 @@ class NcWriter {
     const std::vector<int> d(dims);
     check(nc_def_var(id_, name.c_str(), type, static_cast<int>(d.size()), d.data(), &v), "define variable " + name);
     if (d.empty()) scalars_.push_back(v);
+    if (static_cast<std::size_t>(v) >= chunk_rows_.size()) chunk_rows_.resize(static_cast<std::size_t>(v) + 1, 0);
     if (deflate_ > 0 && !d.empty()) {
       std::vector<std::size_t> chunk;
       for (const int k : d) chunk.push_back(dim_len_[static_cast<std::size_t>(k)]);
       chunk[0] = std::max<std::size_t>(1, std::min(chunk[0], kChunkRows));
       check(nc_def_var_chunking(id_, v, NC_CHUNKED, chunk.data()), "chunking of " + name);
       check(nc_def_var_deflate(id_, v, 1, 1, deflate_), "compression of " + name);
+      chunk_rows_[static_cast<std::size_t>(v)] = chunk[0];
     }
     return v;
   }
@@ -103,25 +111,28 @@ class NcWriter {
     for (const int v : scalars_) check(nc_put_var_int(id_, v, &zero), "write a scalar variable");
   }
 
-  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const double* data) {
+  // Rows [row, row + rows) of `var` (a 1-D variable: cols = 1). Index arrays are made as long
+  // long and written as NC_INT when they fit (index_type): converted here once, a plain copy
+  // instead of netCDF's checked conversion of every value.
+  template <typename T>
+  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const T* data) {
+    if constexpr (std::is_same_v<T, long long>) {
+      if (type_of(var) == NC_INT) {
+        narrow_.resize(static_cast<std::size_t>(rows * cols));  // kept: one allocation for every chunk
+        for (std::size_t k = 0; k < narrow_.size(); ++k) narrow_[k] = static_cast<int>(data[k]);
+        put(var, row, rows, cols, narrow_.data());
+        return;
+      }
+    }
+    const std::size_t chunk_rows = chunk_rows_[static_cast<std::size_t>(var)];
+    if (ahead_ && ahead_->active() && chunk_rows > 0 && static_cast<std::size_t>(row) % chunk_rows == 0) {
+      const std::size_t row_bytes = static_cast<std::size_t>(cols) * sizeof(T);
+      ahead_->prepare(data, static_cast<std::size_t>(rows) * row_bytes, chunk_rows * row_bytes, sizeof(T), true,
+                      deflate_);
+    }
     const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
     const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
-    check(nc_put_vara_double(id_, var, start, count, data), "write data");
-  }
-  void put(int var, std::int64_t row, std::int64_t rows, std::int64_t cols, const long long* data) {
-    const std::size_t start[2] = {static_cast<std::size_t>(row), 0};
-    const std::size_t count[2] = {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)};
-    check(nc_put_vara_longlong(id_, var, start, count, data), "write data");
-  }
-  void put(int var, std::int64_t row, std::int64_t rows, const short* data) {
-    const std::size_t start[1] = {static_cast<std::size_t>(row)};
-    const std::size_t count[1] = {static_cast<std::size_t>(rows)};
-    check(nc_put_vara_short(id_, var, start, count, data), "write data");
-  }
-  void put(int var, std::int64_t row, std::int64_t rows, const signed char* data) {
-    const std::size_t start[1] = {static_cast<std::size_t>(row)};
-    const std::size_t count[1] = {static_cast<std::size_t>(rows)};
-    check(nc_put_vara_schar(id_, var, start, count, data), "write data");
+    check(put_vara(id_, var, start, count, data), "write data");
   }
   void close() {
     const int id = id_;
@@ -131,12 +142,39 @@ class NcWriter {
     check(status, "close");
   }
 
+  /// The netCDF type of variable `var`.
+  [[nodiscard]] nc_type type_of(int var) const {
+    nc_type t = NC_NAT;
+    check(nc_inq_vartype(id_, var, &t), "variable type");
+    return t;
+  }
+
  private:
   static constexpr std::size_t kChunkRows = std::size_t{1} << 16;
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const double* d) {
+    return nc_put_vara_double(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const long long* d) {
+    return nc_put_vara_longlong(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const int* d) {
+    return nc_put_vara_int(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const short* d) {
+    return nc_put_vara_short(id, v, s, c, d);
+  }
+  static int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const signed char* d) {
+    return nc_put_vara_schar(id, v, s, c, d);
+  }
   std::filesystem::path path_;
   int deflate_ = 0;
-  std::vector<std::size_t> dim_len_;  ///< length of each defined dimension, by id
-  std::vector<int> scalars_;          ///< variables without dimensions (topology, grid mappings)
+  std::vector<std::size_t> dim_len_;     ///< length of each defined dimension, by id
+  std::vector<int> scalars_;             ///< variables without dimensions (topology, grid mappings)
+  std::vector<std::size_t> chunk_rows_;  ///< by variable: rows per chunk of a compressed one, else 0
+  // With deflate: the chunks of each put compressed ahead on the OpenMP team
+  // (io/deflate_ahead.hpp: the same bytes); alive until after nc_close / nc_abort.
+  std::optional<DeflateAhead> ahead_;
+  std::vector<int> narrow_;  ///< put's NC_INT copy of long long indices
   int id_ = -1;
 };
 
@@ -171,6 +209,11 @@ class FaceSet {
   int max_nodes_ = 3;
 };
 
+// std::remainder(x, 360) (the representative of x in [-180, 180]): x itself when |x| <= 180
+// (IEEE remainder rounds x / 360 = ±0.5 to the even 0), which is nearly every corner of a face
+// around its centre; the library call only for the faces across the antimeridian.
+double near_zero_remainder(double x) { return std::abs(x) <= 180.0 ? x : std::remainder(x, 360.0); }
+
 std::uint64_t edge_key(NodeId a, NodeId b) {
   return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b);
 }
@@ -183,13 +226,22 @@ std::uint64_t edge_key(NodeId a, NodeId b) {
 class UniqueEdges {
  public:
   UniqueEdges(const mesh::Mesh& mesh, const FaceSet& faces)
-      : mesh_(mesh), faces_(faces), starts_boundary_(static_cast<std::size_t>(mesh.node_count()), false) {
-    boundary_.reserve(mesh.boundary_edges.size() * 2);
-    // Nodes that start a boundary edge: only their half-edges can be boundary edges, so the hash
-    // set is asked for them alone (a few per cent of the nodes of a global mesh).
+      : mesh_(mesh), faces_(faces), next_(static_cast<std::size_t>(mesh.node_count()), kNone) {
+    // The end of the boundary edge that starts at each node (nearly every boundary node starts
+    // one); a node that starts several (a pinch), or any node of a mesh too large for 32-bit
+    // numbers, is marked kSeveral and its edges go to the hash set.
+    const bool small = mesh.node_count() < kSeveral;
     for (const auto& e : mesh.boundary_edges) {
-      boundary_.insert(edge_key(e[0], e[1]));
-      starts_boundary_[static_cast<std::size_t>(e[0])] = true;
+      std::int32_t& x = next_[static_cast<std::size_t>(e[0])];
+      if (small && x == kNone) {
+        x = static_cast<std::int32_t>(e[1]);
+        continue;
+      }
+      if (x != kSeveral) {
+        if (x != kNone) several_.insert(edge_key(e[0], x));
+        x = kSeveral;
+      }
+      several_.insert(edge_key(e[0], e[1]));
     }
     std::int64_t half_edges = 0;
     visit([&](int k) { half_edges += k; }, [&](NodeId, NodeId) { ++count_; });
@@ -231,15 +283,24 @@ class UniqueEdges {
       face(k);
       for (int a = 0; a < k; ++a) {
         const NodeId u = p[a], v = p[(a + 1) % k];
-        if (u < v || (starts_boundary_[static_cast<std::size_t>(u)] && boundary_.count(edge_key(u, v)) > 0)) edge(u, v);
+        if (u < v || boundary(u, v)) edge(u, v);
       }
     }
   }
 
+  [[nodiscard]] bool boundary(NodeId u, NodeId v) const {
+    const std::int32_t x = next_[static_cast<std::size_t>(u)];
+    if (x == kNone) return false;
+    if (x != kSeveral) return x == v;
+    return several_.count(edge_key(u, v)) > 0;
+  }
+
+  static constexpr std::int32_t kNone = -1;
+  static constexpr std::int32_t kSeveral = std::numeric_limits<std::int32_t>::max();
   const mesh::Mesh& mesh_;
   const FaceSet& faces_;
-  std::unordered_set<std::uint64_t> boundary_;
-  std::vector<bool> starts_boundary_;
+  std::vector<std::int32_t> next_;             ///< by node: kNone, the boundary edge's end, or kSeveral
+  std::unordered_set<std::uint64_t> several_;  ///< boundary edges of the kSeveral nodes
   std::int64_t count_ = 0;
 };
 
@@ -328,83 +389,106 @@ TopologyVars define_topology(NcWriter& nc, const TopologyNames& n, const FaceSet
   return v;
 }
 
-void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
-                    const UniqueEdges& edges) {
-  const int w = faces.max_nodes();
+// Face centre (lon, lat) of face f with nodes p[0..k).
+std::array<double, 2> face_centre(const mesh::Mesh& mesh, const PoleRotation& rotation,
+                                  const std::array<NodeId, kMaxSquarePolygon>& p, int k) {
   const std::int64_t nx = mesh.lattice.nx;
+  std::int64_t max_i = 0, min_i = 0;
+  bool moved = false;
+  for (int a = 0; a < k; ++a) {
+    max_i = std::max(max_i, mesh.node_i[p[a]]);
+    min_i = std::min(min_i, mesh.node_i[p[a]]);
+    moved = moved || (mesh.node_flags[p[a]] & mesh::kNodeMoved) != 0;
+  }
+  double lon = 0.0, lat = 0.0;
+  if (min_i < 0 || moved) {
+    // A face of a pole cap (io/geographic_mesh.hpp) or with a node moved onto a domain
+    // polygon (mesh/open_snap.hpp): the centre of its nodes on the sphere.
+    std::array<double, 3> c{0.0, 0.0, 0.0};
+    for (int a = 0; a < k; ++a) {
+      const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
+      for (int d = 0; d < 3; ++d) c[d] += u[d];
+    }
+    lon = wrap_lon_deg(std::atan2(c[1], c[0]) * kRadToDeg, mesh.lattice.lon0_deg);
+    lat = std::atan2(c[2], std::hypot(c[0], c[1])) * kRadToDeg;
+  } else {
+    double si = 0.0, sj = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const std::int64_t i = mesh.node_i[p[a]];
+      // Global columns (a window lattice's origin added as an integer: the same bits as on the global lattice).
+      si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) + mesh.lattice.i_origin);
+      sj += static_cast<double>(mesh.node_j[p[a]]);
+    }
+    const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
+    const double rlat = mesh.lattice.lat_of_row(sj / k);
+    lon = rlon;
+    lat = rlat;
+    if (mesh.rotation.enabled) {
+      rotation.to_geographic(rlon, rlat, lon, lat);
+      lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
+    }
+  }
+  return {lon, lat};
+}
+
+// The faces' variables, slab by slab (kChunk faces) and, within a slab, one variable at a time
+// in the netCDF calls' fixed order, each made just before it is written into one of a few
+// reused buffers (at 15" 40 MB instead of 105 MB of slab arrays beside the other writers).
+// Node numbers go out in the variable's own type (NC_INT when they fit).
+template <typename Index>
+void write_faces(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v) {
+  const int w = faces.max_nodes();
   const PoleRotation rotation =
       mesh.rotation.enabled ? PoleRotation(mesh.rotation.pole_lon_deg, mesh.rotation.pole_lat_deg) : PoleRotation();
-  std::vector<long long> idx;
-  std::vector<double> cx, cy, bx, by;
+  std::vector<Index> idx;
+  std::vector<double> cx, cy, corners;
   std::vector<short> lev;
   std::array<NodeId, kMaxSquarePolygon> p{};
   for (std::int64_t f0 = 0; f0 < faces.count(); f0 += kChunk) {
     const std::int64_t rows = std::min(kChunk, faces.count() - f0);
-    idx.assign(static_cast<std::size_t>(rows * w), -1);
-    cx.resize(static_cast<std::size_t>(rows));
-    cy.resize(static_cast<std::size_t>(rows));
-    bx.resize(static_cast<std::size_t>(rows * w));
-    by.resize(static_cast<std::size_t>(rows * w));
-    lev.resize(static_cast<std::size_t>(rows));
-    for (std::int64_t r = 0; r < rows; ++r) {
-      const int k = faces.nodes(f0 + r, p);
-      std::int64_t max_i = 0, min_i = 0;
-      bool moved = false;
-      for (int a = 0; a < k; ++a) {
-        max_i = std::max(max_i, mesh.node_i[p[a]]);
-        min_i = std::min(min_i, mesh.node_i[p[a]]);
-        moved = moved || (mesh.node_flags[p[a]] & mesh::kNodeMoved) != 0;
-      }
-      double lon = 0.0, lat = 0.0;
-      if (min_i < 0 || moved) {
-        // A face of a pole cap (io/geographic_mesh.hpp) or with a node moved onto a domain
-        // polygon (mesh/open_snap.hpp): the centre of its nodes on the sphere.
-        std::array<double, 3> c{0.0, 0.0, 0.0};
-        for (int a = 0; a < k; ++a) {
-          const auto u = unit_vector_deg(mesh.lon_deg[p[a]], mesh.lat_deg[p[a]]);
-          for (int d = 0; d < 3; ++d) c[d] += u[d];
-        }
-        lon = wrap_lon_deg(std::atan2(c[1], c[0]) * kRadToDeg, mesh.lattice.lon0_deg);
-        lat = std::atan2(c[2], std::hypot(c[0], c[1])) * kRadToDeg;
-      } else {
-        double si = 0.0, sj = 0.0;
-        for (int a = 0; a < k; ++a) {
-          const std::int64_t i = mesh.node_i[p[a]];
-          // Global columns (a window lattice's origin added as an integer: the same bits as on the global lattice).
-          si += static_cast<double>((i == 0 && max_i > nx / 2 && mesh.lattice.periodic() ? nx : i) + mesh.lattice.i_origin);
-          sj += static_cast<double>(mesh.node_j[p[a]]);
-        }
-        const double rlon = mesh.lattice.lon0_deg + si / k * mesh.lattice.pixel_deg();
-        const double rlat = mesh.lattice.lat_of_row(sj / k);
-        lon = rlon;
-        lat = rlat;
-        if (mesh.rotation.enabled) {
-          rotation.to_geographic(rlon, rlat, lon, lat);
-          lon = wrap_lon_deg(lon, mesh.lattice.lon0_deg);  // the nodes' convention: [λ0, λ0 + 360)
-        }
-      }
-      const auto u = static_cast<std::size_t>(r);
-      cx[u] = lon;
-      cy[u] = lat;
-      lev[u] = static_cast<short>(faces.level(f0 + r));
-      for (int a = 0; a < w; ++a) {
-        const NodeId n = p[std::min(a, k - 1)];
-        const std::size_t c = u * static_cast<std::size_t>(w) + static_cast<std::size_t>(a);
-        if (a < k) idx[c] = n;
-        bx[c] = lon + std::remainder(mesh.lon_deg[n] - lon, 360.0);
-        by[c] = mesh.lat_deg[n];
-      }
+    const auto ur = static_cast<std::size_t>(rows), uw = static_cast<std::size_t>(w);
+    idx.assign(ur * uw, Index{-1});
+    for (std::size_t r = 0; r < ur; ++r) {
+      const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
+      for (int a = 0; a < k; ++a) idx[r * uw + static_cast<std::size_t>(a)] = static_cast<Index>(p[a]);
     }
     nc.put(v.faces, f0, rows, w, idx.data());
+    cx.resize(ur);
+    cy.resize(ur);
+    for (std::size_t r = 0; r < ur; ++r) {
+      const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
+      const auto c = face_centre(mesh, rotation, p, k);
+      cx[r] = c[0];
+      cy[r] = c[1];
+    }
     nc.put(v.face_x, f0, rows, 1, cx.data());
     nc.put(v.face_y, f0, rows, 1, cy.data());
-    nc.put(v.face_x_bnds, f0, rows, w, bx.data());
-    nc.put(v.face_y_bnds, f0, rows, w, by.data());
-    nc.put(v.level, f0, rows, lev.data());
+    corners.resize(ur * uw);
+    for (const bool lon : {true, false}) {  // the corners' longitudes (around the centre), then latitudes
+      for (std::size_t r = 0; r < ur; ++r) {
+        const int k = faces.nodes(f0 + static_cast<std::int64_t>(r), p);
+        for (int a = 0; a < w; ++a) {
+          const auto n = static_cast<std::size_t>(p[std::min(a, k - 1)]);
+          corners[r * uw + static_cast<std::size_t>(a)] =
+              lon ? cx[r] + near_zero_remainder(mesh.lon_deg[n] - cx[r]) : mesh.lat_deg[n];
+        }
+      }
+      nc.put(lon ? v.face_x_bnds : v.face_y_bnds, f0, rows, w, corners.data());
+    }
+    lev.resize(ur);
+    for (std::size_t r = 0; r < ur; ++r) lev[r] = static_cast<short>(faces.level(f0 + static_cast<std::int64_t>(r)));
+    nc.put(v.level, f0, rows, 1, lev.data());
   }
-  edges.for_each_chunk(kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) {
-    nc.put(v.edges, e0, rows, 2, pairs);
-  });
+}
+
+void write_topology(NcWriter& nc, const mesh::Mesh& mesh, const FaceSet& faces, const TopologyVars& v,
+                    const UniqueEdges& edges) {
+  if (nc.type_of(v.faces) == NC_INT)
+    write_faces<int>(nc, mesh, faces, v);
+  else
+    write_faces<long long>(nc, mesh, faces, v);
+  edges.for_each_chunk(
+      kChunk, [&](std::int64_t e0, std::int64_t rows, const long long* pairs) { nc.put(v.edges, e0, rows, 2, pairs); });
 }
 
 }  // namespace
@@ -550,25 +634,29 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
   if (typed) {
     bnd_type = nc.var("mesh_boundary_type", NC_BYTE, {bnd_dim});
     nc.text(bnd_type, "long_name", "Type of each boundary edge");
-    const signed char values[3] = {0, 1, 2};
-    nc.check(nc_put_att_schar(nc.id(), bnd_type, "flag_values", NC_BYTE, 3, values), "attribute flag_values");
-    nc.text(bnd_type, "flag_meanings", "mainland island open");
+    // The river flag only in a mesh that has river inflows (earlier files keep their bytes).
+    const bool rivers = std::find(mesh.boundary_edge_type.begin(), mesh.boundary_edge_type.end(),
+                                  mesh::BoundaryType::kRiver) != mesh.boundary_edge_type.end();
+    const signed char values[4] = {0, 1, 2, 3};
+    nc.check(nc_put_att_schar(nc.id(), bnd_type, "flag_values", NC_BYTE, rivers ? 4 : 3, values),
+             "attribute flag_values");
+    nc.text(bnd_type, "flag_meanings", rivers ? "mainland island open river" : "mainland island open");
   }
   nc.enddef();
 
-  nc.check(nc_put_var_double(nc.id(), node_x, mesh.lon_deg.data()), "write mesh_node_x");
-  nc.check(nc_put_var_double(nc.id(), node_y, mesh.lat_deg.data()), "write mesh_node_y");
+  nc.put(node_x, 0, n, 1, mesh.lon_deg.data());
+  nc.put(node_y, 0, n, 1, mesh.lat_deg.data());
   if (rotated) {
-    nc.check(nc_put_var_double(nc.id(), node_rlon, mesh.rlon_deg.data()), "write mesh_node_rlon");
-    nc.check(nc_put_var_double(nc.id(), node_rlat, mesh.rlat_deg.data()), "write mesh_node_rlat");
+    nc.put(node_rlon, 0, n, 1, mesh.rlon_deg.data());
+    nc.put(node_rlat, 0, n, 1, mesh.rlat_deg.data());
   }
   {
     std::vector<double> d(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < d.size(); ++a) d[a] = depth_below_datum_m(mesh.depth_m[a]);
-    nc.check(nc_put_var_double(nc.id(), depth, d.data()), "write depth");
+    nc.put(depth, 0, n, 1, d.data());
     std::vector<signed char> fl(static_cast<std::size_t>(n));
     for (std::size_t a = 0; a < fl.size(); ++a) fl[a] = static_cast<signed char>(mesh.node_flags[a]);
-    nc.check(nc_put_var_schar(nc.id(), flags, fl.data()), "write node_flags");
+    nc.put(flags, 0, n, 1, fl.data());
   }
   if (nb > 0) {
     std::vector<long long> be(static_cast<std::size_t>(2 * nb));
@@ -579,12 +667,12 @@ WriteStats write_ugrid(const mesh::Mesh& mesh, const std::filesystem::path& path
       if (!mesh.boundary_edge_loop.empty()) loop[e] = mesh.boundary_edge_loop[e];
     }
     nc.put(bnd, 0, nb, 2, be.data());
-    nc.check(nc_put_var_int(nc.id(), bnd_loop, loop.data()), "write mesh_boundary_loop");
+    nc.put(bnd_loop, 0, nb, 1, loop.data());
   }
   if (typed) {
     std::vector<signed char> ty(static_cast<std::size_t>(nb));
     for (std::size_t e = 0; e < ty.size(); ++e) ty[e] = static_cast<signed char>(mesh.boundary_edge_type[e]);
-    nc.check(nc_put_var_schar(nc.id(), bnd_type, ty.data()), "write mesh_boundary_type");
+    nc.put(bnd_type, 0, nb, 1, ty.data());
   }
   WriteStats stats;
   for (std::size_t k = 0; k < sets.size(); ++k) {

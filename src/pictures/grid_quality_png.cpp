@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "pictures/cairo_handles.hpp"
 
 namespace aq::io {
 
@@ -52,15 +53,8 @@ Rgb viridis(double t) {
   return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
 }
 
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
 /// Maps plane coordinates to pixels (y up in the plane, down in the image).
-struct View {
+struct QualityView {
   double x0, y1, scale;
   [[nodiscard]] double px(double x) const { return kLeft + (x - x0) * scale; }
   [[nodiscard]] double py(double y) const { return kTop + (y1 - y) * scale; }
@@ -90,7 +84,7 @@ void write_quality_png(const std::filesystem::path& path, const curvilinear::Gri
   double scale = plot_w / bw;
   if (bh * scale > 1.5 * width) scale = 1.5 * width / bh;
   const int height = std::max(kMinHeight, static_cast<int>(std::ceil(kTop + bh * scale + kBottom)));
-  const View view{*xmin, *ymax, scale};
+  const QualityView view{*xmin, *ymax, scale};
 
   // Colour range in decades.
   double vmax = 0.0;

@@ -26,7 +26,9 @@ namespace aq::io {
 namespace {
 
 // Boundary types of a regional mesh in the preview (index = mesh::BoundaryType).
-constexpr std::array<std::array<double, 3>, 3> kBoundaryRgb{{{0.0, 0.0, 0.0}, {0.0, 0.35, 0.95}, {0.9, 0.05, 0.05}}};
+// By mesh::BoundaryType: mainland black, island blue, open red, river inflow green.
+constexpr std::array<std::array<double, 3>, 4> kBoundaryRgb{
+    {{0.0, 0.0, 0.0}, {0.0, 0.35, 0.95}, {0.9, 0.05, 0.05}, {0.0, 0.65, 0.2}}};
 
 bool typed_boundary(const mesh::Mesh& m) {
   return m.typed && m.boundary_edge_type.size() == m.boundary_edges.size();
@@ -574,6 +576,9 @@ void draw_bands(cairo_t* cr, const View& v, const mesh::Mesh& m, const PreviewOp
     items.push_back({kBoundaryRgb[0], "mainland"});
     items.push_back({kBoundaryRgb[1], "island"});
     items.push_back({kBoundaryRgb[2], "open boundary"});
+    if (std::find(m.boundary_edge_type.begin(), m.boundary_edge_type.end(), mesh::BoundaryType::kRiver) !=
+        m.boundary_edge_type.end())
+      items.push_back({kBoundaryRgb[3], "river inflow"});
   } else {
     items.push_back({{0.0, 0.0, 0.0}, "coast"});
   }
@@ -664,9 +669,9 @@ WriteStats render(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const
   cairo_surface_mark_dirty(surface);
   cairo_set_line_width(cr, std::clamp(v.width / 1600.0, 1.2, 3.0));
   cairo_set_source_rgb(cr, 0, 0, 0);
-  if (typed_boundary(mesh)) {  // regional: mainland black, islands blue, open boundary red
+  if (typed_boundary(mesh)) {  // regional: mainland black, islands blue, open boundary red, rivers green
     cairo_set_line_width(cr, std::clamp(v.width / 800.0, 2.0, 4.0));
-    for (int t = 0; t < 3; ++t) {
+    for (int t = 0; t < 4; ++t) {
       const auto& c = kBoundaryRgb[static_cast<std::size_t>(t)];
       cairo_set_source_rgb(cr, c[0], c[1], c[2]);
       CairoStroker coast(cr);

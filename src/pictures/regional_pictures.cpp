@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "pictures/cairo_handles.hpp"
 
 namespace aq::io {
 
@@ -19,13 +20,6 @@ using curvilinear::GeoPoint;
 using curvilinear::PlanePoint;
 using curvilinear::RegionalResult;
 using curvilinear::Stage;
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
 
 struct Box {
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
@@ -47,7 +41,7 @@ struct Box {
 };
 
 // Plane -> pixel transform (y up in the plane, down in the image).
-struct View {
+struct RegionalView {
   double x0 = 0, y1 = 0, scale = 1;
   int width = 0, height = 0;
   static constexpr double kTop = 28.0;  // room for the title
@@ -64,7 +58,7 @@ double nice_step(double raw) {
 
 class Painter {
  public:
-  Painter(cairo_t* cr, const View& v, double lw) : cr_(cr), v_(v), lw_(lw) {}
+  Painter(cairo_t* cr, const RegionalView& v, double lw) : cr_(cr), v_(v), lw_(lw) {}
 
   // A polyline of plane points, cut at non-finite points and at jumps longer than `max_jump`
   // (a projection seam).
@@ -115,7 +109,7 @@ class Painter {
 
  private:
   cairo_t* cr_;
-  const View& v_;
+  const RegionalView& v_;
   double lw_;
 };
 
@@ -194,12 +188,12 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
     box.add(-1.0, -1.0);
     box.add(1.0, 1.0);
   }
-  View v;
+  RegionalView v;
   v.x0 = box.x0;
   v.y1 = box.y1;
   v.width = options.width_px;
   v.scale = v.width / (box.x1 - box.x0);
-  const double h = (box.y1 - box.y0) * v.scale + View::kTop;
+  const double h = (box.y1 - box.y0) * v.scale + RegionalView::kTop;
   v.height = static_cast<int>(std::clamp(h, 100.0, 20000.0));
   const double diag = std::hypot(box.x1 - box.x0, box.y1 - box.y0);
 
@@ -260,7 +254,9 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
       for (double y = std::ceil(box.y0 / step) * step; y <= box.y1; y += step) paint.line(box.x0, y, box.x1, y);
     }
     paint.style(0.3, 0.5, 0.3, 0.8);
-    const auto km = [&](double u) { return fmt::format("{:g} km", std::round(u * km_per_unit * 1000.0) / 1000.0 + 0.0); };
+    const auto km = [&](double u) {
+      return fmt::format("{:g} km", std::round(u * km_per_unit * 1000.0) / 1000.0 + 0.0);
+    };
     for (double x = std::ceil(box.x0 / (5 * minor)) * 5 * minor; x <= box.x1; x += 5 * minor)
       paint.text(v.px(x) + 2, v.height - 4.0, km(x), 10);
     for (double y = std::ceil(box.y0 / (5 * minor)) * 5 * minor; y <= box.y1; y += 5 * minor)
@@ -367,7 +363,7 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   }
   cairo_set_dash(cr, nullptr, 0, 0.0);
   cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
-  cairo_rectangle(cr, 0, 0, v.width, View::kTop - 4);
+  cairo_rectangle(cr, 0, 0, v.width, RegionalView::kTop - 4);
   cairo_fill(cr);
   cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
   paint.text(8.0, 19.0, title, 15);

@@ -22,19 +22,19 @@ struct ContextFree {
   void operator()(cairo_t* c) const { cairo_destroy(c); }
 };
 
-constexpr double kTop = 30.0;     // title band, px
-constexpr double kLegend = 70.0;  // legend band at the bottom, px
+constexpr double kTitleBand = 30.0;  // title band, px
+constexpr double kLegend = 70.0;     // legend band at the bottom, px
 constexpr double kMargin = 12.0;
 
-struct Rgb {
+struct RgbColour {
   double r, g, b;
 };
-constexpr Rgb kLand{0.83, 0.76, 0.60};
-constexpr Rgb kShallow{0.74, 0.88, 0.97};
-constexpr Rgb kDeep{0.03, 0.12, 0.42};
+constexpr RgbColour kLand{0.83, 0.76, 0.60};
+constexpr RgbColour kShallow{0.74, 0.88, 0.97};
+constexpr RgbColour kDeep{0.03, 0.12, 0.42};
 
 // Water colour at depth h on a log scale between h0 and h1.
-Rgb water(double h, double h0, double h1) {
+RgbColour water(double h, double h0, double h1) {
   double t = 0.0;
   if (h1 > h0 && h > h0) t = std::clamp(std::log(h / h0) / std::log(h1 / h0), 0.0, 1.0);
   return {kShallow.r + t * (kDeep.r - kShallow.r), kShallow.g + t * (kDeep.g - kShallow.g),
@@ -67,9 +67,9 @@ void write_roms_png(const std::filesystem::path& path, const curvilinear::Grid2D
   y0 -= pad;
   y1 += pad;
   const double scale = (o.width_px - 2 * kMargin) / (x1 - x0);
-  const int height = static_cast<int>(std::clamp((y1 - y0) * scale + kTop + kLegend, 200.0, 20000.0));
+  const int height = static_cast<int>(std::clamp((y1 - y0) * scale + kTitleBand + kLegend, 200.0, 20000.0));
   const auto px = [&](double x) { return kMargin + (x - x0) * scale; };
-  const auto py = [&](double y) { return kTop + (y1 - y) * scale; };
+  const auto py = [&](double y) { return kTitleBand + (y1 - y) * scale; };
 
   std::unique_ptr<cairo_surface_t, SurfaceFree> surface(
       cairo_image_surface_create(CAIRO_FORMAT_RGB24, o.width_px, height));
@@ -102,7 +102,7 @@ void write_roms_png(const std::filesystem::path& path, const curvilinear::Grid2D
       const int ia = std::max(2 * i - 1, 0), ib = std::min(2 * i + 1, nI);
       const int ja = std::max(2 * j - 1, 0), jb = std::min(2 * j + 1, nJ);
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(L + 1) + static_cast<std::size_t>(i);
-      const Rgb c = mask[k] != 0 ? water(h[k], h0, h1) : kLand;
+      const RgbColour c = mask[k] != 0 ? water(h[k], h0, h1) : kLand;
       cairo_set_source_rgb(cr, c.r, c.g, c.b);
       // Corners and side midpoints of the control volume (boundary ones are half/quarter cells).
       const std::array<std::pair<int, int>, 8> ring = {
@@ -213,7 +213,7 @@ void write_roms_png(const std::filesystem::path& path, const curvilinear::Grid2D
   const int nbar = 256;
   for (int q = 0; q < nbar; ++q) {
     const double hq = h0 * std::pow(h1 / h0, (q + 0.5) / nbar);
-    const Rgb c = water(hq, h0, h1);
+    const RgbColour c = water(hq, h0, h1);
     cairo_set_source_rgb(cr, c.r, c.g, c.b);
     cairo_rectangle(cr, bx + bw * q / nbar, ly, bw / nbar + 0.5, 14.0);
     cairo_fill(cr);

@@ -25,7 +25,8 @@ RotatedMapSampler::RotatedMapSampler(const raster::Bathymetry& bathy, const Pole
                                      int height, const std::function<double(double)>& rlon,
                                      const std::function<double(double)>& rlat)
     : bathy_(bathy), info_(bathy.info()), width_(width), height_(height) {
-  fast_ = !info_.streamed && bathy.samples_bilinear() && info_.ncols > 1 && info_.nrows > 1;
+  // Corridor edits (Bathymetry::set_edits) are applied per sample: the exact path.
+  fast_ = !info_.streamed && bathy.samples_bilinear() && bathy.edits() == nullptr && info_.ncols > 1 && info_.nrows > 1;
   // The rotated x, y, z axes (λ', φ') = (0, 0), (90, 0), (0, 90) in geographic coordinates,
   // taken from PoleRotation itself so that the map agrees with the mesh.
   const double axes[3][2] = {{0.0, 0.0}, {90.0, 0.0}, {0.0, 90.0}};

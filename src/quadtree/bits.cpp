@@ -46,9 +46,26 @@ std::uint64_t periodic_window(const std::uint64_t* row, std::int64_t n, std::int
 void rotate_row(const std::uint64_t* in, std::uint64_t* out, std::int64_t n, std::int64_t s) {
   const std::int64_t words = (n + 63) / 64;
   std::int64_t start = wrap_index(-s, n);
-  for (std::int64_t w = 0; w < words; ++w) {
+  for (std::int64_t w = 0; w < words;) {
+    // The output words whose 64 bits lie inside the row without wrapping, in one loop of shifts
+    // (periodic_window's first case); the one or two that wrap through periodic_window.
+    const std::int64_t m = std::min(words - w, (n - start) / 64);
+    if (m > 0) {
+      const std::int64_t k = start >> 6;
+      const int off = static_cast<int>(start & 63);
+      if (off == 0) {
+        std::copy(in + k, in + k + m, out + w);
+      } else {
+        for (std::int64_t i = 0; i < m; ++i) out[w + i] = (in[k + i] >> off) | (in[k + i + 1] << (64 - off));
+      }
+      w += m;
+      start += 64 * m;
+      if (start >= n) start -= n;
+      continue;
+    }
     out[w] = periodic_window(in, n, start);
     start = wrap_index(start + 64, n);
+    ++w;
   }
   out[words - 1] &= last_word_mask(n);
 }

@@ -41,14 +41,8 @@ constexpr std::uint64_t spread_even(std::uint64_t x) {
   return x;
 }
 
-/// Number of set bits. Inline SWAR: the baseline x86-64 target has no POPCNT instruction, and
-/// std::popcount would call a library function for every word.
-constexpr int popcount64(std::uint64_t x) {
-  x = x - ((x >> 1) & 0x5555555555555555ULL);
-  x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
-  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fULL;
-  return static_cast<int>((x * 0x0101010101010101ULL) >> 56);
-}
+/// Number of set bits (core/bitmap.hpp).
+using aq::popcount64;
 
 /// Morton (z-order) key of (i, j), i, j < 2^32: bit k of i -> bit 2k, bit k of j -> bit 2k+1.
 constexpr std::uint64_t morton(std::uint64_t i, std::uint64_t j) { return spread_even(i) | (spread_even(j) << 1); }

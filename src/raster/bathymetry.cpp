@@ -5,20 +5,32 @@
 // longitude on a global raster, natural ends in latitude).
 #include "raster/bathymetry.hpp"
 
+#include <cpl_virtualmem.h>
 #include <cpl_vsi.h>
 #include <fmt/format.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <future>
 #include <limits>
 #include <list>
 #include <mutex>
 #include <unordered_map>
+#include <optional>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/error.hpp"
 #include "core/input_files.hpp"
@@ -116,6 +128,13 @@ inline double bilinear4(double a, double b, double c, double d, double t, double
   return (1.0 - u) * lo + u * hi;
 }
 
+}  // namespace
+
+// The types Bathymetry::Impl holds live in a named namespace of this file: in the unity build
+// this file is included by another, and a member of an anonymous namespace's type warns there
+// (-Wsubobject-linkage).
+namespace bathymetry_detail {
+
 // Statistics of one normalised row; combined in row order, so the whole and streamed paths
 // give the same min/max/mean bit for bit.
 struct RowStats {
@@ -123,6 +142,12 @@ struct RowStats {
   std::int64_t count = 0;
   std::int64_t implausible = 0;  // values beyond ±max_abs_elevation_m, made no-data
 };
+
+}  // namespace bathymetry_detail
+
+namespace {
+
+using bathymetry_detail::RowStats;
 
 RowStats row_stats(const float* row, std::int64_t n) {
   RowStats s;
@@ -167,6 +192,257 @@ void fill_row(const float* p0, const float* p1, const Bathymetry::Columns& cols,
   }
 }
 
+// fill_row for a run of lattice rows on one thread, with the horizontal step of bilinear4 (the
+// value along a raster row at each column's weight t) made once per raster row: consecutive
+// lattice rows share a raster row (r1 of one is r0 of the next when the lattice is as fine as
+// the raster), so each is computed once instead of twice. Columns come in runs: inside the
+// raster (c0 >= 0, the vertical step), and among those the ones where c0 steps by one raster
+// column with c1 = c0 + 1 and t != 0 (the horizontal step; on a lattice as fine as the raster
+// every column but the seam's), both computed two columns at a time (SSE2: the same IEEE
+// operations per lane); the others column by column. The same products and sums in the same
+// order as bilinear4: the same bits.
+class RowFiller {
+ public:
+  explicit RowFiller(const Bathymetry::Columns& cols) : cols_(cols), n_(static_cast<std::int64_t>(cols.c0.size())) {
+    for (auto& s : slot_) s.h.resize(static_cast<std::size_t>(n_));
+    const std::int64_t *c0 = cols.c0.data(), *c1 = cols.c1.data();
+    const double* t = cols.t.data();
+    split([&](std::int64_t k) { return c0[k] >= 0; }, [](std::int64_t) { return true; }, inside_);
+    split([&](std::int64_t k) { return c0[k] >= 0 && c1[k] == c0[k] + 1 && t[k] != 0.0; },
+          [&](std::int64_t k) { return c0[k] == c0[k - 1] + 1; }, steps_);
+  }
+  // fill_row(p0, p1, cols, u, out), p0 and p1 being normalised raster rows r0 and r1.
+  void fill(const float* p0, std::int64_t r0, const float* p1, std::int64_t r1, double u, float* out) {
+    const double* lo = horizontal(p0, r0, -1);
+    const double* hi = u == 0.0 ? lo : horizontal(p1, r1, r0);
+    const double a = 1.0 - u;
+    for (const Run& run : inside_) {
+      std::int64_t k = run.begin;
+      if (!run.fast) {
+        const std::int64_t* c0 = cols_.c0.data();
+        for (; k < run.end; ++k) {
+          const double v = u == 0.0 ? lo[k] : a * lo[k] + u * hi[k];
+          out[k] = c0[k] < 0 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
+        }
+        continue;
+      }
+#if defined(__SSE2__)
+      if (u == 0.0) {
+        for (; k + 2 <= run.end; k += 2)
+          _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), _mm_castps_si128(_mm_cvtpd_ps(_mm_loadu_pd(lo + k))));
+      } else {
+        const __m128d a2 = _mm_set1_pd(a), u2 = _mm_set1_pd(u);
+        for (; k + 2 <= run.end; k += 2) {
+          const __m128d v = _mm_add_pd(_mm_mul_pd(a2, _mm_loadu_pd(lo + k)), _mm_mul_pd(u2, _mm_loadu_pd(hi + k)));
+          _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), _mm_castps_si128(_mm_cvtpd_ps(v)));
+        }
+      }
+#endif
+      for (; k < run.end; ++k) out[k] = static_cast<float>(u == 0.0 ? lo[k] : a * lo[k] + u * hi[k]);
+    }
+  }
+
+ private:
+  struct Slot {
+    std::int64_t row = -1;
+    std::vector<double> h;
+  };
+  struct Run {
+    std::int64_t begin, end;
+    bool fast;  // every column of the run has the property (else none has it or the run is short)
+  };
+  // Runs of columns with `has` (continuing while `joins` holds for the column after the first)
+  // of at least kMinRun columns, and the runs between them.
+  template <typename Has, typename Joins>
+  void split(const Has& has, const Joins& joins, std::vector<Run>& runs) const {
+    constexpr std::int64_t kMinRun = 16;
+    std::int64_t k = 0;
+    while (k < n_) {
+      std::int64_t e = k;
+      if (has(k)) {
+        e = k + 1;
+        while (e < n_ && has(e) && joins(e)) ++e;
+      }
+      const bool fast = e - k >= kMinRun;
+      const std::int64_t stop = std::max(e, k + 1);
+      if (!fast && !runs.empty() && !runs.back().fast && runs.back().end == k)
+        runs.back().end = stop;
+      else
+        runs.push_back({k, stop, fast});
+      k = stop;
+    }
+  }
+  // The horizontal values of raster row r (kept in one of two slots; the one holding row `keep`
+  // is not overwritten).
+  const double* horizontal(const float* p, std::int64_t r, std::int64_t keep) {
+    for (const Slot& s : slot_)
+      if (s.row == r) return s.h.data();
+    Slot& s = slot_[0].row == keep ? slot_[1] : slot_[0];
+    s.row = r;
+    const std::int64_t *c0 = cols_.c0.data(), *c1 = cols_.c1.data();
+    const double* t = cols_.t.data();
+    double* h = s.h.data();
+    for (const Run& run : steps_) {
+      std::int64_t k = run.begin;
+      if (run.fast) {
+        const float* q = p + (c0[k] - k);  // q[k] = p[c0[k]], q[k + 1] = p[c1[k]]
+#if defined(__SSE2__)
+        const __m128d one = _mm_set1_pd(1.0);
+        for (; k + 2 <= run.end; k += 2) {
+          const __m128d tk = _mm_loadu_pd(t + k);
+          const __m128d x = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + k))));
+          const __m128d y =
+              _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + k + 1))));
+          _mm_storeu_pd(h + k, _mm_add_pd(_mm_mul_pd(_mm_sub_pd(one, tk), x), _mm_mul_pd(tk, y)));
+        }
+#endif
+        for (; k < run.end; ++k) h[k] = (1.0 - t[k]) * static_cast<double>(q[k]) + t[k] * static_cast<double>(q[k + 1]);
+        continue;
+      }
+      for (; k < run.end; ++k) {
+        if (c0[k] < 0) {
+          h[k] = 0.0;
+          continue;
+        }
+        const double x = p[c0[k]];
+        h[k] = t[k] == 0.0 ? x : (1.0 - t[k]) * x + t[k] * static_cast<double>(p[c1[k]]);
+      }
+    }
+    return s.h.data();
+  }
+
+  const Bathymetry::Columns& cols_;
+  std::int64_t n_;
+  Slot slot_[2];
+  std::vector<Run> inside_, steps_;
+};
+
+}  // namespace
+
+namespace bathymetry_detail {
+
+// A streamed raster's file mapped into memory: GDAL's file mapping of an uncompressed band in the
+// machine's byte order (GDALRasterBand::GetVirtualMemAuto, without its copying fallback). The
+// threads read the stored rows where they lie: no read buffer, no copy out of the page cache, no
+// lock around GDAL. Rows a pass is done with are given back (release), so the file's pages never
+// add up in the process's resident memory. Values convert to Float32 as GDAL's RasterIO converts
+// them (Byte, Int16, UInt16: exactly; Float32: as stored); other types are not mapped.
+class FileMap {
+ public:
+  // nullptr when GDAL has no file mapping of the band, or for another data type.
+  static std::unique_ptr<FileMap> open(GDALRasterBand* band, std::int64_t width) {
+    const GDALDataType type = band->GetRasterDataType();
+    if (type != GDT_Byte && type != GDT_Int16 && type != GDT_UInt16 && type != GDT_Float32) return nullptr;
+    int pixel = 0;
+    GIntBig line = 0;
+    char no_fallback[] = "USE_DEFAULT_IMPLEMENTATION=NO";
+    char* options[] = {no_fallback, nullptr};
+    CPLVirtualMem* vm = band->GetVirtualMemAuto(GF_Read, &pixel, &line, options);
+    CPLErrorReset();  // "not available" is no error of the run
+    if (vm == nullptr) return nullptr;
+    auto m = std::unique_ptr<FileMap>(new FileMap(vm, type, pixel, line));
+    const std::int64_t size = GDALGetDataTypeSizeBytes(type);
+    if (CPLVirtualMemIsFileMapping(vm) == 0 || pixel < size || line < pixel * width) return nullptr;
+    return m;
+  }
+  ~FileMap() { CPLVirtualMemFree(vm_); }
+  FileMap(const FileMap&) = delete;
+  FileMap& operator=(const FileMap&) = delete;
+
+  // Stored row y, column x, as RasterIO gives it in Float32.
+  [[nodiscard]] float value(std::int64_t x, std::int64_t y) const {
+    const unsigned char* p = base_ + y * line_ + x * pixel_;
+    switch (type_) {
+      case GDT_Byte:
+        return static_cast<float>(*p);
+      case GDT_Int16: {
+        std::int16_t v = 0;
+        std::memcpy(&v, p, sizeof v);
+        return static_cast<float>(v);
+      }
+      case GDT_UInt16: {
+        std::uint16_t v = 0;
+        std::memcpy(&v, p, sizeof v);
+        return static_cast<float>(v);
+      }
+      default: {
+        float v = 0.0f;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+      }
+    }
+  }
+  // Columns [0, n) of stored row y into out, as RasterIO gives them in Float32.
+  void row(std::int64_t y, std::int64_t n, float* out) const {
+    const unsigned char* p = base_ + y * line_;
+    switch (type_) {
+      case GDT_Byte:
+        return convert<std::uint8_t>(p, n, out);
+      case GDT_Int16:
+        return convert<std::int16_t>(p, n, out);
+      case GDT_UInt16:
+        return convert<std::uint16_t>(p, n, out);
+      default:
+        return convert<float>(p, n, out);
+    }
+  }
+  // Stored row y as int16 values side by side (an Int16 band without interleaving), else nullptr.
+  [[nodiscard]] const std::int16_t* int16_row(std::int64_t y) const {
+    return type_ == GDT_Int16 && pixel_ == 2 ? reinterpret_cast<const std::int16_t*>(base_ + y * line_) : nullptr;
+  }
+  // Gives back the pages that lie wholly inside stored rows [y0, y1) (they are read again from
+  // the page cache if a later pass needs them).
+  void release(std::int64_t y0, std::int64_t y1) const { advise(y0, y1, MADV_DONTNEED, false); }
+  // Asks the kernel to read stored rows [y0, y1) from the disk now, in the background (the
+  // reader thread's overlap of the GDAL path: a fault on a page not yet in the page cache would
+  // stop the thread that meets it).
+  void prefetch(std::int64_t y0, std::int64_t y1) const { advise(y0, y1, MADV_WILLNEED, true); }
+
+ private:
+  FileMap(CPLVirtualMem* vm, GDALDataType type, std::int64_t pixel, std::int64_t line)
+      : vm_(vm),
+        base_(static_cast<const unsigned char*>(CPLVirtualMemGetAddr(vm))),
+        pixel_(pixel),
+        line_(line),
+        type_(type) {}
+  // madvise over the whole pages inside stored rows [y0, y1), or over every page they touch.
+  void advise(std::int64_t y0, std::int64_t y1, int advice, bool touched) const {
+    static const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    auto a = reinterpret_cast<std::uintptr_t>(base_ + y0 * line_);
+    auto b = reinterpret_cast<std::uintptr_t>(base_ + y1 * line_);
+    a = touched ? a / page * page : (a + page - 1) / page * page;
+    b = touched ? (b + page - 1) / page * page : b / page * page;
+    if (b > a) (void)madvise(reinterpret_cast<void*>(a), b - a, advice);
+  }
+  template <typename T>
+  void convert(const unsigned char* p, std::int64_t n, float* out) const {
+    if (pixel_ == static_cast<std::int64_t>(sizeof(T))) {
+      for (std::int64_t c = 0; c < n; ++c) {
+        T v;
+        std::memcpy(&v, p + c * static_cast<std::int64_t>(sizeof(T)), sizeof v);
+        out[c] = static_cast<float>(v);
+      }
+      return;
+    }
+    for (std::int64_t c = 0; c < n; ++c) {
+      T v;
+      std::memcpy(&v, p + c * pixel_, sizeof v);
+      out[c] = static_cast<float>(v);
+    }
+  }
+
+  CPLVirtualMem* vm_;
+  const unsigned char* base_;  // column 0 of stored row 0
+  std::int64_t pixel_, line_;  // bytes from a column to the next, and from a stored row to the next
+  GDALDataType type_;
+};
+
+}  // namespace bathymetry_detail
+
+namespace {
+
+using bathymetry_detail::FileMap;
+
 }  // namespace
 
 struct Bathymetry::Impl {
@@ -196,7 +472,9 @@ struct Bathymetry::Impl {
   double sgn = 1.0;
   bool signed_byte = false;                                  // a Byte band marked PIXELTYPE=SIGNEDBYTE
   float max_abs_m = std::numeric_limits<float>::infinity();  // OpenOptions::max_abs_elevation_m
+  bool integral_plain = false;  // Byte/Int16/UInt16 values, no scale/offset/sign change (normalise_row)
   int band_number = 1;
+  std::unique_ptr<FileMap> map;  // streamed and mapped (RasterInfo::mapped); freed before ds closes
   mutable std::mutex io;
   mutable std::vector<RowStats> stats_rows;  // streamed: per normalised row, filled by the first pass
   mutable bool stats_done = false;
@@ -288,8 +566,171 @@ struct Bathymetry::Impl {
   // (resized). Records per-row statistics in `stats` (indexed by normalised row) when given.
   void read_stored(std::int64_t y0, std::int64_t y1, float* dst, std::int64_t lo, std::vector<float>& raw,
                    RowStats* stats) const {
+    if (map) {
+      normalise_mapped(y0, y1, dst, lo, stats);
+      return;
+    }
     read_raw(y0, y1, raw);
     normalise_rows(y0, y1, raw.data(), dst, lo, stats, false);
+  }
+
+  // normalise_rows of stored rows [y0, y1) read from the file map, on the OpenMP threads.
+  void normalise_mapped(std::int64_t y0, std::int64_t y1, float* dst, std::int64_t lo, RowStats* stats) const {
+    const std::int64_t h = info.height, nc = held_nc;
+    const bool north_up = info.north_up;
+    const FileMap& m = *map;
+#pragma omp parallel for schedule(static) default(none) \
+    shared(y0, y1, dst, lo, stats, h, nc, north_up, m) if ((y1 - y0) * nc >= (std::int64_t{1} << 16))
+    for (std::int64_t y = y0; y < y1; ++y) {
+      const std::int64_t r = north_up ? h - 1 - y : y;
+      float* out = dst + (r - lo) * nc;
+      const std::int16_t* ints = integral_plain ? m.int16_row(y) : nullptr;
+      if (ints != nullptr) {
+        normalise_int16(ints, nc, out, stats != nullptr ? stats + r : nullptr);
+        continue;
+      }
+      m.row(y, nc, out);
+      normalise_row(out, out, nc, stats != nullptr ? stats + r : nullptr);
+    }
+  }
+
+  // normalise_row of int16 values straight from the file (integral_plain), eight at a time with
+  // SSE2: the same values and figures (every step is exact: int16 -> float, the comparisons,
+  // min/max, and integer sums kept below 2^31 per lane).
+  void normalise_int16(const std::int16_t* src, std::int64_t nc, float* out, RowStats* stat) const {
+    const float nd = info.has_nodata ? static_cast<float>(info.nodata) : std::numeric_limits<float>::quiet_NaN();
+    const float lim = max_abs_m, nan = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    float mn = kInf, mx = -kInf;
+    std::int64_t sum = 0, count = 0, implausible = 0, c = 0;
+#if defined(__SSE2__)
+    {
+      const __m128 nd4 = _mm_set1_ps(nd), lim4 = _mm_set1_ps(lim), nan4 = _mm_set1_ps(nan), inf4 = _mm_set1_ps(kInf),
+                   ninf4 = _mm_set1_ps(-kInf), abs4 = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)),
+                   ones4 = _mm_castsi128_ps(_mm_set1_epi32(-1));
+      __m128 mn4 = inf4, mx4 = ninf4;
+      __m128i sum4 = _mm_setzero_si128(), cnt4 = sum4, bad4 = sum4;
+      const auto lanes = [](__m128i x) {
+        alignas(16) std::int32_t a[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(a), x);
+        return static_cast<std::int64_t>(a[0]) + a[1] + a[2] + a[3];
+      };
+      std::int64_t block = 0;  // iterations since sum4 was emptied: at most 2·32768 per lane each
+      for (; c + 8 <= nc; c += 8) {
+        const __m128i eight = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + c));
+        const __m128i halves[2] = {_mm_srai_epi32(_mm_unpacklo_epi16(eight, eight), 16),
+                                   _mm_srai_epi32(_mm_unpackhi_epi16(eight, eight), 16)};
+        for (int k = 0; k < 2; ++k) {
+          const __m128i xi = halves[k];
+          const __m128 x = _mm_cvtepi32_ps(xi);
+          const __m128 missing = _mm_cmpeq_ps(x, nd4);
+          const __m128 ok = _mm_cmple_ps(_mm_and_ps(x, abs4), lim4);
+          const __m128 valid = _mm_andnot_ps(missing, ok);
+          const __m128 bad = _mm_andnot_ps(missing, _mm_xor_ps(ok, ones4));
+          _mm_storeu_ps(out + c + 4 * k, _mm_or_ps(_mm_and_ps(valid, x), _mm_andnot_ps(valid, nan4)));
+          mn4 = _mm_min_ps(mn4, _mm_or_ps(_mm_and_ps(valid, x), _mm_andnot_ps(valid, inf4)));
+          mx4 = _mm_max_ps(mx4, _mm_or_ps(_mm_and_ps(valid, x), _mm_andnot_ps(valid, ninf4)));
+          const __m128i vi = _mm_castps_si128(valid);
+          sum4 = _mm_add_epi32(sum4, _mm_and_si128(vi, xi));
+          cnt4 = _mm_sub_epi32(cnt4, vi);
+          bad4 = _mm_sub_epi32(bad4, _mm_castps_si128(bad));
+        }
+        if (++block == 16384) {
+          sum += lanes(sum4);
+          sum4 = _mm_setzero_si128();
+          block = 0;
+        }
+      }
+      sum += lanes(sum4);
+      count += lanes(cnt4);
+      implausible += lanes(bad4);
+      alignas(16) float a[4], b[4];
+      _mm_store_ps(a, mn4);
+      _mm_store_ps(b, mx4);
+      for (int k = 0; k < 4; ++k) {
+        mn = std::min(mn, a[k]);
+        mx = std::max(mx, b[k]);
+      }
+    }
+#endif
+    for (; c < nc; ++c) {
+      const auto x = static_cast<float>(src[c]);
+      const bool missing = x == nd;
+      const bool bad = !missing && !(std::abs(x) <= lim);
+      const bool valid = !missing && !bad;
+      out[c] = valid ? x : nan;
+      implausible += bad ? 1 : 0;
+      if (valid) {
+        sum += static_cast<std::int64_t>(x);
+        ++count;
+        mn = std::min(mn, x);
+        mx = std::max(mx, x);
+      }
+    }
+    if (stat != nullptr) {
+      stat->mn = count > 0 ? static_cast<double>(mn) : std::numeric_limits<double>::infinity();
+      stat->mx = count > 0 ? static_cast<double>(mx) : -std::numeric_limits<double>::infinity();
+      stat->sum = static_cast<double>(sum);
+      stat->count = count;
+      stat->implausible = implausible;
+    }
+  }
+
+  // normalise() over one row (in place when src == out), and its RowStats when `stat` is given.
+  // Integer values with no scale, offset or sign change (integral_plain: int16 GEBCO, ETOPO) keep
+  // their value or become no-data, and their sum is an integer below 2^53 at every step, so it
+  // is summed as an integer: the same figures as row_stats, in one pass the compiler need not
+  // chain through a double addition per value.
+  void normalise_row(const float* src, float* out, std::int64_t nc, RowStats* stat) const {
+    if (!integral_plain) {
+      std::int64_t implausible = 0;
+      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c], implausible);
+      if (stat != nullptr) {
+        *stat = row_stats(out, nc);
+        stat->implausible = implausible;
+      }
+      return;
+    }
+    const float nd = info.has_nodata ? static_cast<float>(info.nodata) : std::numeric_limits<float>::quiet_NaN();
+    const float lim = max_abs_m, nan = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    // Four independent lanes (min, max and integer sums are exact in any order): no chain of
+    // dependent minimum or addition instructions through the row.
+    constexpr int kLanes = 4;
+    float mns[kLanes] = {kInf, kInf, kInf, kInf}, mxs[kLanes] = {-kInf, -kInf, -kInf, -kInf};
+    std::int64_t sums[kLanes] = {0, 0, 0, 0}, counts[kLanes] = {0, 0, 0, 0};
+    std::int64_t implausible = 0;
+    const auto one = [&](std::int64_t c, int l) {
+      const float x = src[c];
+      const bool missing = x == nd;
+      const bool bad = !missing && !(std::abs(x) <= lim);
+      const bool valid = !missing && !bad;
+      out[c] = valid ? x : nan;
+      implausible += bad ? 1 : 0;
+      sums[l] += valid ? static_cast<std::int64_t>(x) : 0;
+      counts[l] += valid ? 1 : 0;
+      mns[l] = std::min(mns[l], valid ? x : kInf);
+      mxs[l] = std::max(mxs[l], valid ? x : -kInf);
+    };
+    std::int64_t c = 0;
+    for (; c + kLanes <= nc; c += kLanes)
+      for (int l = 0; l < kLanes; ++l) one(c + l, l);
+    for (; c < nc; ++c) one(c, 0);
+    float mn = kInf, mx = -kInf;
+    std::int64_t sum = 0, count = 0;
+    for (int l = 0; l < kLanes; ++l) {
+      mn = std::min(mn, mns[l]);
+      mx = std::max(mx, mxs[l]);
+      sum += sums[l];
+      count += counts[l];
+    }
+    if (stat != nullptr) {
+      stat->mn = count > 0 ? static_cast<double>(mn) : std::numeric_limits<double>::infinity();
+      stat->mx = count > 0 ? static_cast<double>(mx) : -std::numeric_limits<double>::infinity();
+      stat->sum = static_cast<double>(sum);
+      stat->count = count;
+      stat->implausible = implausible;
+    }
   }
 
   // Stored rows [y0, y1) as GDAL gives them (Float32) into `raw` (resized). One read at a time.
@@ -331,14 +772,7 @@ struct Bathymetry::Impl {
     for (std::int64_t yy = 0; yy < ny; ++yy) {
       const std::int64_t y = y0 + yy;
       const std::int64_t r = north_up ? h - 1 - y : y;
-      const float* src = raw + yy * w;
-      float* out = dst + (r - lo) * nc;
-      std::int64_t implausible = 0;
-      for (std::int64_t c = 0; c < nc; ++c) out[c] = normalise(src[c], implausible);
-      if (stats != nullptr) {
-        stats[r] = row_stats(out, nc);
-        stats[r].implausible = implausible;
-      }
+      normalise_row(raw + yy * w, dst + (r - lo) * nc, nc, stats != nullptr ? stats + r : nullptr);
     }
   }
 
@@ -352,9 +786,16 @@ struct Bathymetry::Impl {
 
   [[nodiscard]] BandGeometry bands() const { return BandGeometry{info.height, info.band_rows, info.north_up}; }
 
-  // One streamed pass: for every band s with wanted(s) (all bands when `all`), read its buffer
-  // (normalised rows [lo(s), hi(s))) and call work(s, buffer). The next wanted band is read by a
-  // second thread while work runs. Records row statistics when `stats` is given.
+  // One streamed pass: for every band s with wanted(s) (all bands when `stats` is given), its
+  // buffer (normalised rows [lo(s), hi(s))) and then work(s, buffer). Records row statistics when
+  // `stats` is given. Through GDAL, a second thread reads the next band's stored rows while the
+  // OpenMP threads normalise this one's and work on it:
+  //
+  //   reader:  read band k+1 ──────────┐ read band k+2 ...
+  //   team:    normalise k │ work(k)   └> normalise k+1 │ work(k+1) ...
+  //
+  // Through the file map, the team normalises each band straight from the map, and the band's
+  // rows are released after its work.
   template <typename Wanted, typename Work>
   void stream(const Wanted& wanted, const Work& work, RowStats* stats, const ProgressFn& progress,
               std::string_view label) const {
@@ -363,37 +804,52 @@ struct Bathymetry::Impl {
     std::vector<std::int64_t> todo;
     for (std::int64_t s = 0; s < nb; ++s)
       if (stats != nullptr || wanted(s)) todo.push_back(s);
-    std::vector<float> buf[2];
-    std::vector<float> raw[2];
-    for (auto& b : buf) b.resize(static_cast<std::size_t>((g.rows + 1) * nc));
-    // Reads band todo[k] into buf[k % 2]; copies the carried row from band todo[k-1] when that
-    // band is the previous one in storage order (its buffer is only read meanwhile).
-    const auto read = [&](std::size_t k) {
-      const std::int64_t s = todo[k];
-      float* dst = buf[k % 2].data();
-      const std::int64_t lo = g.lo(s);
-      std::int64_t y0 = g.first(s);
-      if (s > 0 && k > 0 && todo[k - 1] == s - 1) {
-        const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
-        const float* prev = buf[(k - 1) % 2].data() + (r - g.lo(s - 1)) * nc;
-        std::copy(prev, prev + nc, dst + (r - lo) * nc);
-        ++y0;
-      }
-      read_stored(y0, g.end(s), dst, lo, raw[k % 2], stats);
-    };
     ++info.passes;
     if (todo.empty()) return;
+    std::vector<float> buf(static_cast<std::size_t>((g.rows + 1) * nc));
+    const auto done = [&](std::size_t k) {
+      if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
+    };
+    if (map) {
+      if (!todo.empty()) map->prefetch(g.first(todo[0]), g.end(todo[0]));
+      for (std::size_t k = 0; k < todo.size(); ++k) {
+        const std::int64_t s = todo[k];
+        if (k + 1 < todo.size()) map->prefetch(g.first(todo[k + 1]), g.end(todo[k + 1]));
+        normalise_mapped(g.first(s), g.end(s), buf.data(), g.lo(s), stats);
+        if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
+        map->release(g.first(s), g.end(s));
+        done(k);
+      }
+      return;
+    }
+    // Band todo[k]'s stored rows go to raw[k % 2], all but its first (the row the band before
+    // ended with) when that band was read just before: that row is moved over in `buf`.
+    const auto carried = [&](std::size_t k) { return k > 0 && todo[k] > 0 && todo[k - 1] == todo[k] - 1; };
+    std::vector<float> raw[2];
+    const auto read = [&](std::size_t k) {
+      const std::int64_t s = todo[k];
+      read_raw(g.first(s) + (carried(k) ? 1 : 0), g.end(s), raw[k % 2]);
+    };
     std::future<void> next = std::async(std::launch::async, read, std::size_t{0});
     for (std::size_t k = 0; k < todo.size(); ++k) {
       next.get();
       if (k + 1 < todo.size()) next = std::async(std::launch::async, read, k + 1);
       try {
-        if (wanted(todo[k])) work(todo[k], static_cast<const float*>(buf[k % 2].data()));
+        const std::int64_t s = todo[k], lo = g.lo(s);
+        std::int64_t y0 = g.first(s);
+        if (carried(k)) {
+          const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
+          std::memmove(buf.data() + (r - lo) * nc, buf.data() + (r - g.lo(s - 1)) * nc,
+                       static_cast<std::size_t>(nc) * sizeof(float));
+          ++y0;
+        }
+        normalise_rows(y0, g.end(s), raw[k % 2].data(), buf.data(), lo, stats, true);
+        if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
       } catch (...) {
         if (next.valid()) next.wait();
         throw;
       }
-      if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
+      done(k);
     }
   }
 
@@ -499,12 +955,13 @@ struct Bathymetry::Impl {
   [[nodiscard]] float read_value(std::int64_t c, std::int64_t r) const {
     float x = 0.0f;
     const std::int64_t y = info.north_up ? info.height - 1 - r : r;
+    std::int64_t implausible = 0;
+    if (map) return normalise(map->value(c, y), implausible);
     const std::lock_guard<std::mutex> lock(io);
     if (band->RasterIO(GF_Read, static_cast<int>(c), static_cast<int>(y), 1, 1, &x, 1, 1, GDT_Float32, 0, 0, nullptr) !=
         CE_None) {
       throw InputError(fmt::format("{}: read error at row {}{}", info.path, y, gdal_message()));
     }
-    std::int64_t implausible = 0;
     return normalise(x, implausible);
   }
 
@@ -526,8 +983,7 @@ struct Bathymetry::Impl {
   void compute_stats() {
     const std::int64_t nr = row_hi - row_lo;
     std::vector<RowStats> rows(static_cast<std::size_t>(nr));
-    for (std::int64_t r = 0; r < nr; ++r)
-      rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), held_nc);
+    for (std::int64_t r = 0; r < nr; ++r) rows[static_cast<std::size_t>(r)] = row_stats(row_ptr(row_lo + r), held_nc);
     finish_stats(rows);
   }
   // The statistics from the held rows' own (rows [row_lo, row_hi) in order), and the memory held.
@@ -600,8 +1056,18 @@ bool Bathymetry::samples_bilinear() const {
   return impl_->info.streamed || !(impl_->interp == Interpolation::kBicubic && !impl_->fx.empty());
 }
 double Bathymetry::sample(double lon_deg, double lat_deg) const {
-  if (stack_) return stack_->sample(lon_deg, lat_deg);
-  return impl_->sample(lon_deg, lat_deg);
+  const double z = stack_ ? stack_->sample(lon_deg, lat_deg) : impl_->sample(lon_deg, lat_deg);
+  return edits_ ? edits_->apply(lon_deg, lat_deg, z) : z;
+}
+
+void Bathymetry::set_edits(std::shared_ptr<const ElevationEdits> edits) {
+  edits_ = edits && !edits->empty() ? std::move(edits) : nullptr;
+}
+
+void Bathymetry::point_lonlat(std::int64_t c, std::int64_t r, double& lon_deg, double& lat_deg) const {
+  const auto& i = impl_->info;
+  lon_deg = i.lon_first + static_cast<double>(c) * i.dlon;
+  lat_deg = i.lat_first + static_cast<double>(r) * i.dlat;
 }
 
 namespace {
@@ -616,10 +1082,21 @@ float Bathymetry::value(std::int64_t c, std::int64_t r) const {
   if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
   if (c < 0 || c >= i.ncols || r < impl_->row_lo || r >= (i.streamed ? i.nrows : impl_->row_hi))
     return std::numeric_limits<float>::quiet_NaN();
-  if (i.streamed) return impl_->read_value(c, r);
-  if (i.tiled) return impl_->tile_value(c, r);
-  c = impl_->local_col(c);
-  return c < 0 ? std::numeric_limits<float>::quiet_NaN() : impl_->v[impl_->idx(c, r)];
+  float z = 0.0F;
+  if (i.streamed) {
+    z = impl_->read_value(c, r);
+  } else if (i.tiled) {
+    z = impl_->tile_value(c, r);
+  } else {
+    const std::int64_t l = impl_->local_col(c);
+    z = l < 0 ? std::numeric_limits<float>::quiet_NaN() : impl_->v[impl_->idx(l, r)];
+  }
+  if (edits_) {
+    double lon = 0.0, lat = 0.0;
+    point_lonlat(c, r, lon, lat);
+    z = static_cast<float>(edits_->apply(lon, lat, static_cast<double>(z)));
+  }
+  return z;
 }
 
 void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, std::int64_t nr, float* out) const {
@@ -628,8 +1105,7 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
   const auto& i = im.info;
   std::fill(out, out + nc * nr, std::numeric_limits<float>::quiet_NaN());
   const std::int64_t a = std::max(r_lo, im.row_lo), b = std::min(r_lo + nr, i.streamed ? i.nrows : im.row_hi);
-  if (a >= b) return;
-  if (i.tiled) {  // tile by tile: one lock per tile and row piece
+  if (i.tiled && a < b) {  // tile by tile: one lock per tile and row piece
     for (std::int64_t k0 = 0; k0 < nc;) {
       std::int64_t c = c_lo + k0;
       if (i.global_lon) c = ((c % i.ncols) + i.ncols) % i.ncols;
@@ -646,14 +1122,14 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
       }
       k0 += run;
     }
-    return;
   }
   std::vector<float> rows;
-  if (i.streamed) {
+  const std::int64_t b_rows = i.tiled ? a : b;  // tiled: read above, tile by tile; the edits below still apply
+  if (i.streamed && a < b) {
     rows.resize(static_cast<std::size_t>((b - a) * i.ncols));
     im.read_rows(a, b - a, rows.data());
   }
-  for (std::int64_t r = a; r < b; ++r) {
+  for (std::int64_t r = a; r < b_rows; ++r) {
     const float* src = i.streamed ? rows.data() + (r - a) * i.ncols : im.row_ptr(r);
     float* dst = out + (r - r_lo) * nc;
     if (c_lo >= 0 && c_lo + nc <= i.ncols && !im.col_window()) {  // no wrap and nothing outside: one copy
@@ -667,10 +1143,31 @@ void Bathymetry::values(std::int64_t c_lo, std::int64_t nc, std::int64_t r_lo, s
       if (c >= 0 && c < i.ncols) dst[k] = src[c];
     }
   }
+  if (edits_) {  // at the raster points' positions (columns as asked: unwrapped longitudes are fine)
+    std::vector<double> lons(static_cast<std::size_t>(nc));
+    for (std::int64_t k = 0; k < nc; ++k) {
+      double lat = 0.0;
+      point_lonlat(c_lo + k, 0, lons[static_cast<std::size_t>(k)], lat);
+    }
+    for (std::int64_t r = r_lo; r < r_lo + nr; ++r) {
+      double lon = 0.0, lat = 0.0;
+      point_lonlat(0, r, lon, lat);
+      edits_->apply_row(lons.data(), lat, out + (r - r_lo) * nc, nc);
+    }
+  }
 }
 
 void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
                                const ProgressFn& progress) const {
+  raw_points(lon_deg, lat_deg, n, out, progress);
+  if (!edits_) return;
+  const ElevationEdits* ed = edits_.get();
+#pragma omp parallel for default(none) shared(ed, lon_deg, lat_deg, n, out) schedule(static) if (n > 20000)
+  for (std::int64_t k = 0; k < n; ++k) out[k] = ed->apply(lon_deg[k], lat_deg[k], out[k]);
+}
+
+void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                            const ProgressFn& progress) const {
   if (stack_) return stack_->sample_points(lon_deg, lat_deg, n, out, nullptr);
   const Impl* im = impl_.get();
   if (!im->info.streamed) {
@@ -703,6 +1200,44 @@ void Bathymetry::sample_points(const double* lon_deg, const double* lat_deg, std
     }
   }
   band = {};
+  if (im->map) {
+    // Through the file map: the four values of each point read where they lie, band after band
+    // (the rows of a band released after it).
+    const FileMap& m = *im->map;
+    const std::int64_t h = im->info.height;
+    const bool north_up = im->info.north_up;
+    ++im->info.passes;
+    const auto has_points = [&start](std::int64_t s) {
+      return start[static_cast<std::size_t>(s + 1)] > start[static_cast<std::size_t>(s)];
+    };
+    std::int64_t prefetched = -1;  // the bands with points up to this one were prefetched
+    for (std::int64_t s = 0; s < nb; ++s) {
+      const std::int64_t k0 = start[static_cast<std::size_t>(s)], k1 = start[static_cast<std::size_t>(s + 1)];
+      if (k1 == k0) continue;
+      // This band and the next one with points: read from the disk in the background.
+      std::int64_t next = s + 1;
+      while (next < nb && !has_points(next)) ++next;
+      for (; prefetched < std::min(next, nb - 1);)
+        if (has_points(++prefetched)) m.prefetch(g.first(prefetched), g.end(prefetched));
+#pragma omp parallel for default(none) shared(im, m, order, lon_deg, lat_deg, out, k0, k1, h, north_up) \
+    schedule(static) if (k1 - k0 > 20000)
+      for (std::int64_t q = k0; q < k1; ++q) {
+        const std::int64_t k = order[static_cast<std::size_t>(q)];
+        std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+        double t = 0.0, u = 0.0;
+        (void)im->col(lon_deg[k], c0, c1, t);
+        (void)im->row(lat_deg[k], r0, r1, u);
+        const std::int64_t y0 = north_up ? h - 1 - r0 : r0, y1 = north_up ? h - 1 - r1 : r1;
+        std::int64_t implausible = 0;
+        const float a = im->normalise(m.value(c0, y0), implausible), b = im->normalise(m.value(c1, y0), implausible),
+                    c = im->normalise(m.value(c0, y1), implausible), d = im->normalise(m.value(c1, y1), implausible);
+        out[k] = bilinear4(a, b, c, d, t, u);
+      }
+      m.release(g.first(s), g.end(s));
+      if (progress) progress(static_cast<double>(s + 1) / static_cast<double>(nb), "bands of raster rows");
+    }
+    return;
+  }
   const auto wanted = [&start](std::int64_t s) {
     return start[static_cast<std::size_t>(s + 1)] > start[static_cast<std::size_t>(s)];
   };
@@ -745,6 +1280,11 @@ Bathymetry::Columns Bathymetry::prepare_columns(const double* lons, std::int64_t
 }
 
 void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) const {
+  raw_row(cols, lat_deg, out);
+  if (edits_) edits_->apply_row(cols.lon.data(), lat_deg, out, static_cast<std::int64_t>(cols.lon.size()));
+}
+
+void Bathymetry::raw_row(const Columns& cols, double lat_deg, float* out) const {
   if (stack_) return stack_->sample_row(cols, lat_deg, out);
   const Impl& im = *impl_;
   std::int64_t r0 = 0, r1 = 0;
@@ -787,18 +1327,46 @@ void Bathymetry::sample_row(const Columns& cols, double lat_deg, float* out) con
 
 void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
                              const ProgressFn& progress) const {
+  if (!edits_) return raw_rows(cols, lats, n, sink, progress);
+  const ElevationEdits* ed = edits_.get();
+  const auto nc = static_cast<std::int64_t>(cols.lon.size());
+  raw_rows(
+      cols, lats, n,
+      [&](std::int64_t k, const float* values) {
+        if (!ed->touches_lat(lats[k])) return sink(k, values);
+        std::vector<float> row(values, values + nc);
+        ed->apply_row(cols.lon.data(), lats[k], row.data(), nc);
+        sink(k, row.data());
+      },
+      progress);
+}
+
+void Bathymetry::raw_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
+                          const ProgressFn& progress) const {
   if (stack_) return stack_->sample_rows(cols, lats, n, sink, progress);
   const Impl& im = *impl_;
   const auto nc = static_cast<std::int64_t>(cols.c0.size());
   const bool parallel = n * nc >= (std::int64_t{1} << 16);
   if (!im.info.streamed) {
     RowProgress rp(progress, n, "rows");
-#pragma omp parallel default(none) shared(cols, lats, n, nc, sink, rp) if (parallel)
+    // A tiled raster has no rows in memory: sample_row reads its tiles (row_ptr is for held rows).
+    const bool bilinear = !im.info.tiled && (im.interp != Interpolation::kBicubic || im.fx.empty());
+#pragma omp parallel default(none) shared(im, cols, lats, n, nc, sink, rp, bilinear) if (parallel)
     {
       std::vector<float> buf(static_cast<std::size_t>(nc));
+      std::optional<RowFiller> filler;  // a thread's rows are consecutive (static schedule)
+      if (bilinear) filler.emplace(cols);
 #pragma omp for schedule(static)
       for (std::int64_t k = 0; k < n; ++k) {
-        sample_row(cols, lats[k], buf.data());
+        std::int64_t r0 = 0, r1 = 0;
+        double u = 0.0;
+        if (!bilinear) {
+          raw_row(cols, lats[k], buf.data());
+        } else if (im.row(lats[k], r0, r1, u)) {
+          filler->fill(im.row_ptr(r0), r0, im.row_ptr(r1), r1, u, buf.data());
+        } else {
+          std::fill(buf.begin(), buf.end(), std::numeric_limits<float>::quiet_NaN());
+        }
         sink(k, buf.data());
         rp.row_done();
       }
@@ -828,18 +1396,36 @@ void Bathymetry::sample_rows(const Columns& cols, const double* lats, std::int64
   }
   const std::int64_t ncols = im.info.ncols;
   const auto wanted = [&rows](std::int64_t s) { return !rows[static_cast<std::size_t>(s)].empty(); };
+  // One RowFiller and output row per thread for the whole pass (a raster row shared by the last
+  // lattice row of a band and the first of the next is found again).
+#ifdef _OPENMP
+  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+#else
+  const std::size_t threads = 1;
+#endif
+  std::vector<std::optional<RowFiller>> fillers(threads);
+  std::vector<std::vector<float>> outs(threads);
   const auto work = [&](std::int64_t s, const float* buf) {
     const std::vector<std::int64_t>& ks = rows[static_cast<std::size_t>(s)];
     const std::int64_t lo = g.lo(s), m = static_cast<std::int64_t>(ks.size());
 #pragma omp parallel default(none) \
-    shared(ks, buf, cols, sink, r0s, r1s, us, lo, m, nc, ncols) if (m * nc >= (std::int64_t{1} << 16))
+    shared(ks, buf, cols, sink, r0s, r1s, us, lo, m, nc, ncols, fillers, outs) if (m * nc >= (std::int64_t{1} << 16))
     {
-      std::vector<float> out(static_cast<std::size_t>(nc));
+#ifdef _OPENMP
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#else
+      const std::size_t t = 0;
+#endif
+      if (!fillers[t]) {
+        fillers[t].emplace(cols);
+        outs[t].resize(static_cast<std::size_t>(nc));
+      }
 #pragma omp for schedule(static)
       for (std::int64_t q = 0; q < m; ++q) {
         const auto k = static_cast<std::size_t>(ks[static_cast<std::size_t>(q)]);
-        fill_row(buf + (r0s[k] - lo) * ncols, buf + (r1s[k] - lo) * ncols, cols, us[k], out.data());
-        sink(static_cast<std::int64_t>(k), out.data());
+        fillers[t]->fill(buf + (r0s[k] - lo) * ncols, r0s[k], buf + (r1s[k] - lo) * ncols, r1s[k], us[k],
+                         outs[t].data());
+        sink(static_cast<std::int64_t>(k), outs[t].data());
       }
     }
   };
@@ -1151,6 +1737,11 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   if (has_offset == 0) info.offset = 0.0;
   im->sgn = o.positive_down ? -1.0 : 1.0;
   im->max_abs_m = static_cast<float>(o.max_abs_elevation_m);
+  {
+    const GDALDataType t = band->GetRasterDataType();
+    im->integral_plain = (t == GDT_Int16 || t == GDT_UInt16 || (t == GDT_Byte && !im->signed_byte)) &&
+                         info.scale == 1.0 && info.offset == 0.0 && !o.positive_down;
+  }
   info.max_abs_elevation_m = o.max_abs_elevation_m;
   int bx = 0, by = 0;
   band->GetBlockSize(&bx, &by);
@@ -1173,8 +1764,15 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
     info.band_rows =
         o.band_rows > 0 ? o.band_rows : std::max(info.block_rows, target / info.block_rows * info.block_rows);
     info.band_rows = std::min(info.band_rows, h);
-    // Two band buffers (with the carried row) and two raw read buffers.
-    info.memory_bytes = 2 * (info.band_rows + 1) * info.ncols * 4 + 2 * info.band_rows * w * 4;
+    if (o.map_file) {
+      im->map = FileMap::open(band, w);
+      info.mapped = im->map != nullptr;
+    }
+    // The band buffer (with the carried row) and, through GDAL, two raw read buffers; through the
+    // file map, one band of the file's rows mapped instead.
+    info.memory_bytes = (info.band_rows + 1) * info.ncols * 4 +
+                        (info.mapped ? info.band_rows * w * GDALGetDataTypeSizeBytes(band->GetRasterDataType())
+                                     : 2 * info.band_rows * w * 4);
     info.min_m = info.max_m = info.mean_m = kNaN;
     info.valid_count = -1;  // known after the first pass
   }
@@ -1182,8 +1780,8 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
     // A latitude window: the rows covering it and 2 more each side.
     if (!std::isnan(o.lat_min) || !std::isnan(o.lat_max)) {
       const double a = std::isnan(o.lat_min) ? -90.0 : o.lat_min, b = std::isnan(o.lat_max) ? 90.0 : o.lat_max;
-      im->row_lo = std::clamp<std::int64_t>(
-          static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2, 0, info.nrows - 1);
+      im->row_lo = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((a - info.lat_first) / info.dlat)) - 2,
+                                            0, info.nrows - 1);
       im->row_hi = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil((b - info.lat_first) / info.dlat)) + 3,
                                             im->row_lo + 1, info.nrows);
     }

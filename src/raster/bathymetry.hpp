@@ -18,6 +18,7 @@
 
 #include "config/kinds.hpp"
 #include "core/log.hpp"
+#include "raster/elevation_edits.hpp"
 
 namespace aq::raster {
 
@@ -54,6 +55,10 @@ struct OpenOptions {
   /// above the memory limit; kAlways/kNever force a path (kAlways still needs allow_streaming).
   Streaming streaming = Streaming::kAuto;
   std::int64_t band_rows = 0;  ///< stored rows per band read; 0 = whole blocks, about 64 MB
+  /// A streamed raster GDAL can map into memory (an uncompressed file in the machine's byte
+  /// order, one block per row or a strip layout: GeoTIFF, ENVI, EHdr) is read through the map
+  /// (RasterInfo::mapped); false: through GDAL reads always (tests compare the two).
+  bool map_file = true;
   /// Warn that a raster not covering 360° leaves the rest of the lattice dry (off for a source
   /// above another one, whose uncovered part the sources below fill).
   bool warn_partial_coverage = true;
@@ -100,6 +105,9 @@ struct RasterInfo {
   bool tiled = false;             ///< values read in tiles on demand and cached (OpenOptions::tiles_above_bytes)
   std::int64_t tile_cache_bytes = 0;    ///< tiled: the cache's bound
   mutable std::int64_t tiles_read = 0;  ///< tiled: tiles read so far (with repeats after eviction)
+  /// Streamed through GDAL's memory map of the file (OpenOptions::map_file): the threads read the
+  /// rows where they lie instead of copying them through a read buffer; the same values.
+  bool mapped = false;
   /// Held whole: the window read (OpenOptions lat/lon window), in normalised columns and rows;
   /// the whole raster when no window was asked (held_cols = ncols, held_rows = nrows).
   std::int64_t held_cols = 0, held_rows = 0;
@@ -167,10 +175,19 @@ class Bathymetry {
   /// Several sources: a summary (paths joined by " + ", the finest steps, streamed when any is,
   /// global when any is, memory and valid counts summed); each source's own is source(k).info().
   [[nodiscard]] const RasterInfo& info() const;
-  /// True when `sample` interpolates bilinearly (every value is a convex combination of the four
-  /// surrounding raster values, or NaN); false for the bicubic spline and for several sources
-  /// (no one raster grid holds the values).
+  /// True when the raster itself is sampled bilinearly (every raw value is a convex combination
+  /// of the four surrounding raster values, or NaN); false for the bicubic spline and for several
+  /// sources (no one raster grid holds the values). Edits (set_edits) apply on top of it.
   [[nodiscard]] bool samples_bilinear() const;
+
+  /// Installs corridor edits (raster/elevation_edits.hpp) applied to every value this object
+  /// returns from now on: sample, sample_points, sample_row(s), value(s) (at the raster points'
+  /// positions). Null or empty removes them. Not thread-safe against concurrent sampling: call it
+  /// between stages (the mask stage's carving does, before the classification).
+  void set_edits(std::shared_ptr<const ElevationEdits> edits);
+  /// The installed edits, or null.
+  [[nodiscard]] const ElevationEdits* edits() const { return edits_.get(); }
+  [[nodiscard]] std::shared_ptr<const ElevationEdits> shared_edits() const { return edits_; }
 
   /// Elevation (m, negative below sea level) at (lon, lat) in degrees; NaN if no data or outside.
   /// Thread-safe.
@@ -230,6 +247,15 @@ class Bathymetry {
   friend RasterPlan plan_raster(const OpenOptions& options);
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Stack> stack_;
+  std::shared_ptr<const ElevationEdits> edits_;  ///< null = the raster's values as they are
+  // The raster's values without the edits (the public functions apply them on top).
+  void raw_points(const double* lon_deg, const double* lat_deg, std::int64_t n, double* out,
+                  const ProgressFn& progress) const;
+  void raw_row(const Columns& cols, double lat_deg, float* out) const;
+  void raw_rows(const Columns& cols, const double* lats, std::int64_t n, const RowSink& sink,
+                const ProgressFn& progress) const;
+  /// Normalised raster point (c, r)'s position (degrees), for edits of value / values.
+  void point_lonlat(std::int64_t c, std::int64_t r, double& lon_deg, double& lat_deg) const;
 };
 
 /// The files GDAL reads for the raster at `path`: the file itself, a VRT's source tiles, sidecar

@@ -14,7 +14,7 @@ namespace aq::raster {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 constexpr double kEarthRadiusKm = 6371.0088;  // mean radius (IUGG), as the size field's distances
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 

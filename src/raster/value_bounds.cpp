@@ -7,7 +7,8 @@
 
 namespace aq::raster {
 
-ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block) : info_(bathy.info()) {
+ValueBounds::ValueBounds(const Bathymetry& bathy, std::int64_t block)
+    : info_(bathy.info()), edits_(bathy.shared_edits()) {
   if (info_.streamed || info_.tiled || !bathy.samples_bilinear() || info_.ncols <= 0 || info_.nrows <= 0 || block < 1)
     return;
   available_ = true;
@@ -108,6 +109,22 @@ void ValueBounds::add_blocks(const Level& l, std::int64_t c_lo, std::int64_t c_h
 }
 
 ValueRange ValueBounds::in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const {
+  ValueRange out = raw_in_box(lon_lo, lon_hi, lat_lo, lat_hi);
+  if (!edits_ || !available_) return out;
+  // A corridor edit sets values in its own range, whatever the raster holds (a channel also
+  // turns no-data into water).
+  const ElevationEdits::Reach e = edits_->reach_in_box(lon_lo, lon_hi, lat_lo, lat_hi);
+  const auto include = [&out](double z) {
+    out.lo = out.any_finite ? std::min(out.lo, z) : z;
+    out.hi = out.any_finite ? std::max(out.hi, z) : z;
+    out.any_finite = true;
+  };
+  if (e.channel) include(e.channel_min_m);
+  if (e.blockage) include(e.blockage_max_m);
+  return out;
+}
+
+ValueRange ValueBounds::raw_in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const {
   ValueRange out;
   if (!available_ || !(lon_lo <= lon_hi) || !(lat_lo <= lat_hi) || !std::isfinite(lon_hi - lon_lo) ||
       !std::isfinite(lat_hi - lat_lo)) {

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <memory>
+
 #include "raster/bathymetry.hpp"
 
 namespace aq::raster {
@@ -29,7 +31,8 @@ class ValueBounds {
   [[nodiscard]] bool available() const { return available_; }
   /// Bounds of every value that `Bathymetry::sample` can return at a point of
   /// [lon_lo, lon_hi] × [lat_lo, lat_hi] (degrees; lon_lo <= lon_hi, any range of λ on a global
-  /// raster, wrapping at the seam). Conservative: one raster cell more on every side.
+  /// raster, wrapping at the seam). Conservative: one raster cell more on every side; with edits
+  /// (Bathymetry::set_edits) the elevations of the corridors that may reach the box are included.
   [[nodiscard]] ValueRange in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const;
   /// Bytes held (every level).
   [[nodiscard]] std::int64_t bytes() const;
@@ -47,7 +50,9 @@ class ValueBounds {
   [[nodiscard]] const Level& level_for(std::int64_t cols, std::int64_t rows) const;
   static void add_blocks(const Level& l, std::int64_t c_lo, std::int64_t c_hi, std::int64_t r_lo, std::int64_t r_hi,
                          ValueRange& out);
+  [[nodiscard]] ValueRange raw_in_box(double lon_lo, double lon_hi, double lat_lo, double lat_hi) const;
   RasterInfo info_;
+  std::shared_ptr<const ElevationEdits> edits_;  ///< the raster's edits when built, or null
   bool available_ = false;
   std::vector<Level> levels_;  ///< finest first; each coarser one merges 2 × 2 blocks
 };

@@ -44,8 +44,9 @@ inline double field(double lon, double lat) {
 }
 
 // A global int16 GeoTIFF at `step` degrees (pixel-registered, origin -180), scale 0.5, offset
-// -100, no-data -32768 in a small patch; tiled with 16-row blocks or striped (1 row per strip).
-inline fs::path write_tiff(const fs::path& p, double step, bool north_up, bool tiled) {
+// -100, no-data -32768 in a small patch; tiled with 16-row blocks or striped (1 row per strip);
+// deflate-compressed, or raw (what GDAL can map into memory when striped).
+inline fs::path write_tiff(const fs::path& p, double step, bool north_up, bool tiled, bool compressed = true) {
   GDALAllRegister();
   const int w = static_cast<int>(std::lround(360.0 / step)), h = static_cast<int>(std::lround(180.0 / step));
   GDALDataset* mem = GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, 1, GDT_Int16, nullptr);
@@ -69,7 +70,7 @@ inline fs::path write_tiff(const fs::path& p, double step, bool north_up, bool t
   b->SetNoDataValue(-32768.0);
   EXPECT_EQ(b->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Int16, 0, 0, nullptr), CE_None);
   char** opts = nullptr;
-  opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
+  if (compressed) opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
   if (tiled) {
     opts = CSLSetNameValue(opts, "TILED", "YES");
     opts = CSLSetNameValue(opts, "BLOCKXSIZE", "256");

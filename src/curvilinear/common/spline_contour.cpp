@@ -76,14 +76,14 @@ const GaussLegendre& gauss_legendre() {
   return gl;
 }
 
-double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
 // Do closed segments p1-p2 and q1-q2 intersect (including touching and collinear overlap)?
 bool segments_intersect(const PlanePoint& p1, const PlanePoint& p2, const PlanePoint& q1, const PlanePoint& q2) {
-  const double d1 = cross(q2.x - q1.x, q2.y - q1.y, p1.x - q1.x, p1.y - q1.y);
-  const double d2 = cross(q2.x - q1.x, q2.y - q1.y, p2.x - q1.x, p2.y - q1.y);
-  const double d3 = cross(p2.x - p1.x, p2.y - p1.y, q1.x - p1.x, q1.y - p1.y);
-  const double d4 = cross(p2.x - p1.x, p2.y - p1.y, q2.x - p1.x, q2.y - p1.y);
+  const double d1 = cross2(q2.x - q1.x, q2.y - q1.y, p1.x - q1.x, p1.y - q1.y);
+  const double d2 = cross2(q2.x - q1.x, q2.y - q1.y, p2.x - q1.x, p2.y - q1.y);
+  const double d3 = cross2(p2.x - p1.x, p2.y - p1.y, q1.x - p1.x, q1.y - p1.y);
+  const double d4 = cross2(p2.x - p1.x, p2.y - p1.y, q2.x - p1.x, q2.y - p1.y);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
   auto on_segment = [](const PlanePoint& a, const PlanePoint& b, const PlanePoint& c) {
     return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
+#include <vector>
 
 #include "core/bitmap.hpp"
 #include "core/error.hpp"
@@ -231,6 +233,26 @@ TEST(Bitmap, SetGetCountAcrossWordBoundaries) {
   EXPECT_EQ(b.count(), 3);
   b.clear(64, 0);
   EXPECT_EQ(b.count(), 2);
+}
+
+// count_bits (POPCNT or not, on the threads for large arrays) and popcount64 against counting
+// bit by bit, for word counts around its block size and a 15"-sized lattice row count.
+TEST(Bitmap, CountBitsEqualsCountingEveryBit) {
+  std::mt19937_64 rng(5);
+  for (const std::int64_t n : {std::int64_t{0}, std::int64_t{1}, std::int64_t{65535}, std::int64_t{65536},
+                               std::int64_t{65537}, std::int64_t{9 * 65536 + 17}}) {
+    std::vector<std::uint64_t> w(static_cast<std::size_t>(n));
+    std::int64_t naive = 0;
+    for (auto& x : w) {
+      x = rng() & rng();  // a quarter of the bits set
+      std::int64_t c = 0;
+      for (int b = 0; b < 64; ++b) c += static_cast<std::int64_t>((x >> b) & 1U);
+      EXPECT_EQ(aq::popcount64(x), c);
+      naive += c;
+    }
+    EXPECT_EQ(aq::count_bits(w.data(), n), naive) << n << " words";
+  }
+  EXPECT_EQ(aq::popcount64(~std::uint64_t{0}), 64);
 }
 
 TEST(Types, WrapHelpers) {

@@ -230,9 +230,9 @@ TEST(Passages, RotatedMercatorJudgeEqualsAScanOfTheWholeLattice) {
   }
 }
 
-TEST(Passages, TableHasTheThirtyNamedStraitsWithSidesInsideTheirBoxes) {
+TEST(Passages, TableHasTheNamedStraitsWithSidesInsideTheirBoxes) {
   const auto t = critical_passages();
-  ASSERT_EQ(t.size(), 30U);
+  ASSERT_EQ(t.size(), 37U);
   std::set<std::string> names;
   for (const Passage& p : t) {
     names.insert(p.name);
@@ -247,12 +247,35 @@ TEST(Passages, TableHasTheThirtyNamedStraitsWithSidesInsideTheirBoxes) {
     const bool lat_apart = p.side_a.lat_max_deg <= p.side_b.lat_min_deg || p.side_b.lat_max_deg <= p.side_a.lat_min_deg;
     EXPECT_TRUE(lon_apart || lat_apart) << p.name;
   }
-  for (const char* n : {"Gibraltar",      "Bosphorus", "Bering",  "Bab-el-Mandeb", "Hormuz",     "Malacca/Singapore",
-                        "Lombok",         "Torres",    "Bass",    "Fram",          "Nares",      "Davis",
-                        "Belle Isle",     "Florida",   "Yucatan", "Drake",         "Denmark",    "Dover",
-                        "Danish straits", "Kerch",     "Tsugaru", "Korea",         "La Perouse", "Taiwan",
-                        "Messina",        "Sicily",    "Luzon",   "Hudson",        "Barrow",     "Juan de Fuca"})
+  for (const char* n : {"Gibraltar",      "Bosphorus", "Bering",     "Bab-el-Mandeb", "Hormuz",     "Malacca/Singapore",
+                        "Lombok",         "Torres",    "Bass",       "Fram",          "Nares",      "Davis",
+                        "Belle Isle",     "Florida",   "Yucatan",    "Drake",         "Denmark",    "Dover",
+                        "Danish straits", "Kerch",     "Tsugaru",    "Korea",         "La Perouse", "Taiwan",
+                        "Messina",        "Sicily",    "Luzon",      "Hudson",        "Barrow",     "Juan de Fuca",
+                        "Dardanelles",    "Oresund",   "Great Belt", "Little Belt",   "Chesapeake", "Delaware",
+                        "Gorlo"})
     EXPECT_EQ(names.count(n), 1U) << n;
+  // Every strait has a nominal sill depth for the carving (mask/carving.hpp).
+  for (const Passage& p : t) {
+    EXPECT_GT(p.sill_depth_m, 0.0) << p.name;
+    EXPECT_LT(p.sill_depth_m, 4000.0) << p.name;
+  }
+}
+
+// Names and aliases, without case for ASCII letters; the names among them.
+TEST(Passages, FoundByNameOrAliasWithoutCase) {
+  ASSERT_NE(find_passage("Gibraltar"), nullptr);
+  EXPECT_STREQ(find_passage("gibraltar")->name, "Gibraltar");
+  EXPECT_STREQ(find_passage("Strait of Gibraltar")->name, "Gibraltar");
+  EXPECT_STREQ(find_passage("Øresund")->name, "Oresund");
+  EXPECT_STREQ(find_passage("ORESUND")->name, "Oresund");
+  EXPECT_STREQ(find_passage("Bab el Mandeb")->name, "Bab-el-Mandeb");
+  EXPECT_STREQ(find_passage("Storebælt")->name, "Great Belt");
+  EXPECT_STREQ(find_passage("Bosporus")->name, "Bosphorus");
+  EXPECT_STREQ(find_passage("dover strait")->name, "Dover");
+  EXPECT_EQ(find_passage("Gibralter"), nullptr);
+  EXPECT_EQ(find_passage(""), nullptr);
+  EXPECT_EQ(find_passage("Strait"), nullptr);
 }
 
 TEST(Passages, JsonAndTextTable) {

@@ -1,8 +1,10 @@
 // The streamed raster path (issue 9): banded reads must give the whole path's values bit for bit
 // for any band height (1, 7, the file's block height, the default) and thread count, on tiled
-// and striped GeoTIFFs (north-up and south-up, int16 with scale/offset/no-data), and on netCDF4
+// and striped GeoTIFFs (north-up and south-up, int16 with scale/offset/no-data; compressed, and
+// raw ones read through GDAL's memory map of the file and through GDAL reads), and on netCDF4
 // (deflate) files in the GEBCO (pixel-registered `elevation` int16) and SRTM15+
 // (grid-registered `z` with a 360° column) layouts, written here.
+#include <fmt/format.h>
 #include <gdal_priv.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -33,13 +35,15 @@ using aq::test::write_tiff;
 
 fs::path tmpdir() { return aq::test::synthetic_dir(); }
 
-Bathymetry open(const fs::path& p, bool streamed, std::int64_t band_rows = 0, const std::string& var = "") {
+Bathymetry open(const fs::path& p, bool streamed, std::int64_t band_rows = 0, const std::string& var = "",
+                bool map_file = true) {
   OpenOptions o;
   o.path = p.string();
   o.variable = var;
   o.allow_streaming = streamed;
   o.streaming = streamed ? OpenOptions::Streaming::kAlways : OpenOptions::Streaming::kNever;
   o.band_rows = band_rows;
+  o.map_file = map_file;
   return Bathymetry::open(o);
 }
 
@@ -90,34 +94,40 @@ void expect_same_stats(const Bathymetry& a, const Bathymetry& b) {
 struct FileCase {
   const char* name;
   bool north_up, tiled;
+  bool compressed = true;  // raw striped files are mapped (RasterInfo::mapped)
 };
 
 class StreamedTiff : public ::testing::TestWithParam<FileCase> {};
 
 TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
   const FileCase fc = GetParam();
-  const fs::path p = write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled);
+  const fs::path p = write_tiff(tmpdir() / (std::string(fc.name) + ".tif"), 0.5, fc.north_up, fc.tiled, fc.compressed);
   const Bathymetry whole = open(p, false);
   ASSERT_FALSE(whole.info().streamed);
   const auto rows_w = lattice_rows(whole, 0.4);
   const auto pts_w = points(whole);
-  // Band heights 1, 7, the block height (16 rows tiled, 1 striped) and the default.
+  // Band heights 1, 7, the block height (16 rows tiled, 1 striped) and the default; through the
+  // file map when GDAL has one (raw striped files), and through GDAL reads.
   for (const std::int64_t band : {std::int64_t{1}, std::int64_t{7}, std::int64_t{16}, std::int64_t{0}}) {
     for (const int threads : {1, 2}) {
-      aq::test::set_threads(threads);
-      const Bathymetry s = open(p, true, band);
-      ASSERT_TRUE(s.info().streamed);
-      EXPECT_EQ(s.info().block_rows, fc.tiled ? 16 : 1);
-      EXPECT_TRUE(same_bits(lattice_rows(s, 0.4), rows_w)) << "band " << band << ", threads " << threads;
-      expect_same_stats(s, whole);
-      EXPECT_TRUE(same_bits(points(s), pts_w)) << "band " << band << ", threads " << threads;
-      EXPECT_EQ(s.info().passes, 2);
-      // Single values and blocks agree too (pictures, contours).
-      EXPECT_EQ(s.sample(12.34, -56.78), whole.sample(12.34, -56.78));
-      std::vector<float> va(40 * 9), vb(va.size());
-      s.values(700, 40, 300, 9, va.data());  // across the seam
-      whole.values(700, 40, 300, 9, vb.data());
-      EXPECT_TRUE(same_bits(va, vb));
+      for (const bool map_file : {true, false}) {
+        aq::test::set_threads(threads);
+        const Bathymetry s = open(p, true, band, "", map_file);
+        const std::string what = fmt::format("band {}, threads {}, map_file {}", band, threads, map_file);
+        ASSERT_TRUE(s.info().streamed);
+        EXPECT_EQ(s.info().mapped, map_file && !fc.tiled && !fc.compressed) << what;
+        EXPECT_EQ(s.info().block_rows, fc.tiled ? 16 : 1);
+        EXPECT_TRUE(same_bits(lattice_rows(s, 0.4), rows_w)) << what;
+        expect_same_stats(s, whole);
+        EXPECT_TRUE(same_bits(points(s), pts_w)) << what;
+        EXPECT_EQ(s.info().passes, 2);
+        // Single values and blocks agree too (pictures, contours).
+        EXPECT_EQ(s.sample(12.34, -56.78), whole.sample(12.34, -56.78));
+        std::vector<float> va(40 * 9), vb(va.size());
+        s.values(700, 40, 300, 9, va.data());  // across the seam
+        whole.values(700, 40, 300, 9, vb.data());
+        EXPECT_TRUE(same_bits(va, vb)) << what;
+      }
     }
   }
   aq::test::set_threads(2);
@@ -126,7 +136,10 @@ TEST_P(StreamedTiff, BandedEqualsWholeBitForBit) {
 INSTANTIATE_TEST_SUITE_P(Layouts, StreamedTiff,
                          ::testing::Values(FileCase{"tiled_northup", true, true},
                                            FileCase{"striped_northup", true, false},
-                                           FileCase{"tiled_southup", false, true}),
+                                           FileCase{"tiled_southup", false, true},
+                                           FileCase{"raw_striped_northup", true, false, false},
+                                           FileCase{"raw_striped_southup", false, false, false},
+                                           FileCase{"raw_tiled_northup", true, true, false}),
                          [](const auto& i) { return std::string(i.param.name); });
 
 TEST(StreamedRaster, AutoRuleAndNoData) {
@@ -296,6 +309,109 @@ TEST(StreamedRaster, LonLatWindowAcrossTheSeamEqualsTheWholeRasterInside) {
       const auto c = static_cast<std::int64_t>(std::floor((lo - i.lon_first) / i.dlon)) + 1;
       const float vw = w.value(c, i.held_row_first + 1), vf = whole.value(c, i.held_row_first + 1);
       EXPECT_TRUE(vw == vf || (std::isnan(vw) && std::isnan(vf)));
+    }
+  }
+}
+
+// sample_rows computes each raster row's interpolation along the row once and reuses it, two
+// columns at a time where the lattice's columns step through the raster's one by one: every
+// value must still be the float of sample() at that vertex, for lattices as fine as the raster
+// (0.5°, the seam column the only irregular one), finer, coarser and unaligned ones.
+// A regional raster of `w` columns from lon0 (0.5° pixels, 60°S..60°N): a global lattice's
+// columns outside it are NaN, and a narrow one (w < 16) is only short runs of columns.
+fs::path write_regional(const fs::path& p, double lon0, int w) {
+  GDALAllRegister();
+  const double step = 0.5;
+  const int h = 240;
+  GDALDataset* mem = GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, 1, GDT_Float32, nullptr);
+  double gt[6] = {lon0, step, 0.0, 60.0, 0.0, -step};
+  mem->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  mem->SetSpatialRef(&srs);
+  std::vector<float> v(static_cast<std::size_t>(w) * h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      v[static_cast<std::size_t>(r) * w + c] =
+          static_cast<float>(field(lon0 + (c + 0.5) * step, 60.0 - (r + 0.5) * step));
+  EXPECT_EQ(mem->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+  GDALClose(
+      GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, nullptr, nullptr, nullptr));
+  GDALClose(mem);
+  return p;
+}
+
+TEST(SampledRows, EqualTheSampleOfEveryVertex) {
+  const fs::path global = write_tiff(tmpdir() / "rows_vs_sample.tif", 0.5, true, false, false);
+  const fs::path wide = write_regional(tmpdir() / "rows_vs_sample_wide.tif", -30.25, 141);
+  const fs::path narrow = write_regional(tmpdir() / "rows_vs_sample_narrow.tif", 10.0, 7);
+  for (const auto& [p, streamed] :
+       {std::pair{global, false}, std::pair{global, true}, std::pair{wide, false}, std::pair{narrow, false}}) {
+    const Bathymetry b = open(p, streamed);
+    for (const double step : {0.5, 0.25, 1.0, 0.4}) {
+      const auto rows = lattice_rows(b, step);
+      const auto nx = static_cast<std::int64_t>(std::lround(360.0 / step));
+      const auto nv = static_cast<std::int64_t>(std::lround(180.0 / step)) + 1;
+      std::int64_t differ = 0;
+      for (std::int64_t j = 0; j < nv; ++j)
+        for (std::int64_t i = 0; i < nx; ++i) {
+          const float want = static_cast<float>(
+              b.sample(-180.0 + static_cast<double>(i) * step, -90.0 + static_cast<double>(j) * step));
+          const float got = rows[static_cast<std::size_t>(j * nx + i)];
+          differ += std::memcmp(&want, &got, sizeof want) != 0 ? 1 : 0;
+        }
+      EXPECT_EQ(differ, 0) << p.filename() << ", step " << step << ", streamed " << streamed;
+    }
+  }
+}
+
+// Plain integers (int16 without scale or offset: GEBCO, ETOPO) take a shortcut through
+// normalisation and row statistics (their sum is exact as an integer); the same values as
+// Float32 take the general rule. Both must give the same values and figures bit for bit, with
+// no-data cells and values beyond input.max_abs_elevation_m among them.
+TEST(StreamedRaster, PlainIntegersGiveTheFiguresOfTheGeneralRule) {
+  GDALAllRegister();
+  const double step = 0.5;
+  const int w = 720, h = 360;
+  std::vector<float> v(static_cast<std::size_t>(w) * h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double lon = -180.0 + (c + 0.5) * step, lat = 90.0 - (r + 0.5) * step;
+      float x = static_cast<float>(std::lround(field(lon, lat) + 7.0 * std::sin(3.0 * lat)));
+      if (lon > 20.0 && lon < 23.0 && lat > 5.0 && lat < 8.0) x = -32768.0f;     // no-data
+      if (lon > -50.0 && lon < -48.0 && lat > 30.0 && lat < 31.0) x = 15000.0f;  // implausible
+      v[static_cast<std::size_t>(r) * w + c] = x;
+    }
+  const auto write = [&](const char* name, GDALDataType type) {
+    GDALDataset* mem = GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, 1, type, nullptr);
+    double gt[6] = {-180.0, step, 0.0, 90.0, 0.0, -step};
+    mem->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(4326);
+    mem->SetSpatialRef(&srs);
+    GDALRasterBand* b = mem->GetRasterBand(1);
+    b->SetNoDataValue(-32768.0);
+    EXPECT_EQ(b->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Float32, 0, 0, nullptr), CE_None);
+    const fs::path p = tmpdir() / name;
+    char** opts = CSLSetNameValue(nullptr, "BLOCKYSIZE", "1");
+    GDALClose(
+        GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, opts, nullptr, nullptr));
+    CSLDestroy(opts);
+    GDALClose(mem);
+    return p;
+  };
+  const fs::path pi = write("plain_int16.tif", GDT_Int16), pf = write("plain_float32.tif", GDT_Float32);
+  for (const bool streamed : {false, true}) {
+    for (const bool map_file : {true, false}) {
+      const Bathymetry bi = open(pi, streamed, 7, "", map_file), bf = open(pf, streamed, 7, "", map_file);
+      EXPECT_EQ(bi.info().data_type, "Int16");
+      EXPECT_EQ(bf.info().data_type, "Float32");
+      EXPECT_TRUE(same_bits(lattice_rows(bi, 0.4), lattice_rows(bf, 0.4))) << streamed << map_file;
+      EXPECT_TRUE(same_bits(points(bi), points(bf))) << streamed << map_file;
+      expect_same_stats(bi, bf);
+      EXPECT_GT(bi.info().implausible_count, 0);
+      EXPECT_EQ(bi.info().implausible_count, bf.info().implausible_count);
+      EXPECT_LT(bi.info().valid_count, std::int64_t{w} * h);
     }
   }
 }
