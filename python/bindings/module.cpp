@@ -97,7 +97,7 @@ class MeshRun {
     run_ = app::run_global_pipeline(c, setup, log_, &report_);
     report_["mesh_counts"] = app::mesh_counts_json(run_.mesh);
     report_["memory"] = app::memory_json(setup);
-    kinds_ = io::parse_element_kinds(c.mesh.elements);
+    kinds_ = c.mesh.elements;
   }
 
   /// The mesh in geographic coordinates with the configuration's elements, as the UGRID, VTU and
@@ -163,12 +163,14 @@ class MeshRun {
     config::GlobalConfig c = loaded_.options;
     c.output.dir = dir;
     c.output.name = name;
-    if (formats) c.output.formats = *formats;
+    if (formats) c.output.formats = config::parse_names<config::OutputFormat>(*formats, "output.formats");
     io::check_mesh_output_options(c.output, kinds_);
     Report report = report_;
     report["config"]["output"]["name"] = c.output.name;
     report["config"]["output"]["dir"] = c.output.dir;
-    report["config"]["output"]["formats"] = c.output.formats;
+    report["config"]["output"]["formats"] = Json::array();
+    for (const config::OutputFormat f : c.output.formats)
+      report["config"]["output"]["formats"].push_back(std::string(name_of(f)));
     OutputSet out(c.output.dir);
     StageScope stage("write", &report, log_);
     const auto files = app::write_global_mesh_files(c, run_, out, log_, report);

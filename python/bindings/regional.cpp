@@ -53,7 +53,7 @@ class RegionalRun {
     result_ = curvilinear::run_regional(c.params, curvilinear::Stage::kGrid, log_, &report_, bathy ? &depth : nullptr);
     if (result_.completed != curvilinear::Stage::kGrid || !result_.projection)
       throw NumericalError(fmt::format("{}: the grid was not completed (stopped after {})", path,
-                                       curvilinear::stage_name(result_.completed)));
+                                       std::string(name_of(result_.completed))));
     cgrid_ = curvilinear::build_cgrid(result_.grid, *result_.projection, app::roms_cgrid_options(c));
   }
 

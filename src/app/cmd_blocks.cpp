@@ -119,7 +119,8 @@ std::vector<std::string> remove_stale_blocks(const fs::path& dir, std::size_t co
   std::sort(removed.begin(), removed.end());
   for (const auto& n : removed) {
     fs::remove(dir / n, ec);
-    if (ec) throw OutputError(fmt::format("{}: cannot remove this stale block file: {}", (dir / n).string(), ec.message()));
+    if (ec)
+      throw OutputError(fmt::format("{}: cannot remove this stale block file: {}", (dir / n).string(), ec.message()));
   }
   return removed;
 }
@@ -129,6 +130,130 @@ std::size_t stale_block_count(const std::vector<std::string>& names) {
   for (const auto& n : names) stems.push_back(n.substr(0, 9));
   std::sort(stems.begin(), stems.end());
   return static_cast<std::size_t>(std::unique(stems.begin(), stems.end()) - stems.begin());
+}
+
+// The echo of the global run's configuration as the blocks' regional runs must see it: the raster
+// paths and output.dir absolute, blocks.top as run. One raster: input.path alone (input.paths
+// echoes it); several: input.paths alone.
+Json effective_global_echo(const Json& loaded_echo, const config::GlobalConfig& c) {
+  Json echo = loaded_echo;
+  if (c.input.paths.empty()) {
+    echo["input"]["path"] = fs::absolute(c.input.path).lexically_normal().string();
+    echo["input"].erase("paths");
+  } else {
+    Json paths = Json::array();
+    for (const std::string& p : c.input.paths) paths.push_back(fs::absolute(p).lexically_normal().string());
+    echo["input"]["paths"] = paths;
+    echo["input"].erase("path");
+  }
+  echo["output"]["dir"] = fs::absolute(c.output.dir).lexically_normal().string();
+  echo["blocks"]["top"] = c.blocks.top;
+  return echo;
+}
+
+// The picture of one block: the mesh around its outline (half the block's larger side on each
+// side), the outline drawn.
+void write_block_picture(const GlobalRun& run, const Lattice& lat, const io::PreviewOutline& outline,
+                         const std::string& title, int png_width, config::ElementKinds elements, const fs::path& path) {
+  io::PreviewOptions zoom;
+  zoom.width_px = std::min(png_width, 1000);
+  zoom.elements = elements;
+  zoom.title = title;
+  double w = 1e9, e = -1e9, s = 1e9, n = -1e9;
+  for (const auto& q : outline.points) {
+    w = std::min(w, q[0]);
+    e = std::max(e, q[0]);
+    s = std::min(s, q[1]);
+    n = std::max(n, q[1]);
+  }
+  // Half the block's larger side around it, measured in the map plane (on the Mercator
+  // lattice its rows are Mercator ordinates, so a latitude pad would stretch the picture).
+  const double cap = lat.mercator() ? lat.lat_max_deg() : 90.0;  // the Mercator rows' reach
+  const double ys = lat.plane_y_of_lat(std::max(s, -cap)), yn = lat.plane_y_of_lat(std::min(n, cap));
+  const double pad = 0.5 * std::max(e - w, yn - ys);
+  const auto lat_of_plane = [&](double y) { return lat.mercator() ? mercator_lat_deg(y) : y; };
+  zoom.zoom = {w - pad, e + pad, std::max(-90.0, lat_of_plane(ys - pad)), std::min(90.0, lat_of_plane(yn + pad))};
+  zoom.outlines.push_back(outline);
+  io::write_preview_zoom_png(run.mesh, *run.bathy, path, zoom);
+}
+
+// The entry of one block in blocks.json (`g`: its centre, `p`: its contour's projection).
+Json block_json(const handoff::BlockCandidate& b, std::size_t k, const std::string& name,
+                const curvilinear::GeoPoint& g, const curvilinear::ProjectionParams& p,
+                const handoff::SideInsets& insets, bool shrink_to_wet, const OutputSet& out) {
+  return Json{{"rank", k + 1},
+              {"name", name},
+              {"block", b.describe()},
+              {"square", b.box_index < 0 ? Json::array({b.square_a, b.square_b}) : Json(nullptr)},
+              {"box_index", b.box_index < 0 ? Json(nullptr) : Json(b.box_index)},
+              {"box", {b.box.lon_min_deg, b.box.lon_max_deg, b.box.lat_min_deg, b.box.lat_max_deg}},
+              {"box_system", b.box.lattice_system ? "lattice" : "geographic"},
+              {"centre_lon_deg", g.lon_deg},
+              {"centre_lat_deg", g.lat_deg},
+              {"coastal_pixels", b.coastal_pixels},
+              {"filled_pixels", b.filled_pixels},
+              {"wet_fraction", b.wet_fraction},
+              {"ny", b.suggested_ny},
+              {"projection", std::string(name_of(p.kind))},
+              {"rota_deg", p.rota_deg},
+              {"uscale", p.uscale},
+              {"shrink_to_wet", shrink_to_wet},
+              {"max_inset", {insets.max(0), insets.max(1), insets.max(2), insets.max(3)}},
+              {"config", out.final_path(name + ".toml").string()},
+              {"contour", out.final_path(name + ".izogrid").string()}};
+}
+
+// The contour of a block inside `insets`, checked usable now (its spline: corners, orientation,
+// self-intersection); a shrunk contour that is not falls back to the block's outline, warned.
+handoff::BlockContour usable_contour(const handoff::BoxFrame& frame, const handoff::SideInsets& insets,
+                                     const config::BlocksOptions& blocks, const std::string& name, const Logger& log) {
+  handoff::BlockContour contour = handoff::block_contour(frame, insets, blocks.points_per_side);
+  // The contour must be usable: build its spline now (corners, orientation, self-intersection).
+  try {
+    std::vector<bool> corner(contour.x.size(), false);
+    for (const int q : contour.corners) corner[static_cast<std::size_t>(q)] = true;
+    curvilinear::ContourOptions co;
+    co.source = name;
+    (void)curvilinear::SplineContour(contour.x, contour.y, corner, co);
+  } catch (const InputError& e) {
+    if (!blocks.shrink_to_wet) throw;
+    log.warn("{}: the shrunk contour is not usable ({}); writing the block's outline instead", name, e.what());
+    contour = handoff::block_contour(frame, handoff::SideInsets{}, blocks.points_per_side);
+  }
+  return contour;
+}
+
+// The regional config of one block (handoff::regional_config_text): its contour file, the global
+// run's raster and coast level, and global.toml (`global_path`, with its checksum) as
+// roms.global_config when the regional keys have it.
+std::string block_config_text(const config::GlobalConfig& c, const std::string& name, const std::string& description,
+                              int ny, const fs::path& dir, const std::string& global_path, bool has_global_key,
+                              const std::string& global_checksum) {
+  handoff::BlockConfigInfo info;
+  info.name = name;
+  info.izogrid_file = name + ".izogrid";
+  info.description = description;
+  info.ny = ny;
+  // A regional grid reads one raster: the first source (the highest priority) of several.
+  info.input_path = fs::absolute(c.input.sources().front()).lexically_normal().string();
+  info.input_variable = c.input.variable;
+  info.positive_down = c.input.positive_down;
+  info.coast_level_m = -c.mask.min_depth_m;
+  info.output_dir = dir.string();
+  info.global_config = global_path;
+  info.write_global_config = has_global_key;
+  info.global_config_checksum = global_checksum;
+  return handoff::regional_config_text(info);
+}
+
+// No block of an earlier run survives beside this run's: its config would name this global.toml.
+// remove_stale_blocks, logging what went.
+void remove_stale_blocks_logged(const fs::path& dir, std::size_t count, const Logger& log) {
+  const std::vector<std::string> removed = remove_stale_blocks(dir, count);
+  if (!removed.empty())
+    log.info("blocks: removed {} file{} of {} block{} of an earlier run ({}{})", removed.size(),
+             removed.size() == 1 ? "" : "s", stale_block_count(removed), stale_block_count(removed) == 1 ? "" : "s",
+             removed.front(), removed.size() > 1 ? " … " + removed.back() : std::string());
 }
 
 int run_blocks(const BlocksArgs& a, const Logger& log) {
@@ -158,8 +283,8 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   const PoleRotation& rot = setup.rotation;
   log.info(
       "aquatoria blocks: {} ({}); {} lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}); top {} blocks{}",
-      loaded.source, fmt::join(c.input.sources(), " over "), lat.kind_name(), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
-      c.blocks.top,
+      loaded.source, fmt::join(c.input.sources(), " over "), lat.kind_name(), lat.nx, lat.ny, lat.pixel_deg() * 60.0,
+      lat.step0_deg, lat.levels, c.blocks.top,
       c.blocks.boxes.empty() ? " of the level-0 squares" : fmt::format(" of {} user boxes", c.blocks.boxes.size()));
   const fs::path dir = fs::absolute(fs::path(c.output.dir) / "blocks").lexically_normal();
   OutputSet out(dir, log);
@@ -172,28 +297,13 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   rank_stage.done(fmt::format("{} candidate blocks with coast, writing the best {}", ranked.size(), count));
 
   // The effective global configuration, so each block's regional run sees this very global run.
-  Json echo = loaded.echo;
-  // One raster: input.path alone (input.paths echoes it); several: input.paths alone, absolute.
-  if (c.input.paths.empty()) {
-    echo["input"]["path"] = fs::absolute(c.input.path).lexically_normal().string();
-    echo["input"].erase("paths");
-  } else {
-    Json paths = Json::array();
-    for (const std::string& p : c.input.paths) paths.push_back(fs::absolute(p).lexically_normal().string());
-    echo["input"]["paths"] = paths;
-    echo["input"].erase("path");
-  }
-  echo["output"]["dir"] = fs::absolute(c.output.dir).lexically_normal().string();
-  echo["blocks"]["top"] = c.blocks.top;
   const std::string global_name = "global.toml";
-  {
-    write_text(
-        out, global_name,
-        handoff::config_text_from_echo(
-            echo, fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
-                              "included).\nEvery block_NNN.toml names it as roms.global_config.",
-                              loaded.source)));
-  }
+  write_text(out, global_name,
+             handoff::config_text_from_echo(
+                 effective_global_echo(loaded.echo, c),
+                 fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
+                             "included).\nEvery block_NNN.toml names it as roms.global_config.",
+                             loaded.source)));
   const std::string global_path = out.final_path(global_name).string();
   // Each block config records what global.toml held, so a block outliving this run is refused.
   const std::string global_checksum = file_checksum(out.pending_path(global_name));
@@ -204,7 +314,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   Json list = Json::array();
   io::PreviewOptions overview;
   overview.width_px = c.output.png_width;
-  overview.elements = io::parse_element_kinds(c.mesh.elements);
+  overview.elements = c.mesh.elements;
   overview.title = fmt::format("aquatoria blocks: the {} best of {} coastal block{}", count, ranked.size(),
                                ranked.size() == 1 ? "" : "s");
   std::vector<std::string> table;
@@ -216,19 +326,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
     const handoff::BoxFrame frame(b.box, rot);
     handoff::SideInsets insets;
     if (c.blocks.shrink_to_wet) insets = handoff::shrink_to_wet(frame, run.area.filled, lat, rot, c.blocks.max_inset);
-    handoff::BlockContour contour = handoff::block_contour(frame, insets, c.blocks.points_per_side);
-    // The contour must be usable: build its spline now (corners, orientation, self-intersection).
-    try {
-      std::vector<bool> corner(contour.x.size(), false);
-      for (const int q : contour.corners) corner[static_cast<std::size_t>(q)] = true;
-      curvilinear::ContourOptions co;
-      co.source = name;
-      (void)curvilinear::SplineContour(contour.x, contour.y, corner, co);
-    } catch (const InputError& e) {
-      if (!c.blocks.shrink_to_wet) throw;
-      log.warn("{}: the shrunk contour is not usable ({}); writing the block's outline instead", name, e.what());
-      contour = handoff::block_contour(frame, handoff::SideInsets{}, c.blocks.points_per_side);
-    }
+    const handoff::BlockContour contour = usable_contour(frame, insets, c.blocks, name, log);
     if (contour.trimmed)
       log.warn("{}: a side on a pole was moved off it (a box cannot have a side of zero length)", name);
     const auto& p = contour.projection;
@@ -240,71 +338,20 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
       write_text(out, name + ".izogrid",
                  handoff::izogrid_text(contour, b.suggested_ny, latlongrid_for(frame.box()), description));
     }
-    handoff::BlockConfigInfo info;
-    info.name = name;
-    info.izogrid_file = name + ".izogrid";
-    info.description = description;
-    info.ny = b.suggested_ny;
-    // A regional grid reads one raster: the first source (the highest priority) of several.
-    info.input_path = fs::absolute(c.input.sources().front()).lexically_normal().string();
-    info.input_variable = c.input.variable;
-    info.positive_down = c.input.positive_down;
-    info.coast_level_m = -c.mask.min_depth_m;
-    info.output_dir = dir.string();
-    info.global_config = global_path;
-    info.write_global_config = has_global_key;
-    info.global_config_checksum = global_checksum;
-    write_text(out, name + ".toml", handoff::regional_config_text(info));
+    write_text(
+        out, name + ".toml",
+        block_config_text(c, name, description, b.suggested_ny, dir, global_path, has_global_key, global_checksum));
 
     io::PreviewOutline outline{map_outline(b.box, rot), fmt::format("{}", k + 1)};
     overview.outlines.push_back(outline);
-    {
-      io::PreviewOptions zoom;
-      zoom.width_px = std::min(c.output.png_width, 1000);
-      zoom.elements = overview.elements;
-      zoom.title = fmt::format("{}: {}", name, b.describe());
-      double w = 1e9, e = -1e9, s = 1e9, n = -1e9;
-      for (const auto& q : outline.points) {
-        w = std::min(w, q[0]);
-        e = std::max(e, q[0]);
-        s = std::min(s, q[1]);
-        n = std::max(n, q[1]);
-      }
-      // Half the block's larger side around it, measured in the map plane (on the Mercator
-      // lattice its rows are Mercator ordinates, so a latitude pad would stretch the picture).
-      const double cap = lat.mercator() ? lat.lat_max_deg() : 90.0;  // the Mercator rows' reach
-      const double ys = lat.plane_y_of_lat(std::max(s, -cap)), yn = lat.plane_y_of_lat(std::min(n, cap));
-      const double pad = 0.5 * std::max(e - w, yn - ys);
-      const auto lat_of_plane = [&](double y) { return lat.mercator() ? mercator_lat_deg(y) : y; };
-      zoom.zoom = {w - pad, e + pad, std::max(-90.0, lat_of_plane(ys - pad)), std::min(90.0, lat_of_plane(yn + pad))};
-      zoom.outlines.push_back(outline);
-      io::write_preview_zoom_png(run.mesh, *run.bathy, out.temp_path(name + ".png"), zoom);
-    }
+    write_block_picture(run, lat, outline, fmt::format("{}: {}", name, b.describe()), c.output.png_width,
+                        overview.elements, out.temp_path(name + ".png"));
 
     const auto g = frame.geographic(0.5, 0.5);
-    list.push_back(Json{{"rank", k + 1},
-                        {"name", name},
-                        {"block", b.describe()},
-                        {"square", b.box_index < 0 ? Json::array({b.square_a, b.square_b}) : Json(nullptr)},
-                        {"box_index", b.box_index < 0 ? Json(nullptr) : Json(b.box_index)},
-                        {"box", {b.box.lon_min_deg, b.box.lon_max_deg, b.box.lat_min_deg, b.box.lat_max_deg}},
-                        {"box_system", b.box.lattice_system ? "lattice" : "geographic"},
-                        {"centre_lon_deg", g.lon_deg},
-                        {"centre_lat_deg", g.lat_deg},
-                        {"coastal_pixels", b.coastal_pixels},
-                        {"filled_pixels", b.filled_pixels},
-                        {"wet_fraction", b.wet_fraction},
-                        {"ny", b.suggested_ny},
-                        {"projection", curvilinear::projection_code(p.kind)},
-                        {"rota_deg", p.rota_deg},
-                        {"uscale", p.uscale},
-                        {"shrink_to_wet", c.blocks.shrink_to_wet},
-                        {"max_inset", {insets.max(0), insets.max(1), insets.max(2), insets.max(3)}},
-                        {"config", out.final_path(name + ".toml").string()},
-                        {"contour", out.final_path(name + ".izogrid").string()}});
+    list.push_back(block_json(b, k, name, g, contour.projection, insets, c.blocks.shrink_to_wet, out));
     table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6.1f} {:>5}  {} ({:.4g}, {:.4g})", k + 1, name,
                                 b.describe(), box_text(b.box), b.coastal_pixels, 100.0 * b.wet_fraction, b.suggested_ny,
-                                curvilinear::projection_code(p.kind), g.lon_deg, g.lat_deg));
+                                std::string(name_of(p.kind)), g.lon_deg, g.lat_deg));
   }
   io::write_preview_png(run.mesh, *run.bathy, out.temp_path("blocks.png"), overview);
   write_stage.done(fmt::format("{} blocks (config, contour, picture) + blocks.png in {}", count, dir.string()));
@@ -319,12 +366,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
   write_text(out, "blocks.json", report.dump() + "\n");
   out.commit();
-  // No block of an earlier run survives beside this run's: its config would name this global.toml.
-  const std::vector<std::string> removed = remove_stale_blocks(dir, count);
-  if (!removed.empty())
-    log.info("blocks: removed {} file{} of {} block{} of an earlier run ({}{})", removed.size(),
-             removed.size() == 1 ? "" : "s", stale_block_count(removed), stale_block_count(removed) == 1 ? "" : "s",
-             removed.front(), removed.size() > 1 ? " … " + removed.back() : std::string());
+  remove_stale_blocks_logged(dir, count, log);
 
   for (const auto& line : table) fmt::print("{}\n", line);
   std::fflush(stdout);

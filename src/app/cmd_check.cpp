@@ -113,10 +113,11 @@ int run_check(const CheckArgs& a, const Logger& log) {
   const fs::path input(a.grid);
   const io::AnyGrid any = io::read_any_grid(input);
   const io::XyGrid& xy = any.xy;
-  if (any.kind != "xygrid")
-    log.info("{}: a {} grid file: its {} x {} supergrid on a stereographic plane centred on the grid (conformal: the "
-             "angles are those on the sphere)",
-             input.string(), any.kind == "roms" ? "ROMS" : "MOM6", xy.grid.nx_pts, xy.grid.ny_pts);
+  if (any.kind != io::GridFileKind::kXygrid)
+    log.info(
+        "{}: a {} grid file: its {} x {} supergrid on a stereographic plane centred on the grid (conformal: the "
+        "angles are those on the sphere)",
+        input.string(), any.kind == io::GridFileKind::kRoms ? "ROMS" : "MOM6", xy.grid.nx_pts, xy.grid.ny_pts);
   curvilinear::CheckOptions options;
   options.dxi_over_deta = xy.has_steps ? xy.dxi / xy.deta : 0.0;
   options.five_point = a.five_point;

@@ -38,18 +38,19 @@ int run_info(const InfoArgs& a, const Logger& log) {
   o.max_memory_bytes = a.max_memory_gb > 0.0
                            ? std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(a.max_memory_gb, 1e9) * 1e9))
                            : 0;
-  if (a.interpolation == "bicubic") {
-    o.interpolation = raster::Interpolation::kBicubic;
-  } else if (a.interpolation != "bilinear") {
-    throw ConfigError(fmt::format("--interpolation = \"{}\": must be \"bilinear\" or \"bicubic\"", a.interpolation));
-  }
+  if (const auto interpolation = parse_name<raster::Interpolation>(a.interpolation))
+    o.interpolation = *interpolation;
+  else
+    throw ConfigError("--interpolation: " + unknown_name_message<raster::Interpolation>(a.interpolation));
   // Parse points first so a typo is reported before the raster is read.
   std::vector<std::pair<double, double>> pts;
   for (const auto& s : a.at) {
     double lon = 0.0, lat = 0.0;
     char tail = 0;
-    if (std::sscanf(s.c_str(), "%lf,%lf%c", &lon, &lat, &tail) != 2 || lat < -90.0 || lat > 90.0) {
-      throw ConfigError(fmt::format("--at {}: expected LON,LAT in degrees with -90 <= LAT <= 90", s));
+    // sscanf reads "nan" and "inf" as numbers: a point must be finite.
+    if (std::sscanf(s.c_str(), "%lf,%lf%c", &lon, &lat, &tail) != 2 || !std::isfinite(lon) ||
+        !(lat >= -90.0 && lat <= 90.0)) {
+      throw ConfigError(fmt::format("--at {}: expected LON,LAT in degrees, finite, with -90 <= LAT <= 90", s));
     }
     pts.emplace_back(lon, lat);
   }
@@ -100,7 +101,9 @@ void add_info_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--variable", args->variable, "netCDF variable / subdataset name");
   cmd->add_option("--band", args->band, "1-based band number");
   cmd->add_flag("--positive-down", args->positive_down, "The file stores depth as positive numbers");
-  cmd->add_option("--interpolation", args->interpolation, "bilinear (default) or bicubic");
+  cmd->add_option(
+      "--interpolation", args->interpolation,
+      fmt::format("Sampling of the --at points: {} (default bilinear)", name_help<raster::Interpolation>()));
   cmd->add_option("--max-memory-gb", args->max_memory_gb,
                   "Hold the raster only below this size as float32 (GB; 0 = 80% of RAM); above it, or above 1 GiB, "
                   "it is streamed in bands of rows");

@@ -17,6 +17,7 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/key_list.hpp"
 #include "app/mesh_run.hpp"
 #include "app/provenance.hpp"
 #include "config/load.hpp"
@@ -46,6 +47,7 @@ struct MeshArgs {
   std::optional<std::string> config;
   std::vector<std::string> sets;
   std::string out_dir;
+  bool keys = false;
 };
 
 // The seed's published counts for its reference runs on ETOPO2 (seed 002 Figs. 6, 7, 10).
@@ -67,115 +69,15 @@ std::optional<SeedFigure> seed_figure(const config::GlobalConfig& c) {
   return std::nullopt;
 }
 
-int run_mesh(const MeshArgs& a, const Logger& main_log) {
-  Timer total;
-  auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
-  // The forest engine runs on every MPI rank (under mpirun, or a single rank started here); only
-  // rank 0 logs and writes. The dense engine is one process.
-  const bool forest = loaded.options.quadtree.engine == config::QuadtreeEngine::kForest;
-#ifdef AQ_HAVE_MPI
-  if (forest) aq::forest::start_mpi();
-  if (!forest && aq::forest::world_size() > 1)
-    throw ConfigError(
-        fmt::format("quadtree.engine = \"dense\" runs in one process, but this run has {} MPI ranks: "
-                    "set quadtree.engine = \"forest\" (--set quadtree.engine=forest) or run without mpirun",
-                    aq::forest::world_size()));
-#endif
-  const bool writer = !forest || world_rank() == 0;
-  const Logger& log = writer ? main_log : Logger::null();
-  if (!a.config) {
-    // No config file: the base name says what was run (the seed's reference run, or the
-    // parameters that differ from it).
-    bool name_set = false;
-    for (const auto& s : a.sets) name_set = name_set || s.rfind("output.name=", 0) == 0;
-    if (!name_set) {
-      const config::RunName rn = config::default_run_name(loaded.options);
-      loaded.options.output.name = rn.name;
-      if (!rn.changed.empty())
-        log.info("name: {} (no -c and no output.name; differs from the seed's reference run in {})", rn.name,
-                 fmt::join(rn.changed, ", "));
-      // Keys the automatic name follows (config::default_run_name); the others are not in it.
-      static const char* const kNamed[] = {"quadtree.step_deg", "quadtree.levels", "mask.min_depth_m", "mask.cursor",
-                                           "rotation.enabled",  "input.path",      "input.paths", "input.blend_km", "quadtree.balance",
-                                           "quadtree.coast_band", "quadtree.lattice", "quadtree.size_km",
-                                           "mesh.elements"};
-      std::vector<std::string> unnamed;
-      for (const auto& k : rn.changed) {
-        bool named = false;
-        for (const char* n : kNamed) named = named || k.rfind(std::string(n) + " =", 0) == 0;
-        if (!named) unnamed.push_back(k);
-      }
-      if (!unnamed.empty())
-        log.warn("name: {} does not show {}: a run differing only there writes the same files; set output.name to "
-                 "keep both",
-                 rn.name, fmt::join(unnamed, ", "));
-    }
-  }
-  if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
-  const config::GlobalConfig& c = loaded.options;
-
-  Report report;
-  report["command"] = "mesh";
-  report["config_source"] = loaded.source;
-  report["config"] = loaded.echo;
-  report["config"]["output"]["name"] = c.output.name;
-  report["config"]["output"]["dir"] = c.output.dir;
-  warn_if_overwriting(c.output.dir, c.output.name + "_report.json", report["config"], Json::object(),
-                      "set output.name (or -o DIR) to keep both", log);
-
-  // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
-  const bool tif = std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end();
-#ifdef AQ_HAVE_MPI
-  const int ranks = aq::forest::world_size();
-#else
-  const int ranks = 1;
-#endif
-  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif, .ranks = ranks});
-  const Lattice& lat = setup.lattice;
-  log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
-           loaded.source, fmt::join(c.input.sources(), " over "), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
-           c.mask.cursor, c.mask.min_depth_m,
-           c.rotation.enabled ? fmt::format(", pole at ({}, {})", c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
-                              : std::string());
-
-  log_memory_estimate(setup, log);
-
-  // Fail on an unwritable output folder before the work, not after (rank 0 writes).
-  std::optional<OutputSet> out_set;
-  if (writer) out_set.emplace(c.output.dir, log);
-
-  const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, false, tif);
-  if (!writer) return 0;
-  OutputSet& out = *out_set;
-  const raster::Bathymetry& bathy = *run.bathy;
-  const auto& ri = bathy.info();
+// The run's summary in the log: counts per level, the wet area, the seed's figure when the run is
+// the seed's, the geographic files' counts, the outputs.
+void log_mesh_summary(const config::GlobalConfig& c, const GlobalRun& run, const std::optional<SeedFigure>& seed,
+                      Report& report, std::size_t files, const std::string& report_name, const Timer& total,
+                      const Logger& log) {
+  const Lattice& lat = run.setup.lattice;
   const mask::WetArea& area = run.area;
   const mesh::Mesh& m = run.mesh;
   const mesh::MeshStatistics& st = run.statistics;
-
-  // Outputs.
-  StageScope write_stage("write", &report, log);
-  const auto files = write_global_mesh_files(c, run, out, log, report);
-  write_stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
-
-  report["mesh_counts"] = mesh_counts_json(m);
-  const auto seed = seed_figure(c);
-  if (seed) {
-    report["seed_reference"] =
-        Json{{"figure", seed->figure},
-             {"data", "ETOPO2 (ours: " + ri.path + ")"},
-             {"triangles", seed->triangles},
-             {"nodes", seed->nodes},
-             {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
-             {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
-  }
-  report["memory"] = memory_json(setup, m.triangle_count());
-  report.finish();
-  report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
-  const std::string report_name = write_global_report(c, report, out);
-  out.commit();
-
-  // Summary.
   log.info("");
   log.info("mesh: {} nodes, {} triangles, {} squares, {} boundary loops, {} pinch vertices", m.node_count(),
            m.triangle_count(), m.square_count(), m.loops.size(), m.pinch_nodes.size());
@@ -208,8 +110,107 @@ int run_mesh(const MeshArgs& a, const Logger& main_log) {
         "mesh's)",
         g["nodes"].get<std::int64_t>(), elements, g.contains("squares") ? "merged" : "re-templated");
   }
-  log.info("outputs in {}/: {} files + {} ({:.2f} s, peak {:.0f} MB)", c.output.dir, files.size(), report_name,
-           total.wall_s(), static_cast<double>(peak_rss_bytes()) / 1048576.0);
+  log.info("outputs in {}/: {} files + {} ({:.2f} s, peak {:.0f} MB)", c.output.dir, files, report_name, total.wall_s(),
+           static_cast<double>(peak_rss_bytes()) / 1048576.0);
+}
+
+int run_mesh(const MeshArgs& a, const Logger& main_log) {
+  Timer total;
+  auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
+  // The forest engine runs on every MPI rank (under mpirun, or a single rank started here); only
+  // rank 0 logs and writes. The dense engine is one process.
+  const bool forest = loaded.options.quadtree.engine == config::QuadtreeEngine::kForest;
+#ifdef AQ_HAVE_MPI
+  if (forest) aq::forest::start_mpi();
+  if (!forest && aq::forest::world_size() > 1)
+    throw ConfigError(
+        fmt::format("quadtree.engine = \"dense\" runs in one process, but this run has {} MPI ranks: "
+                    "set quadtree.engine = \"forest\" (--set quadtree.engine=forest) or run without mpirun",
+                    aq::forest::world_size()));
+#endif
+  const bool writer = !forest || world_rank() == 0;
+  const Logger& log = writer ? main_log : Logger::null();
+  if (!a.config) {
+    // No config file: the base name says what was run (the seed's reference run, or the
+    // parameters that differ from it).
+    bool name_set = false;
+    for (const auto& s : a.sets) name_set = name_set || s.rfind("output.name=", 0) == 0;
+    if (!name_set) {
+      const config::RunName rn = config::default_run_name(loaded.options);
+      loaded.options.output.name = rn.name;
+      if (!rn.changed.empty())
+        log.info("name: {} (no -c and no output.name; differs from the seed's reference run in {})", rn.name,
+                 fmt::join(rn.changed, ", "));
+      if (!rn.unnamed.empty())
+        log.warn(
+            "name: {} does not show {}: a run differing only there writes the same files; set output.name to "
+            "keep both",
+            rn.name, fmt::join(rn.unnamed, ", "));
+    }
+  }
+  if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
+  const config::GlobalConfig& c = loaded.options;
+
+  Report report;
+  report["command"] = "mesh";
+  report["config_source"] = loaded.source;
+  report["config"] = loaded.echo;
+  report["config"]["output"]["name"] = c.output.name;
+  report["config"]["output"]["dir"] = c.output.dir;
+  warn_if_overwriting(c.output.dir, c.output.name + "_report.json", report["config"], Json::object(),
+                      "set output.name (or -o DIR) to keep both", log);
+
+  // The lattice bitmaps go once the quadtree has its leaves unless the global run file is written.
+  const bool tif = c.output.writes(config::OutputFormat::kTif);
+#ifdef AQ_HAVE_MPI
+  const int ranks = aq::forest::world_size();
+#else
+  const int ranks = 1;
+#endif
+  const GlobalSetup setup = prepare_global_run(c, {.keep_masks = tif, .ranks = ranks});
+  const Lattice& lat = setup.lattice;
+  log.info("aquatoria mesh: {} ({}); lattice {} x {} pixels of {:.6g}' (Δ0 = {:.6g}°, L = {}), K = {}, h = {} m{}",
+           loaded.source, fmt::join(c.input.sources(), " over "), lat.nx, lat.ny, lat.pixel_deg() * 60.0, lat.step0_deg, lat.levels,
+           c.mask.cursor, c.mask.min_depth_m,
+           c.rotation.enabled ? fmt::format(", pole at ({}, {})", c.rotation.pole_lon_deg, c.rotation.pole_lat_deg)
+                              : std::string());
+
+  log_memory_estimate(setup, log);
+
+  // Fail on an unwritable output folder before the work, not after (rank 0 writes).
+  std::optional<OutputSet> out_set;
+  if (writer) out_set.emplace(c.output.dir, log);
+
+  const GlobalRun run = run_global_pipeline(c, setup, log, &report, true, false, tif);
+  if (!writer) return 0;
+  OutputSet& out = *out_set;
+  const raster::Bathymetry& bathy = *run.bathy;
+  const auto& ri = bathy.info();
+  const mesh::Mesh& m = run.mesh;
+
+  // Outputs.
+  StageScope write_stage("write", &report, log);
+  const auto files = write_global_mesh_files(c, run, out, log, report);
+  write_stage.done(fmt::format("{} files in {}", files.size(), c.output.dir));
+
+  report["mesh_counts"] = mesh_counts_json(m);
+  const auto seed = seed_figure(c);
+  if (seed) {
+    report["seed_reference"] =
+        Json{{"figure", seed->figure},
+             {"data", "ETOPO2 (ours: " + ri.path + ")"},
+             {"triangles", seed->triangles},
+             {"nodes", seed->nodes},
+             {"triangles_ratio", static_cast<double>(m.triangle_count()) / static_cast<double>(seed->triangles)},
+             {"nodes_ratio", static_cast<double>(m.node_count()) / static_cast<double>(seed->nodes)}};
+  }
+  report["memory"] = memory_json(setup, m.triangle_count());
+  report.finish();
+  report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
+  const std::string report_name = write_global_report(c, report, out);
+  out.commit();
+
+  log_mesh_summary(c, run, seed, report, files.size(), report_name, total, log);
   return 0;
 }
 
@@ -224,7 +225,14 @@ void add_mesh_command(CLI::App& app, Context& ctx) {
       "Configuration file (TOML); see configs/example.toml");
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
-  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_mesh(*args, ctx.log); }; });
+  cmd->add_flag("--keys", args->keys, "List every configuration key with its default and values, and exit");
+  cmd->callback([&ctx, args] {
+    ctx.run = [&ctx, args] {
+      if (!args->keys) return run_mesh(*args, ctx.log);
+      print_keys(config::global_key_info(), stdout);
+      return 0;
+    };
+  });
 }
 
 }  // namespace aq::app

@@ -13,12 +13,13 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/key_list.hpp"
 #include "app/provenance.hpp"
 #include "app/regional_nesting.hpp"
 #include "app/regional_refine.hpp"
 #include "app/regional_roms.hpp"
-#include "config/regional.hpp"
 #include "config/load.hpp"
+#include "config/regional.hpp"
 #include "core/error.hpp"
 #include "core/output_files.hpp"
 #include "core/report.hpp"
@@ -43,6 +44,7 @@ struct RegionalArgs {
   std::string out_dir;
   bool no_coastline = false;
   bool force = false;  // --force: build although an input changed since the earlier outputs
+  bool keys = false;   // --keys: list the configuration keys and exit
 };
 
 // The files this run reads that another aquatoria run may have written, with their checksums and
@@ -106,9 +108,9 @@ void check_parent_unchanged(const config::RegionalConfig& c, const Json& inputs,
     if (!d.empty()) what = "; the parent is now made with " + join_some(d, 4);
   }
   const std::string grd = (std::filesystem::path(c.output_dir) / (c.name + "_grd.nc")).string();
-  const std::string msg = fmt::format(
-      "{}: the parent {} has changed since {} was cut from it (checksum {} -> {}){}", source, now.value("file", ""),
-      grd, was.value(kChecksumKey, ""), now.value(kChecksumKey, ""), what);
+  const std::string msg =
+      fmt::format("{}: the parent {} has changed since {} was cut from it (checksum {} -> {}){}", source,
+                  now.value("file", ""), grd, was.value(kChecksumKey, ""), now.value(kChecksumKey, ""), what);
   if (!force)
     throw InputError(msg + ". Make the parent again as it was, or pass --force to cut this grid from the new parent");
   log.warn("{}; --force: cutting this grid from the new parent", msg);
@@ -133,7 +135,7 @@ std::array<double, 4> picture_box(const curvilinear::RegionalResult& r) {
     const auto g = r.projection->inverse(x, y);
     if (!std::isfinite(g.lon_deg) || !std::isfinite(g.lat_deg)) return;
     double lon = g.lon_deg;
-    if (lon < p.rlon - 180.0) lon += 360.0;
+    if (lon < p.projection.rlon_deg - 180.0) lon += 360.0;
     w = std::min(w, lon);
     e = std::max(e, lon);
     s = std::min(s, g.lat_deg);
@@ -143,6 +145,98 @@ std::array<double, 4> picture_box(const curvilinear::RegionalResult& r) {
   for (std::size_t k = 0; k < r.control_x.size(); ++k) add(r.control_x[k], r.control_y[k]);
   const double pad_lon = 0.15 * (e - w) + 0.5, pad_lat = 0.15 * (n - s) + 0.5;
   return {w - pad_lon, e + pad_lon, std::max(-89.0, s - pad_lat), std::min(89.0, n + pad_lat)};
+}
+
+// The stage a regional run stops after: --stop-after (checked against the configuration), else
+// regional.stop_after or the seed's mode (config::stop_stage), logged when the mode stops early.
+curvilinear::Stage regional_stage(const RegionalArgs& a, const config::RegionalConfig& c, const std::string& path,
+                                  const Logger& log) {
+  std::optional<curvilinear::Stage> cli_stage;
+  if (!a.stop_after.empty()) {
+    cli_stage = parse_name<curvilinear::Stage>(a.stop_after);
+    if (!cli_stage)
+      throw ConfigError(fmt::format("--stop-after: {} (or the seed's mode 0..5)",
+                                    unknown_name_message<curvilinear::Stage>(a.stop_after)));
+  }
+  const curvilinear::Stage stage = config::stop_stage(c, cli_stage);
+  if (cli_stage) {
+    std::string why;
+    for (const config::KeyProblem& bad : config::stop_stage_problems(c, stage)) why += "; " + bad.text;
+    if (!why.empty()) throw ConfigError(fmt::format("--stop-after {}: {}", a.stop_after, why.substr(2)));
+  }
+  if (!cli_stage && !c.stop_after && stage != curvilinear::Stage::kGrid) {
+    log.info("{}: mode={} stops after the {} stage (the seed's modes); --stop-after grid builds the grid", path,
+             c.params.mode, std::string(name_of(stage)));
+  }
+  return stage;
+}
+
+// The picture's coastline: the [input] raster's contour at coast_level_m around the grid.
+std::vector<std::vector<curvilinear::GeoPoint>> regional_coastlines(const config::RegionalConfig& c,
+                                                                    const curvilinear::RegionalResult& result,
+                                                                    Report& report, const Logger& log) {
+  std::vector<std::vector<curvilinear::GeoPoint>> lines_out;
+  StageScope cs("coastline", &report, log);
+  const auto box = picture_box(result);
+  const auto bathy = raster::Bathymetry::open(window_options(c.input, box[2], box[3]), log);
+  const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
+  std::size_t points = 0;
+  for (const auto& l : lines) {
+    std::vector<curvilinear::GeoPoint> g(l.lon_deg.size());
+    for (std::size_t k = 0; k < g.size(); ++k) g[k] = {l.lon_deg[k], l.lat_deg[k]};
+    points += g.size();
+    lines_out.push_back(std::move(g));
+  }
+  cs.done(fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m, c.input.path));
+  return lines_out;
+}
+
+// The plane grid <name>_xygrid.nc with its checks (curvilinear::check_grid; NumericalError for
+// non-finite fields) and the report's "quality" section.
+void write_xygrid_stage(const config::RegionalConfig& c, const std::string& source,
+                        const curvilinear::RegionalResult& result, OutputSet& out, Json& outputs, Report& report,
+                        const Logger& log) {
+  StageScope ws("xygrid", &report, log);
+  curvilinear::CheckOptions co;
+  co.dxi_over_deta = result.dxi_over_deta;
+  const curvilinear::GridQuality q = curvilinear::check_grid(result.grid, co);
+  if (!q.non_finite.empty()) {
+    std::string list;
+    for (const auto& f : q.non_finite) list += "; " + f;
+    throw NumericalError("grid checks failed" + list);
+  }
+  io::XyGrid xy;
+  xy.grid = result.grid;
+  xy.units = "1";  // plane units: unit-sphere radians divided by uscale
+  xy.dxi = result.aspect_ratio / static_cast<double>(result.grid.nx_pts - 1);
+  xy.deta = 1.0 / static_cast<double>(result.grid.ny_pts - 1);
+  xy.title = fmt::format("aquatoria regional grid {}", c.name);
+  xy.history = fmt::format("aquatoria regional {}", source);
+  xy.residual_history = result.inverse.residual_history;
+  const auto& p = result.params;
+  xy.attributes = {{"proj", std::string(p.projection.kind == curvilinear::ProjectionKind::kMercator       ? "ME"
+                                        : p.projection.kind == curvilinear::ProjectionKind::kLambertConic ? "LC"
+                                                                                                          : "ST")},
+                   {"rlat", p.projection.rlat_deg},
+                   {"rlon", p.projection.rlon_deg},
+                   {"rota", p.projection.rota_deg},
+                   {"uscale", p.projection.uscale},
+                   {"radius", p.projection.radius_m},
+                   {"spline_type", static_cast<std::int64_t>(p.spline_type)},
+                   {"nx", static_cast<std::int64_t>(result.nx)},
+                   {"ny", static_cast<std::int64_t>(result.ny)},
+                   {"aspect_ratio", result.aspect_ratio},
+                   {"source", source}};
+  const std::string nc = c.name + "_xygrid.nc";
+  io::write_xygrid(out.temp_path(nc), xy, &q);
+  outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
+  Json qj = Json::object();
+  for (const auto* f : q.fields())
+    qj[f->name] =
+        Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms}, {"worst_cell", {f->worst_i, f->worst_j}}};
+  report["quality"] = qj;
+  ws.done(fmt::format("{} ({} x {} supergrid, nx = {}, ny = {}); orthogonality (50) worst {:.3g}, rms {:.3g}", nc,
+                      result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst, q.ortho_50.rms));
 }
 
 int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
@@ -166,18 +260,13 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     bool named = false;
     for (const auto& s : a.sets) named = named || s.rfind("regional.name=", 0) == 0;
     if (!named)
-      log.info("outputs named {} (regional.name of {}); the --set overrides are not in the name: set regional.name to "
-               "keep the runs apart",
-               c.name, loaded.source);
+      log.info(
+          "outputs named {} (regional.name of {}); the --set overrides are not in the name: set regional.name to "
+          "keep the runs apart",
+          c.name, loaded.source);
   }
 
-  std::string stop = !a.stop_after.empty() ? a.stop_after : c.stop_after;
-  const curvilinear::Stage stage =
-      stop.empty() ? curvilinear::stage_from_mode(c.params.mode) : curvilinear::parse_stage(stop);
-  if (stop.empty() && stage != curvilinear::Stage::kGrid) {
-    log.info("{}: mode={} stops after the {} stage (the seed's modes); --stop-after grid builds the grid", path,
-             c.params.mode, curvilinear::stage_name(stage));
-  }
+  const curvilinear::Stage stage = regional_stage(a, c, path, log);
 
   Report report;
   report["command"] = "regional";
@@ -190,11 +279,6 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   std::optional<RefinedGrid> refined;
   curvilinear::RegionalResult built;
   if (c.nesting.refinement()) {
-    if (stage != curvilinear::Stage::kGrid)
-      throw ConfigError(
-          fmt::format("{}: a refinement grid (nesting.refine_factor = {}) is cut from its parent in one "
-                      "step; stopping after the {} stage does not apply",
-                      path, c.nesting.refine_factor, curvilinear::stage_name(stage)));
     if (!c.params.x.empty() || !c.contour_file.empty())
       log.warn(
           "{}: a refinement grid is cut from nesting.parent; the contour (regional.control_points{}) is not "
@@ -217,25 +301,12 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   // Coastline from the bathymetry's contour at coast_level_m.
   io::RegionalPictureOptions po;
   po.line_width = c.params.lwidth;
-  po.title = fmt::format("{}: {}", c.name, curvilinear::stage_name(result.completed));
-  if (!a.no_coastline && !c.input.path.empty() && result.projection) {
-    StageScope cs("coastline", &report, log);
-    const auto box = picture_box(result);
-    const auto bathy = raster::Bathymetry::open(window_options(c.input, box[2], box[3]), log);
-    const auto lines = raster::contour_lines(bathy, c.coast_level_m, box[0], box[1], box[2], box[3]);
-    std::size_t points = 0;
-    for (const auto& l : lines) {
-      std::vector<curvilinear::GeoPoint> g(l.lon_deg.size());
-      for (std::size_t k = 0; k < g.size(); ++k) g[k] = {l.lon_deg[k], l.lat_deg[k]};
-      points += g.size();
-      po.coastlines.push_back(std::move(g));
-    }
-    cs.done(
-        fmt::format("{} polylines, {} points at {} m from {}", lines.size(), points, c.coast_level_m, c.input.path));
-  }
+  po.title = fmt::format("{}: {}", c.name, std::string(name_of(result.completed)));
+  if (!a.no_coastline && !c.input.path.empty() && result.projection)
+    po.coastlines = regional_coastlines(c, result, report, log);
 
   Json outputs = Json::array();
-  const std::string png = fmt::format("{}_{}.png", c.name, curvilinear::stage_name(result.completed));
+  const std::string png = fmt::format("{}_{}.png", c.name, std::string(name_of(result.completed)));
   if (c.params.mode != 5 || stage != curvilinear::Stage::kGrid) {
     StageScope ps("picture", &report, log);
     io::write_regional_png(out.temp_path(png), result, result.completed, po);
@@ -243,50 +314,8 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     ps.done(png);
   }
 
-  if (result.completed == curvilinear::Stage::kGrid) {
-    StageScope ws("xygrid", &report, log);
-    curvilinear::CheckOptions co;
-    co.dxi_over_deta = result.dxi_over_deta;
-    const curvilinear::GridQuality q = curvilinear::check_grid(result.grid, co);
-    if (!q.non_finite.empty()) {
-      std::string list;
-      for (const auto& f : q.non_finite) list += "; " + f;
-      throw NumericalError("grid checks failed" + list);
-    }
-    io::XyGrid xy;
-    xy.grid = result.grid;
-    xy.units = "1";  // plane units: unit-sphere radians divided by uscale
-    xy.dxi = result.aspect_ratio / static_cast<double>(result.grid.nx_pts - 1);
-    xy.deta = 1.0 / static_cast<double>(result.grid.ny_pts - 1);
-    xy.title = fmt::format("aquatoria regional grid {}", c.name);
-    xy.history = fmt::format("aquatoria regional {}", loaded.source);
-    xy.residual_history = result.inverse.residual_history;
-    const auto& p = result.params;
-    xy.attributes = {{"proj", std::string(p.proj == curvilinear::ProjectionKind::kMercator       ? "ME"
-                                          : p.proj == curvilinear::ProjectionKind::kLambertConic ? "LC"
-                                                                                                 : "ST")},
-                     {"rlat", p.rlat},
-                     {"rlon", p.rlon},
-                     {"rota", p.rota},
-                     {"uscale", p.uscale},
-                     {"radius", p.radius},
-                     {"spline_type", static_cast<std::int64_t>(p.spline_type)},
-                     {"nx", static_cast<std::int64_t>(result.nx)},
-                     {"ny", static_cast<std::int64_t>(result.ny)},
-                     {"aspect_ratio", result.aspect_ratio},
-                     {"source", loaded.source}};
-    const std::string nc = c.name + "_xygrid.nc";
-    io::write_xygrid(out.temp_path(nc), xy, &q);
-    outputs.push_back(Json{{"file", nc}, {kChecksumKey, file_checksum(out.pending_path(nc))}});
-    Json qj = Json::object();
-    for (const auto* f : q.fields())
-      qj[f->name] =
-          Json{{"worst", f->worst}, {"average", f->average}, {"rms", f->rms}, {"worst_cell", {f->worst_i, f->worst_j}}};
-    report["quality"] = qj;
-    ws.done(fmt::format("{} ({} x {} supergrid, nx = {}, ny = {}); orthogonality (50) worst {:.3g}, rms {:.3g}", nc,
-                        result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst,
-                        q.ortho_50.rms));
-  }
+  if (result.completed == curvilinear::Stage::kGrid)
+    write_xygrid_stage(c, loaded.source, result, out, outputs, report, log);
 
   // Stage 5 on the sphere: the ROMS grid file <name>_grd.nc and <name>_roms.png (app/regional_roms.hpp),
   // and the nesting data beside it, boundary points in the global mesh (app/regional_nesting.hpp),
@@ -315,7 +344,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   }
   out.commit();
   log.info("regional {}: stopped after {}; {} files + {} in {}/ ({:.2f} s)", c.name,
-           curvilinear::stage_name(result.completed), outputs.size(), report_name, c.output_dir, total.wall_s());
+           std::string(name_of(result.completed)), outputs.size(), report_name, c.output_dir, total.wall_s());
   return 0;
 }
 
@@ -330,14 +359,23 @@ void add_regional_command(CLI::App& app, Context& ctx) {
       "refine_factor, parent_box)");
   cmd->add_option("file", args->file, "A seed-format .izogrid file (or a .toml config)");
   cmd->add_option("-c,--config", args->config, "Configuration file (TOML); see configs/example_regional.toml");
-  cmd->add_option("--stop-after", args->stop_after, "Stop after: map, contour, uniform, conformal, grid (or the seed's mode 0..5; 4 and 5 are grid)");
+  cmd->add_option(
+      "--stop-after", args->stop_after,
+      fmt::format("Stop after: {} (or the seed's mode 0..5; 4 and 5 are grid)", name_list<curvilinear::Stage>("")));
   cmd->add_option("--set", args->sets, "Override a key: --set section.key=value (repeatable)");
   cmd->add_option("-o,--output", args->out_dir, "Output folder (overrides output.dir)");
   cmd->add_flag("--no-coastline", args->no_coastline, "Do not draw the bathymetry's coastline on the pictures");
   cmd->add_flag("--force", args->force,
                 "Cut a refinement grid from nesting.parent although the parent changed since this grid's earlier "
                 "outputs were cut from it");
-  cmd->callback([&ctx, args] { ctx.run = [&ctx, args] { return run_regional_cmd(*args, ctx.log); }; });
+  cmd->add_flag("--keys", args->keys, "List every configuration key with its default and values, and exit");
+  cmd->callback([&ctx, args] {
+    ctx.run = [&ctx, args] {
+      if (!args->keys) return run_regional_cmd(*args, ctx.log);
+      print_keys(config::regional_key_info(), stdout);
+      return 0;
+    };
+  });
 }
 
 }  // namespace aq::app

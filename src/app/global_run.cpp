@@ -152,56 +152,6 @@ Lattice window_lattice(const config::GlobalConfig& c, const Lattice& g, const Po
   return Lattice::window(g, i0, i1 - i0, j0, j1 - j0);
 }
 
-// The raster window of a box on a rotated lattice: the domain is the rotated pixels whose centre
-// is in the geographic box; the classification samples one level-0 square around them and the
-// regional picture shows the mesh's extent and 3 % more in the rotated plane. So: the box's
-// extent in the rotated frame (its edges densified), widened by Δ0 + 2 pixels and 5 % of that
-// extent, whose edges (densified) bound the window in geographic lon/lat. NaN (read it whole)
-// when that rectangle holds a pole or spans half the globe.
-std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lattice& lat, const PoleRotation& rot) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  constexpr int kSteps = 256;
-  double width = b[1] - b[0];
-  if (width < 0.0) width += 360.0;
-  // Points along the edges of [x0, x0 + dx] x [y0, y0 + dy], mapped by f; longitudes unwrapped
-  // against the first point.
-  const auto outline = [&](double x0, double dx, double y0, double dy, auto f, std::array<double, 4>& box) {
-    box = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-    double ref = kNaN;
-    for (int e = 0; e < 4; ++e)
-      for (int k = 0; k <= kSteps; ++k) {
-        const double t = static_cast<double>(k) / kSteps;
-        const double x = e < 2 ? x0 + t * dx : (e == 2 ? x0 : x0 + dx);
-        const double y = e < 2 ? (e == 0 ? y0 : y0 + dy) : y0 + t * dy;
-        double u = 0.0, v = 0.0;
-        f(x, y, u, v);
-        if (std::isnan(ref)) ref = u;
-        u = ref + std::remainder(u - ref, 360.0);
-        box = {std::min(box[0], u), std::max(box[1], u), std::min(box[2], v), std::max(box[3], v)};
-      }
-  };
-  std::array<double, 4> r{};
-  outline(b[0], width, b[2], b[3] - b[2], [&](double x, double y, double& u, double& v) { rot.to_rotated(x, y, u, v); }, r);
-  const double mg = lat.step0_deg + 2.0 * lat.pixel_deg();
-  const double mx = mg + 0.05 * (r[1] - r[0]), my = mg + 0.05 * (r[3] - r[2]);
-  r = {r[0] - mx, r[1] + mx, r[2] - my, r[3] + my};
-  if (r[1] - r[0] >= 180.0 || r[2] <= -89.0 || r[3] >= 89.0) return {kNaN, kNaN, kNaN, kNaN};
-  std::array<double, 4> g{};
-  outline(r[0], r[1] - r[0], r[2], r[3] - r[2],
-          [&](double x, double y, double& u, double& v) { rot.to_geographic(x, y, u, v); }, g);
-  // A geographic pole inside the rotated rectangle: the densified edges do not see it.
-  for (const double pole : {-90.0, 90.0}) {
-    double u = 0.0, v = 0.0;
-    rot.to_rotated(0.0, pole, u, v);
-    u = r[0] + std::fmod(std::fmod(u - r[0], 360.0) + 360.0, 360.0);
-    if (u <= r[1] && v >= r[2] && v <= r[3]) return {kNaN, kNaN, kNaN, kNaN};
-  }
-  if (g[1] - g[0] >= 180.0) return {kNaN, kNaN, kNaN, kNaN};
-  const double p = 2.0 * lat.pixel_deg();
-  return {g[0] - p, g[1] + p, std::max(-90.0, g[2] - p), std::min(90.0, g[3] + p)};
-}
-
 }  // namespace
 
 // base + raster + bitmaps and mesh: their sum while the bitmaps stay, else the larger.
@@ -230,7 +180,7 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   GlobalSetup s;
   s.masks_kept = o.keep_masks;
   mask::check_passage_names(c.mask);  // a misspelt passage fails before anything is read
-  s.lattice = c.quadtree.lattice == "mercator"
+  s.lattice = c.quadtree.lattice == LatticeKind::kMercator
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
                   : Lattice::make(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg);
@@ -275,7 +225,7 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   // (its distance field is computed over the whole raster grid).
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::array<double, 4> window{kNaN, kNaN, kNaN, kNaN};
-  if (c.domain.regional() && c.input.interpolation == "bilinear" &&
+  if (c.domain.regional() && c.input.interpolation == config::Interpolation::kBilinear &&
       (s.rotation.identity() || c.domain.resolved == config::DomainKind::kBox)) {
     // The window lattice's extent (the domain and its padding, which the classification samples)
     // and two pixels more; on the global lattice (AQ_GLOBAL_LATTICE=1) the domain's extent and
@@ -286,7 +236,7 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
       window = {w.lon_of(0) - m, w.lon_of(w.nx) + m, std::max(-90.0, w.lat_of(0) - m),
                 std::min(90.0, w.lat_of(w.ny) + m)};
     } else if (!s.rotation.identity()) {
-      window = rotated_box_window(c.domain.box, w, s.rotation);
+      window = mask::rotated_box_window(c.domain.box, w, s.rotation);
     } else {
       const mask::DomainExtent d = mask::domain_extent(c.domain, w);
       const double mg = w.step0_deg + m;
@@ -299,8 +249,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
     ro.path = paths[k];
     // The forest reads a raster too large to hold in tiles where it samples (a fine tile stack).
     if (s.forest) ro.tiles_above_bytes = kForestTilesAboveBytes;
-    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == "vertex" && c.quadtree.depth_rules.empty() &&
-                         !c.domain.regional();
+    ro.allow_streaming = s.rotation.identity() && c.mask.sampling == config::Sampling::kVertex &&
+                         c.quadtree.depth_rules.empty() && !c.domain.regional();
     if (!std::isnan(window[2]) && !(c.input.blend_km > 0.0 && k + 1 < paths.size())) {
       ro.lon_min = window[0];
       ro.lon_max = window[1];
@@ -335,11 +285,12 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
     std::string why;
     if (!s.raster.streamed && s.raster.bytes > raster::kStreamAboveBytes) {
-      why = !s.rotation.identity()                ? " (rotation.enabled = true holds the raster whole)"
-            : c.mask.sampling != "vertex"         ? " (mask.sampling = \"area\" holds the raster whole)"
-            : !c.quadtree.depth_rules.empty()     ? " (quadtree.depth_rules hold the raster whole)"
-            : c.input.interpolation != "bilinear" ? " (input.interpolation = \"bicubic\" holds the raster whole)"
-                                                  : "";
+      why = !s.rotation.identity()                         ? " (rotation.enabled = true holds the raster whole)"
+            : c.mask.sampling != config::Sampling::kVertex ? " (mask.sampling = \"area\" holds the raster whole)"
+            : !c.quadtree.depth_rules.empty()              ? " (quadtree.depth_rules hold the raster whole)"
+            : c.input.interpolation != config::Interpolation::kBilinear
+                ? " (input.interpolation = \"bicubic\" holds the raster whole)"
+                : "";
     }
     throw ConfigError(
         fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
@@ -392,8 +343,7 @@ raster::OpenOptions raster_options(const config::InputOptions& input, std::int64
   ro.band = input.band;
   ro.positive_down = input.positive_down;
   ro.max_abs_elevation_m = input.max_abs_elevation_m;
-  ro.interpolation =
-      input.interpolation == "bicubic" ? raster::Interpolation::kBicubic : raster::Interpolation::kBilinear;
+  ro.interpolation = input.interpolation;
   ro.max_memory_bytes = max_memory_bytes;
   return ro;
 }
@@ -794,54 +744,24 @@ static void count_source_nodes(GlobalRun& run, const config::GlobalConfig& c, co
   }
 }
 
-// Open = the pixel on the right of the edge's first lattice step (outside the wet area) is wet
-// and outside the domain; everything else is land (mesh/boundaries.hpp).
-// The pixel on the right of the first lattice step of boundary edge a -> b, or false for a
-// diagonal or degenerate edge and rows beyond the lattice.
-static bool right_pixel(const mesh::Mesh& m, NodeId a, NodeId b, mask::PixelIJ& px) {
-  const Lattice& lat = m.lattice;
-  const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
-  const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
-  std::int64_t di = m.node_i[pb] - ia;
-  const std::int64_t dj = m.node_j[pb] - ja;
-  if (di > lat.nx / 2) di -= lat.nx;
-  if (di < -lat.nx / 2) di += lat.nx;
-  if ((di != 0) == (dj != 0)) return false;  // a diagonal (after cleaning) or a degenerate edge
-  std::int64_t pi = ia, pj = ja;             // the pixel on the right of the first unit step
-  if (di > 0) pj = ja - 1;
-  if (di < 0) pi = ia - 1;
-  if (dj < 0) {
-    pi = ia - 1;
-    pj = ja - 1;
-  }
-  if (pj < 0 || pj >= lat.ny) return false;
-  px = {((pi % lat.nx) + lat.nx) % lat.nx, pj};
-  return true;
-}
-
-// Open = the pixel on the right of the edge's first lattice step (outside the wet area) is wet
-// and outside the domain (`wet_outside`); everything else is land (mesh/boundaries.hpp).
-static void type_regional_boundaries(GlobalRun& run, const std::function<bool(const mask::PixelIJ&)>& wet_outside,
+// Open boundary where the domain edge meets water at the datum outside it (`open_water`), the rest
+// mainland or island (mesh/boundaries.hpp).
+static void type_regional_boundaries(GlobalRun& run, const std::function<bool(const mask::PixelIJ&)>& open_water,
                                      const Logger& log, Report* report) {
   StageScope stage("boundaries", report, log);
-  mesh::Mesh& m = run.mesh;
-  const auto is_open = [&](NodeId a, NodeId b) {
-    mask::PixelIJ px;
-    return right_pixel(m, a, b, px) && wet_outside(px);
-  };
   // A river inflow: an open edge whose outside pixel's centre lies in the corridor of a channel
   // line (mask.channels) that crosses the domain's edge there.
   const raster::ElevationEdits* edits = run.bathy->edits();
   const PoleRotation& rot = run.setup.rotation;
-  const auto is_river = [&](NodeId a, NodeId b) {
-    mask::PixelIJ px;
-    if (edits == nullptr || !right_pixel(m, a, b, px)) return false;
-    const mask::LonLat g = mask::lattice_to_geographic(rot, mask::pixel_center_lattice_deg(m.lattice, px));
+  const Lattice& lattice = run.mesh.lattice;
+  const auto river = [&](const mask::PixelIJ& px) {
+    if (edits == nullptr) return false;
+    const mask::LonLat g = mask::lattice_to_geographic(rot, mask::pixel_center_lattice_deg(lattice, px));
     const int k = edits->corridor_at(g.lon_deg, g.lat_deg);
     return k >= 0 && run.carving.lines[static_cast<std::size_t>(k)].kind == mask::LineKind::kChannel;
   };
-  const mesh::BoundaryCounts counts = mesh::type_boundaries(m, is_open, &log, is_river);
-  if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(m, counts);
+  const mesh::BoundaryCounts counts = mesh::type_domain_boundaries(run.mesh, open_water, &log, river);
+  if (report != nullptr) (*report)["boundaries"] = mesh::boundaries_json(run.mesh, counts);
   stage.done(mesh::describe(counts));
 }
 
@@ -859,7 +779,7 @@ static void type_regional_boundaries_dense(GlobalRun& run, const Logger& log, Re
 static void snap_polygon_open_boundary(GlobalRun& run, const config::GlobalConfig& c, const Logger& log,
                                        Report* report) {
   StageScope stage("open_snap", report, log);
-  if (io::parse_element_kinds(c.mesh.elements) != io::ElementKinds::kTriangles) {
+  if (c.mesh.elements != config::ElementKinds::kTriangles) {
     stage.done(fmt::format("the open boundary stays on the lattice: mesh.elements = \"{}\" writes squares",
                            c.mesh.elements));
     return;
@@ -970,7 +890,7 @@ static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const Glo
 static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                                      Report* report, bool statistics, bool keep_masks) {
 #ifdef AQ_HAVE_MPI
-  if (std::find(c.output.formats.begin(), c.output.formats.end(), "tif") != c.output.formats.end())
+  if (c.output.writes(config::OutputFormat::kTif))
     throw ConfigError(
         "output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the "
         "forest engine never makes; quadtree.engine = \"dense\" writes it");
@@ -1011,7 +931,7 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
     std::vector<mask::PixelIJ> queries;
     for (const auto& e : run.mesh.boundary_edges) {
       mask::PixelIJ px{-1, -1};
-      if (right_pixel(run.mesh, e[0], e[1], px)) queries.push_back(px);
+      if (mesh::edge_right_pixel(run.mesh, e[0], e[1], px)) queries.push_back(px);
     }
     const std::vector<char> answers = forest::wet_outside_domain(*fl.state, run.domain, queries);
     forest::collective(comm, [&] {
@@ -1055,7 +975,7 @@ GlobalRun run_global_pipeline(const config::GlobalConfig& c, const GlobalSetup& 
   // The leaves go with the bitmaps (184 MB at 15", alive at the write stage's peak) unless a file
   // reads them after the mesh (mesh_run.cpp): the global run file, which keeps the masks, or the
   // preview's size colours, whose range is taken over the leaves.
-  const bool png = std::find(c.output.formats.begin(), c.output.formats.end(), "png") != c.output.formats.end();
+  const bool png = c.output.writes(config::OutputFormat::kPng);
   if (!keep_masks && !(png && run.size_field.has_grid())) std::vector<quadtree::Leaf>().swap(run.leaves);
   if (run.domain.regional()) type_regional_boundaries_dense(run, log, report);
   finish_mesh(run, c, setup, log, report, statistics, keep_masks);

@@ -5,9 +5,11 @@
 
 namespace aq::app {
 
-/// Installs the handlers for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE. Call once from main() on the main thread:
-/// the handler forwards a signal that lands on another thread (an OpenMP worker) to it, because output files are
-/// created and renamed on the main thread only.
+/// Installs the handlers for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE. Call once on the main thread, before
+/// anything else (main.cpp does it from .preinit_array, before the shared libraries' constructors): the handler
+/// forwards a signal that lands on another thread (an OpenMP worker) to it, because output files are created and
+/// renamed on the main thread only. Async-signal-safe and allocation-free, so it may run before the C++ runtime
+/// is initialised.
 void install_interrupt_handlers();
 
 }  // namespace aq::app

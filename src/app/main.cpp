@@ -20,6 +20,19 @@
 #define AQ_VERSION "dev"
 #endif
 
+namespace {
+
+// The signal handlers go in before anything else of the process runs: from the executable's
+// .preinit_array, which the dynamic loader calls before the constructors of the shared libraries
+// (GDAL, HDF5, PROJ, netCDF, ...: most of the ~40 ms a start takes). A signal while the process
+// starts is then reported and ends it with 128 + the signal like any other, instead of killing it
+// without a word. (Only the loader's relocations, a few ms, come before.)
+void install_handlers_first(int, char**, char**) { aq::app::install_interrupt_handlers(); }
+__attribute__((section(".preinit_array"), used)) void (*const kInstallHandlersFirst)(int, char**,
+                                                                                     char**) = install_handlers_first;
+
+}  // namespace
+
 int main(int argc, char** argv) {
   // Large arrays (lattice bitmaps, mesh and statistics tables of tens to hundreds of MB) from the
   // heap instead of one mmap each: glibc unmaps an mmapped block when it is freed, so every stage
@@ -30,7 +43,7 @@ int main(int argc, char** argv) {
   // Under mpirun every rank starts MPI here; otherwise only a forest run starts it (a singleton).
   if (aq::forest::launched_by_mpirun()) aq::forest::start_mpi(&argc, &argv);
 #endif
-  aq::app::install_interrupt_handlers();
+  aq::app::install_interrupt_handlers();  // again: MPI may have put its own in
   aq::app::Context ctx;
   CLI::App app{"aquatoria: global finite-element ocean meshes and regional orthogonal grids from bathymetry"};
   app.set_version_flag("--version", std::string("aquatoria ") + AQ_VERSION);

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "app/output_jobs.hpp"
+#include "config/load.hpp"
 #include "config/options.hpp"
 #include "core/log.hpp"
 #include "core/output_files.hpp"
@@ -50,7 +51,7 @@ namespace aq::io {
 
 /// What the run knows that OutputOptions does not.
 struct MeshOutputInfo {
-  ElementKinds elements = ElementKinds::kTriangles;  ///< from mesh.elements (parse_element_kinds)
+  ElementKinds elements = ElementKinds::kTriangles;  ///< mesh.elements
   std::string source = "aquatoria";                  ///< program and input, for file metadata
   /// Writer of the "tif" format (the mesh alone does not hold the pixel masks); empty = "tif"
   /// is refused (ConfigError naming output.formats).
@@ -85,12 +86,9 @@ ModelMeshNotes model_mesh_notes(const mesh::ModelMesh& model, double seconds);
 /// writes them at 0 m); nullopt otherwise. The Python package's Run.model_mesh("fesom") says the same.
 std::optional<std::string> fesom_floodplain_warning(const mesh::Mesh& model);
 
-/// The formats write_mesh_outputs knows, in its order.
-const std::vector<std::string>& known_output_formats();
-
-/// Checks output.formats (unknown value -> ConfigError naming output.formats and the value;
-/// fort14 without triangles -> ConfigError naming output.formats and mesh.elements), output.name,
-/// output.vtu_coordinates, output.png_width and output.png_zoom.
+/// Checks output options changed after loading (the Python binding's write(): output.name, and
+/// output.formats / png_color against `elements`, config::output_problems); ConfigError listing
+/// every problem. load_global() has checked the rest.
 void check_mesh_output_options(const config::OutputOptions& options, ElementKinds elements);
 
 /// Writes every requested format (see the table above). The writers in geographic coordinates

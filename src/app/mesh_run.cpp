@@ -29,7 +29,7 @@ std::vector<io::WrittenFile> write_global_mesh_files(const config::GlobalConfig&
   const raster::Bathymetry& bathy = *run.bathy;
   const Lattice& lat = run.setup.lattice;
   io::MeshOutputInfo oinfo;
-  oinfo.elements = io::parse_element_kinds(c.mesh.elements);
+  oinfo.elements = c.mesh.elements;
   oinfo.source = global_mesh_source(bathy);
   oinfo.global_run_file = [&](const std::filesystem::path& p) {
     const quadtree::LeafLevels levels(run.leaves, lat);
@@ -53,7 +53,7 @@ std::vector<io::WrittenFile> write_global_mesh_files(const config::GlobalConfig&
       }
     }
     if (hi > 0.0) oinfo.size_scale_km = {std::max(lo, 1e-3), hi};
-    if (c.output.png_color == "target") {
+    if (c.output.png_color == config::PreviewColour::kTarget) {
       oinfo.target_km.resize(m.triangles.size());
       for (std::size_t t = 0; t < m.triangles.size(); ++t) {
         // The centroid's pixel from the lattice coordinates (I unwrapped against the first node).

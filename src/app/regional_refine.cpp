@@ -33,30 +33,35 @@ std::string refine_box_text(const curvilinear::RefineBox& b) {
 // plane centred on the box (any conformal plane keeps the grid orthogonal; the parent's own one
 // makes the fine grid's plane coordinates the parent's).
 curvilinear::RegionalParams parent_plane(const curvilinear::RegionalParams& base, const io::RomsGridFields& p,
-                                         const curvilinear::RefineBox& b, double radius_m, std::string& source) {
+                                         const curvilinear::RefineBox& b, double radius_m, const std::string& path,
+                                         std::string& source) {
   curvilinear::RegionalParams q = base;
   if (!p.proj.empty() && std::isfinite(p.rlat) && std::isfinite(p.rlon) && std::isfinite(p.rota) &&
       std::isfinite(p.uscale)) {
-    q.proj = curvilinear::parse_projection_kind(p.proj);
-    q.rlat = p.rlat;
-    q.rlon = p.rlon;
-    q.rota = p.rota;
-    q.uscale = p.uscale;
-    q.lat1 = p.lat1;
-    q.lat2 = p.lat2;
-    q.radius = std::isfinite(p.radius) ? p.radius : radius_m;
+    const auto kind = parse_name_any_case<curvilinear::ProjectionKind>(p.proj);
+    if (!kind)
+      throw InputError(
+          fmt::format("{}: attribute proj: {}", path, unknown_name_message<curvilinear::ProjectionKind>(p.proj)));
+    q.projection.kind = *kind;
+    q.projection.rlat_deg = p.rlat;
+    q.projection.rlon_deg = p.rlon;
+    q.projection.rota_deg = p.rota;
+    q.projection.uscale = p.uscale;
+    q.projection.lat1_deg = p.lat1;
+    q.projection.lat2_deg = p.lat2;
+    q.projection.radius_m = std::isfinite(p.radius) ? p.radius : radius_m;
     source = fmt::format("the parent's projection ({} rlat {} rlon {} rota {})", p.proj, p.rlat, p.rlon, p.rota);
     return q;
   }
   const int k = (b.i_left + b.i_right) / 2 - 1, l = (b.j_bottom + b.j_top) / 2 - 1;  // ψ file indices
   const std::size_t c = static_cast<std::size_t>(l) * static_cast<std::size_t>(p.L) + static_cast<std::size_t>(k);
-  q.proj = curvilinear::ProjectionKind::kStereographic;
-  q.rlat = p.lat_psi[c];
-  q.rlon = p.lon_psi[c];
-  q.rota = 0.0;
-  q.radius = radius_m;
-  source = fmt::format("a stereographic plane centred at {:.4f}E {:.4f}N (the parent file names no projection)", q.rlon,
-                       q.rlat);
+  q.projection.kind = curvilinear::ProjectionKind::kStereographic;
+  q.projection.rlat_deg = p.lat_psi[c];
+  q.projection.rlon_deg = p.lon_psi[c];
+  q.projection.rota_deg = 0.0;
+  q.projection.radius_m = radius_m;
+  source = fmt::format("a stereographic plane centred at {:.4f}E {:.4f}N (the parent file names no projection)",
+                       q.projection.rlon_deg, q.projection.rlat_deg);
   return q;
 }
 
@@ -127,8 +132,8 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
                                   refine_box_text(g.box), n.parent, bad));
 
   curvilinear::RegionalResult& r = g.result;
-  r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, g.projection_source);
-  const curvilinear::Projection proj(curvilinear::projection_params(r.params));
+  r.params = parent_plane(c.params, g.parent, g.box, c.roms.earth_radius_m, n.parent, g.projection_source);
+  const curvilinear::Projection proj(r.params.projection);
   g.parent_plane = parent_supergrid(g.parent, proj, n.parent);
   g.padded = curvilinear::refine_supergrid(g.parent_plane, g.box, kRefinePad);
   r.projection.emplace(proj);

@@ -21,15 +21,6 @@ using detail::Origin;
 using detail::Problems;
 using S = detail::Schema<GlobalConfig>;
 
-std::string one_of(const std::string& v, std::initializer_list<const char*> allowed) {
-  std::string list;
-  for (const char* a : allowed) {
-    if (v == a) return {};
-    list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
-  }
-  return fmt::format("\"{}\" is not one of {}", v, list);
-}
-
 // mask.min_depth_m's lowest value: a floodplain up to 100 m above the datum. Surge meshes reach
 // +10 to +20 m, tsunami inundation tens of metres; land higher than that is no floodplain (and a
 // typo such as -5000 for 5000 would mesh the continents).
@@ -62,10 +53,14 @@ constexpr std::array<RuleField<BoxRule>, 4> kBoxRuleFields{{{"lon_min_deg", &Box
 std::string depth_range_problem(const DepthRule& r) {
   return r.min_depth_m < r.max_depth_m ? std::string() : "needs min_depth_m < max_depth_m";
 }
+// A longitude of the configuration: finite and within ±360° (any wider value names no place).
+bool lon_ok(double v) { return v >= -360.0 && v <= 360.0; }
+
 std::string box_range_problem(const BoxRule& r) {
-  if (r.lon_min_deg < r.lon_max_deg && r.lat_min_deg < r.lat_max_deg && r.lat_min_deg >= -90 && r.lat_max_deg <= 90)
+  if (r.lon_min_deg < r.lon_max_deg && lon_ok(r.lon_min_deg) && lon_ok(r.lon_max_deg) &&
+      r.lat_min_deg < r.lat_max_deg && r.lat_min_deg >= -90 && r.lat_max_deg <= 90)
     return {};
-  return "needs lon_min_deg < lon_max_deg and -90 <= lat_min_deg < lat_max_deg <= 90";
+  return "needs -360 <= lon_min_deg < lon_max_deg <= 360 and -90 <= lat_min_deg < lat_max_deg <= 90";
 }
 
 // Reads the array of rule tables `key` (quadtree.depth_rules / box_rules): the number fields
@@ -88,7 +83,8 @@ void read_rules(std::vector<R>& out, const toml::value& v, const Origin& o, Prob
     }
     R r;
     bool has_level = false, has_size = false, good = true;
-    for (const auto& [name, x] : items[k].as_table()) {
+    for (const auto& [field_name, x] : items[k].as_table()) {
+      const std::string& name = field_name;  // clang before 16 cannot capture a structured binding
       const auto f = std::find_if(fields.begin(), fields.end(), [&](const RuleField<R>& g) { return name == g.name; });
       std::optional<std::string> err;
       if (f != fields.end())
@@ -228,12 +224,9 @@ const S& schema() {
         [](const int& v) { return v >= 1 ? std::string() : fmt::format("{} must be >= 1", v); }, "band");
     t.add<bool>(
         "input", "positive_down", [](GlobalConfig& c) -> bool& { return c.input.positive_down; }, {}, "");
-    t.add<std::string>(
-        "input", "interpolation", [](GlobalConfig& c) -> std::string& { return c.input.interpolation; },
-        [](const std::string& v) {
-          return one_of(v, {"bilinear", "bicubic"});
-        },
-        "");
+    t.add<Interpolation>(
+        "input", "interpolation", [](GlobalConfig& c) -> Interpolation& { return c.input.interpolation; }, {},
+        "sampling between raster points");
     t.add<double>(
         "input", "max_memory_gb", [](GlobalConfig& c) -> double& { return c.input.max_memory_gb; },
         [](const double& v) { return in_range(v, 0.0, 1e6); }, "");
@@ -241,6 +234,7 @@ const S& schema() {
         "input", "max_abs_elevation_m", [](GlobalConfig& c) -> double& { return c.input.max_abs_elevation_m; },
         [](const double& v) { return in_range(v, 100.0, 1e6); }, "");
     // [mask]
+    // h < 0 keeps a floodplain above the datum (down to kMinDepthLowest); the stages do not check it again.
     t.add<double>(
         "mask", "min_depth_m", [](GlobalConfig& c) -> double& { return c.mask.min_depth_m; },
         [](const double& v) { return in_range(v, kMinDepthLowest, 12000.0); }, "h");
@@ -252,20 +246,17 @@ const S& schema() {
         [](const std::vector<std::array<double, 2>>& v) {
           if (v.empty()) return std::string("at least one seed [lon, lat] is needed");
           for (std::size_t k = 0; k < v.size(); ++k)
-            if (!std::isfinite(v[k][0]) || v[k][1] < -90 || v[k][1] > 90)
-              return fmt::format("seed {} = [{}, {}]: latitude must be in [-90, 90]", k, v[k][0], v[k][1]);
+            if (!lon_ok(v[k][0]) || !(v[k][1] >= -90 && v[k][1] <= 90))
+              return fmt::format("seed {} = [{}, {}]: expected a longitude in [-360, 360] and a latitude in [-90, 90]",
+                                 k, v[k][0], v[k][1]);
           return std::string();
         },
         "");
     t.add<double>(
         "mask", "seed_radius_deg", [](GlobalConfig& c) -> double& { return c.mask.seed_radius_deg; },
         [](const double& v) { return in_range(v, 0.0, 180.0); }, "");
-    t.add<std::string>(
-        "mask", "sampling", [](GlobalConfig& c) -> std::string& { return c.mask.sampling; },
-        [](const std::string& v) {
-          return one_of(v, {"vertex", "area"});
-        },
-        "");
+    t.add<Sampling>(
+        "mask", "sampling", [](GlobalConfig& c) -> Sampling& { return c.mask.sampling; }, {}, "what makes a pixel wet");
     t.add<bool>(
         "mask", "remove_pinches", [](GlobalConfig& c) -> bool& { return c.mask.remove_pinches; }, {}, "");
     t.add<bool>(
@@ -325,37 +316,18 @@ const S& schema() {
     t.add<int>(
         "quadtree", "coast_band", [](GlobalConfig& c) -> int& { return c.quadtree.coast_band; },
         [](const int& v) { return in_range(v, 0, 64); }, "");
-    t.add<std::string>(
-        "quadtree", "balance", [](GlobalConfig& c) -> std::string& { return c.quadtree.balance; },
-        [](const std::string& v) {
-          return one_of(v, {"face", "corner"});
-        },
-        "");
+    t.add<BalanceMode>(
+        "quadtree", "balance", [](GlobalConfig& c) -> BalanceMode& { return c.quadtree.balance; }, {},
+        "the neighbours 2:1 smoothing holds");
     t.add<double>(
         "quadtree", "lon0_deg", [](GlobalConfig& c) -> double& { return c.quadtree.lon0_deg; },
         [](const double& v) { return in_range(v, -360.0, 360.0); }, "");
-    t.add<std::string>(
-        "quadtree", "lattice", [](GlobalConfig& c) -> std::string& { return c.quadtree.lattice; },
-        [](const std::string& v) {
-          return one_of(v, {"lonlat", "mercator"});
-        },
-        "");
-    t.add_custom(
-        "quadtree", "engine",
-        [](GlobalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
-          std::string x;
-          if (auto err = detail::convert(v, x)) return p.add(o, "quadtree.engine", *err);
-          std::string list;
-          for (const auto& n : kQuadtreeEngineNames) {
-            if (x == n.name) {
-              c.quadtree.engine = n.value;
-              return;
-            }
-            list += fmt::format("{}\"{}\" ({})", list.empty() ? "" : ", ", n.name, n.help);
-          }
-          p.add(o, "quadtree.engine", fmt::format("\"{}\" is not one of {}", x, list));
-        },
-        [](const GlobalConfig& c) { return Json(engine_name(c.quadtree.engine)); }, "");
+    t.add<LatticeKind>(
+        "quadtree", "lattice", [](GlobalConfig& c) -> LatticeKind& { return c.quadtree.lattice; }, {},
+        "the lattice's rows");
+    t.add<QuadtreeEngine>(
+        "quadtree", "engine", [](GlobalConfig& c) -> QuadtreeEngine& { return c.quadtree.engine; }, {},
+        "what holds the quadtree");
     t.add<double>(
         "quadtree", "mercator_lat_max_deg", [](GlobalConfig& c) -> double& { return c.quadtree.mercator_lat_max_deg; },
         [](const double& v) { return in_range(v, 1.0, 89.5); }, "");
@@ -385,6 +357,9 @@ const S& schema() {
           std::filesystem::path path(text);
           if (!text.empty() && path.is_relative()) path = o.base_dir / path;
           c.size.raster = text.empty() ? text : path.lexically_normal().string();
+          // A FIFO or a directory is refused before GDAL opens it (a FIFO would block it).
+          if (const std::string bad = detail::input_path_problem(c.size.raster); !text.empty() && !bad.empty())
+            p.add(o, "size.raster", bad);
         },
         [](const GlobalConfig& c) { return Json(c.size.raster); }, "");
     size_num("size.coast", "h0_km", [](GlobalConfig& c) -> double& { return c.size.coast.h0_km; }, 0.0, 1e5);
@@ -411,12 +386,8 @@ const S& schema() {
     size_num("size.cfl", "velocity_ms", [](GlobalConfig& c) -> double& { return c.size.cfl.velocity_ms; }, 0.0,
              100.0);
     // [domain]
-    t.add<std::string>(
-        "domain", "kind", [](GlobalConfig& c) -> std::string& { return c.domain.kind; },
-        [](const std::string& v) {
-          return one_of(v, {"auto", "global", "box", "polygon"});
-        },
-        "");
+    t.add<DomainKind>(
+        "domain", "kind", [](GlobalConfig& c) -> DomainKind& { return c.domain.kind; }, {}, "what is meshed");
     t.add<std::vector<double>>(
         "domain", "box", [](GlobalConfig& c) -> std::vector<double>& { return c.domain.box; },
         [](const std::vector<double>& v) {
@@ -431,6 +402,17 @@ const S& schema() {
           double w = v[1] - v[0];
           if (w < 0.0) w += 360.0;
           if (!(w < 360.0)) return std::string("the box spans 360° of longitude or more: use kind = \"global\"");
+          // lon_max < lon_min reads as a box across the seam; a wide one is more likely the two
+          // bounds swapped ([10, -5] for [-5, 10]), so it must be written unambiguously.
+          if (v[1] < v[0] && w > 180.0) {
+            const double west = v[1] + 360.0 <= 360.0 ? v[0] : v[0] - 360.0;
+            const double east = v[1] + 360.0 <= 360.0 ? v[1] + 360.0 : v[1];
+            return fmt::format(
+                "lon_min = {} > lon_max = {} reads as a box across the seam {}° wide (east from {}° to {}°); a box "
+                "across the seam wider than 180° is refused as ambiguous: for the {}° from {}° to {}° write "
+                "[{}, {}, {}, {}] (lon_max > lon_min), for that seam-crossing box write [{}, {}, {}, {}]",
+                v[0], v[1], w, v[0], v[1], 360.0 - w, v[1], v[0], v[1], v[0], v[2], v[3], west, east, v[2], v[3]);
+          }
           return std::string();
         },
         "");
@@ -442,6 +424,11 @@ const S& schema() {
           std::filesystem::path path(text);
           if (!text.empty() && path.is_relative()) path = o.base_dir / path;
           c.domain.polygon = text.empty() ? text : path.lexically_normal().string();
+          // A FIFO would block OGR for ever (a shapefile's folder is a directory OGR reads: allowed).
+          std::error_code ec;
+          if (!text.empty() && !std::filesystem::is_directory(c.domain.polygon, ec))
+            if (const std::string bad = detail::input_path_problem(c.domain.polygon); !bad.empty())
+              p.add(o, "domain.polygon", bad);
         },
         [](const GlobalConfig& c) { return Json(c.domain.polygon); }, "");
     t.add<std::string>(
@@ -461,69 +448,49 @@ const S& schema() {
         "rotation", "pole_lat_deg", [](GlobalConfig& c) -> double& { return c.rotation.pole_lat_deg; },
         [](const double& v) { return in_range(v, -90.0, 90.0); }, "");
     // [mesh]
-    t.add<std::string>(
-        "mesh", "elements", [](GlobalConfig& c) -> std::string& { return c.mesh.elements; },
-        [](const std::string& v) {
-          return one_of(v, {"triangles", "squares", "both"});
-        },
-        "");
-    t.add<std::string>(
-        "mesh", "diagonal", [](GlobalConfig& c) -> std::string& { return c.mesh.diagonal; },
-        [](const std::string& v) {
-          return one_of(v, {"ne", "nw", "alternate"});
-        },
-        "");
+    t.add<ElementKinds>(
+        "mesh", "elements", [](GlobalConfig& c) -> ElementKinds& { return c.mesh.elements; }, {},
+        "the elements of the mesh");
+    t.add<Diagonal>(
+        "mesh", "diagonal", [](GlobalConfig& c) -> Diagonal& { return c.mesh.diagonal; }, {},
+        "the diagonal of squares without midside nodes");
     // [output]
     t.add<std::string>(
         "output", "dir", [](GlobalConfig& c) -> std::string& { return c.output.dir; },
         [](const std::string& v) { return v.empty() ? std::string("must not be empty") : output_dir_problem(v); }, "");
     t.add<std::string>(
         "output", "name", [](GlobalConfig& c) -> std::string& { return c.output.name; },
-        [](const std::string& v) {
-          return (v.empty() || v.find('/') != std::string::npos) ? std::string("must be a plain file name without '/'")
-                                                                 : std::string();
-        },
-        "");
-    t.add<std::vector<std::string>>(
-        "output", "formats", [](GlobalConfig& c) -> std::vector<std::string>& { return c.output.formats; },
-        [](const std::vector<std::string>& v) {
-          for (const auto& f : v) {
-            const auto& known = output_format_names();
-            if (std::find(known.begin(), known.end(), f) == known.end())
-              return fmt::format("\"{}\" is not one of \"{}\"", f, fmt::join(known, "\", \""));
-          }
-          return std::string();
-        },
-        "");
+        [](const std::string& v) { return output_name_problem(v); }, "");
+    t.add<std::vector<OutputFormat>>(
+        "output", "formats", [](GlobalConfig& c) -> std::vector<OutputFormat>& { return c.output.formats; }, {},
+        "the files written");
     t.add<bool>(
         "output", "msh_binary", [](GlobalConfig& c) -> bool& { return c.output.msh_binary; }, {}, "");
     t.add<int>(
         "output", "ugrid_deflate", [](GlobalConfig& c) -> int& { return c.output.ugrid_deflate; },
         [](const int& v) { return in_range(v, 0, 9); }, "");
-    t.add<std::string>(
-        "output", "vtu_coordinates", [](GlobalConfig& c) -> std::string& { return c.output.vtu_coordinates; },
-        [](const std::string& v) {
-          return one_of(v, {"sphere", "wgs84"});
-        },
-        "");
+    t.add<VtuCoordinates>(
+        "output", "vtu_coordinates", [](GlobalConfig& c) -> VtuCoordinates& { return c.output.vtu_coordinates; }, {},
+        "where the VTU points are");
     t.add<int>(
         "output", "png_width", [](GlobalConfig& c) -> int& { return c.output.png_width; },
-        [](const int& v) { return in_range(v, 64, 20000); }, "");
+        [](const int& v) { return in_range(v, 200, 20000); }, "");
     t.add<std::vector<double>>(
         "output", "png_zoom", [](GlobalConfig& c) -> std::vector<double>& { return c.output.png_zoom; },
         [](const std::vector<double>& v) {
           if (v.empty()) return std::string();
-          if (v.size() != 4 || !(v[0] < v[1]) || !(v[2] < v[3]) || v[2] < -90 || v[3] > 90)
-            return std::string("expected [lon_min, lon_max, lat_min, lat_max] with min < max");
+          const bool finite = std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+          if (v.size() != 4 || !finite || !lon_ok(v[0]) || !lon_ok(v[1]) || !(v[0] < v[1]) || v[1] - v[0] > 360.0 ||
+              !(v[2] < v[3]) || v[2] < -90 || v[3] > 90)
+            return std::string(
+                "expected 4 finite numbers [lon_min, lon_max, lat_min, lat_max] with -360 <= lon_min < lon_max <= "
+                "lon_min + 360, lon_max <= 360 and -90 <= lat_min < lat_max <= 90");
           return std::string();
         },
         "");
-    t.add<std::string>(
-        "output", "png_color", [](GlobalConfig& c) -> std::string& { return c.output.png_color; },
-        [](const std::string& v) {
-          return one_of(v, {"level", "angle", "size", "target", "elevation"});
-        },
-        "");
+    t.add<PreviewColour>(
+        "output", "png_color", [](GlobalConfig& c) -> PreviewColour& { return c.output.png_color; }, {},
+        "what fills the preview's elements");
     t.add<std::vector<double>>(
         "output", "fesom_levels", [](GlobalConfig& c) -> std::vector<double>& { return c.output.fesom_levels; },
         [](const std::vector<double>& v) {
@@ -548,11 +515,11 @@ const S& schema() {
         [](const std::vector<std::array<double, 4>>& v) {
           for (std::size_t k = 0; k < v.size(); ++k) {
             const auto& b = v[k];
-            if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !(b[0] < b[1]) || b[1] - b[0] > 180.0 ||
-                !(b[2] < b[3]) || b[2] < -90.0 || b[3] > 90.0)
+            if (!lon_ok(b[0]) || !lon_ok(b[1]) || !(b[0] < b[1]) || b[1] - b[0] > 180.0 || !(b[2] < b[3]) ||
+                b[2] < -90.0 || b[3] > 90.0)
               return fmt::format(
                   "box {} = [{}, {}, {}, {}]: expected [lon_min, lon_max, lat_min, lat_max] with "
-                  "lon_min < lon_max <= lon_min + 180 and -90 <= lat_min < lat_max <= 90",
+                  "-360 <= lon_min < lon_max <= lon_min + 180, lon_max <= 360 and -90 <= lat_min < lat_max <= 90",
                   k, b[0], b[1], b[2], b[3]);
           }
           return std::string();
@@ -581,60 +548,101 @@ const S& schema() {
 template <typename R>
 void check_rule_levels(const std::vector<R>& rules, const char* key, int levels, Problems& p) {
   for (std::size_t k = 0; k < rules.size(); ++k)
-    if (rules[k].level > levels)
-      p.add_plain(999999, fmt::format("{}[{}]: level {} exceeds quadtree.levels = {}", key, k, rules[k].level, levels));
+    if (rules[k].size_km == 0.0 && rules[k].level > levels)
+      p.add_keys({fmt::format("{}[{}].level", key, k), "quadtree.levels"},
+                 fmt::format("level {} exceeds quadtree.levels = {}", rules[k].level, levels));
 }
 
-// Checks that involve several keys.
+// Checks that involve several keys, each reported at the position of the key set last.
 void cross_check(GlobalConfig& c, Problems& p) {
   // [domain]: the kind from the keys given (README "Regional FE meshes").
   DomainOptions& d = c.domain;
   const bool has_box = !d.box.empty(), has_polygon = !d.polygon.empty();
-  if (d.kind == "auto") {
-    d.resolved = has_polygon ? DomainKind::kPolygon : has_box ? DomainKind::kBox : DomainKind::kGlobal;
-  } else if (d.kind == "global") {
-    d.resolved = DomainKind::kGlobal;
-    if (has_box || has_polygon)
-      p.add_plain(999999, "domain.kind = \"global\" but domain.box or domain.polygon is set: remove the kind "
-                          "(\"auto\" takes the polygon, else the box) or the region");
-  } else if (d.kind == "box") {
-    d.resolved = DomainKind::kBox;
-    if (!has_box) p.add_plain(999999, "domain.kind = \"box\" needs domain.box = [lon_min, lon_max, lat_min, lat_max]");
-  } else {
-    d.resolved = DomainKind::kPolygon;
-    if (!has_polygon) p.add_plain(999999, "domain.kind = \"polygon\" needs domain.polygon = \"file\" (GeoPackage, "
-                                          "GeoJSON, Shapefile, ...)");
+  switch (d.kind) {
+    case DomainKind::kAuto:
+      d.resolved = has_polygon ? DomainKind::kPolygon : has_box ? DomainKind::kBox : DomainKind::kGlobal;
+      break;
+    case DomainKind::kGlobal:
+      d.resolved = DomainKind::kGlobal;
+      if (has_box || has_polygon)
+        p.add_keys({"domain.kind", has_box ? "domain.box" : "domain.polygon"},
+                   "domain.kind = \"global\" but domain.box or domain.polygon is set: remove the kind (\"auto\" takes "
+                   "the polygon, else the box) or the region");
+      break;
+    case DomainKind::kBox:
+      d.resolved = DomainKind::kBox;
+      if (!has_box) p.add_key("domain.kind", "\"box\" needs domain.box = [lon_min, lon_max, lat_min, lat_max]");
+      break;
+    case DomainKind::kPolygon:
+      d.resolved = DomainKind::kPolygon;
+      if (!has_polygon)
+        p.add_key("domain.kind", "\"polygon\" needs domain.polygon = \"file\" (GeoPackage, GeoJSON, Shapefile, ...)");
+      break;
   }
   // input.paths = [input.path] is one raster said twice (configs/example.toml does so); anything
   // else with both keys is ambiguous.
   if (!c.input.paths.empty() && c.input.path_layer != 0 && c.input.path_layer == c.input.paths_layer &&
       c.input.paths != std::vector<std::string>{c.input.path})
-    p.add_plain(999999, fmt::format("input.path = \"{}\" and input.paths = [{} raster(s)] are both set: give input.path "
-                                    "for one raster or input.paths for several (highest priority first)",
-                                    c.input.path, c.input.paths.size()));
+    p.add_keys({"input.path", "input.paths"},
+               fmt::format("input.path = \"{}\" and input.paths = [{} raster(s)] are both set: give input.path for one "
+                           "raster or input.paths for several (highest priority first)",
+                           c.input.path, c.input.paths.size()));
   if (c.input.blend_km > 0.0 && c.input.paths.size() < 2)
-    p.add_plain(999999, fmt::format("input.blend_km = {} blends between sources: it needs input.paths with two or "
-                                    "more rasters",
-                                    c.input.blend_km));
-  if (c.input.paths.size() > 1 && c.mask.sampling == "area")
-    p.add_plain(999999, "mask.sampling = \"area\" reads the cells of one raster: it is not available with several "
-                        "input.paths (use \"vertex\")");
-  if (c.input.paths.size() > 1 && c.input.interpolation == "bicubic")
-    p.add_plain(999999, "input.interpolation = \"bicubic\" is not available with several input.paths (the spline "
-                        "of one raster); use \"bilinear\"");
+    p.add_keys({"input.blend_km", "input.paths"},
+               fmt::format("input.blend_km = {} blends between sources: it needs input.paths with two or more rasters",
+                           c.input.blend_km));
+  if (c.input.paths.size() > 1 && c.mask.sampling == Sampling::kArea)
+    p.add_keys({"mask.sampling", "input.paths"},
+               "mask.sampling = \"area\" reads the cells of one raster: it is not available with several input.paths "
+               "(use \"vertex\")");
+  if (c.input.paths.size() > 1 && c.input.interpolation == Interpolation::kBicubic)
+    p.add_keys({"input.interpolation", "input.paths"},
+               "input.interpolation = \"bicubic\" is not available with several input.paths (the spline of one "
+               "raster); use \"bilinear\"");
   check_rule_levels(c.quadtree.depth_rules, "quadtree.depth_rules", c.quadtree.levels, p);
   check_rule_levels(c.quadtree.box_rules, "quadtree.box_rules", c.quadtree.levels, p);
+  // [size]: the clamp must be an interval.
+  if (c.size.h_min_km > 0.0 && c.size.h_max_km > 0.0 && c.size.h_min_km > c.size.h_max_km)
+    p.add_keys({"size.h_min_km", "size.h_max_km"},
+               fmt::format("size.h_min_km = {} is above size.h_max_km = {}", c.size.h_min_km, c.size.h_max_km));
+  for (const KeyProblem& bad : output_problems(c.output, c.mesh.elements)) p.add_keys(bad.keys, bad.text);
   // The floodplain terms size land above the datum: without a floodplain they would size nothing.
   for (const auto& [key, on] : {std::pair{"size.inland.h0_km", c.size.inland.h0_km > 0.0},
                                 std::pair{"size.elevation.h0_km", c.size.elevation.h0_km > 0.0}})
     if (on && !(c.mask.min_depth_m < 0.0))
-      p.add_plain(999999, fmt::format("{} sizes the floodplain (land above the datum inside the mesh), but "
-                                      "mask.min_depth_m = {} >= 0 meshes none: set mask.min_depth_m = -z to reach "
-                                      "land up to z m above the datum, or remove {}",
-                                      key, c.mask.min_depth_m, key));
+      p.add_keys({key, "mask.min_depth_m"},
+                 fmt::format("{} sizes the floodplain (land above the datum inside the mesh), but "
+                             "mask.min_depth_m = {} >= 0 meshes none: set mask.min_depth_m = -z to reach "
+                             "land up to z m above the datum, or remove {}",
+                             key, c.mask.min_depth_m, key));
 }
 
 }  // namespace
+
+std::string output_name_problem(const std::string& name) {
+  if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+    return "must be a plain file name without '/'";
+  return {};
+}
+
+std::vector<KeyProblem> output_problems(const OutputOptions& o, ElementKinds elements) {
+  std::vector<KeyProblem> out;
+  // The model formats and the coloured previews are made of triangles.
+  if (!has_triangles(elements)) {
+    for (const OutputFormat f : {OutputFormat::kFort14, OutputFormat::kFesom, OutputFormat::kSchism})
+      if (o.writes(f))
+        out.push_back({{"output.formats", "mesh.elements"},
+                       fmt::format("\"{}\" needs triangles but mesh.elements = \"squares\" (the model's meshes are "
+                                   "triangular; use mesh.elements = \"both\" or drop \"{}\")",
+                                   name_of(f), name_of(f))});
+    if (o.png_color != PreviewColour::kLevel)
+      out.push_back({{"output.png_color", "mesh.elements"},
+                     fmt::format("output.png_color = \"{}\" colours triangles but mesh.elements = \"squares\" (use "
+                                 "\"level\")",
+                                 name_of(o.png_color))});
+  }
+  return out;
+}
 
 Json rule_json(const DepthRule& r) { return rule_json(r, kDepthRuleFields); }
 Json rule_json(const BoxRule& r) { return rule_json(r, kBoxRuleFields); }
@@ -677,6 +685,16 @@ RunName default_run_name(const GlobalConfig& c) {
     out.name = "seed_4deg_L3";
     return out;
   }
+  // The keys the name below follows.
+  static const char* const kNamed[] = {
+      "quadtree.step_deg", "quadtree.levels",  "mask.min_depth_m", "mask.cursor",      "rotation.enabled",
+      "input.path",        "input.paths",      "input.blend_km",   "quadtree.balance", "quadtree.coast_band",
+      "quadtree.lattice",  "quadtree.size_km", "mesh.elements"};
+  for (const std::string& k : out.changed) {
+    bool named = false;
+    for (const char* n : kNamed) named = named || k.rfind(std::string(n) + " =", 0) == 0;
+    if (!named) out.unnamed.push_back(k);
+  }
   const auto step_s = static_cast<long long>(std::llround(c.quadtree.step_deg * 3600.0));
   const std::string step = step_s % 3600 == 0 ? fmt::format("{}deg", step_s / 3600)
                            : step_s % 60 == 0 ? fmt::format("{}min", step_s / 60)
@@ -696,18 +714,16 @@ RunName default_run_name(const GlobalConfig& c) {
     }
   }
   if (c.input.blend_km != d.input.blend_km) out.name += fmt::format("_blend{:g}km", c.input.blend_km);
-  if (c.quadtree.balance != d.quadtree.balance) out.name += "_" + c.quadtree.balance;
+  if (c.quadtree.balance != d.quadtree.balance) out.name += fmt::format("_{}", name_of(c.quadtree.balance));
   if (c.quadtree.coast_band != d.quadtree.coast_band) out.name += fmt::format("_cb{}", c.quadtree.coast_band);
-  if (c.quadtree.lattice != d.quadtree.lattice) out.name += "_" + c.quadtree.lattice;
+  if (c.quadtree.lattice != d.quadtree.lattice) out.name += fmt::format("_{}", name_of(c.quadtree.lattice));
   if (c.quadtree.size_km != d.quadtree.size_km) out.name += fmt::format("_s{:g}km", c.quadtree.size_km);
-  if (c.mesh.elements != d.mesh.elements) out.name += "_" + c.mesh.elements;
+  if (c.mesh.elements != d.mesh.elements) out.name += fmt::format("_{}", name_of(c.mesh.elements));
   return out;
 }
 
-std::vector<std::string> global_keys() {
-  std::vector<std::string> k;
-  for (const auto& key : schema().keys()) k.push_back(key.section + "." + key.name);
-  return k;
-}
+std::vector<std::string> global_keys() { return schema().names(); }
+
+std::vector<KeyInfo> global_key_info() { return schema().infos<KeyInfo>(); }
 
 }  // namespace aq::config

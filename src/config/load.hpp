@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "config/options.hpp"
+#include "core/enum_names.hpp"
+#include "core/error.hpp"
 #include "core/report.hpp"
 
 namespace aq::config {
@@ -32,12 +34,50 @@ Json rule_json(const BoxRule& r);
 /// Every key of the global configuration as "section.key", in documentation order.
 std::vector<std::string> global_keys();
 
+/// One key of a configuration as the help text and the Python binding show it.
+struct KeyInfo {
+  std::string key;                  ///< "section.key"
+  Json default_value;               ///< the built-in default, as the run report echoes it
+  std::string help;                 ///< what it sets; for an enumerated key every name and its meaning
+  std::vector<std::string> values;  ///< the names an enumerated key takes; empty for other keys
+};
+/// Every key of the global configuration, in documentation order.
+std::vector<KeyInfo> global_key_info();
+
+/// Why `name` cannot be output.name (a plain file name: not empty, no '/', not "." or ".."), or "".
+std::string output_name_problem(const std::string& name);
+
+/// A problem of one or more keys together, for callers that report it at their position.
+struct KeyProblem {
+  std::vector<std::string> keys;
+  std::string text;
+};
+/// What is wrong with `o` for a mesh of `elements` (a model format or a coloured preview without
+/// triangles). load_global() reports these; a caller that changes output options afterwards (the
+/// Python binding's write) checks them again.
+std::vector<KeyProblem> output_problems(const OutputOptions& o, ElementKinds elements);
+
+/// The values of an enumerated option named in `names` (e.g. output.formats from Python), each
+/// as E's table has it; ConfigError naming `key` and the first unknown name.
+template <NamedEnum E>
+std::vector<E> parse_names(const std::vector<std::string>& names, const std::string& key) {
+  std::vector<E> out;
+  for (const std::string& n : names) {
+    const std::optional<E> e = parse_name<E>(n);
+    if (!e) throw ConfigError(key + ": " + unknown_name_message<E>(n));
+    out.push_back(*e);
+  }
+  return out;
+}
+
 /// The base name of a run without a config file and without output.name, and why.
 struct RunName {
   std::string name;
   /// Keys outside [output] and [blocks] whose effective value differs from the built-in
   /// default, as "section.key = value", in documentation order; empty for the seed's run.
   std::vector<std::string> changed;
+  /// Those of `changed` the name does not show: a run differing only there writes the same files.
+  std::vector<std::string> unnamed;
 };
 
 /// "seed_4deg_L3" when the mesh-defining values of `c` (every section but [output] and [blocks])

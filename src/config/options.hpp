@@ -1,11 +1,17 @@
 // Plain option structs of the global run, one per TOML section (ARCHITECTURE §7). Defaults here
 // are the defaults of the program; configs/example.toml documents every key (a test keeps the two
-// in step). Only src/config knows TOML; every other stage receives these structs.
+// in step). Only src/config knows TOML; every other stage receives these structs. Enumerated
+// options are enums (config/kinds.hpp, core/lattice.hpp): their names exist only in those tables.
+// Every field is validated at load (config/global_config.cpp), alone and against the others, so a
+// stage may take these values as given.
 #pragma once
 
 #include <array>
 #include <string>
 #include <vector>
+
+#include "config/kinds.hpp"
+#include "core/lattice.hpp"
 
 namespace aq::config {
 
@@ -14,7 +20,7 @@ struct InputOptions {
   std::string variable;                                        ///< netCDF variable / subdataset name; empty = first
   int band = 1;                                                ///< 1-based band of the raster (or of the variable)
   bool positive_down = false;                                  ///< file stores depth as positive numbers
-  std::string interpolation = "bilinear";                      ///< "bilinear" (seed rule) or "bicubic" (C2 spline)
+  Interpolation interpolation = Interpolation::kBilinear;      ///< the seed's bilinear rule or a C2 spline
   double max_memory_gb = 0.0;                                  ///< refuse runs estimated above this; 0 = 80% of RAM
   double max_abs_elevation_m = 12000.0;  ///< raster values beyond ±this (m) are no-data (sentinels, bad scales)
   /// Several rasters, highest priority first (README "Several bathymetry sources"): at every
@@ -37,7 +43,7 @@ struct MaskOptions {
   int cursor = 2;                                            ///< K of the K-cursor fill, 1..64
   std::vector<std::array<double, 2>> seeds{{-30.0, -50.0}};  ///< lon, lat of fill seeds (degrees)
   double seed_radius_deg = 5.0;     ///< how far a seed may be moved to the nearest all-wet window
-  std::string sampling = "vertex";  ///< "vertex" (seed rule) or "area" (min over raster cells)
+  Sampling sampling = Sampling::kVertex;  ///< the seed's vertex rule or the deepest raster cell
   bool remove_pinches = false;      ///< take pixels out until no pinch vertex is left
   bool passages = true;             ///< report the critical-passage table
   /// Passages of the built-in table (names or aliases, mask/passages.hpp) carved open: a channel
@@ -72,35 +78,13 @@ struct BoxRule {
   double size_km = 0.0;  ///< > 0: square size target (km) instead of a level; 0 = the level form
 };
 
-/// quadtree.engine: what holds the quadtree (README "The forest engine"). Both write the same
-/// files; the forest needs the AQ_MPI build.
-enum class QuadtreeEngine {
-  kDense,   ///< bitmaps over every pixel of the lattice, in one process (the default)
-  kForest,  ///< a p4est forest of the level-0 squares: leaves only, on one or many MPI ranks
-};
-struct QuadtreeEngineName {
-  QuadtreeEngine value;
-  const char* name;
-  const char* help;
-};
-inline constexpr std::array<QuadtreeEngineName, 2> kQuadtreeEngineNames{{
-    {QuadtreeEngine::kDense, "dense", "bitmaps over every pixel of the lattice, in one process"},
-    {QuadtreeEngine::kForest, "forest", "a p4est forest of the level-0 squares on one or many MPI ranks"},
-}};
-/// The name of `e` in kQuadtreeEngineNames.
-[[nodiscard]] constexpr const char* engine_name(QuadtreeEngine e) {
-  for (const auto& n : kQuadtreeEngineNames)
-    if (n.value == e) return n.name;
-  return "?";
-}
-
 struct QuadtreeOptions {
   double step_deg = 4.0;               ///< Δ0, must divide 180 (in whole arc-seconds)
   int levels = 3;                      ///< L
   int coast_band = 2;                  ///< Chebyshev distance (pixels) from the coast kept at level L
-  std::string balance = "face";        ///< "face" or "corner"
+  BalanceMode balance = BalanceMode::kFace;  ///< 2:1 across faces, or faces and corners
   double lon0_deg = -180.0;            ///< western edge of the lattice (the seam)
-  std::string lattice = "lonlat";      ///< "lonlat" (the seed's) or "mercator" (conformal squares)
+  LatticeKind lattice = LatticeKind::kLonLat;  ///< the seed's lon/lat rows or Mercator (conformal squares)
   double mercator_lat_max_deg = 86.5;  ///< Mercator rows reach at least ±this latitude (lattice frame)
   double size_km = 0.0;                ///< open-ocean square size target (km); 0 = off
   double coast_size_km = 0.0;          ///< coastal-band square size target (km); 0 = band to level L
@@ -166,27 +150,29 @@ struct RotationOptions {
 };
 
 struct MeshOptions {
-  std::string elements = "triangles";  ///< "triangles", "squares" or "both"
-  std::string diagonal = "ne";         ///< "ne", "nw" or "alternate"
+  ElementKinds elements = ElementKinds::kTriangles;
+  Diagonal diagonal = Diagonal::kNE;
 };
-
-/// The values output.formats knows, in the order write_mesh_outputs (app/mesh_outputs.hpp) writes them.
-inline const std::vector<std::string>& output_format_names() {
-  static const std::vector<std::string> names{"msh", "ugrid", "vtu", "fort14", "text", "png", "fesom", "schism", "tif"};
-  return names;
-}
 
 struct OutputOptions {
   std::string dir = "out";
   std::string name = "mesh";  ///< base name of the output files
-  std::vector<std::string> formats{"msh", "ugrid", "vtu", "fort14", "text", "png"};
+  std::vector<OutputFormat> formats{OutputFormat::kMsh,    OutputFormat::kUgrid, OutputFormat::kVtu,
+                                    OutputFormat::kFort14, OutputFormat::kText,  OutputFormat::kPng};
   bool msh_binary = false;                 ///< Gmsh MSH 4.1 binary instead of ASCII
   int ugrid_deflate = 1;                   ///< UGRID: 1..9 netCDF-4 deflate level, 0 = classic uncompressed
-  std::string vtu_coordinates = "sphere";  ///< "sphere" (unit sphere) or "wgs84" (metres, ECEF)
+  VtuCoordinates vtu_coordinates = VtuCoordinates::kUnitSphere;  ///< unit sphere or WGS84 ECEF metres
   int png_width = 2400;                    ///< preview width in pixels
   std::vector<double> png_zoom;            ///< optional [lon_min, lon_max, lat_min, lat_max] zoom box
-  std::string png_color = "level";         ///< preview fill: "level", "angle", "size", "target" or "elevation"
+  PreviewColour png_color = PreviewColour::kLevel;  ///< what fills the preview's elements
   std::vector<double> fesom_levels;        ///< FESOM aux3d.out depth levels (m, positive down); empty = default
+
+  /// True when `formats` holds `f`.
+  [[nodiscard]] bool writes(OutputFormat f) const {
+    for (const OutputFormat g : formats)
+      if (g == f) return true;
+    return false;
+  }
 };
 
 /// `aquatoria blocks`: coastal blocks of the global run handed to regional grids (ARCHITECTURE §6).
@@ -203,13 +189,11 @@ struct BlocksOptions {
 
 /// What `aquatoria mesh` meshes (README "Regional FE meshes"): the whole connected ocean, or only
 /// the water inside a lon/lat box or a polygon, with open boundaries where the domain cuts the sea.
-enum class DomainKind { kGlobal, kBox, kPolygon };
-
 struct DomainOptions {
-  /// "auto" (the default): "polygon" when `polygon` is set, else "box" when `box` is set, else
-  /// "global". Resolved by the config reader into `resolved`.
-  std::string kind = "auto";
-  DomainKind resolved = DomainKind::kGlobal;
+  /// kAuto (the default): kPolygon when `polygon` is set, else kBox when `box` is set, else
+  /// kGlobal. Resolved by the config reader into `resolved`.
+  DomainKind kind = DomainKind::kAuto;
+  DomainKind resolved = DomainKind::kGlobal;  ///< never kAuto
   std::vector<double> box;  ///< [lon_min, lon_max, lat_min, lat_max]; lon_max < lon_min: across the seam
   std::string polygon;      ///< GDAL/OGR vector file (GeoPackage, GeoJSON, Shapefile, ...) in lon/lat
   std::string layer;        ///< layer name; "" = the first layer

@@ -13,7 +13,7 @@ namespace {
 
 using detail::Origin;
 using detail::Problems;
-using S = detail::Schema<RegionalConfig>;
+using RegionalSchema = detail::Schema<RegionalConfig>;
 
 // TOML scalar -> the izogrid preamble's text form.
 std::optional<std::string> scalar_text(const toml::value& v) {
@@ -26,9 +26,9 @@ std::optional<std::string> scalar_text(const toml::value& v) {
 
 Json param_json(const curvilinear::RegionalParams& p, const std::string& key);
 
-const S& schema() {
-  static const S s = [] {
-    S t;
+const RegionalSchema& regional_schema() {
+  static const RegionalSchema s = [] {
+    RegionalSchema t;
     t.add<std::string>(
         "regional", "name", [](RegionalConfig& c) -> std::string& { return c.name; },
         [](const std::string& v) {
@@ -42,14 +42,22 @@ const S& schema() {
           // Read before the other keys by load_regional().
         },
         [](const RegionalConfig& c) { return Json(c.contour_file); }, "");
-    t.add<std::string>(
-        "regional", "stop_after", [](RegionalConfig& c) -> std::string& { return c.stop_after; },
-        [](const std::string& v) {
-          for (const char* n : {"", "map", "contour", "uniform", "conformal", "grid"})
-            if (v == n) return std::string();
-          return fmt::format("\"{}\" is not one of map, contour, uniform, conformal, grid", v);
+    t.add_custom(
+        "regional", "stop_after",
+        [](RegionalConfig& c, const toml::value& v, const Origin& o, Problems& p) {
+          if (v.is_string() && v.as_string().str.empty()) {
+            c.stop_after.reset();  // "" = from regional.mode
+            return;
+          }
+          curvilinear::Stage stage{};
+          if (auto err = detail::convert(v, stage)) return p.add(o, "regional.stop_after", *err + " or \"\"");
+          c.stop_after = stage;
         },
-        "");
+        [](const RegionalConfig& c) {
+          return Json(c.stop_after ? std::string(name_of(*c.stop_after)) : std::string());
+        },
+        fmt::format("the stage to stop after; \"\" = regional.mode: one of {}", name_help<curvilinear::Stage>()),
+        detail::value_names<curvilinear::Stage>());
     for (const std::string& key : curvilinear::izogrid_keys()) {
       t.add_custom(
           "regional", key,
@@ -59,7 +67,8 @@ const S& schema() {
             const std::string err = curvilinear::set_izogrid_key(c.params, key, *text);
             if (!err.empty()) p.add(o, "regional." + key, fmt::format("'{}' {}", *text, err));
           },
-          [key](const RegionalConfig& c) { return param_json(c.params, key); }, "");
+          [key](const RegionalConfig& c) { return param_json(c.params, key); }, "",
+          curvilinear::izogrid_key_values(key));
     }
     // Control points and corner numbers of the (first) block and of the bvp method's block 2.
     struct PointKeys {
@@ -125,8 +134,12 @@ const S& schema() {
     t.add<int>(
         "regional", "block2_nx", [](RegionalConfig& c) -> int& { return c.params.nx2; }, {}, "");
     using Sections = std::vector<std::vector<double>>;
-    for (const auto& [name, member] : {std::pair{"sections", &curvilinear::RegionalParams::sections},
-                                       std::pair{"sections_eta", &curvilinear::RegionalParams::sections_eta}}) {
+    for (const auto& [section_name, section_member] :
+         {std::pair{"sections", &curvilinear::RegionalParams::sections},
+          std::pair{"sections_eta", &curvilinear::RegionalParams::sections_eta}}) {
+      // Copies: clang before 16 cannot capture a structured binding.
+      const char* name = section_name;
+      const auto member = section_member;
       const std::string key = std::string("regional.") + name;
       t.add_custom(
           "regional", name,
@@ -190,7 +203,7 @@ const S& schema() {
     t.add<double>(
         "roms", "hmin_m", [](RegionalConfig& c) -> double& { return c.roms.hmin_m; },
         [](const double& v) {
-          return (std::isfinite(v) && v > 0.0) ? std::string() : std::string("must be a depth > 0 (m)");
+          return (v > 0.0 && v <= 12000.0) ? std::string() : std::string("must be a depth in (0, 12000] (m)");
         },
         "");
     t.add<double>(
@@ -199,21 +212,12 @@ const S& schema() {
           return (v >= 0.0 && v < 1.0) ? std::string() : std::string("must be in [0, 1) (0 = no smoothing)");
         },
         "");
-    t.add<std::string>(
-        "roms", "distances", [](RegionalConfig& c) -> std::string& { return c.roms.distances; },
-        [](const std::string& v) {
-          return (v == "sphere" || v == "wgs84") ? std::string()
-                                                 : fmt::format("\"{}\" is not one of \"sphere\", \"wgs84\"", v);
-        },
-        "");
-    t.add<std::string>(
-        "roms", "depth_statistic", [](RegionalConfig& c) -> std::string& { return c.roms.depth_statistic; },
-        [](const std::string& v) {
-          for (const char* name : {"auto", "point", "mean", "median", "min"})
-            if (v == name) return std::string();
-          return fmt::format("\"{}\" is not one of \"auto\", \"point\", \"mean\", \"median\", \"min\"", v);
-        },
-        "");
+    t.add<curvilinear::DistanceModel>(
+        "roms", "distances", [](RegionalConfig& c) -> curvilinear::DistanceModel& { return c.roms.distances; }, {},
+        "how pm, pn measure lengths");
+    t.add<CellStatistic>(
+        "roms", "depth_statistic", [](RegionalConfig& c) -> CellStatistic& { return c.roms.depth_statistic; }, {},
+        "the elevation of a rho cell from the raster");
     t.add<double>(
         "roms", "earth_radius_m", [](RegionalConfig& c) -> double& { return c.roms.earth_radius_m; },
         [](const double& v) {
@@ -275,11 +279,11 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "mode") return p.mode;
   if (key == "npass") return p.npass;
   if (key == "gshhs_data") return p.gshhs_data;
-  if (key == "rlat") return p.rlat;
-  if (key == "rlon") return p.rlon;
-  if (key == "rota") return p.rota;
-  if (key == "uscale") return p.uscale;
-  if (key == "radius") return p.radius;
+  if (key == "rlat") return p.projection.rlat_deg;
+  if (key == "rlon") return p.projection.rlon_deg;
+  if (key == "rota") return p.projection.rota_deg;
+  if (key == "uscale") return p.projection.uscale;
+  if (key == "radius") return p.projection.radius_m;
   if (key == "latlongrid") return p.latlongrid;
   if (key == "spline_type") return p.spline_type;
   if (key == "nx") return p.nx;
@@ -293,42 +297,34 @@ Json param_json(const curvilinear::RegionalParams& p, const std::string& key) {
   if (key == "anderson") return p.anderson;
   if (key == "xygrid") return p.xygrid;
   if (key == "threads") return p.threads;
-  if (key == "method") return curvilinear::grid_method_name(p.method);
-  if (key == "best_final") return curvilinear::grid_method_name(p.best_final);
-  if (key == "weight") return p.weight;
+  const auto name = [](auto e) { return Json(std::string(name_of(e))); };
+  if (key == "method") return name(p.method);
+  if (key == "best_final") return name(p.best_final);
+  if (key == "weight") return p.weight.text();
   if (key == "weight_depth") return p.weight_depth;
   if (key == "relaxation") return p.relaxation;
   if (key == "elliptic_tolerance") return p.elliptic_tolerance;
   if (key == "elliptic_criteria_tolerance") return p.elliptic_criteria_tolerance;
   if (key == "elliptic_iterations") return p.elliptic_iterations;
   if (key == "lwidth") return p.lwidth;
-  if (key == "solver") return p.solver == curvilinear::LaplaceSolver::kDst ? "dst" : "sor";
-  if (key == "surface") return p.surface == curvilinear::RegionalSurface::kSphere ? "sphere" : "plane";
+  if (key == "solver") return name(p.solver);
+  if (key == "surface") return name(p.surface);
   if (key == "bvp_iterations") return p.bvp_iterations;
-  if (key == "bvp_interpolation")
-    return p.bvp_interpolation == curvilinear::LevelInterpolation::kCubic ? "cubic" : "linear";
+  if (key == "bvp_interpolation") return name(p.bvp_interpolation);
   if (key == "bvp_ratio_xi") return p.bvp_ratio_xi;
   if (key == "bvp_ratio_eta") return p.bvp_ratio_eta;
-  if (key == "schedule") return curvilinear::inner_schedule_name(p.schedule);
-  if (key == "param") return p.param == curvilinear::Parametrisation::kIndex ? "index" : "arclength";
-  if (key == "points") return p.points_lonlat ? "lonlat" : "plane";
+  if (key == "schedule") return name(p.schedule);
+  if (key == "param") return name(p.param);
+  if (key == "points")
+    return name(p.points_lonlat ? curvilinear::PointUnits::kLonLat : curvilinear::PointUnits::kPlane);
   auto num = [](double v) { return std::isnan(v) ? Json("auto") : Json(v); };
-  if (key == "lat1") return num(p.lat1);
-  if (key == "lat2") return num(p.lat2);
+  if (key == "lat1") return num(p.projection.lat1_deg);
+  if (key == "lat2") return num(p.projection.lat2_deg);
   if (key == "west_edge") return num(p.west_edge);
   if (key == "east_edge") return num(p.east_edge);
   if (key == "south_edge") return num(p.south_edge);
   if (key == "north_edge") return num(p.north_edge);
-  if (key == "proj") {
-    switch (p.proj) {
-      case curvilinear::ProjectionKind::kMercator:
-        return "ME";
-      case curvilinear::ProjectionKind::kLambertConic:
-        return "LC";
-      default:
-        return "ST";
-    }
-  }
+  if (key == "proj") return name(p.projection.kind);
   return nullptr;
 }
 
@@ -343,6 +339,7 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
   if (file.extension() == ".izogrid") {
     c.params = curvilinear::read_izogrid_file(file);
     c.contour_file = file.string();
+    p.set_fallback(file.string());
     c.name = file.stem().string();
   } else {
     const toml::value doc = detail::parse_file(file);
@@ -359,18 +356,19 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
         throw ConfigError(fmt::format("{}: regional.contour_file = {}: {}", file.string(), cf.string(), bad));
       c.params = curvilinear::read_izogrid_file(cf);
       c.contour_file = cf.lexically_normal().string();
+      p.set_fallback(fmt::format("{} (regional.contour_file) or built-in default", c.contour_file));
     }
-    schema().apply(c, doc, file.string(), base, p);
+    regional_schema().apply(c, doc, file.string(), base, p);
   }
-  for (const auto& o : overrides) schema().apply_override(c, o, p);
+  for (const auto& o : overrides) regional_schema().apply_override(c, o, p);
   const auto apply_corners = [&p](const std::vector<int>& numbers, std::size_t points, std::vector<bool>& corner,
                                   const char* key, const char* points_key) {
     if (numbers.empty()) return;
     corner.assign(points, false);
     for (const int k : numbers) {
       if (k < 1 || k > static_cast<int>(points)) {
-        p.add_plain(999998, fmt::format("regional.{}: point number {} is outside 1..{} (regional.{})", key, k, points,
-                                        points_key));
+        p.add_keys({fmt::format("regional.{}", key), fmt::format("regional.{}", points_key)},
+                   fmt::format("point number {} is outside 1..{} (regional.{})", k, points, points_key));
       } else {
         corner[static_cast<std::size_t>(k - 1)] = true;
       }
@@ -382,33 +380,59 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
     const auto& n = c.nesting;
     const bool box = n.parent_box != std::array<int, 4>{0, 0, 0, 0};
     if (n.refinement() && n.parent.empty())
-      p.add_plain(999997, "nesting.refine_factor: a refinement grid needs nesting.parent, the parent's _grd.nc");
+      p.add_key("nesting.refine_factor", "a refinement grid needs nesting.parent, the parent's _grd.nc");
     if (n.refinement() && !box)
-      p.add_plain(999997,
-                  "nesting.refine_factor: a refinement grid needs nesting.parent_box = [I_left, I_right, "
-                  "J_bottom, J_top], the parent's psi indices of its corners");
-    if (!n.refinement() && box)
-      p.add_plain(999997, "nesting.parent_box: only used with nesting.refine_factor (odd, >= 3)");
+      p.add_key("nesting.refine_factor",
+                "a refinement grid needs nesting.parent_box = [I_left, I_right, J_bottom, J_top], the parent's psi "
+                "indices of its corners");
+    if (!n.refinement() && box) p.add_key("nesting.parent_box", "only used with nesting.refine_factor (odd, >= 3)");
     if (!n.parent.empty() && !n.refinement())
-      p.add_plain(999997,
-                  fmt::format("nesting.parent = \"{}\": ROMS nests a grid inside a parent only as a refinement, "
-                              "the parent's psi cells split r x r (r odd), so that fine-to-coarse averaging and the "
-                              "boundary fluxes line up; set nesting.refine_factor and nesting.parent_box (the grid "
-                              "is then made from the parent, not from a contour), or remove nesting.parent",
-                              n.parent));
+      p.add_key("nesting.parent",
+                fmt::format("\"{}\": ROMS nests a grid inside a parent only as a refinement, the parent's psi cells "
+                            "split r x r (r odd), so that fine-to-coarse averaging and the boundary fluxes line up; "
+                            "set nesting.refine_factor and nesting.parent_box (the grid is then made from the parent, "
+                            "not from a contour), or remove nesting.parent",
+                            n.parent));
   }
+  for (const KeyProblem& bad : stop_stage_problems(c, stop_stage(c))) p.add_keys(bad.keys, bad.text);
+  // The bathymetry weight samples the [input] raster.
+  if (curvilinear::uses_weight(c.params.method) && c.params.weight_depth > 0.0 && c.input.path.empty())
+    p.add_keys({"regional.weight_depth", "input.path"},
+               fmt::format("regional.weight_depth = {} needs the bathymetry ([input] path)", c.params.weight_depth));
+  // The run's parameters (the izogrid keys), at the position of the key (a value of contour_file
+  // is reported at that file).
   for (const auto& [key, msg] : curvilinear::regional_params_problems(c.params))
-    p.add_plain(999999, fmt::format("regional.{}: {}", key, msg));
+    p.add_key(key == "points" ? "regional.control_points" : "regional." + key, msg);
   p.throw_if_any(out.source);
   c.params.source = out.source;
-  out.echo = schema().echo(c);
+  out.echo = regional_schema().echo(c);
   return out;
 }
 
-std::vector<std::string> regional_keys() {
-  std::vector<std::string> k;
-  for (const auto& key : schema().keys()) k.push_back(key.section + "." + key.name);
-  return k;
+curvilinear::Stage stop_stage(const RegionalConfig& c, std::optional<curvilinear::Stage> command_line) {
+  if (command_line) return *command_line;
+  if (c.stop_after) return *c.stop_after;
+  return c.params.mode >= 0 && c.params.mode <= 5 ? curvilinear::stage_from_mode(c.params.mode)
+                                                  : curvilinear::Stage::kGrid;  // a bad mode is reported apart
 }
+
+std::vector<KeyProblem> stop_stage_problems(const RegionalConfig& c, curvilinear::Stage stage) {
+  std::vector<KeyProblem> out;
+  const std::string stop_key = c.stop_after ? "regional.stop_after" : "regional.mode";
+  if (c.params.method != curvilinear::GridMethod::kConformal && stage == curvilinear::Stage::kConformal)
+    out.push_back({{stop_key, "regional.method"},
+                   fmt::format("method = {} has no conformal stage (stop after map, contour, uniform or grid)",
+                               c.params.method)});
+  if (c.nesting.refinement() && stage != curvilinear::Stage::kGrid)
+    out.push_back({{stop_key, "nesting.refine_factor"},
+                   fmt::format("a refinement grid (nesting.refine_factor = {}) is cut from its parent in one step; "
+                               "stopping after the {} stage does not apply",
+                               c.nesting.refine_factor, stage)});
+  return out;
+}
+
+std::vector<KeyInfo> regional_key_info() { return regional_schema().infos<KeyInfo>(); }
+
+std::vector<std::string> regional_keys() { return regional_schema().names(); }
 
 }  // namespace aq::config

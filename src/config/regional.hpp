@@ -26,15 +26,15 @@ struct RomsOptions {
   /// XXH64 (file_checksum) of global_config as `aquatoria blocks` wrote it beside this block's
   /// config; a run refuses when the file now differs. "" = not checked (hand-written configs).
   std::string global_config_checksum;
-  double hmin_m = 10.0;               ///< minimum depth h is clipped to (m, > 0)
+  double hmin_m = 10.0;  ///< minimum depth h is clipped to (m, (0, 12000])
   /// r-factor bound of the depth smoothing, [0, 1); 0 = none. The default 0.2 gives the rx0 ≤ 0.2
   /// ROMS users expect of a model-ready grid.
   double rmax = 0.2;
-  std::string distances = "sphere";   ///< pm, pn from "sphere" great circles or "wgs84" geodesics
+  curvilinear::DistanceModel distances = curvilinear::DistanceModel::kSphere;  ///< how pm, pn measure lengths
   double earth_radius_m = 6371000.0;  ///< sphere radius of the ROMS metrics and x/y (m, > 0)
-  /// Elevation of a ρ cell from the raster (mask/cell_elevation.hpp): "auto" (mean when the raster
-  /// is finer than the cells, else point), "point", "mean", "median" or "min".
-  std::string depth_statistic = "auto";
+  /// Elevation of a ρ cell from the raster (mask/cell_elevation.hpp); kAuto = mean when the
+  /// raster is finer than the cells, else point.
+  CellStatistic depth_statistic = CellStatistic::kAuto;
 };
 
 /// [nesting] A parent regional ROMS grid this grid is a refinement of (ROMS refinement nesting,
@@ -61,7 +61,7 @@ struct RegionalConfig {
   curvilinear::RegionalParams params;  ///< [regional] izogrid keys, control_points, corners
   std::string name = "regional";       ///< [regional] name: base name of the output files
   std::string contour_file;            ///< [regional] contour_file: .izogrid file read first (resolved path)
-  std::string stop_after;              ///< [regional] stop_after: map|contour|uniform|conformal|grid; empty = mode
+  std::optional<curvilinear::Stage> stop_after;  ///< [regional] stop_after; none ("") = from regional.mode
   std::vector<int> corners;            ///< [regional] corners: 1-based point numbers of the 4 corners
   std::vector<int> corners2;           ///< [regional] block2_corners: the same for block2_points
   InputOptions input;                  ///< [input] bathymetry for the coastline and depths
@@ -78,5 +78,16 @@ Loaded<RegionalConfig> load_regional(const std::string& path, const std::vector<
 
 /// Every key of the regional TOML configuration as "section.key".
 std::vector<std::string> regional_keys();
+/// Every key of the regional configuration, in documentation order.
+std::vector<KeyInfo> regional_key_info();
+
+/// The stage a run of `c` stops after: `command_line` (--stop-after) when given, else
+/// regional.stop_after, else the one of regional.mode.
+curvilinear::Stage stop_stage(const RegionalConfig& c, std::optional<curvilinear::Stage> command_line = {});
+/// Why a run of `c` cannot stop after `stage` (none when it can): a method without a conformal
+/// stage asked to stop after it, a refinement grid (cut from its parent in one step) asked to stop
+/// before the grid. load_regional() reports these for regional.stop_after / regional.mode; the
+/// command line checks --stop-after with it.
+std::vector<KeyProblem> stop_stage_problems(const RegionalConfig& c, curvilinear::Stage stage);
 
 }  // namespace aq::config

@@ -9,14 +9,20 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <toml.hpp>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/input_files.hpp"
 #include "core/report.hpp"
@@ -33,13 +39,46 @@ struct Origin {
   std::uint32_t line = 0, column = 0;
 };
 
-/// All problems found in one pass.
+/// The line of a problem of a key left at its built-in default (after every file position and
+/// every --set).
+inline constexpr std::uint32_t kDefaultLine = 2000000;
+
+/// All problems found in one pass, each with the position of the value at fault.
 class Problems {
  public:
   void add(const Origin& o, const std::string& key, const std::string& text) {
     items_.push_back({o.line, o.column, fmt::format("{}: {}: {}", o.where, key, text)});
   }
   void add_plain(std::uint32_t line, const std::string& text) { items_.push_back({line, 0, text}); }
+  /// Remembers that `key` ("section.key") was set at `o` (the last setting wins, as for values).
+  void set_at(const std::string& key, const Origin& o) { where_[key] = o; }
+  /// Where `key` was last set: its own position, else that of the array it is an element of
+  /// ("quadtree.box_rules[2].level" -> "quadtree.box_rules"); nothing for a key at its default.
+  [[nodiscard]] const Origin* origin(const std::string& key) const {
+    if (auto it = where_.find(key); it != where_.end()) return &it->second;
+    if (auto at = key.find('['); at != std::string::npos)
+      if (auto it = where_.find(key.substr(0, at)); it != where_.end()) return &it->second;
+    return nullptr;
+  }
+  /// A problem of one key, at the position its value came from ("built-in default" when it was
+  /// never set).
+  void add_key(const std::string& key, const std::string& text) { add_keys({key}, text); }
+  /// A problem of several keys together (size.h_min_km above size.h_max_km): reported at the
+  /// position of the one set last, naming them all.
+  void add_keys(const std::vector<std::string>& keys, const std::string& text) {
+    const Origin* at = nullptr;
+    std::string names;
+    for (const std::string& k : keys) {
+      names += (names.empty() ? "" : ", ") + k;
+      const Origin* o = origin(k);
+      if (o != nullptr && (at == nullptr || std::tie(o->line, o->column) > std::tie(at->line, at->column))) at = o;
+    }
+    if (at != nullptr) return add(*at, names, text);
+    items_.push_back({kDefaultLine, 0, fmt::format("{}: {}: {}", fallback_, names, text)});
+  }
+  /// Where a value no file line or --set gave comes from ("built-in default", or the seed-format
+  /// file a regional run read first).
+  void set_fallback(std::string where) { fallback_ = std::move(where); }
   [[nodiscard]] bool empty() const { return items_.empty(); }
   /// Throws ConfigError listing every problem (sorted by position) if there are any.
   void throw_if_any(const std::string& source) const {
@@ -59,6 +98,8 @@ class Problems {
     std::string text;
   };
   std::vector<Item> items_;
+  std::map<std::string, Origin> where_;
+  std::string fallback_ = "built-in default";
 };
 
 /// True when `s` is UTF-8 text without control characters (tab allowed): what a --set value that
@@ -80,6 +121,31 @@ inline bool is_plain_text(const std::string& s) {
     i += static_cast<std::size_t>(extra) + 1;
   }
   return true;
+}
+
+/// Where `text` is not UTF-8 ("line L, column C" of the first bad byte, columns counted in bytes),
+/// or "". TOML is UTF-8, and toml11 (3.7) reads past the end of its buffer on some invalid bytes
+/// inside a literal string: text must pass this before it reaches the parser.
+inline std::string utf8_problem(std::string_view text) {
+  std::size_t i = 0, line = 1, line_start = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) {
+      if (c == '\n') {
+        ++line;
+        line_start = i + 1;
+      }
+      ++i;
+      continue;
+    }
+    const int extra = (c & 0xe0) == 0xc0 ? 1 : (c & 0xf0) == 0xe0 ? 2 : (c & 0xf8) == 0xf0 ? 3 : -1;
+    bool ok = extra > 0 && c != 0xc0 && c != 0xc1 && c <= 0xf4 && text.size() - i > static_cast<std::size_t>(extra);
+    for (int k = 1; ok && k <= extra; ++k)
+      ok = (static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]) & 0xc0) == 0x80;
+    if (!ok) return fmt::format("line {}, column {}", line, i - line_start + 1);
+    i += static_cast<std::size_t>(extra) + 1;
+  }
+  return {};
 }
 
 /// `s` for a message: when it is not plain text, bytes other than printable ASCII as \xNN.
@@ -138,6 +204,18 @@ inline std::optional<std::string> convert(const toml::value& v, std::string& out
   return std::nullopt;
 }
 
+/// An enumerated option: one of the names of E's table (core/enum_names.hpp).
+template <NamedEnum E>
+std::optional<std::string> convert(const toml::value& v, E& out) {
+  if (!v.is_string()) return fmt::format("expected one of {} in quotes", name_list<E>());
+  const std::string& text = v.as_string().str;
+  if (const std::optional<E> e = parse_name<E>(text)) {
+    out = *e;
+    return std::nullopt;
+  }
+  return unknown_name_message<E>(printable(text));
+}
+
 /// The problem of a path key's value that names an existing file which is not a regular file
 /// (a FIFO, a device, a directory: refused before anything opens it), or "".
 inline std::string input_path_problem(const std::filesystem::path& path) {
@@ -164,10 +242,52 @@ std::optional<std::string> convert(const toml::value& v, std::vector<E>& out) {
   return std::nullopt;
 }
 
-// ---- JSON echo of values ----
+// ---- JSON echo of values (enums by their names) ----
+template <typename V>
+struct IsNamedEnumVector : std::false_type {};
+template <NamedEnum E>
+struct IsNamedEnumVector<std::vector<E>> : std::true_type {};
+/// The enum of an enumerated key's value type (E or std::vector<E>), else V itself.
+template <typename V>
+struct KeyEnum {
+  using type = V;
+};
+template <NamedEnum E>
+struct KeyEnum<std::vector<E>> {
+  using type = E;
+};
+
 template <typename V>
 Json to_json(const V& v) {
-  return Json(v);
+  if constexpr (NamedEnum<V>) {
+    return Json(std::string(name_of(v)));
+  } else if constexpr (IsNamedEnumVector<V>::value) {
+    Json a = Json::array();
+    for (const auto& e : v) a.push_back(std::string(name_of(e)));
+    return a;
+  } else {
+    return Json(v);
+  }
+}
+
+/// The names an enumerated key takes (none for other keys), for help texts and the Python binding.
+template <typename V>
+std::vector<std::string> value_names() {
+  using E = typename KeyEnum<V>::type;
+  std::vector<std::string> out;
+  if constexpr (NamedEnum<E>) {
+    const auto t = names_of<E>();
+    for (std::size_t k = 0; k < t.size(); ++k)
+      if (!is_alias<E>(k)) out.emplace_back(t[k].name);
+  }
+  return out;
+}
+/// The help of an enumerated key: `help`, then every name with its meaning.
+template <typename V>
+std::string value_help(const std::string& help) {
+  using E = typename KeyEnum<V>::type;
+  if constexpr (NamedEnum<E>) return help + (help.empty() ? "" : ": ") + "one of " + name_help<E>();
+  return help;
 }
 
 /// A table of keys for option struct T.
@@ -180,6 +300,7 @@ class Schema {
     std::string section, name, help;
     Setter set;
     Getter get;
+    std::vector<std::string> values;  ///< the names an enumerated key takes; empty for others
   };
 
   /// A key whose value converts with `convert` and passes `check` (returns an error text or "").
@@ -189,7 +310,8 @@ class Schema {
     Key k;
     k.section = section;
     k.name = name;
-    k.help = help;
+    k.help = value_help<V>(help);
+    k.values = value_names<V>();
     k.set = [field, check, section, name](T& t, const toml::value& v, const Origin& o, Problems& p) {
       V x{};
       if (auto err = convert(v, x)) {
@@ -209,9 +331,10 @@ class Schema {
     keys_.push_back(std::move(k));
   }
   /// A key with a fully custom setter and getter (arrays of tables, paths).
-  void add_custom(const std::string& section, const std::string& name, Setter set, Getter get,
-                  const std::string& help) {
-    keys_.push_back(Key{section, name, help, std::move(set), std::move(get)});
+  /// `values`: the names of an enumerated key whose setter parses them itself.
+  void add_custom(const std::string& section, const std::string& name, Setter set, Getter get, const std::string& help,
+                  std::vector<std::string> values = {}) {
+    keys_.push_back(Key{section, name, help, std::move(set), std::move(get), std::move(values)});
   }
 
   [[nodiscard]] const std::vector<Key>& keys() const { return keys_; }
@@ -249,6 +372,7 @@ class Schema {
         p.add(o, sec + "." + name, fmt::format("unknown key{}", suggest_key(sec, name)));
         continue;
       }
+      p.set_at(sec + "." + name, o);
       k->set(t, value, o, p);
     }
   }
@@ -275,6 +399,10 @@ class Schema {
       return;
     }
     const std::string raw = text.substr(eq + 1);
+    if (!utf8_problem(raw).empty()) {
+      p.add(o, printable(path), "value is neither TOML nor plain text (not UTF-8)");
+      return;
+    }
     toml::value value;
     try {
       std::istringstream in("v = " + raw);
@@ -287,7 +415,24 @@ class Schema {
       }
       value = toml::value(raw);
     }
+    p.set_at(path, o);
     k->set(t, value, o, p);
+  }
+
+  /// Every key as "section.key", in table order.
+  [[nodiscard]] std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& k : keys_) out.push_back(k.section + "." + k.name);
+    return out;
+  }
+  /// Every key as Info{"section.key", its default as the echo has it, help, names}, in table order.
+  template <typename Info>
+  [[nodiscard]] std::vector<Info> infos() const {
+    const Json defaults = echo(T{});
+    std::vector<Info> out;
+    for (const auto& k : keys_)
+      out.push_back({k.section + "." + k.name, defaults[k.section][k.name], k.help, k.values});
+    return out;
   }
 
   /// The effective configuration as JSON: {section: {key: value}} in table order.
@@ -351,8 +496,14 @@ inline toml::value parse_file(const std::filesystem::path& path) {
     throw ConfigError(fmt::format(
         "{}: {}", path.string(),
         problem == "no such file" ? std::string("no such configuration file") : "configuration file " + problem));
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw ConfigError(fmt::format("{}: cannot read", path.string()));
+  if (const std::string where = utf8_problem(text); !where.empty())
+    throw ConfigError(fmt::format("{}: {}: not UTF-8 text (a TOML file is UTF-8)", path.string(), where));
   try {
-    return toml::parse(path.string());
+    std::istringstream stream(text);
+    return toml::parse(stream, path.string());
   } catch (const toml::syntax_error& e) {
     throw ConfigError(fmt::format("{}: TOML syntax error:\n{}", path.string(), e.what()));
   } catch (const std::runtime_error& e) {

@@ -25,9 +25,8 @@ double Lattice::size_scale(double y) const {
 
 Lattice Lattice::make_mercator(double step0_deg, int levels, double lon0_deg, double lat_max_deg) {
   if (!(lat_max_deg >= 1.0 && lat_max_deg <= 89.5))
-    throw ConfigError(fmt::format(
-        "quadtree.mercator_lat_max_deg = {}: must be between 1 and 89.5 (the Mercator lattice cannot reach the pole)",
-        lat_max_deg));
+    throw InternalError(fmt::format(
+        "Lattice::make_mercator: rows to {}° (1..89.5: the Mercator lattice cannot reach the pole)", lat_max_deg));
   Lattice l = make(step0_deg, levels, lon0_deg);
   // Whole level-0 squares per hemisphere; 1e-9 keeps a φ_max whose ordinate is a whole number of
   // squares (85.0511° for Δ0 = 4°) from taking one more.
@@ -58,13 +57,12 @@ std::string Lattice::step_problem(double step0_deg) {
 }
 
 Lattice Lattice::make(double step0_deg, int levels, double lon0_deg) {
+  // The configuration's values are validated at load (quadtree.step_deg by step_problem()).
   const std::string problem = step_problem(step0_deg);
-  if (!problem.empty()) throw ConfigError(fmt::format("quadtree.step_deg = {}: {}", step0_deg, problem));
+  if (!problem.empty()) throw InternalError(fmt::format("Lattice::make: Δ0 = {}°: {}", step0_deg, problem));
   const double rounded = std::round(step0_deg * 3600.0);
-  if (levels < 0 || levels > 20) {
-    throw ConfigError(fmt::format("quadtree.levels = {}: must be between 0 and 20", levels));
-  }
-  if (!std::isfinite(lon0_deg)) throw ConfigError("quadtree.lon0_deg: must be a finite number");
+  if (levels < 0 || levels > 20) throw InternalError(fmt::format("Lattice::make: L = {} is outside 0..20", levels));
+  if (!std::isfinite(lon0_deg)) throw InternalError(fmt::format("Lattice::make: λ0 = {}° is not finite", lon0_deg));
   Lattice l;
   l.lon0_deg = lon0_deg;
   // The lattice is the whole arc-second value, not the typed decimal: a step within rounding of

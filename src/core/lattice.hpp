@@ -26,12 +26,23 @@
 // padding, which is never meshed; pole_row() says whether a row really is a pole.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <string>
+
+#include "core/enum_names.hpp"
 
 namespace aq {
 
+/// The lattice's rows (quadtree.lattice): equal steps of latitude (the seed's) or of the Mercator
+/// ordinate (conformal squares).
 enum class LatticeKind { kLonLat, kMercator };
+inline constexpr std::array<EnumName<LatticeKind>, 2> kLatticeKindNames{{
+    {LatticeKind::kLonLat, "lonlat", "the seed's longitude-latitude squares"},
+    {LatticeKind::kMercator, "mercator", "x = lon', y = ln tan(pi/4 + lat'/2): conformal squares"},
+}};
+constexpr std::span<const EnumName<LatticeKind>> enum_names(LatticeKind) { return kLatticeKindNames; }
 
 /// Mercator ordinate (degrees, y = ln tan(π/4 + φ/2)·180/π) of latitude φ (degrees, |φ| < 90).
 [[nodiscard]] double mercator_y_deg(double lat_deg);
@@ -52,14 +63,15 @@ struct Lattice {
   std::int64_t nx_global = 720;   ///< the global lattice's nx
   std::int64_t ny_global = 360;   ///< the global lattice's ny
 
-  /// Builds and validates; throws ConfigError (naming `key_prefix`.step_deg / levels) when Δ0 does
-  /// not divide 180° exactly in arc-seconds or L is outside 0..20. A step within rounding of a
+  /// Builds the lattice. Preconditions (quadtree.step_deg, levels, lon0_deg are validated at load;
+  /// InternalError otherwise): Δ0 divides 180° exactly in arc-seconds (step_problem() is ""),
+  /// 0 <= L <= 20, λ0 finite. A step within rounding of a
   /// whole arc-second value (1e-6") becomes exactly that value: 0.2666666666666667 and
   /// 0.26666666666666666 give the same lattice (step0_deg = 960/3600), whose rows end at ±90°.
   static Lattice make(double step0_deg, int levels, double lon0_deg);
   /// The Mercator lattice of the same Δ0, L, λ0 whose rows reach at least ±`lat_max_deg` (in whole
-  /// level-0 squares); throws ConfigError naming quadtree.mercator_lat_max_deg unless
-  /// 1 <= lat_max_deg <= 89.5.
+  /// level-0 squares); 1 <= lat_max_deg <= 89.5 (quadtree.mercator_lat_max_deg, validated at load;
+  /// InternalError otherwise).
   static Lattice make_mercator(double step0_deg, int levels, double lon0_deg, double lat_max_deg);
   /// Why `step0_deg` is not a valid Δ0 (one sentence without the key), or "" when it is.
   static std::string step_problem(double step0_deg);

@@ -12,47 +12,6 @@
 
 namespace aq::curvilinear {
 
-ProjectionParams projection_params(const RegionalParams& p) {
-  ProjectionParams q;
-  q.kind = p.proj;
-  q.rlat_deg = p.rlat;
-  q.rlon_deg = p.rlon;
-  q.rota_deg = p.rota;
-  q.lat1_deg = p.lat1;
-  q.lat2_deg = p.lat2;
-  q.uscale = p.uscale;
-  q.radius_m = p.radius;
-  return q;
-}
-
-Stage stage_from_mode(int mode) {
-  if (mode < 0 || mode > 5) throw ConfigError(fmt::format("mode = {} must be 0..5", mode));
-  return mode >= 4 ? Stage::kGrid : static_cast<Stage>(mode);
-}
-
-const char* stage_name(Stage stage) {
-  switch (stage) {
-    case Stage::kMap:
-      return "map";
-    case Stage::kContour:
-      return "contour";
-    case Stage::kUniform:
-      return "uniform";
-    case Stage::kConformal:
-      return "conformal";
-    case Stage::kGrid:
-      return "grid";
-  }
-  return "?";
-}
-
-Stage parse_stage(std::string_view text) {
-  for (int m = 0; m <= 4; ++m)
-    if (text == stage_name(static_cast<Stage>(m))) return static_cast<Stage>(m);
-  if (text.size() == 1 && text[0] >= '0' && text[0] <= '5') return stage_from_mode(text[0] - '0');
-  throw ConfigError(fmt::format("stage '{}' is unknown (use map, contour, uniform, conformal, grid or 0..5)", text));
-}
-
 std::vector<PlanePoint> RegionalResult::node_points(const BoundaryNodes& n) const {
   std::vector<PlanePoint> out;
   if (!contour) return out;
@@ -231,7 +190,7 @@ void conformal_stages(RegionalResult& r, Stage stop_after, const Logger& log, Re
 void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Report* report, Json* section,
                    const DepthSampler* depth) {
   const RegionalParams& p = r.params;
-  ControlFunction w = regional_weight(p);
+  ControlFunction w = p.weight;
   if (p.weight_depth > 0.0 && depth != nullptr) {
     std::array<double, 4> box{1e300, -1e300, 1e300, -1e300};
     for (const PlanePoint& q : r.contour_samples) {
@@ -316,11 +275,12 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
     }
     std::string what = m.initial;
     if (m.elliptic)
-      what = fmt::format(
-          "{} from {} ({} iterations, {} CG iterations, {}, last node move {:.1e} of the diameter{})",
-          grid_method_name(p.method == GridMethod::kBest ? p.best_final : p.method), m.initial, m.elliptic->iterations,
-          m.elliptic->cg_iterations, m.elliptic->converged ? elliptic_stop_name(m.elliptic->stop) : "not settled",
-          m.elliptic->last_move, m.elliptic_rejected ? ", " + m.rejected_because + ": initial grid kept" : "");
+      what = fmt::format("{} from {} ({} iterations, {} CG iterations, {}, last node move {:.1e} of the diameter{})",
+                         std::string(name_of(p.method == GridMethod::kBest ? p.best_final : p.method)), m.initial,
+                         m.elliptic->iterations, m.elliptic->cg_iterations,
+                         m.elliptic->converged ? elliptic_stop_name(m.elliptic->stop) : "not settled",
+                         m.elliptic->last_move,
+                         m.elliptic_rejected ? ", " + m.rejected_because + ": initial grid kept" : "");
     scope.done(
         fmt::format("{} x {} supergrid by {}; {} self-intersecting cells", r.grid.nx_pts, r.grid.ny_pts, what, folded));
   }
@@ -332,13 +292,12 @@ void method_stages(RegionalResult& r, Stage stop_after, const Logger& log, Repor
 RegionalResult run_regional(const RegionalParams& params, Stage stop_after, const Logger& log, Report* report,
                             const DepthSampler* depth) {
   validate_regional_params(params);
+  // The configuration checks these at load (config/regional.cpp); here they are preconditions.
   if (params.method != GridMethod::kConformal && stop_after == Stage::kConformal)
-    throw ConfigError(fmt::format("{}: method = {} has no conformal stage (stop after map, contour, uniform or grid)",
-                                  params.source, grid_method_name(params.method)));
-  if (uses_weight(params.method)) (void)regional_weight(params);  // a bad formula fails before any work
+    throw InternalError(fmt::format("{}: method = {} has no conformal stage", params.source, params.method));
   if (uses_weight(params.method) && params.weight_depth > 0.0 && depth == nullptr)
-    throw ConfigError(fmt::format("{}: regional.weight_depth = {} needs the bathymetry ([input] path)", params.source,
-                                  params.weight_depth));
+    throw InternalError(
+        fmt::format("{}: regional.weight_depth = {} without a bathymetry", params.source, params.weight_depth));
   RegionalResult r;
   r.params = params;
   const RegionalParams& p = r.params;
@@ -346,20 +305,20 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
   if (report != nullptr) {
     section = &(*report)["regional"];
     *section = Json{{"source", p.source},
-                    {"proj", projection_code(p.proj)},
-                    {"rlat", p.rlat},
-                    {"rlon", p.rlon},
-                    {"rota", p.rota},
-                    {"uscale", p.uscale},
+                    {"proj", std::string(name_of(p.projection.kind))},
+                    {"rlat", p.projection.rlat_deg},
+                    {"rlon", p.projection.rlon_deg},
+                    {"rota", p.projection.rota_deg},
+                    {"uscale", p.projection.uscale},
                     {"spline_type", p.spline_type},
-                    {"param", p.param == Parametrisation::kIndex ? "index" : "arclength"},
+                    {"param", std::string(name_of(p.param))},
                     {"npass", p.npass},
                     {"ny", p.ny},
-                    {"schedule", inner_schedule_name(p.schedule)},
+                    {"schedule", std::string(name_of(p.schedule))},
                     {"control_points", p.x.size()},
-                    {"method", grid_method_name(p.method)}};
+                    {"method", std::string(name_of(p.method))}};
     if (uses_weight(p.method)) {
-      (*section)["weight"] = p.weight;
+      (*section)["weight"] = p.weight.text();
       (*section)["sections"] = p.sections;
     }
   }
@@ -368,14 +327,14 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
   {
     StageScope scope("regional map", report, log);
     const Timer t;
-    r.projection.emplace(projection_params(p));
+    r.projection.emplace(p.projection);
     r.control_corner = p.corner;
     if (p.points_lonlat) {
       for (std::size_t k = 0; k < p.x.size(); ++k) {
         const PlanePoint q = r.projection->forward(p.x[k], p.y[k]);
         if (!std::isfinite(q.x) || !std::isfinite(q.y))
           throw InputError(fmt::format("{}: control point {} ({}, {}) lies where the {} projection is singular",
-                                       p.source, k + 1, p.x[k], p.y[k], projection_code(p.proj)));
+                                       p.source, k + 1, p.x[k], p.y[k], std::string(name_of(p.projection.kind))));
         r.control_x.push_back(q.x);
         r.control_y.push_back(q.y);
       }
@@ -386,8 +345,9 @@ RegionalResult run_regional(const RegionalParams& params, Stage stop_after, cons
     r.stage_seconds[0] = t.wall_s();
     r.completed = Stage::kMap;
     // (lon, lat) as in the blocks table: longitude first.
-    scope.done(fmt::format("{} projection centred at lon {}, lat {}, rota {}, {} control points", projection_code(p.proj),
-                           p.rlon, p.rlat, p.rota, r.control_x.size()));
+    scope.done(fmt::format("{} projection centred at lon {}, lat {}, rota {}, {} control points",
+                           std::string(name_of(p.projection.kind)), p.projection.rlon_deg, p.projection.rlat_deg,
+                           p.projection.rota_deg, r.control_x.size()));
   }
   if (section != nullptr) (*section)["stage_seconds"] = r.stage_seconds;
   if (stop_after == Stage::kMap) return r;

@@ -26,19 +26,6 @@
 
 namespace aq::curvilinear {
 
-/// The stages, numbered as the seed's modes 0–4 (mode 5 = kGrid without a picture).
-enum class Stage { kMap = 0, kContour = 1, kUniform = 2, kConformal = 3, kGrid = 4 };
-
-/// Stage of a seed mode 0..5 (4 and 5 are kGrid); ConfigError otherwise.
-Stage stage_from_mode(int mode);
-/// "map", "contour", "uniform", "conformal", "grid".
-const char* stage_name(Stage stage);
-/// Inverse of stage_name(); also accepts the mode digits "0".."5". ConfigError otherwise.
-Stage parse_stage(std::string_view text);
-
-/// The map of a run: its projection fields of RegionalParams.
-ProjectionParams projection_params(const RegionalParams& p);
-
 struct RegionalResult {
   Stage completed = Stage::kMap;  ///< the last stage run
   RegionalParams params;          ///< the parameters used
@@ -85,10 +72,12 @@ struct RegionalResult {
 /// Runs the stages up to and including `stop_after` (the caller derives it from params.mode with
 /// stage_from_mode() or from a command-line override; params.mode itself is not consulted). Logs one "regional <stage>:
 /// done ..." line per stage and, when `report` is given, adds the stages and a "regional" section (parameters, nx, ny,
-/// W/H, residual history, timings). Throws ConfigError for invalid parameters, InputError for a bad contour (corners,
+/// W/H, residual history, timings). Throws ConfigError listing every out-of-range parameter (validate_regional_params:
+/// the config reader reports the same at load, with positions), InputError for a bad contour (corners,
 /// self-intersection, orientation, points at a projection singularity), NumericalError when the inverse problem or the
-/// fill does not converge.
-/// `depth` (may be null) supplies the bathymetry of params.weight_depth > 0 (ConfigError without it).
+/// fill does not converge. Preconditions (config/regional.cpp checks them at load; InternalError otherwise): a method
+/// other than conformal does not stop after kConformal; `depth` (may be null) supplies the bathymetry of
+/// params.weight_depth > 0 for the methods that use the weight.
 RegionalResult run_regional(const RegionalParams& params, Stage stop_after, const Logger& log = Logger::null(),
                             Report* report = nullptr, const DepthSampler* depth = nullptr);
 

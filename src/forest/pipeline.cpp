@@ -210,7 +210,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
           "mask.min_depth_m = {}: a floodplain (a threshold above the datum) is meshed by the dense engine only; "
           "set quadtree.engine = \"dense\" or mask.min_depth_m >= 0",
           mo.min_depth_m));
-    if (mask::parse_sampling(mo.sampling) != mask::Sampling::kVertex)
+    if (mo.sampling != config::Sampling::kVertex)
       throw ConfigError(
           "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
           "quadtree.engine = \"dense\" for the area rule");
@@ -368,7 +368,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   {
     StageScope stage("quadtree", report, log);
     const config::QuadtreeOptions& qo = c.quadtree;
-    const quadtree::BalanceMode mode = quadtree::parse_balance_mode(qo.balance);
+    const quadtree::BalanceMode mode = qo.balance;
     const std::int64_t filled_pixels = comm.sum(count_pixels(filled, p));
     Timer t_masks;
     std::vector<std::int64_t> bare, banded, refined;
@@ -402,8 +402,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
             fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*cnt, lat.levels), filled_pixels));
     const std::int64_t violations = mf->count_violations(mode);
     if (violations != 0)
-      throw InternalError(fmt::format("quadtree: {} {}-balance violations left after smoothing", violations,
-                                      quadtree::balance_mode_name(mode)));
+      throw InternalError(
+          fmt::format("quadtree: {} {}-balance violations left after smoothing", violations, name_of(mode)));
     const double check_s = t_check.wall_s();
     // The leaves and their neighbourhoods, gathered on rank 0 in order.
     Timer t_gather;
@@ -429,7 +429,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
       q["levels"] = lat.levels;
       q["step_deg"] = lat.step0_deg;
       q["coast_band"] = qo.coast_band;
-      q["balance"] = std::string(quadtree::balance_mode_name(mode));
+      q["balance"] = std::string(name_of(mode));
       q["filled_pixels"] = filled_pixels;
       q["leaves_per_level_bare"] = bare;
       q["leaves_per_level_coast_band"] = banded;
@@ -449,8 +449,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
       (*report)["forest"] = fj;
     }
     stage.done(fmt::format("{} leaves (levels 0..{}: {}), {}-balanced ({} on {} rank(s))", total_leaves, lat.levels,
-                           fmt::join(balanced, "/"), quadtree::balance_mode_name(mode),
-                           br.used_p4est ? "p4est_balance" : "the dense rule", comm.size()));
+                           fmt::join(balanced, "/"), name_of(mode), br.used_p4est ? "p4est_balance" : "the dense rule",
+                           comm.size()));
   }
   out.state = st;
   return out;

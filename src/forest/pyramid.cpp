@@ -191,7 +191,7 @@ bool ForestPyramid::any(int l, std::int64_t a, std::int64_t b) const {
 void ForestPyramid::apply_rules(const config::QuadtreeOptions& options, const PoleRotation& rotation,
                                 const raster::Bathymetry* bathy) {
   if (options.depth_rules.empty() && options.box_rules.empty()) return;
-  quadtree::validate_refinement_rules(options, L_);
+  // The rules' levels and ranges are checked at load (config/global_config.cpp).
   const bool level_depth_rules = std::any_of(options.depth_rules.begin(), options.depth_rules.end(),
                                              [](const config::DepthRule& r) { return !(r.size_km > 0.0); });
   if (level_depth_rules && bathy == nullptr) throw InternalError("quadtree: depth rules need the bathymetry raster");

@@ -66,7 +66,7 @@ AnyGrid read_any_grid(const fs::path& path) {
   AnyGrid out;
   if (mom6) {
     const Mom6Grid m = read_mom6_hgrid(path);
-    out.kind = "mom6";
+    out.kind = GridFileKind::kMom6;
     out.xy.grid = to_plane(m.nxp(), m.nyp(), m.x, m.y);
     out.xy.units = "m";
     out.xy.has_steps = false;
@@ -91,7 +91,7 @@ AnyGrid read_any_grid(const fs::path& path) {
     put(r.lon_u, r.lat_u, r.L, r.M + 1, 1, 0);
     put(r.lon_v, r.lat_v, r.L + 1, r.M, 0, 1);
     put(r.lon_psi, r.lat_psi, r.L, r.M, 1, 1);
-    out.kind = "roms";
+    out.kind = GridFileKind::kRoms;
     out.xy.grid = to_plane(nI, nJ, lon, lat);
     out.xy.units = "m";
     // The izogrid step ratio when the file names it (aquatoria's grids), else estimated by check.
@@ -104,7 +104,7 @@ AnyGrid read_any_grid(const fs::path& path) {
     out.xy.title = "ROMS grid " + path.filename().string();
     return out;
   }
-  out.kind = "xygrid";
+  out.kind = GridFileKind::kXygrid;
   try {
     out.xy = read_xygrid(path);
   } catch (const InputError& e) {

@@ -5,16 +5,28 @@
 // measure are the angles on the sphere.
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <span>
 #include <string>
 
+#include "core/enum_names.hpp"
 #include "grid_files/xygrid_netcdf.hpp"
 
 namespace aq::io {
 
+/// What a grid file is.
+enum class GridFileKind { kXygrid, kRoms, kMom6 };
+inline constexpr std::array<EnumName<GridFileKind>, 3> kGridFileKindNames{{
+    {GridFileKind::kXygrid, "xygrid", "a planar grid, <name>_xygrid.nc"},
+    {GridFileKind::kRoms, "roms", "a ROMS grid, <name>_grd.nc"},
+    {GridFileKind::kMom6, "mom6", "a MOM6 supergrid, ocean_hgrid.nc"},
+}};
+constexpr std::span<const EnumName<GridFileKind>> enum_names(GridFileKind) { return kGridFileKindNames; }
+
 struct AnyGrid {
   XyGrid xy;
-  std::string kind;  ///< "xygrid", "roms" or "mom6"
+  GridFileKind kind = GridFileKind::kXygrid;
 };
 
 /// Reads `path` by what it holds (MOM6: dimension nxp and variable angle_dx; ROMS: variable

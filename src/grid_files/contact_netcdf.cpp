@@ -292,16 +292,7 @@ void write_contact(const fs::path& path, const ContactFile& d) {
   put_text(id, NC_GLOBAL, "title", d.title, path);
   if (!d.grid_files.empty()) put_text(id, NC_GLOBAL, "grid_files", d.grid_files, path);
   if (!d.history.empty()) put_text(id, NC_GLOBAL, "history", d.history, path);
-  for (const auto& [key, value] : d.attributes) {
-    if (const auto* s = std::get_if<std::string>(&value)) {
-      put_text(id, NC_GLOBAL, key.c_str(), *s, path);
-    } else if (const auto* x = std::get_if<double>(&value)) {
-      nc_check<OutputError>(nc_put_att_double(id, NC_GLOBAL, key.c_str(), NC_DOUBLE, 1, x), path, key);
-    } else {
-      const int v = static_cast<int>(std::get<std::int64_t>(value));
-      nc_check<OutputError>(nc_put_att_int(id, NC_GLOBAL, key.c_str(), NC_INT, 1, &v), path, key);
-    }
-  }
+  put_attributes(id, NC_GLOBAL, d.attributes, path);
   nc_check<OutputError>(nc_enddef(id), path, "end of definitions");
 
   const auto put_i = [&](const char* name, const std::vector<std::int32_t>& v) {

@@ -30,8 +30,9 @@
 #include <limits>
 #include <string>
 #include <utility>
-#include <variant>
 #include <vector>
+
+#include "io/attribute_value.hpp"
 
 namespace aq::io {
 
@@ -84,7 +85,7 @@ struct ContactFile {
   std::string title = "aquatoria ROMS nesting contact points (refinement: grid 1 parent, grid 2 child)";
   std::string grid_files;  ///< the two grid files, parent first
   std::string history;
-  std::vector<std::pair<std::string, std::variant<std::string, double, std::int64_t>>> attributes;
+  std::vector<std::pair<std::string, AttributeValue>> attributes;  ///< global, in order, after the fixed ones
 
   [[nodiscard]] std::size_t size() const { return Idg.size(); }
 };

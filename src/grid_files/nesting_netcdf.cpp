@@ -95,16 +95,7 @@ void write_nesting(const fs::path& path, const NestingFile& d) {
   put_text(id, NC_GLOBAL, "Conventions", "CF-1.8", path);
   put_text(id, NC_GLOBAL, "title", d.title, path);
   if (!d.history.empty()) put_text(id, NC_GLOBAL, "history", d.history, path);
-  for (const auto& [key, value] : d.attributes) {
-    if (const auto* s = std::get_if<std::string>(&value)) {
-      put_text(id, NC_GLOBAL, key.c_str(), *s, path);
-    } else if (const auto* x = std::get_if<double>(&value)) {
-      nc_check<OutputError>(nc_put_att_double(id, NC_GLOBAL, key.c_str(), NC_DOUBLE, 1, x), path, key);
-    } else {
-      const long long v = std::get<std::int64_t>(value);
-      nc_check<OutputError>(nc_put_att_longlong(id, NC_GLOBAL, key.c_str(), NC_INT64, 1, &v), path, key);
-    }
-  }
+  put_attributes(id, NC_GLOBAL, d.attributes, path);
   nc_check<OutputError>(nc_enddef(id), path, "end of definitions");
   if (n > 0) {
     std::vector<long long> nodes(3 * n);

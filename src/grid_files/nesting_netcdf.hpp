@@ -32,8 +32,9 @@
 #include <filesystem>
 #include <string>
 #include <utility>
-#include <variant>
 #include <vector>
+
+#include "io/attribute_value.hpp"
 
 namespace aq::io {
 
@@ -49,7 +50,7 @@ struct NestingFile {
   // Global attributes (name, text or number), written in order after the fixed ones.
   std::string title = "aquatoria nesting data: regional boundary points in the global mesh";
   std::string history;
-  std::vector<std::pair<std::string, std::variant<std::string, double, std::int64_t>>> attributes;
+  std::vector<std::pair<std::string, AttributeValue>> attributes;
 
   [[nodiscard]] std::size_t size() const { return point_type.size(); }
 };

@@ -58,15 +58,6 @@ class File {
     check(nc_put_att_double(id_, var, name, NC_DOUBLE, values.size(), values.data()), path_,
           fmt::format("attribute {}", name));
   }
-  void integer(int var, const char* name, long long value) {
-    // Classic files have no 64-bit integers: a 32-bit int when it fits, else a double.
-    if (value >= -2147483647LL && value <= 2147483647LL) {
-      const int v = static_cast<int>(value);
-      check(nc_put_att_int(id_, var, name, NC_INT, 1, &v), path_, fmt::format("attribute {}", name));
-    } else {
-      number(var, name, {static_cast<double>(value)});
-    }
-  }
 
  private:
   fs::path path_;
@@ -219,15 +210,7 @@ void write_roms_grid(const fs::path& path, const RomsGridData& d) {
   nc.text(NC_GLOBAL, "title", d.title.empty() ? std::string("aquatoria orthogonal curvilinear ROMS grid") : d.title);
   nc.text(NC_GLOBAL, "history", d.history.empty() ? std::string("created by aquatoria") : d.history);
   nc.text(NC_GLOBAL, "source", d.source.empty() ? std::string("aquatoria") : d.source);
-  for (const auto& [key, value] : d.attributes) {
-    if (const auto* s = std::get_if<std::string>(&value)) {
-      nc.text(NC_GLOBAL, key.c_str(), *s);
-    } else if (const auto* x = std::get_if<double>(&value)) {
-      nc.number(NC_GLOBAL, key.c_str(), {*x});
-    } else {
-      nc.integer(NC_GLOBAL, key.c_str(), std::get<std::int64_t>(value));
-    }
-  }
+  put_attributes(id, NC_GLOBAL, d.attributes, path);
   int old_fill = 0;
   check(nc_set_fill(id, NC_NOFILL, &old_fill), path, "set no-fill mode");
   check(nc_enddef(id), path, "end of definitions");
@@ -301,22 +284,7 @@ void write_updated_roms_grid(const fs::path& source, const fs::path& path, const
     const std::string old = global_text(id, "history");
     text("history", old.empty() ? u.history_append : old + "\n" + u.history_append);
   }
-  for (const auto& [key, value] : u.attributes) {
-    if (const auto* s = std::get_if<std::string>(&value)) {
-      text(key.c_str(), *s);
-    } else if (const auto* x = std::get_if<double>(&value)) {
-      check(nc_put_att_double(id, NC_GLOBAL, key.c_str(), NC_DOUBLE, 1, x), path, fmt::format("attribute {}", key));
-    } else {
-      const std::int64_t v = std::get<std::int64_t>(value);
-      if (v >= -2147483647LL && v <= 2147483647LL) {
-        const int i = static_cast<int>(v);
-        check(nc_put_att_int(id, NC_GLOBAL, key.c_str(), NC_INT, 1, &i), path, fmt::format("attribute {}", key));
-      } else {
-        const double d = static_cast<double>(v);
-        check(nc_put_att_double(id, NC_GLOBAL, key.c_str(), NC_DOUBLE, 1, &d), path, fmt::format("attribute {}", key));
-      }
-    }
-  }
+  put_attributes(id, NC_GLOBAL, u.attributes, path);
   check(nc_enddef(id), path, "end of definitions");
   for (const Target& t : targets)
     if (t.var >= 0) check(nc_put_var_double(id, t.var, t.data->data()), path, fmt::format("write {}", t.name));

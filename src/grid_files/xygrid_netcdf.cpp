@@ -167,17 +167,7 @@ void write_xygrid(const fs::path& path, const XyGrid& data, const curvilinear::G
   put_text(id, NC_GLOBAL, "aquatoria_file", "xygrid", path);
   put_double(id, NC_GLOBAL, "dxi", data.dxi, path);
   put_double(id, NC_GLOBAL, "deta", data.deta, path);
-  for (const auto& [key, value] : data.attributes) {
-    if (const auto* text = std::get_if<std::string>(&value)) {
-      put_text(id, NC_GLOBAL, key.c_str(), *text, path);
-    } else if (const auto* real = std::get_if<double>(&value)) {
-      put_double(id, NC_GLOBAL, key.c_str(), *real, path);
-    } else {
-      const long long v = std::get<std::int64_t>(value);
-      nc_check<OutputError>(nc_put_att_longlong(id, NC_GLOBAL, key.c_str(), NC_INT64, 1, &v), path,
-                            fmt::format("attribute {}", key));
-    }
-  }
+  put_attributes(id, NC_GLOBAL, data.attributes, path);
   nc_check<OutputError>(nc_enddef(id), path, "end of definitions");
 
   put_var(id, var_x, g.x, "x", path);

@@ -20,17 +20,15 @@
 #include <filesystem>
 #include <map>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "curvilinear/common/grid2d.hpp"
 #include "curvilinear/common/grid_checks.hpp"
+#include "io/attribute_value.hpp"
 
 namespace aq::io {
 
-/// A global attribute value: text, a real number or an integer (netCDF NC_CHAR, NC_DOUBLE,
-/// NC_INT64).
-using AttributeValue = std::variant<std::string, double, std::int64_t>;
+/// Global attributes by name (io/attribute_value.hpp: text, a real number, an integer).
 using AttributeMap = std::map<std::string, AttributeValue>;
 
 struct XyGrid {

@@ -107,6 +107,15 @@ Setter real(double RegionalParams::*field) {
     return {};
   };
 }
+// A number of the projection (RegionalParams::projection).
+Setter map_real(double ProjectionParams::*field) {
+  return [field](RegionalParams& p, std::string_view v) -> std::string {
+    double d = 0.0;
+    if (!parse_double(v, d)) return "is not a number";
+    p.projection.*field = d;
+    return {};
+  };
+}
 Setter integer(int RegionalParams::*field) {
   return [field](RegionalParams& p, std::string_view v) -> std::string {
     int d = 0;
@@ -130,27 +139,52 @@ Setter boolean(bool RegionalParams::*field) {
   };
 }
 
-const std::map<std::string, Setter>& setters() {
-  static const std::map<std::string, Setter> table = {
+// An enumerated key: a name of E's table (grid_kinds.hpp) in any case, as the seed's files write
+// "ME" or "me".
+// A key's setter and, for an enumerated key, the names it takes.
+struct KeySetter {
+  KeySetter(Setter s, std::vector<std::string> v = {}) : set(std::move(s)), values(std::move(v)) {}  // NOLINT
+  Setter set;
+  std::vector<std::string> values;
+};
+
+template <NamedEnum E>
+std::vector<std::string> names_without_aliases() {
+  std::vector<std::string> out;
+  const auto t = names_of<E>();
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (!is_alias<E>(k)) out.emplace_back(t[k].name);
+  return out;
+}
+
+template <NamedEnum E>
+KeySetter named(std::function<E&(RegionalParams&)> field) {
+  return {[field](RegionalParams& p, std::string_view v) -> std::string {
+            const std::optional<E> e = parse_name_any_case<E>(v);
+            if (!e) return "is not one of " + name_list<E>();
+            field(p) = *e;
+            return {};
+          },
+          names_without_aliases<E>()};
+}
+template <NamedEnum E>
+KeySetter named(E RegionalParams::*member) {
+  return named<E>([member](RegionalParams& p) -> E& { return p.*member; });
+}
+
+const std::map<std::string, KeySetter>& setters() {
+  static const std::map<std::string, KeySetter> table = {
       {"mode", integer(&RegionalParams::mode)},
       {"npass", integer(&RegionalParams::npass)},
       {"gshhs_data", text(&RegionalParams::gshhs_data)},
-      {"proj",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         try {
-           p.proj = parse_projection_kind(v);
-         } catch (const ConfigError&) {
-           return "is not a supported conformal projection (ME, LC or ST)";
-         }
-         return {};
-       }},
-      {"rlat", real(&RegionalParams::rlat)},
-      {"rlon", real(&RegionalParams::rlon)},
-      {"rota", real(&RegionalParams::rota)},
-      {"lat1", real(&RegionalParams::lat1)},
-      {"lat2", real(&RegionalParams::lat2)},
-      {"uscale", real(&RegionalParams::uscale)},
-      {"radius", real(&RegionalParams::radius)},
+      {"proj", named<ProjectionKind>([](RegionalParams& p) -> ProjectionKind& { return p.projection.kind; })},
+      {"rlat", map_real(&ProjectionParams::rlat_deg)},
+      {"rlon", map_real(&ProjectionParams::rlon_deg)},
+      {"rota", map_real(&ProjectionParams::rota_deg)},
+      {"lat1", map_real(&ProjectionParams::lat1_deg)},
+      {"lat2", map_real(&ProjectionParams::lat2_deg)},
+      {"uscale", map_real(&ProjectionParams::uscale)},
+      {"radius", map_real(&ProjectionParams::radius_m)},
       {"west_edge", real(&RegionalParams::west_edge)},
       {"east_edge", real(&RegionalParams::east_edge)},
       {"south_edge", real(&RegionalParams::south_edge)},
@@ -158,111 +192,48 @@ const std::map<std::string, Setter>& setters() {
       {"latlongrid", real(&RegionalParams::latlongrid)},
       {"lwidth", real(&RegionalParams::lwidth)},
       {"spline_type", integer(&RegionalParams::spline_type)},
-      {"param",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lowercase(v);
-         if (s == "index") {
-           p.param = Parametrisation::kIndex;
-         } else if (s == "arclength" || s == "arc_length") {
-           p.param = Parametrisation::kArcLength;
-         } else {
-           return "is neither 'index' nor 'arclength'";
-         }
-         return {};
-       }},
+      {"param", named(&RegionalParams::param)},
       {"points",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lowercase(v);
-         if (s == "plane") {
-           p.points_lonlat = false;
-         } else if (s == "lonlat") {
-           p.points_lonlat = true;
-         } else {
-           return "is neither 'plane' nor 'lonlat'";
-         }
-         return {};
-       }},
+       {[](RegionalParams& p, std::string_view v) -> std::string {
+          const std::optional<PointUnits> u = parse_name_any_case<PointUnits>(v);
+          if (!u) return "is not one of " + name_list<PointUnits>();
+          p.points_lonlat = *u == PointUnits::kLonLat;
+          return {};
+        },
+        names_without_aliases<PointUnits>()}},
       {"nx", integer(&RegionalParams::nx)},
       {"ny", integer(&RegionalParams::ny)},
       {"auto_nx", boolean(&RegionalParams::auto_nx)},
-      {"schedule",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         try {
-           p.schedule = parse_inner_schedule(lowercase(v));
-         } catch (const ConfigError&) {
-           return "is neither 'exponential' nor 'sqrt'";
-         }
-         return {};
-       }},
+      {"schedule", named(&RegionalParams::schedule)},
       {"tolerance", real(&RegionalParams::tolerance)},
-      {"method",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         return parse_grid_method(lowercase(v), p.method)
-                    ? std::string()
-                    : std::string("is not one of conformal, bvp, tfi, star, ed2, rl, best");
-       }},
-      {"weight",
-       [](RegionalParams& p, std::string_view v) -> std::string {
+      {"method", named(&RegionalParams::method)},
+      {"weight", Setter([](RegionalParams& p, std::string_view v) -> std::string {
          try {
-           (void)ControlFunction::parse(v, "weight");
+           p.weight = ControlFunction::parse(v, "weight");
          } catch (const ConfigError& e) {
            return fmt::format("is not a formula in x, y ({})", e.what());
          }
-         p.weight = std::string(v);
          return {};
-       }},
+       })},
       {"weight_depth", real(&RegionalParams::weight_depth)},
       {"relaxation", real(&RegionalParams::relaxation)},
       {"elliptic_tolerance", real(&RegionalParams::elliptic_tolerance)},
       {"elliptic_criteria_tolerance", real(&RegionalParams::elliptic_criteria_tolerance)},
       {"elliptic_iterations", integer(&RegionalParams::elliptic_iterations)},
+      // Any method name parses; regional_params_problems() then allows only the two elliptic ones.
       {"best_final",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         return parse_grid_method(lowercase(v), p.best_final) ? std::string() : std::string("is neither ed2 nor rl");
-       }},
+       {named(&RegionalParams::best_final).set,
+        {std::string(name_of(GridMethod::kEd2)), std::string(name_of(GridMethod::kRl))}}},
       {"max_outer", integer(&RegionalParams::max_outer)},
       {"max_inner", integer(&RegionalParams::max_inner)},
       {"interp_points", integer(&RegionalParams::interp_points)},
       {"inner_rtol", real(&RegionalParams::inner_rtol)},
       {"anderson", integer(&RegionalParams::anderson)},
-      {"solver",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lowercase(v);
-         if (s == "dst") {
-           p.solver = LaplaceSolver::kDst;
-         } else if (s == "sor") {
-           p.solver = LaplaceSolver::kSor;
-         } else {
-           return "is neither 'dst' nor 'sor'";
-         }
-         return {};
-       }},
+      {"solver", named(&RegionalParams::solver)},
       {"xygrid", text(&RegionalParams::xygrid)},
-      {"surface",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lowercase(v);
-         if (s == "plane") {
-           p.surface = RegionalSurface::kPlane;
-         } else if (s == "sphere") {
-           p.surface = RegionalSurface::kSphere;
-         } else {
-           return "is neither 'plane' nor 'sphere'";
-         }
-         return {};
-       }},
+      {"surface", named(&RegionalParams::surface)},
       {"bvp_iterations", integer(&RegionalParams::bvp_iterations)},
-      {"bvp_interpolation",
-       [](RegionalParams& p, std::string_view v) -> std::string {
-         const std::string s = lowercase(v);
-         if (s == "linear") {
-           p.bvp_interpolation = LevelInterpolation::kLinear;
-         } else if (s == "cubic") {
-           p.bvp_interpolation = LevelInterpolation::kCubic;
-         } else {
-           return "is neither 'linear' nor 'cubic'";
-         }
-         return {};
-       }},
+      {"bvp_interpolation", named(&RegionalParams::bvp_interpolation)},
       {"bvp_ratio_xi", real(&RegionalParams::bvp_ratio_xi)},
       {"bvp_ratio_eta", real(&RegionalParams::bvp_ratio_eta)},
       {"threads", integer(&RegionalParams::threads)},
@@ -289,13 +260,18 @@ int corner_label(std::string_view label) {
 std::string set_izogrid_key(RegionalParams& params, const std::string& key, std::string_view value) {
   const auto it = setters().find(key);
   if (it == setters().end()) return "unknown key";
-  return it->second(params, value);
+  return it->second.set(params, value);
 }
 
 std::vector<std::string> izogrid_keys() {
   std::vector<std::string> keys;
   for (const auto& [k, s] : setters()) keys.push_back(k);
   return keys;
+}
+
+std::vector<std::string> izogrid_key_values(const std::string& key) {
+  const auto it = setters().find(key);
+  return it == setters().end() ? std::vector<std::string>() : it->second.values;
 }
 
 RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
@@ -346,7 +322,7 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source) {
           continue;
         }
         seen[key] = line_no;
-        const std::string why = it->second(p, value);
+        const std::string why = it->second.set(p, value);
         if (!why.empty()) config_errors.push_back(fmt::format("{}: {} = '{}' {}", where, key, value, why));
       }
       continue;

@@ -44,6 +44,8 @@ RegionalParams parse_izogrid(std::string_view text, const std::string& source);
 std::string set_izogrid_key(RegionalParams& params, const std::string& key, std::string_view value);
 /// Every key set_izogrid_key() knows, sorted.
 std::vector<std::string> izogrid_keys();
+/// The names an enumerated key takes (its table in grid_kinds.hpp, without aliases), or none.
+std::vector<std::string> izogrid_key_values(const std::string& key);
 
 /// Reads and parses an izogrid file. InputError if it cannot be read; otherwise as parse_izogrid.
 RegionalParams read_izogrid_file(const std::filesystem::path& path);

@@ -10,7 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "grid_params/control_function.hpp"
 #include "grid_params/grid_kinds.hpp"
+#include "grid_params/projection_params.hpp"
 
 namespace aq::curvilinear {
 
@@ -26,28 +28,18 @@ struct RegionalParams {
   int npass = 4;
 
   // --- map (mode 0) --------------------------------------------------------------------------
-  /// [proj] conformal projection: ME (rotated Mercator), LC (Lambert conic), ST (stereographic).
-  ProjectionKind proj = ProjectionKind::kMercator;
-  /// [rlat] latitude of the projection centre = plane origin, degrees, [-90, 90] (not ±90 for ME).
-  double rlat = 0.0;
-  /// [rlon] longitude of the projection centre (LC: central meridian), degrees.
-  double rlon = 0.0;
-  /// [rota] azimuth of the plane's +y axis, degrees clockwise from north at the centre.
-  double rota = 0.0;
-  /// [lat1], [lat2] LC standard parallels, degrees in (-90, 90); NaN = rlat (tangent cone).
-  double lat1 = kAuto;
-  double lat2 = kAuto;
-  /// [uscale] plane units are unit-sphere radians divided by uscale; > 0 (seed: 0.001).
-  double uscale = 0.001;
-  /// [radius] sphere radius, metres, > 0.
-  double radius = 6371000.0;
+  /// [proj], [rlat], [rlon], [rota], [lat1], [lat2], [uscale], [radius]: the conformal projection
+  /// of the map (projection_params.hpp documents each field and its range).
+  ProjectionParams projection;
   /// [west_edge], [east_edge], [south_edge], [north_edge] geographic limits of the pictures
-  /// only, degrees; NaN = fit the contour. They never change the grid.
+  /// only, degrees (longitudes within ±360, latitudes within ±90); NaN = fit the contour. They
+  /// never change the grid.
   double west_edge = kAuto;
   double east_edge = kAuto;
   double south_edge = kAuto;
   double north_edge = kAuto;
-  /// [latlongrid] graticule spacing of the pictures, degrees, > 0.
+  /// [latlongrid] graticule spacing of the pictures, degrees, > 0 (coarsened tenfold until at most 200
+  /// lines cross the map each way).
   double latlongrid = 2.0;
   /// [gshhs_data] the seed's coastline source (a GSHHS file or c/l/i/h/f). aquatoria draws the
   /// coastline from the bathymetry; accepted and echoed only.
@@ -130,8 +122,8 @@ struct RegionalParams {
   /// (seed 003: θ, η equations, nodes at level-line intersections), tfi, star, ed2, rl, best (seed 004).
   GridMethod method = GridMethod::kConformal;
   /// [weight] control function w(x, y) ≥ 1 of the boundary nodes, sections, STAR rows and ED2, a
-  /// formula in plane coordinates (control_function.hpp); "1" = uniform.
-  std::string weight = "1";
+  /// formula in plane coordinates (control_function.hpp), parsed where it is read; "1" = uniform.
+  ControlFunction weight;
   /// [weight_depth] a ≥ 0 of w = weight · (1 + a·|∇h|/max|∇h|) from the [input] bathymetry (app
   /// only; 0 = off).
   double weight_depth = 0.0;

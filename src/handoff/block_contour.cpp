@@ -211,7 +211,8 @@ curvilinear::ProjectionParams choose_projection(const BoxFrame& frame) {
 }
 
 BlockContour block_contour(const BoxFrame& frame, const SideInsets& insets, int points_per_side) {
-  if (points_per_side < 2) throw ConfigError(fmt::format("blocks.points_per_side = {}: must be >= 2", points_per_side));
+  if (points_per_side < 2)  // blocks.points_per_side is validated at load
+    throw InternalError(fmt::format("block contour: {} points per side (>= 2)", points_per_side));
   BlockContour c;
   c.projection = choose_projection(frame);
   c.insets = insets;
@@ -248,7 +249,7 @@ BlockContour block_contour(const BoxFrame& frame, const SideInsets& insets, int 
       const auto q = proj.forward(g.lon_deg, g.lat_deg);
       if (!std::isfinite(q.x) || !std::isfinite(q.y)) {
         throw InputError(fmt::format("block contour point ({}, {}) is at a singularity of the {} projection", g.lon_deg,
-                                     g.lat_deg, curvilinear::projection_code(c.projection.kind)));
+                                     g.lat_deg, std::string(name_of(c.projection.kind))));
       }
       c.x.push_back(q.x);
       c.y.push_back(q.y);

@@ -82,8 +82,8 @@ std::string toml_string(const std::string& text) {
 std::string izogrid_text(const BlockContour& c, int ny, double latlongrid_deg, const std::string& comment) {
   const auto& p = c.projection;
   std::string s = comment_lines(comment);
-  s += fmt::format("proj={} rlat={:.12g} rlon={:.12g} rota={:.12g} uscale={:.6g}\n",
-                   curvilinear::projection_code(p.kind), p.rlat_deg, p.rlon_deg, p.rota_deg, p.uscale);
+  s += fmt::format("proj={} rlat={:.12g} rlon={:.12g} rota={:.12g} uscale={:.6g}\n", std::string(name_of(p.kind)),
+                   p.rlat_deg, p.rlon_deg, p.rota_deg, p.uscale);
   s += fmt::format("ny={} nx=0 spline_type=5 latlongrid={:.6g}\n", ny, latlongrid_deg);
   s += "---\n";
   const char* labels[4] = {"south-west", "< south-east", "< north-east", "< north-west"};

@@ -122,8 +122,8 @@ NestedDepthResult nested_depth(const NestedDepthInput& in) {
   check_size(in.child_area, idx(0, nj, ni), "the child's cell areas");
   if (in.blend_cells < 0) throw InternalError(fmt::format("nested_depth: blend_cells = {}", in.blend_cells));
   const double hmin = in.child_options.hmin_m;
-  if (!(hmin > 0.0) || !std::isfinite(hmin))
-    throw ConfigError(fmt::format("roms.hmin_m = {} must be a positive depth in metres (ROMS needs h > 0)", hmin));
+  if (!(hmin > 0.0) || !std::isfinite(hmin))  // roms.hmin_m, validated at load
+    throw InternalError(fmt::format("nested_depth: hmin = {} m", hmin));
 
   // Blend weights: 1 − d/B at d rows from the outer ring, d < B.
   std::vector<double> w(idx(0, nj, ni), 0.0);

@@ -51,8 +51,8 @@ int put_vara(int id, int v, const std::size_t* s, const std::size_t* c, const si
 }  // namespace
 
 NetcdfDataset::NetcdfDataset(std::filesystem::path path, int deflate) : path_(std::move(path)), deflate_(deflate) {
-  if (deflate_ < 0 || deflate_ > 9)
-    throw ConfigError(fmt::format("output.ugrid_deflate = {}: must be 0 (classic, uncompressed) .. 9", deflate_));
+  if (deflate_ < 0 || deflate_ > 9)  // output.ugrid_deflate is validated at load
+    throw InternalError(fmt::format("{}: deflate level {} is outside 0..9", path_.string(), deflate_));
 }
 
 NetcdfDataset::~NetcdfDataset() {

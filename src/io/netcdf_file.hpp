@@ -1,16 +1,20 @@
-// Shared by the netCDF readers and writers (xygrid, ROMS grid, nesting): status checks that
-// throw with the path and nc_strerror, and an open-file handle closed on scope exit.
+// Shared by the netCDF readers and writers (xygrid, ROMS grid, nesting, contact): status checks
+// that throw with the path and nc_strerror, the attribute writer, and an open-file handle closed
+// on scope exit.
 #pragma once
 
 #include <fmt/format.h>
 #include <netcdf.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <variant>
 
 #include "core/error.hpp"
+#include "io/attribute_value.hpp"
 
 namespace aq::io {
 
@@ -34,6 +38,20 @@ void nc_check(int status, const std::filesystem::path& path, const std::string& 
 inline void put_text(int nc, int var, const char* name, const std::string& text, const std::filesystem::path& path) {
   nc_check<OutputError>(nc_put_att_text(nc, var, name, text.size(), text.c_str()), path,
                         fmt::format("attribute {}", name));
+}
+
+/// Writes attribute `name` of `var` (NC_GLOBAL for a global one): text as NC_CHAR, a real number
+/// as one NC_DOUBLE, an integer as NC_INT64 in a file that has 64-bit integers (netCDF-4, CDF-5)
+/// and otherwise (classic files) as NC_INT when it fits in 32 bits, else as NC_DOUBLE. The one
+/// rule of every writer (the ROMS, xygrid, nesting and contact files). OutputError naming the path
+/// and the attribute on failure.
+void put_attribute(int nc, int var, const std::string& name, const AttributeValue& value,
+                   const std::filesystem::path& path);
+
+/// put_attribute() for every (name, value) of `attributes` in their order (a map's or a list's).
+template <typename Attributes>
+void put_attributes(int nc, int var, const Attributes& attributes, const std::filesystem::path& path) {
+  for (const auto& [name, value] : attributes) put_attribute(nc, var, name, value, path);
 }
 
 /// A global text attribute, or "" when it is missing or not text (trailing NULs removed).

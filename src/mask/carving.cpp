@@ -608,7 +608,7 @@ Json carving_json(const Carving& c) {
     for (std::size_t k = 0; k < l.lon_deg.size(); ++k) line.push_back(Json::array({l.lon_deg[k], l.lat_deg[k]}));
     Json j{{"name", l.name},
            {"source", l.source},
-           {"kind", line_kind_name(l.kind)},
+           {"kind", std::string(name_of(l.kind))},
            {"depth_from", l.depth_from},
            {"half_width_km", {l.half_width_km_min, l.half_width_km_max}},
            {"length_km", l.length_km},
@@ -629,10 +629,9 @@ Json carving_json(const Carving& c) {
 std::vector<std::string> describe_carving(const Carving& c) {
   std::vector<std::string> out;
   for (const CarvedLine& l : c.lines) {
-    const std::string what =
-        l.kind == LineKind::kBlockage
-            ? fmt::format("blockage, land at {:+.0f} m ({})", l.height_m, l.depth_from)
-            : fmt::format("{} {:.0f} m deep, from {}", line_kind_name(l.kind), l.depth_m, l.depth_from);
+    const std::string what = l.kind == LineKind::kBlockage
+                                 ? fmt::format("blockage, land at {:+.0f} m ({})", l.height_m, l.depth_from)
+                                 : fmt::format("{} {:.0f} m deep, from {}", l.kind, l.depth_m, l.depth_from);
     const std::string width =
         std::abs(l.half_width_km_max - l.half_width_km_min) < 0.05 * l.half_width_km_max
             ? fmt::format("{:.3g} km", 2.0 * l.half_width_km_max)

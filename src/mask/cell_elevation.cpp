@@ -40,30 +40,6 @@ double statistic_of(std::vector<double>& v, CellStatistic s) {
 
 }  // namespace
 
-CellStatistic parse_cell_statistic(const std::string& text, const std::string& key) {
-  for (const CellStatistic s :
-       {CellStatistic::kAuto, CellStatistic::kPoint, CellStatistic::kMean, CellStatistic::kMedian, CellStatistic::kMin})
-    if (text == cell_statistic_name(s)) return s;
-  throw ConfigError(
-      fmt::format("{} = \"{}\": not one of \"auto\", \"point\", \"mean\", \"median\", \"min\"", key, text));
-}
-
-const char* cell_statistic_name(CellStatistic s) {
-  switch (s) {
-    case CellStatistic::kAuto:
-      return "auto";
-    case CellStatistic::kPoint:
-      return "point";
-    case CellStatistic::kMean:
-      return "mean";
-    case CellStatistic::kMedian:
-      return "median";
-    case CellStatistic::kMin:
-      return "min";
-  }
-  return "?";
-}
-
 CellElevations cell_elevations(const raster::Bathymetry& bathy, const double* corner_lon_deg,
                                const double* corner_lat_deg, int ni, int nj, const double* point_elevation_m,
                                CellStatistic statistic) {

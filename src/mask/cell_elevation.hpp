@@ -28,15 +28,13 @@
 #include <string>
 #include <vector>
 
+#include "config/kinds.hpp"
 #include "raster/bathymetry.hpp"
 
 namespace aq::mask {
 
-enum class CellStatistic { kAuto, kPoint, kMean, kMedian, kMin };
-
-/// "auto", "point", "mean", "median" or "min"; ConfigError naming `key` and the value otherwise.
-CellStatistic parse_cell_statistic(const std::string& text, const std::string& key);
-const char* cell_statistic_name(CellStatistic s);
+/// roms.depth_statistic (config/kinds.hpp).
+using config::CellStatistic;
 
 struct CellElevations {
   std::vector<double> elevation_m;             ///< per cell, metres (negative below sea level)

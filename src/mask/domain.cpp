@@ -404,4 +404,50 @@ std::vector<std::array<double, 2>> regional_seeds(const Domain& domain, const Bi
   return {{lon, la}};
 }
 
+std::array<double, 4> rotated_box_window(const std::vector<double>& b, const Lattice& lat, const PoleRotation& rot) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  constexpr int kSteps = 256;
+  double width = b[1] - b[0];
+  if (width < 0.0) width += 360.0;
+  // Points along the edges of [x0, x0 + dx] x [y0, y0 + dy], mapped by f; longitudes unwrapped
+  // against the first point.
+  const auto outline = [&](double x0, double dx, double y0, double dy, auto f, std::array<double, 4>& box) {
+    box = {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    double ref = kNaN;
+    for (int e = 0; e < 4; ++e)
+      for (int k = 0; k <= kSteps; ++k) {
+        const double t = static_cast<double>(k) / kSteps;
+        const double x = e < 2 ? x0 + t * dx : (e == 2 ? x0 : x0 + dx);
+        const double y = e < 2 ? (e == 0 ? y0 : y0 + dy) : y0 + t * dy;
+        double u = 0.0, v = 0.0;
+        f(x, y, u, v);
+        if (std::isnan(ref)) ref = u;
+        u = ref + std::remainder(u - ref, 360.0);
+        box = {std::min(box[0], u), std::max(box[1], u), std::min(box[2], v), std::max(box[3], v)};
+      }
+  };
+  std::array<double, 4> r{};
+  outline(
+      b[0], width, b[2], b[3] - b[2], [&](double x, double y, double& u, double& v) { rot.to_rotated(x, y, u, v); }, r);
+  const double mg = lat.step0_deg + 2.0 * lat.pixel_deg();
+  const double mx = mg + 0.05 * (r[1] - r[0]), my = mg + 0.05 * (r[3] - r[2]);
+  r = {r[0] - mx, r[1] + mx, r[2] - my, r[3] + my};
+  if (r[1] - r[0] >= 180.0 || r[2] <= -89.0 || r[3] >= 89.0) return {kNaN, kNaN, kNaN, kNaN};
+  std::array<double, 4> g{};
+  outline(
+      r[0], r[1] - r[0], r[2], r[3] - r[2],
+      [&](double x, double y, double& u, double& v) { rot.to_geographic(x, y, u, v); }, g);
+  // A geographic pole inside the rotated rectangle: the densified edges do not see it.
+  for (const double pole : {-90.0, 90.0}) {
+    double u = 0.0, v = 0.0;
+    rot.to_rotated(0.0, pole, u, v);
+    u = r[0] + std::fmod(std::fmod(u - r[0], 360.0) + 360.0, 360.0);
+    if (u <= r[1] && v >= r[2] && v <= r[3]) return {kNaN, kNaN, kNaN, kNaN};
+  }
+  if (g[1] - g[0] >= 180.0) return {kNaN, kNaN, kNaN, kNaN};
+  const double p = 2.0 * lat.pixel_deg();
+  return {g[0] - p, g[1] + p, std::max(-90.0, g[2] - p), std::min(90.0, g[3] + p)};
+}
+
 }  // namespace aq::mask

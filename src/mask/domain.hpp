@@ -12,6 +12,7 @@
 // lon/lat), on a rotated lattice too.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -73,6 +74,16 @@ struct DomainExtent {
   double lon_min = 0, lon_max = 0, lat_min = 0, lat_max = 0;
 };
 DomainExtent domain_extent(const config::DomainOptions& options, const Lattice& lattice);
+
+/// The geographic lon/lat window [lon_min, lon_max, lat_min, lat_max] of the raster a box domain
+/// `box` ([lon_min, lon_max, lat_min, lat_max], geographic) needs on the rotated lattice `lat`: the
+/// domain is the rotated pixels whose centre is in the box, the classification samples one
+/// level-0 square around them and the regional picture shows the mesh's extent and 3 % more in
+/// the rotated plane. So: the box's extent in the rotated frame (its edges densified), widened by
+/// Δ0 + 2 pixels and 5 % of that extent, whose edges (densified) bound the window in geographic
+/// lon/lat, 2 pixels wider. All NaN (read the raster whole) when that rectangle holds a pole or
+/// spans half the globe.
+std::array<double, 4> rotated_box_window(const std::vector<double>& box, const Lattice& lat, const PoleRotation& rot);
 
 /// The seeds of the fill for a regional run: the configured seeds whose pixel is inside the
 /// domain; when none is, the deepest wet pixel inside (ties: smallest (j, i)), logged. Throws

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "core/error.hpp"
 
@@ -62,18 +64,6 @@ void add_parts(OGRGeometryH g, std::vector<std::vector<std::array<double, 2>>>& 
 
 }  // namespace
 
-const char* line_kind_name(LineKind k) {
-  switch (k) {
-    case LineKind::kPassage:
-      return "passage";
-    case LineKind::kChannel:
-      return "channel";
-    case LineKind::kBlockage:
-      return "blockage";
-  }
-  return "?";
-}
-
 std::vector<EditLine> read_edit_lines(const std::string& path, const std::string& layer_name, const std::string& key,
                                       bool channels) {
   GDALAllRegister();
@@ -116,9 +106,10 @@ std::vector<EditLine> read_edit_lines(const std::string& path, const std::string
     if (base.name.empty()) base.name = fmt::format("{} feature {}", key, index);
     if (!channels && f_kind >= 0 && OGR_F_IsFieldSetAndNotNull(f, f_kind) != 0) {
       const std::string k = lower(OGR_F_GetFieldAsString(f, f_kind));
-      if (k == "blockage")
+      const std::optional<LineKind> kind = parse_name<LineKind>(k);
+      if (kind == LineKind::kBlockage)
         base.kind = LineKind::kBlockage;
-      else if (k != "passage" && !k.empty())
+      else if (kind != LineKind::kPassage && !k.empty())
         throw InputError(fmt::format("{}: kind = \"{}\" is not \"passage\" or \"blockage\"", where,
                                      OGR_F_GetFieldAsString(f, f_kind)));
     }

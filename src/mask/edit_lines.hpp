@@ -11,9 +11,13 @@
 // Attribute names are matched without case; a number may be stored as a number or as text.
 #pragma once
 
+#include <array>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "core/enum_names.hpp"
 
 namespace aq::mask {
 
@@ -23,8 +27,14 @@ enum class LineKind : unsigned char {
   kBlockage,  ///< kept dry along the line (a causeway, a dam, a canal the raster shows as water)
 };
 
-/// "passage", "channel", "blockage".
-const char* line_kind_name(LineKind k);
+/// The `kind` names (a transects file states "passage" or "blockage"; mask.channels lines are
+/// channels), printed in the log and the run report.
+inline constexpr std::array<EnumName<LineKind>, 3> kLineKindNames{{
+    {LineKind::kPassage, "passage", "carved open along the line"},
+    {LineKind::kChannel, "channel", "a channel or river burned in as water"},
+    {LineKind::kBlockage, "blockage", "kept dry along the line"},
+}};
+constexpr std::span<const EnumName<LineKind>> enum_names(LineKind) { return kLineKindNames; }
 
 struct EditLine {
   std::string name;   ///< the `name` attribute, or "<key> feature N"

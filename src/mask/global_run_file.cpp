@@ -72,11 +72,11 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       {"input.variable", c.input.variable},
       {"input.band", std::to_string(c.input.band)},
       {"input.positive_down", c.input.positive_down ? "true" : "false"},
-      {"input.interpolation", c.input.interpolation},
+      {"input.interpolation", std::string(name_of(c.input.interpolation))},
       {"quadtree.step_deg", number(c.quadtree.step_deg)},
       {"quadtree.levels", std::to_string(c.quadtree.levels)},
       {"quadtree.lon0_deg", number(c.quadtree.lon0_deg)},
-      {"quadtree.lattice", c.quadtree.lattice},
+      {"quadtree.lattice", std::string(name_of(c.quadtree.lattice))},
       {"quadtree.mercator_lat_max_deg", number(c.quadtree.mercator_lat_max_deg)},
       {"rotation", c.rotation.enabled
                        ? fmt::format("pole {} {}", number(c.rotation.pole_lon_deg), number(c.rotation.pole_lat_deg))
@@ -85,7 +85,7 @@ std::vector<std::pair<std::string, std::string>> mask_inputs(const config::Globa
       {"mask.cursor", std::to_string(c.mask.cursor)},
       {"mask.seeds", "[" + seeds + "]"},
       {"mask.seed_radius_deg", number(c.mask.seed_radius_deg)},
-      {"mask.sampling", c.mask.sampling},
+      {"mask.sampling", std::string(name_of(c.mask.sampling))},
       {"mask.remove_pinches", c.mask.remove_pinches ? "true" : "false"},
   };
   if (!sources.empty()) items.insert(items.begin() + 3, {"input.source_files", sources});

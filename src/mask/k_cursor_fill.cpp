@@ -102,8 +102,10 @@ class SpanFiller {
   const RunVisitor* visit_ = nullptr;
 };
 
+// Preconditions of the fill's entry points; the configuration's values (mask.cursor 1..64,
+// mask.seeds, mask.seed_radius_deg) are validated at load, so failing one is a bug.
 void check_cursor(int k) {
-  if (k < 1 || k > 64) throw ConfigError(fmt::format("mask.cursor = {}: K must be between 1 and 64", k));
+  if (k < 1 || k > 64) throw InternalError(fmt::format("K-cursor fill: K = {} is outside 1..64", k));
 }
 
 std::string seed_name(std::size_t n, const std::array<double, 2>& s) {
@@ -227,16 +229,16 @@ std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& l
                                   const std::vector<std::array<double, 2>>& seeds, double radius_deg,
                                   const Logger& log) {
   check_cursor(k);
-  if (seeds.empty()) throw ConfigError("mask.seeds = []: give at least one [lon, lat] point in the ocean");
+  if (seeds.empty()) throw InternalError("place_seeds: no seed");
   if (!std::isfinite(radius_deg) || radius_deg < 0.0)
-    throw ConfigError(fmt::format("mask.seed_radius_deg = {}: must be a finite number >= 0", radius_deg));
+    throw InternalError(fmt::format("place_seeds: seed radius {}° is not a finite number >= 0", radius_deg));
   const std::int64_t nx = lattice.nx, ny = lattice.ny;
   const double dpx = lattice.pixel_deg();
   std::vector<SeedInfo> out;
   for (std::size_t n = 0; n < seeds.size(); ++n) {
     const auto& s = seeds[n];
     if (!std::isfinite(s[0]) || !std::isfinite(s[1]) || s[1] < -90.0 || s[1] > 90.0)
-      throw ConfigError(
+      throw InternalError(
           fmt::format("{}: not a valid point (longitude, latitude in [-90, 90] degrees)", seed_name(n, s)));
     const LonLat r = geographic_to_lattice(rot, {s[0], s[1]});
     double x = 0.0, y = 0.0;

@@ -92,8 +92,9 @@ struct SeedInfo {
 /// point lies in an all-wet window takes the one whose centre is nearest; otherwise it moves to
 /// the all-wet window with the nearest centre within `radius_deg` (great-circle degrees) and a
 /// warning names both positions. Ties go to the smaller (j, i). Throws ConfigError naming
-/// mask.seeds[n] and its position when the seed is not a valid lon/lat or no all-wet window is
-/// within the radius; ConfigError for an empty seed list or a negative radius.
+/// mask.seeds[n] and its position when no all-wet window is within the radius. Preconditions (the
+/// config validates mask.seeds and mask.seed_radius_deg at load; InternalError otherwise): at least
+/// one seed, each a finite longitude and a latitude in [-90, 90]; a finite radius >= 0.
 std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& lattice, const PoleRotation& rot,
                                   const std::vector<std::array<double, 2>>& seeds, double radius_deg,
                                   const Logger& log);
@@ -118,8 +119,8 @@ struct KFillResult {
 };
 
 /// The whole K-cursor fill: W, seed placement, reachability, dilation and statistics.
-/// `wet` is nx × ny of the lattice. Throws ConfigError for k outside 1..64 (naming mask.cursor)
-/// and for seeds as in place_seeds.
+/// `wet` is nx × ny of the lattice; 1 <= k <= 64 (mask.cursor, validated at load; InternalError
+/// otherwise); seeds as in place_seeds.
 KFillResult k_cursor_fill(const Bitmap& wet, const Lattice& lattice, const PoleRotation& rot, int k,
                           const std::vector<std::array<double, 2>>& seeds, double radius_deg, const Logger& log);
 

@@ -41,12 +41,6 @@ void threshold_row(const T* values, std::int64_t n, double threshold, std::uint6
 // Lattices with fewer samples than this are classified by one thread.
 constexpr std::int64_t kParallelMinSamples = std::int64_t{1} << 16;
 
-// The range of mask.min_depth_m is the configuration's (config/global_config.cpp); negative values
-// are a floodplain above the datum. Only a value no comparison can use is refused here.
-void check_depth(double h) {
-  if (!std::isfinite(h)) throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", h));
-}
-
 // The rotated vertex rule works on units of vertices [I0, I1) × [J0, J1) within one bitmap word
 // (I1 - I0 <= 64): a unit whose image lies where every raster value is on one side of the
 // threshold is decided without sampling; an undecided one is split, and sampled vertex by vertex
@@ -267,15 +261,8 @@ void classify_area_rotated(const raster::Bathymetry& bathy, const Lattice& latti
 
 }  // namespace
 
-Sampling parse_sampling(const std::string& name) {
-  if (name == "vertex") return Sampling::kVertex;
-  if (name == "area") return Sampling::kArea;
-  throw ConfigError(fmt::format("mask.sampling = \"{}\": must be \"vertex\" (the seed's rule) or \"area\"", name));
-}
-
 Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                            double min_depth_m, const ProgressFn& progress, const PixelWindow& window) {
-  check_depth(min_depth_m);
   const double threshold = -min_depth_m;  // wet: d <= -h (at h = 0 exactly 0 m is wet)
   const std::int64_t nx = lattice.nx, nv = lattice.ny + 1;
   Bitmap wv(nx, nv);
@@ -349,7 +336,6 @@ void classify_from_vertices(const Bitmap& wet_vertices, Bitmap& wet, Bitmap& coa
 void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                          double min_depth_m) {
   if (!lattice.mercator()) return;
-  check_depth(min_depth_m);
   const auto& in = bathy.info();
   const double phi_max = lattice.lat_max_deg();
   const double step = std::min({in.dlon, in.dlat, lattice.pixel_deg()});  // along φ′
@@ -392,7 +378,6 @@ void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice
 
 PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                              const ClassifyOptions& options) {
-  check_depth(options.min_depth_m);
   PixelClasses pc;
   const bool area = options.sampling == Sampling::kArea;
   if (bathy.info().streamed && (area || !rot.identity())) {

@@ -34,10 +34,8 @@
 
 namespace aq::mask {
 
-enum class Sampling { kVertex, kArea };
-
-/// "vertex" or "area" -> Sampling; throws ConfigError naming mask.sampling otherwise.
-Sampling parse_sampling(const std::string& name);
+/// mask.sampling (config/kinds.hpp): the seed's vertex rule or the deepest raster cell.
+using config::Sampling;
 
 /// The pixels a regional run classifies (README "Regional FE meshes"): columns col_first ..
 /// col_first + col_count - 1 (wrapping at the seam) and rows row_first .. row_first + row_count - 1;
@@ -76,7 +74,7 @@ void check_mercator_caps(const raster::Bathymetry& bathy, const Lattice& lattice
 
 /// Samples the bathymetry at every lattice vertex (rotated lattices through `rot`) and returns
 /// the wet vertices and the pixel classes. OpenMP over rows; bit-identical for any thread count.
-/// Throws ConfigError when min_depth_m is not finite.
+/// `min_depth_m` is mask.min_depth_m as validated at load (config/global_config.cpp; negative = a floodplain).
 PixelClasses classify_pixels(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                              const ClassifyOptions& options);
 

@@ -15,17 +15,6 @@ namespace aq::mask {
 
 namespace {
 
-void validate(const config::MaskOptions& o) {
-  if (!std::isfinite(o.min_depth_m))
-    throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", o.min_depth_m));
-  if (o.cursor < 1 || o.cursor > 64)
-    throw ConfigError(fmt::format("mask.cursor = {}: K must be between 1 and 64", o.cursor));
-  (void)parse_sampling(o.sampling);
-  if (!std::isfinite(o.seed_radius_deg) || o.seed_radius_deg < 0.0)
-    throw ConfigError(fmt::format("mask.seed_radius_deg = {}: must be a finite number >= 0", o.seed_radius_deg));
-  if (o.seeds.empty()) throw ConfigError("mask.seeds = []: give at least one [lon, lat] point in the ocean");
-}
-
 Json lonlat_json(LonLat p) { return Json::array({p.lon_deg, p.lat_deg}); }
 
 // Whether the pixels under the box's corners and centre are all inside the domain.
@@ -113,13 +102,12 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
                          const config::MaskOptions& options, const Logger& log, Report* report,
                          const Domain* domain) {
   const bool regional = domain != nullptr && domain->regional();
-  validate(options);
   WetArea area;
   {
     StageScope stage("classify", report, log);
     ClassifyOptions co;
     co.min_depth_m = options.min_depth_m;
-    co.sampling = parse_sampling(options.sampling);
+    co.sampling = options.sampling;
     co.progress = log.progress("classify");
     if (regional && rot.identity()) co.window = classify_window(lattice, *domain);
     if (!regional) check_mercator_caps(bathy, lattice, rot, options.min_depth_m);  // a region is inside the rows
@@ -238,7 +226,7 @@ Json wet_area_json(const WetArea& area, const config::MaskOptions& options, std:
   Json j;
   j["min_depth_m"] = options.min_depth_m;
   j["cursor"] = options.cursor;
-  j["sampling"] = options.sampling;
+  j["sampling"] = std::string(name_of(options.sampling));
   j["lattice"] = {{"nx", area.wet.nx()}, {"ny", area.wet.ny()}};
   if (options.min_depth_m < 0.0)  // README "A storm-surge mesh"
     j["floodplain"] = {{"top_m", -options.min_depth_m},

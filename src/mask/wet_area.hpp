@@ -76,10 +76,9 @@ struct WetArea {
 /// vertex is sampled and every pixel is dry.
 PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
 
-/// Runs the mask stage. Validates `options` first (ConfigError naming the mask.* key: min_depth_m
-/// finite (its range is the configuration's; negative = a floodplain), cursor 1..64, sampling
-/// "vertex"/"area", seeds non-empty and valid, seed_radius_deg finite >= 0) and the lattice/bitmap sizes; seeds as in
-/// place_seeds (ConfigError when no all-wet window is within the radius). Logs "classify: done ...", "fill: done ...",
+/// Runs the mask stage on `options` as validated at load (config/global_config.cpp: every mask.*
+/// key's range; a negative min_depth_m is a floodplain); seeds as in place_seeds (ConfigError when no
+/// all-wet window is within the radius). Logs "classify: done ...", "fill: done ...",
 /// "pinches: done ...", "passages: done ..." stage lines (and a progress bar on a terminal);
 /// when `report` is given, adds those stages and a "mask" section (see wet_area_json).
 /// With a regional `domain` the fill runs on wet ∩ domain from the seeds regional_seeds gives

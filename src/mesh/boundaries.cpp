@@ -168,6 +168,43 @@ BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)
   return counts;
 }
 
+bool edge_right_pixel(const Mesh& m, NodeId a, NodeId b, mask::PixelIJ& px) {
+  const Lattice& lat = m.lattice;
+  const auto pa = static_cast<std::size_t>(a), pb = static_cast<std::size_t>(b);
+  const std::int64_t ia = m.node_i[pa], ja = m.node_j[pa];
+  std::int64_t di = m.node_i[pb] - ia;
+  const std::int64_t dj = m.node_j[pb] - ja;
+  if (di > lat.nx / 2) di -= lat.nx;
+  if (di < -lat.nx / 2) di += lat.nx;
+  if ((di != 0) == (dj != 0)) return false;  // a diagonal (after cleaning) or a degenerate edge
+  std::int64_t pi = ia, pj = ja;             // the pixel on the right of the first unit step
+  if (di > 0) pj = ja - 1;
+  if (di < 0) pi = ia - 1;
+  if (dj < 0) {
+    pi = ia - 1;
+    pj = ja - 1;
+  }
+  if (pj < 0 || pj >= lat.ny) return false;
+  px = {((pi % lat.nx) + lat.nx) % lat.nx, pj};
+  return true;
+}
+
+BoundaryCounts type_domain_boundaries(Mesh& m, const std::function<bool(const mask::PixelIJ&)>& open_water,
+                                      const Logger* log, const std::function<bool(const mask::PixelIJ&)>& river) {
+  const auto is_open = [&](NodeId a, NodeId b) {
+    mask::PixelIJ px;
+    return edge_right_pixel(m, a, b, px) && open_water(px);
+  };
+  std::function<bool(NodeId, NodeId)> is_river;
+  if (river) {
+    is_river = [&](NodeId a, NodeId b) {
+      mask::PixelIJ px;
+      return edge_right_pixel(m, a, b, px) && river(px);
+    };
+  }
+  return type_boundaries(m, is_open, log, is_river);
+}
+
 BoundaryCounts boundary_counts(const Mesh& m) {
   BoundaryCounts c;
   for (const BoundarySegment& s : m.segments) {

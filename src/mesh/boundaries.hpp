@@ -1,11 +1,13 @@
 // Boundary typing of regional meshes (README "Regional FE meshes"): every boundary edge is
 // open, mainland or island, and the loops are cut into the segments the model formats write.
 //
-//   * An edge is open when the caller's predicate says so (app: the pixel on its right, outside
-//     the wet area, is wet and outside the domain); an open edge is a river (inflow) edge when
-//     the second predicate says so (app: that pixel is in the corridor of a mask.channels line).
-//     River runs are kept whatever their length (a river's mouth on the domain edge may be a few
-//     edges); a short open run next to one joins it; short land gaps merge only open runs.
+//   * An edge is open when the caller's predicate says so; for a regional domain
+//     (type_domain_boundaries) when the pixel on its right, outside the wet area, is open water:
+//     wet at the datum outside the domain (mask::WetArea::open), so the floodplain of a surge
+//     mesh meets the domain edge with land. An open edge is a river (inflow) edge when the second
+//     predicate says so (app: that pixel is in the corridor of a mask.channels line). River runs
+//     are kept whatever their length (a river's mouth on the domain edge may be a few edges); a
+//     short open run next to one joins it; short land gaps merge only open runs.
 //   * A land gap shorter than kMinSegmentEdges edges between two open runs becomes open (the two
 //     segments merge); then an open run shorter than kMinSegmentEdges becomes land. A loop that
 //     is open all round is split into two open segments (SCHISM refuses a looped open segment).
@@ -22,8 +24,10 @@
 #include <functional>
 #include <string>
 
+#include "core/bitmap.hpp"
 #include "core/log.hpp"
 #include "core/report.hpp"
+#include "mask/lattice_coords.hpp"
 #include "mesh/mesh.hpp"
 
 namespace aq::mesh {
@@ -43,6 +47,18 @@ struct BoundaryCounts {
 /// given) whether such an open edge is a river inflow. Logs each merge when `log` is given.
 BoundaryCounts type_boundaries(Mesh& m, const std::function<bool(NodeId, NodeId)>& is_open, const Logger* log,
                                const std::function<bool(NodeId, NodeId)>& is_river = {});
+
+/// The pixel on the right of the first lattice step of boundary edge a -> b (wet on the left: the
+/// pixel outside the wet area) in `px`; false for a diagonal (after the model cleaning) or
+/// degenerate edge and for rows beyond the lattice.
+bool edge_right_pixel(const Mesh& m, NodeId a, NodeId b, mask::PixelIJ& px);
+
+/// type_boundaries() for the mesh of a regional domain: the edge a -> b is open when it has a
+/// right pixel (edge_right_pixel) for which `open_water(px)` holds: water at the datum outside the
+/// domain (mask::WetArea::open for the dense engine, the forest's answers for the forest);
+/// everything else is land. Such an open edge is a river inflow when `river(px)` (when given) holds.
+BoundaryCounts type_domain_boundaries(Mesh& m, const std::function<bool(const mask::PixelIJ&)>& open_water,
+                                      const Logger* log, const std::function<bool(const mask::PixelIJ&)>& river = {});
 
 /// Counts of a typed mesh.
 BoundaryCounts boundary_counts(const Mesh& m);

@@ -26,15 +26,6 @@ namespace {
 
 double round3(double x) { return std::round(x * 1000.0) / 1000.0; }
 
-enum class Elements { kTriangles, kSquares, kBoth };
-
-Elements parse_elements(const std::string& text) {
-  if (text == "triangles") return Elements::kTriangles;
-  if (text == "squares") return Elements::kSquares;
-  if (text == "both") return Elements::kBoth;
-  throw ConfigError(fmt::format("mesh.elements = \"{}\": must be \"triangles\", \"squares\" or \"both\"", text));
-}
-
 }  // namespace
 
 void emit_triangles(const std::vector<quadtree::Leaf>& leaves, const std::vector<std::uint8_t>& codes,
@@ -82,15 +73,14 @@ void emit_triangles(const std::vector<quadtree::Leaf>& leaves, const std::vector
   });
 }
 
-bool mesh_needs_centres(const config::MeshOptions& options) {
-  return parse_elements(options.elements) != Elements::kSquares;
-}
+bool mesh_needs_centres(const config::MeshOptions& options) { return config::has_triangles(options.elements); }
 
 Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, const PoleRotation& rotation,
                 const raster::Bathymetry& bathy, const config::MeshOptions& options, const Logger& log,
                 Report* report) {
   StageScope stage("mesh", report, log);
   const bool triangles = mesh_needs_centres(options);
+
   Timer t_nodes;
   quadtree::QuadNodes qn = quadtree::build_nodes(leaves, lat, quadtree::NodeOptions{triangles});
   const double nodes_s = t_nodes.wall_s();
@@ -101,9 +91,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, const Lattice& lat, c
 Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, quadtree::QuadNodes qn, double nodes_s, const Lattice& lat,
                 const PoleRotation& rotation, const raster::Bathymetry& bathy, const config::MeshOptions& options,
                 const Logger& log, Report* report, StageScope& stage) {
-  const Elements elements = parse_elements(options.elements);
-  const Diagonal diagonal = parse_diagonal(options.diagonal);
-  const bool triangles = elements != Elements::kSquares;
+  const Diagonal diagonal = options.diagonal;
+  const bool triangles = config::has_triangles(options.elements);
 
   Mesh mesh;
   mesh.lattice = lat;
@@ -222,8 +211,8 @@ Mesh build_mesh(const std::vector<quadtree::Leaf>& leaves, quadtree::QuadNodes q
   }
   if (report != nullptr) {
     Json& j = (*report)["mesh"];
-    j["elements"] = options.elements;
-    j["diagonal"] = options.diagonal;
+    j["elements"] = std::string(name_of(options.elements));
+    j["diagonal"] = std::string(name_of(options.diagonal));
     j["nodes"] = n;
     j["corner_nodes"] = n - centres;
     j["centre_nodes"] = centres;

@@ -44,6 +44,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "config/kinds.hpp"
+
 namespace aq::mesh {
 
 /// Local vertex numbers of a square (see the file comment).
@@ -59,15 +61,9 @@ enum LocalVertex : std::uint8_t {
   kCentre = 8
 };
 
-/// Choice of the diagonal of squares without midside nodes (`mesh.diagonal`).
-enum class Diagonal {
-  kNE,         ///< SW–NE
-  kNW,         ///< SE–NW
-  kAlternate,  ///< "ne" when a + b of the square is even, "nw" when odd (a chequerboard)
-};
-
-/// "ne", "nw" or "alternate"; throws ConfigError naming mesh.diagonal otherwise.
-Diagonal parse_diagonal(std::string_view text);
+/// Choice of the diagonal of squares without midside nodes (`mesh.diagonal`, config/kinds.hpp):
+/// SW–NE, SE–NW, or alternating as a chequerboard ("ne" when a + b of the square is even).
+using config::Diagonal;
 
 /// Triangles of one template as local vertex triples, anticlockwise.
 struct Template {

@@ -7,25 +7,6 @@
 
 namespace aq::io {
 
-ElementKinds parse_element_kinds(std::string_view value) {
-  if (value == "triangles") return ElementKinds::kTriangles;
-  if (value == "squares") return ElementKinds::kSquares;
-  if (value == "both") return ElementKinds::kBoth;
-  throw ConfigError(fmt::format("mesh.elements = \"{}\": must be \"triangles\", \"squares\" or \"both\"", value));
-}
-
-std::string_view element_kinds_name(ElementKinds kinds) {
-  switch (kinds) {
-    case ElementKinds::kTriangles:
-      return "triangles";
-    case ElementKinds::kSquares:
-      return "squares";
-    case ElementKinds::kBoth:
-      return "both";
-  }
-  return "triangles";
-}
-
 ElementKinds default_element_kinds(const mesh::Mesh& mesh) {
   return mesh.triangles.empty() && !mesh.squares.empty() ? ElementKinds::kSquares : ElementKinds::kTriangles;
 }
@@ -39,8 +20,7 @@ void check_elements(const mesh::Mesh& mesh, ElementKinds kinds) {
   if (has_triangles(kinds)) {
     if (mesh.triangles.empty() && !mesh.squares.empty()) {
       throw InternalError(
-          fmt::format("writer asked for triangles (mesh.elements = \"{}\") but the mesh has only squares",
-                      element_kinds_name(kinds)));
+          fmt::format("writer asked for triangles (mesh.elements = \"{}\") but the mesh has only squares", kinds));
     }
     if (mesh.triangle_level.size() != mesh.triangles.size()) {
       throw InternalError("mesh.triangle_level has a different size than mesh.triangles");

@@ -1,4 +1,4 @@
-// Which elements of a Mesh a writer writes (mesh.elements = "triangles" | "squares" | "both"),
+// Which elements of a Mesh a writer writes (mesh.elements: triangles, squares or both),
 // and the polygon view of a square with its hanging (midside) nodes.
 //
 // A quadtree leaf is a square with corners SW, SE, NE, NW (anticlockwise) and an optional
@@ -15,20 +15,16 @@
 #include <array>
 #include <string_view>
 
+#include "config/kinds.hpp"
 #include "core/types.hpp"
 #include "mesh/mesh.hpp"
 
 namespace aq::io {
 
-enum class ElementKinds { kTriangles, kSquares, kBoth };
-
-[[nodiscard]] inline bool has_triangles(ElementKinds k) { return k != ElementKinds::kSquares; }
-[[nodiscard]] inline bool has_squares(ElementKinds k) { return k != ElementKinds::kTriangles; }
-
-/// Parses the value of mesh.elements. Throws ConfigError naming mesh.elements and the value.
-ElementKinds parse_element_kinds(std::string_view value);
-/// "triangles", "squares" or "both".
-std::string_view element_kinds_name(ElementKinds kinds);
+/// mesh.elements (config/kinds.hpp), the one enum the mesh stage and the writers share.
+using config::ElementKinds;
+using config::has_squares;
+using config::has_triangles;
 /// Triangles when the mesh has any, squares otherwise.
 ElementKinds default_element_kinds(const mesh::Mesh& mesh);
 /// Throws InternalError when `kinds` asks for triangles the mesh does not have (the mesh was

@@ -86,9 +86,9 @@ GeographicMesh::GeographicMesh(const mesh::Mesh& lm, ElementKinds kinds, const E
     c.reason = squares_out ? fmt::format(
                                  "mesh.elements = \"{}\" writes the squares, which a cap of triangles "
                                  "cannot replace",
-                                 element_kinds_name(kinds))
+                                 kinds)
                            : cap_obstacle(lm, r);
-    c.method = c.reason.empty() ? "cap" : "merge";
+    c.method = c.reason.empty() ? PoleMethod::kCap : PoleMethod::kMerge;
     if (c.reason.empty()) {
       caps.push_back(r);
     } else {
@@ -376,7 +376,7 @@ std::vector<std::string> GeographicMesh::describe() const {
   std::vector<std::string> lines;
   for (const auto& c : poles_) {
     const char* pole = c.north ? "North" : "South";
-    if (c.method == "cap") {
+    if (c.method == PoleMethod::kCap) {
       lines.push_back(fmt::format(
           "{} pole: cap from ring 0 at {:g}° ({} nodes): {} triangles / {} nodes replaced by {} / {} in {} rings "
           "round an island of radius {:.2f}° ({:.0f} km²); min angle {:.1f}°, max valence {}",
@@ -397,10 +397,10 @@ Json GeographicMesh::json() const {
   Json poles = Json::array();
   for (const auto& c : poles_) {
     Json p{{"pole", c.north ? "north" : "south"},
-           {"method", c.method},
+           {"method", std::string(name_of(c.method))},
            {"removed_nodes", c.removed_nodes},
            {"removed_triangles", c.removed_triangles}};
-    if (c.method == "cap") {
+    if (c.method == PoleMethod::kCap) {
       p["ring_lat_deg"] = c.ring_lat_deg;
       p["ring_nodes"] = c.ring_nodes;
       p["added_nodes"] = c.added_nodes;

@@ -39,12 +39,15 @@
 // on the mesh (no threads, no clock).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/report.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/sphere_geometry.hpp"
@@ -52,6 +55,13 @@
 
 namespace aq::io {
 
+/// How a pole row became geographic (the report's "method").
+enum class PoleMethod { kCap, kMerge };
+inline constexpr std::array<EnumName<PoleMethod>, 2> kPoleMethodNames{{
+    {PoleMethod::kCap, "cap", "rings of triangles round a small polar island"},
+    {PoleMethod::kMerge, "merge", "the pole row merged into one node"},
+}};
+constexpr std::span<const EnumName<PoleMethod>> enum_names(PoleMethod) { return kPoleMethodNames; }
 /// Radius (km) of WGS84's authalic sphere (the sphere of the same area): sizes and areas on the
 /// unit sphere in km.
 inline constexpr double kAuthalicRadiusKm = 6371.0072;
@@ -59,8 +69,8 @@ inline constexpr double kAuthalicRadiusKm = 6371.0072;
 /// What was done at one pole.
 struct PoleChange {
   bool north = true;
-  std::string method;              ///< "cap" or "merge"
-  std::string reason;              ///< why "merge" (empty for "cap")
+  PoleMethod method = PoleMethod::kCap;
+  std::string reason;              ///< why kMerge (empty for kCap)
   double ring_lat_deg = 0.0;       ///< cap: lattice latitude of ring 0
   std::int64_t ring_nodes = 0;     ///< cap: nodes of ring 0 (kept)
   std::int64_t removed_nodes = 0;  ///< lattice nodes no longer written (pole row included)

@@ -159,12 +159,17 @@ class UniqueEdges {
 };
 
 struct TopologyNames {
+  bool squares;  // the second topology of mesh.elements = "both": the quadtree squares
   std::string mesh, face_dim, edge_dim, max_dim, faces, edges, face_x, face_y, level;
 };
 
-TopologyNames topology_names(const std::string& mesh) {
-  const std::string cap = mesh == "mesh" ? "Mesh" : "Mesh_squares";
-  return {mesh,
+// The main topology "mesh" (triangles, or the squares when they are the only elements) or the
+// squares beside the triangles, "mesh_squares".
+TopologyNames topology_names(bool second_squares) {
+  const std::string mesh = second_squares ? "mesh_squares" : "mesh";
+  const std::string cap = second_squares ? "Mesh_squares" : "Mesh";
+  return {second_squares,
+          mesh,
           "n" + cap + "_face",
           "n" + cap + "_edge",
           "nMax" + cap + "_face_nodes",
@@ -172,7 +177,7 @@ TopologyNames topology_names(const std::string& mesh) {
           mesh + "_edge_nodes",
           mesh + "_face_x",
           mesh + "_face_y",
-          mesh == "mesh" ? "level" : "level_squares"};
+          second_squares ? "level_squares" : "level"};
 }
 
 struct TopologyVars {
@@ -190,8 +195,7 @@ TopologyVars define_topology(DatasetSink& nc, const TopologyNames& n, const Face
   const int topo = nc.var(n.mesh, DataType::kInt, {});
   nc.text(topo, "cf_role", "mesh_topology");
   nc.text(topo, "long_name",
-          n.mesh == "mesh" ? "Topology of the ocean mesh"
-                           : "Topology of the quadtree squares (polygons with hanging nodes)");
+          n.squares ? "Topology of the quadtree squares (polygons with hanging nodes)" : "Topology of the ocean mesh");
   nc.number(topo, "topology_dimension", DataType::kInt, 2);
   nc.text(topo, "node_coordinates", node_coordinates);
   nc.text(topo, "face_node_connectivity", n.faces);
@@ -380,7 +384,7 @@ UgridCounts ugrid_dataset(const mesh::Mesh& mesh, const UgridOptions& options, D
           "Faces use geographic node coordinates; faces across the antimeridian list nodes on both sides of "
           "+-180 deg: draw them with the *_face_x_bnds corners (continuous around each face centre) or in 3-D. "
           "Depth is positive down. Pole-row nodes are distinct nodes at the same point.");
-  nc.text(g, "aquatoria_elements", element_kinds_name(options.elements));
+  nc.text(g, "aquatoria_elements", name_of(options.elements));
   nc.number(g, "aquatoria_lattice_lon0_deg", DataType::kDouble, mesh.lattice.lon0_deg);
   nc.number(g, "aquatoria_lattice_step0_deg", DataType::kDouble, mesh.lattice.step0_deg);
   nc.number(g, "aquatoria_lattice_levels", DataType::kInt, mesh.lattice.levels);
@@ -400,8 +404,8 @@ UgridCounts ugrid_dataset(const mesh::Mesh& mesh, const UgridOptions& options, D
   std::vector<TopologyVars> tv;
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const bool squares = sq && (!tri || k == 1);
-    tv.push_back(define_topology(nc, topology_names(squares && tri ? "mesh_squares" : "mesh"), sets[k],
-                                 edges[k].count(), two, index_type, nb > 0, node_coords));
+    tv.push_back(define_topology(nc, topology_names(squares && tri), sets[k], edges[k].count(), two, index_type, nb > 0,
+                                 node_coords));
   }
 
   const int crs = nc.var("crs", DataType::kInt, {});

@@ -69,12 +69,6 @@ struct ArrayDecl {
 
 }  // namespace
 
-VtuCoordinates parse_vtu_coordinates(std::string_view value) {
-  if (value == "sphere") return VtuCoordinates::kUnitSphere;
-  if (value == "wgs84") return VtuCoordinates::kWgs84;
-  throw ConfigError(fmt::format("output.vtu_coordinates = \"{}\": must be \"sphere\" or \"wgs84\"", value));
-}
-
 WriteStats write_vtu(const mesh::Mesh& mesh, const std::filesystem::path& path, const VtuOptions& options) {
   check_elements(mesh, options.elements);
   const PoleMerge merge(mesh);

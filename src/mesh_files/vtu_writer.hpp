@@ -27,10 +27,8 @@
 
 namespace aq::io {
 
-enum class VtuCoordinates { kUnitSphere, kWgs84 };
-
-/// Parses output.vtu_coordinates ("sphere" or "wgs84"); throws ConfigError naming the key.
-VtuCoordinates parse_vtu_coordinates(std::string_view value);
+/// output.vtu_coordinates (config/kinds.hpp): the unit sphere or WGS84 ECEF metres.
+using config::VtuCoordinates;
 
 struct VtuOptions {
   VtuCoordinates coordinates = VtuCoordinates::kUnitSphere;

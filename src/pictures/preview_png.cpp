@@ -3,6 +3,7 @@
 
 #include <cairo.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -719,36 +720,14 @@ std::string counts_title(const mesh::Mesh& m, const PreviewOptions& o) {
 
 }  // namespace
 
-PreviewColour parse_preview_colour(std::string_view value) {
-  if (value == "level") return PreviewColour::kLevel;
-  if (value == "angle") return PreviewColour::kAngle;
-  if (value == "size") return PreviewColour::kSize;
-  if (value == "target") return PreviewColour::kTarget;
-  if (value == "elevation") return PreviewColour::kElevation;
-  throw ConfigError(fmt::format(
-      "output.png_color = \"{}\": expected \"level\", \"angle\", \"size\", \"target\" or \"elevation\"", value));
-}
-
 void check_preview_options(const PreviewOptions& o) {
-  if (o.width_px < 200 || o.width_px > 20000) {
-    throw ConfigError(fmt::format("output.png_width = {}: must be between 200 and 20000 pixels", o.width_px));
-  }
-  if (o.zoom.empty()) return;
   const auto& z = o.zoom;
-  if (z.size() != 4) {
-    throw ConfigError(
-        fmt::format("output.png_zoom: needs 4 numbers [lon_min, lon_max, lat_min, lat_max], got {}", z.size()));
-  }
-  for (const double v : z)
-    if (!std::isfinite(v)) throw ConfigError("output.png_zoom: values must be finite numbers");
-  if (!(z[0] < z[1]) || z[1] - z[0] > 360.0) {
-    throw ConfigError(fmt::format("output.png_zoom = [{}, {}, {}, {}]: need lon_min < lon_max within 360 degrees", z[0],
-                                  z[1], z[2], z[3]));
-  }
-  if (!(z[2] < z[3]) || z[2] < -90.0 || z[3] > 90.0) {
-    throw ConfigError(
-        fmt::format("output.png_zoom = [{}, {}, {}, {}]: need -90 <= lat_min < lat_max <= 90", z[0], z[1], z[2], z[3]));
-  }
+  const bool zoom_ok =
+      z.empty() || (z.size() == 4 && std::all_of(z.begin(), z.end(), [](double v) { return std::isfinite(v); }) &&
+                    z[0] < z[1] && z[1] - z[0] <= 360.0 && z[2] < z[3] && z[2] >= -90.0 && z[3] <= 90.0);
+  if (o.width_px < 200 || o.width_px > 20000 || !zoom_ok)
+    throw InternalError(
+        fmt::format("preview: width {} px (200..20000) or zoom box [{}] out of range", o.width_px, fmt::join(z, ", ")));
 }
 
 WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy, const std::filesystem::path& path,
@@ -778,7 +757,7 @@ WriteStats write_preview_png(const mesh::Mesh& mesh, const raster::Bathymetry& b
 WriteStats write_preview_zoom_png(const mesh::Mesh& mesh, const raster::Bathymetry& bathy,
                                   const std::filesystem::path& path, const PreviewOptions& options) {
   check_preview_options(options);
-  if (options.zoom.size() != 4) throw ConfigError("output.png_zoom: no zoom box given");
+  if (options.zoom.size() != 4) throw InternalError("write_preview_zoom_png: no zoom box given");
   const auto& z = options.zoom;
   const double lat_lo = std::max(z[2], -mesh.lattice.lat_max_deg()),
                lat_hi = std::min(z[3], mesh.lattice.lat_max_deg());

@@ -53,10 +53,7 @@ struct PreviewOutline {
 /// span that range instead, so "size" and "target" pictures of one run share a scale. "elevation":
 /// its mean node elevation in fixed classes, sea by depth in blues and land above the datum (the
 /// floodplain of a surge mesh) in 0-1, 1-2, 2-5, 5-10, > 10 m classes in yellow to brown.
-enum class PreviewColour { kLevel, kAngle, kSize, kTarget, kElevation };
-
-/// Parses output.png_color; throws ConfigError naming it and the value.
-PreviewColour parse_preview_colour(std::string_view value);
+using config::PreviewColour;
 
 struct PreviewOptions {
   int width_px = 2400;  ///< picture width, 200..20000
@@ -75,9 +72,9 @@ struct PreviewOptions {
   bool exact_background = false;
 };
 
-/// Throws ConfigError naming output.png_width / output.png_zoom when they are unusable: width
-/// outside 200..20000, zoom not 4 numbers, lon_min >= lon_max, lat_min >= lat_max, latitudes
-/// outside [-90, 90], or a longitude span over 360°.
+/// The preconditions of the writers below (output.png_width and output.png_zoom are validated at
+/// load; InternalError otherwise): width 200..20000; zoom empty or 4 finite numbers with
+/// lon_min < lon_max <= lon_min + 360 and -90 <= lat_min < lat_max <= 90.
 void check_preview_options(const PreviewOptions& options);
 
 /// Draws the whole map (with the zoom box outlined) to `path`. Throws OutputError naming the

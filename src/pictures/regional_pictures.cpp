@@ -124,7 +124,7 @@ GeoBox geo_box(const RegionalResult& r, const Box& plane) {
       std::isfinite(p.north_edge))
     return {p.west_edge, p.east_edge, p.south_edge, p.north_edge};
   GeoBox g{1e300, -1e300, 1e300, -1e300};
-  const double lon_ref = p.rlon;
+  const double lon_ref = p.projection.rlon_deg;
   for (int i = 0; i <= 100; ++i) {
     const double t = i / 100.0;
     for (const auto& [x, y] : {std::pair{plane.x0 + t * (plane.x1 - plane.x0), plane.y0},
@@ -149,10 +149,10 @@ GeoBox geo_box(const RegionalResult& r, const Box& plane) {
 void write_regional_png(const std::filesystem::path& path, const RegionalResult& r, Stage stage,
                         const RegionalPictureOptions& options) {
   if (static_cast<int>(stage) > static_cast<int>(r.completed) || !r.projection)
-    throw ConfigError(fmt::format("regional picture of stage '{}' requested, but the run stopped after '{}'",
-                                  curvilinear::stage_name(stage), curvilinear::stage_name(r.completed)));
+    throw InternalError(
+        fmt::format("regional picture of stage '{}' requested, but the run stopped after '{}'", stage, r.completed));
   if (options.width_px < 200 || options.width_px > 20000 || !(options.line_width > 0.0) || options.max_grid_lines < 2)
-    throw ConfigError(
+    throw InternalError(
         fmt::format("regional picture: width {} px (200..20000), line width {} (> 0), max grid lines "
                     "{} (>= 2)",
                     options.width_px, options.line_width, options.max_grid_lines));
@@ -213,7 +213,10 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   // Background: graticule (map) or graph paper (other stages).
   if (stage == Stage::kMap) {
     const GeoBox g = geo_box(r, box);
-    const double step = r.params.latlongrid;
+    // regional.latlongrid, coarsened tenfold until at most 200 lines cross the map each way (a
+    // spacing of 1e-6° once drew lines for minutes).
+    double step = r.params.latlongrid;
+    while ((g.e - g.w) / step > 200.0 || (g.n - g.s) / step > 200.0) step *= 10.0;
     paint.style(0.6, 0.6, 0.6, 0.8);
     const int nsamp = 240;
     for (double lon = std::ceil(g.w / step) * step; lon <= g.e + 1e-9; lon += step) {
@@ -347,10 +350,10 @@ void write_regional_png(const std::filesystem::path& path, const RegionalResult&
   // Title.
   std::string title = options.title;
   if (title.empty()) {
-    title = fmt::format("{}: {}", r.params.source, curvilinear::stage_name(stage));
+    title = fmt::format("{}: {}", r.params.source, std::string(name_of(stage)));
     if (stage == Stage::kMap)
-      title += fmt::format(" ({} centred at {}N {}E, rota {})", curvilinear::projection_code(r.params.proj),
-                           r.params.rlat, r.params.rlon, r.params.rota);
+      title += fmt::format(" ({} centred at {}N {}E, rota {})", std::string(name_of(r.params.projection.kind)),
+                           r.params.projection.rlat_deg, r.params.projection.rlon_deg, r.params.projection.rota_deg);
     if (stage == Stage::kUniform || stage == Stage::kConformal) {
       const auto& n = stage == Stage::kUniform ? r.uniform_nodes : r.nodes;
       title += fmt::format(" ({} x {} boundary nodes)", n.nx_pts, n.ny_pts);

@@ -34,7 +34,7 @@ struct RegionalPictureOptions {
   std::string title;
 };
 
-/// Draws `stage` of `result` (stage ≤ result.completed, else ConfigError naming both) into a PNG at
+/// Draws `stage` of `result` (stage ≤ result.completed, else InternalError) into a PNG at
 /// `path` (callers pass OutputSet::temp_path). Throws OutputError naming the path and Cairo's
 /// message when the file cannot be written.
 void write_regional_png(const std::filesystem::path& path, const curvilinear::RegionalResult& result,

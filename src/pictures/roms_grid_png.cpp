@@ -240,4 +240,26 @@ void write_roms_png(const std::filesystem::path& path, const curvilinear::Grid2D
     throw OutputError(fmt::format("{}: cannot write the PNG: {}", path.string(), cairo_status_to_string(st)));
 }
 
+std::vector<std::vector<curvilinear::PlanePoint>> grid_coastlines(const raster::Bathymetry& bathy, double level_m,
+                                                                  const double* lon_deg, const double* lat_deg,
+                                                                  std::size_t n,
+                                                                  const curvilinear::Projection& projection) {
+  double w = 1e9, e = -1e9, s = 1e9, north = -1e9;
+  for (std::size_t k = 0; k < n; ++k) {
+    w = std::min(w, lon_deg[k]);
+    e = std::max(e, lon_deg[k]);
+    s = std::min(s, lat_deg[k]);
+    north = std::max(north, lat_deg[k]);
+  }
+  constexpr double kPadDeg = 0.5;
+  std::vector<std::vector<curvilinear::PlanePoint>> out;
+  for (const auto& line : raster::contour_lines(bathy, level_m, w - kPadDeg, e + kPadDeg, std::max(-90.0, s - kPadDeg),
+                                                std::min(90.0, north + kPadDeg))) {
+    std::vector<curvilinear::PlanePoint> q(line.lon_deg.size());
+    for (std::size_t k = 0; k < q.size(); ++k) q[k] = projection.forward(line.lon_deg[k], line.lat_deg[k]);
+    out.push_back(std::move(q));
+  }
+  return out;
+}
+
 }  // namespace aq::io

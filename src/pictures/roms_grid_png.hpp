@@ -14,6 +14,8 @@
 
 #include "curvilinear/common/grid2d.hpp"
 #include "curvilinear/common/plane_point.hpp"
+#include "curvilinear/common/projection.hpp"
+#include "raster/bathymetry.hpp"
 
 namespace aq::io {
 
@@ -26,6 +28,15 @@ struct RomsPictureOptions {
   /// Closed outlines drawn in red over everything (e.g. a refinement grid nested in this one).
   std::vector<std::vector<curvilinear::PlanePoint>> outlines;
 };
+
+/// The coastline of a grid's picture: the `level_m` contour of `bathy` (raster::contour_lines) over
+/// the lon/lat box of the `n` points (`lon_deg`, `lat_deg`: the ρ points) widened by 0.5° on each
+/// side (latitudes within ±90°), each point mapped into the plane by `projection` (for
+/// RomsPictureOptions::coastlines).
+std::vector<std::vector<curvilinear::PlanePoint>> grid_coastlines(const raster::Bathymetry& bathy, double level_m,
+                                                                  const double* lon_deg, const double* lat_deg,
+                                                                  std::size_t n,
+                                                                  const curvilinear::Projection& projection);
 
 /// Draws the grid of `supergrid` ((2L+1) × (2M+1) points) with `mask_rho` and `h` (ρ arrays of
 /// (L+1) × (M+1), value (i, j) at j·(L+1) + i) into a PNG at `path` (OutputSet::temp_path).

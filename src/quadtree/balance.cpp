@@ -48,14 +48,6 @@ void restore_monotone(LevelMasks& m, int from_level) {
 
 }  // namespace
 
-BalanceMode parse_balance_mode(std::string_view text) {
-  if (text == "face") return BalanceMode::kFace;
-  if (text == "corner") return BalanceMode::kCorner;
-  throw ConfigError(fmt::format("quadtree.balance = \"{}\": must be \"face\" or \"corner\"", text));
-}
-
-std::string_view balance_mode_name(BalanceMode mode) { return mode == BalanceMode::kFace ? "face" : "corner"; }
-
 BalanceStats balance(LevelMasks& m, BalanceMode mode) {
   BalanceStats stats;
   const int levels = m.levels();

@@ -27,20 +27,14 @@
 #include <string_view>
 #include <vector>
 
+#include "config/kinds.hpp"
 #include "core/lattice.hpp"
 #include "quadtree/leaves.hpp"
 
 namespace aq::quadtree {
 
-enum class BalanceMode {
-  kFace,    ///< leaves sharing a piece of side differ by <= 1 level
-  kCorner,  ///< also leaves touching only at a corner
-};
-
-/// "face" or "corner"; throws ConfigError naming quadtree.balance otherwise.
-BalanceMode parse_balance_mode(std::string_view text);
-/// "face" or "corner".
-std::string_view balance_mode_name(BalanceMode mode);
+/// quadtree.balance (config/kinds.hpp): face neighbours, or faces and corners.
+using config::BalanceMode;
 
 struct BalanceStats {
   std::int64_t forced_splits = 0;  ///< squares cleared from omega by the stencil (before coarser propagation)

@@ -104,7 +104,7 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
                                const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                                Report* report, const size::SizeField* field, const mask::CoastSources& coast) {
   StageScope stage("quadtree", report, log);
-  const BalanceMode mode = parse_balance_mode(options.balance);
+  const BalanceMode mode = options.balance;
   const std::int64_t filled_pixels = filled.count();
 
   Timer t_masks;
@@ -153,8 +153,7 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   }
   const std::int64_t violations = count_balance_violations(leaves, lat, mode);
   if (violations != 0) {
-    throw InternalError(
-        fmt::format("quadtree: {} {}-balance violations left after smoothing", violations, balance_mode_name(mode)));
+    throw InternalError(fmt::format("quadtree: {} {}-balance violations left after smoothing", violations, mode));
   }
   const double check_s = t_check.wall_s();
 
@@ -196,7 +195,7 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
     q["levels"] = lat.levels;
     q["step_deg"] = lat.step0_deg;
     q["coast_band"] = options.coast_band;
-    q["balance"] = std::string(balance_mode_name(mode));
+    q["balance"] = std::string(name_of(mode));
     q["depth_rules"] = depth_rules;
     q["box_rules"] = box_rules;
     q["filled_pixels"] = filled_pixels;
@@ -214,7 +213,7 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
                           {"check", round3(check_s)}};
   }
   stage.done(fmt::format("{} leaves (levels 0..{}: {}), {}-balanced", leaves.size(), lat.levels,
-                         fmt::join(balanced, "/"), balance_mode_name(mode)));
+                         fmt::join(balanced, "/"), mode));
   return leaves;
 }
 

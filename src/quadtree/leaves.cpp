@@ -91,43 +91,6 @@ bool in_box(const config::BoxRule& r, double lon, double lat) {
   return wrap_lon_deg(lon, r.lon_min_deg) <= hi;
 }
 
-// The level or size a rule asks (both forms): throws ConfigError naming key[k].
-template <typename Rule>
-void validate_target(const Rule& r, const char* key, std::size_t k, int levels) {
-  if (r.size_km != 0.0) {
-    if (!std::isfinite(r.size_km) || r.size_km < 0.0) {
-      throw ConfigError(
-          fmt::format("quadtree.{}[{}].size_km = {}: must be a finite number > 0 (km)", key, k, r.size_km));
-    }
-    if (r.level != 0) {
-      throw ConfigError(fmt::format("quadtree.{}[{}]: gives both level = {} and size_km = {}: give one of them", key, k,
-                                    r.level, r.size_km));
-    }
-  } else if (r.level < 0 || r.level > levels) {
-    throw ConfigError(
-        fmt::format("quadtree.{}[{}].level = {}: must be between 0 and quadtree.levels = {}", key, k, r.level, levels));
-  }
-}
-
-void validate_rules(const config::QuadtreeOptions& o, int levels) {
-  for (std::size_t k = 0; k < o.depth_rules.size(); ++k) {
-    const config::DepthRule& r = o.depth_rules[k];
-    validate_target(r, "depth_rules", k, levels);
-    if (!(r.max_depth_m > r.min_depth_m)) {
-      throw ConfigError(
-          fmt::format("quadtree.depth_rules[{}]: empty depth range [{}, {}) m", k, r.min_depth_m, r.max_depth_m));
-    }
-  }
-  for (std::size_t k = 0; k < o.box_rules.size(); ++k) {
-    const config::BoxRule& r = o.box_rules[k];
-    validate_target(r, "box_rules", k, levels);
-    if (!(r.lat_max_deg >= r.lat_min_deg)) {
-      throw ConfigError(fmt::format("quadtree.box_rules[{}]: lat_min_deg = {} is above lat_max_deg = {}", k,
-                                    r.lat_min_deg, r.lat_max_deg));
-    }
-  }
-}
-
 // Whether rule `r` asks to split a level-l square of size `size_km` whose centre is in its range:
 // the level form on the level-(level-1) grid only, the size form wherever the square is too large.
 // The size form (size_km > 0) is a term of the size field (size/size_field.hpp), not a rule here.
@@ -210,9 +173,7 @@ LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_
 }
 
 void apply_coast_band(LevelMasks& m, int coast_band) {
-  if (coast_band < 0) {
-    throw ConfigError(fmt::format("quadtree.coast_band = {}: must be >= 0 (pixels)", coast_band));
-  }
+  if (coast_band < 0) throw InternalError(fmt::format("apply_coast_band: band of {} pixels", coast_band));
   const int levels = m.levels();
   if (levels == 0) return;
   const Bitmap& filled = m.filled();
@@ -247,7 +208,6 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
                             const PoleRotation& rotation, const raster::Bathymetry* bathy) {
   if (options.depth_rules.empty() && options.box_rules.empty()) return;
   const int levels = lat.levels;
-  validate_rules(options, levels);
   const bool level_depth_rules = std::any_of(options.depth_rules.begin(), options.depth_rules.end(),
                                              [](const config::DepthRule& r) { return !(r.size_km > 0.0); });
   if (level_depth_rules && bathy == nullptr) {
@@ -263,8 +223,6 @@ void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config:
     apply_rules_level(om, lat, options, rotation, bathy, l, 0, 0);
   }
 }
-
-void validate_refinement_rules(const config::QuadtreeOptions& options, int levels) { validate_rules(options, levels); }
 
 int rules_top_level(const config::QuadtreeOptions& options, int levels) {
   // The finest level a rule may split: below its level (the size form asks none here).

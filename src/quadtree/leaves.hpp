@@ -119,27 +119,22 @@ Bitmap coastal_band(const Bitmap& filled, int band, const mask::CoastSources& co
 
 /// The pyramid of Ω_l (the bare D_l rule when coast_band = 0, else with the coastal band split
 /// to level L). `filled` (and the bitmaps of `coast`, which must outlive the masks) must be
-/// lat.nx × lat.ny; throws InternalError otherwise and ConfigError (naming quadtree.coast_band)
-/// for a negative band. O(N / 64) word operations, parallel.
+/// lat.nx × lat.ny and coast_band >= 0 (quadtree.coast_band, validated at load); InternalError
+/// otherwise. O(N / 64) word operations, parallel.
 LevelMasks make_level_masks(const Bitmap& filled, const Lattice& lat, int coast_band,
                             const mask::CoastSources& coast = {});
 
 /// Recomputes omega[0..L-1] of `masks` from its filled set with the coastal band of radius
 /// `coast_band` (and masks.coast) split to level L (0: the bare rule); the `any` pyramid is
-/// unchanged. Undoes any earlier refinement. Throws ConfigError (naming quadtree.coast_band) for a
-/// negative band.
+/// unchanged. Undoes any earlier refinement. coast_band >= 0 (InternalError otherwise).
 void apply_coast_band(LevelMasks& masks, int coast_band);
 
 /// Applies the depth and box rules of `options` in place (see the file comment). `bathy` may be
-/// null when there are no depth rules. Throws ConfigError naming quadtree.depth_rules[k] /
-/// quadtree.box_rules[k] for a level outside 0..L, a size_km that is not finite or negative, a
-/// rule with both a level and a size_km, an empty depth range or an inverted latitude range, and
-/// InternalError when depth rules are given without a raster.
+/// null when there are no depth rules (InternalError otherwise). The rules are as validated at load
+/// (config/global_config.cpp: one of level 0..L and size_km > 0, non-empty ranges).
 void apply_refinement_rules(LevelMasks& masks, const Lattice& lat, const config::QuadtreeOptions& options,
                             const PoleRotation& rotation, const raster::Bathymetry* bathy);
 
-/// The checks of apply_refinement_rules on the rules (ConfigError naming the rule).
-void validate_refinement_rules(const config::QuadtreeOptions& options, int levels);
 /// The finest level apply_refinement_rules splits (the level form: one below the rule's level),
 /// -1 when no rule asks a level.
 [[nodiscard]] int rules_top_level(const config::QuadtreeOptions& options, int levels);

@@ -37,7 +37,7 @@
 #include "core/input_files.hpp"
 #include "core/row_progress.hpp"
 #include "core/timer.hpp"
-#include "raster/gdal_handles.hpp"
+#include "raster/gdal_common.hpp"
 #include "raster/netcdf_coordinates.hpp"
 #include "raster/source_stack.hpp"
 #include "raster/spline1d.hpp"
@@ -47,21 +47,8 @@ namespace aq::raster {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-void gdal_init() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);  // GDAL errors become exceptions with the message
-    // A small block cache: rows are copied into our array once, so GDAL need not keep them too.
-    if (CPLGetConfigOption("GDAL_CACHEMAX", nullptr) == nullptr) GDALSetCacheMax64(64LL << 20);
-  });
-}
-
-std::string gdal_message() {
-  const char* m = CPLGetLastErrorMsg();
-  return (m != nullptr && *m != '\0') ? std::string(": ") + m : std::string();
-}
+// The smallest pixel (degrees) a lon/lat raster may have: 1e-9° is 0.1 mm on the Earth.
+constexpr double kMinPixelDeg = 1e-9;
 
 // Snaps x to the nearest multiple of q when within 1e-3·q (float32 coordinate noise).
 double snap(double x, double q) {
@@ -1690,6 +1677,13 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
   const double rx = gt[1];
   const double ry = std::abs(gt[5]);
   if (!(rx > 0.0) || !(ry > 0.0)) throw InputError(fmt::format("{}: invalid pixel size {} × {}", o.path, gt[1], gt[5]));
+  // A lon/lat pixel is at most the globe (360° × 180°) and at least 1e-9° (0.1 mm): anything else
+  // is a broken geotransform (a pixel of 1e300° was once meshed as if it were a small raster).
+  if (rx > 360.0 || ry > 180.0 || rx < kMinPixelDeg || ry < kMinPixelDeg)
+    throw InputError(
+        fmt::format("{}: the geotransform's pixel is {}° × {}°: a lon/lat raster's pixel is between "
+                    "{}° and 360° × 180°; is the georeferencing (or the CRS) right?",
+                    o.path, gt[1], gt[5], kMinPixelDeg));
   info.north_up = gt[5] < 0.0;
   const auto w = info.width, h = info.height;
   if (std::abs(static_cast<double>(w) * rx - 360.0) <= 0.25 * rx) {
@@ -1702,6 +1696,9 @@ std::unique_ptr<Bathymetry::Impl> Bathymetry::open_header(const OpenOptions& o) 
     info.dlon = 360.0 / static_cast<double>(w - 1);
     info.ncols = w - 1;
   } else {
+    if (static_cast<double>(w) * rx > 360.0)
+      throw InputError(fmt::format("{}: {} columns of {}° span {}° of longitude, more than the globe's 360°", o.path, w,
+                                   rx, static_cast<double>(w) * rx));
     info.dlon = rx;
     info.ncols = w;
   }

@@ -16,12 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "config/kinds.hpp"
 #include "core/log.hpp"
 #include "raster/elevation_edits.hpp"
 
 namespace aq::raster {
 
-enum class Interpolation { kBilinear, kBicubic };
+/// input.interpolation (config/kinds.hpp): the seed's bilinear rule or a C2 bicubic spline.
+using config::Interpolation;
 
 struct OpenOptions {
   std::string path;

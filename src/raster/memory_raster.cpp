@@ -1,22 +1,18 @@
 // An in-memory raster as a /vsimem/ GeoTIFF (see memory_raster.hpp).
 #include "raster/memory_raster.hpp"
 
-#include <cpl_conv.h>
 #include <cpl_vsi.h>
 #include <fmt/format.h>
-#include <gdal_priv.h>
-#include <ogr_spatialref.h>
 
 #include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "core/error.hpp"
-#include "raster/gdal_handles.hpp"
+#include "raster/geotiff_writer.hpp"
 
 namespace aq::raster {
 
@@ -55,59 +51,47 @@ MemoryRaster::MemoryRaster(const void* values, MemoryType type, std::int64_t nx,
   if (lat_lo < -90.0 - 0.5 * ady * (1.0 + 1e-9) || lat_hi > 90.0 + 0.5 * ady * (1.0 + 1e-9))
     throw InputError(fmt::format("in-memory raster: lat spans [{}, {}], outside [-90, 90]", lat_lo, lat_hi));
 
-  gdal_register();
   static std::atomic<std::int64_t> counter{0};
   path_ = fmt::format("/vsimem/aquatoria/raster_{}.tif", ++counter);
-  GDALDataType gt = GDT_Float64;
+  GeoTiffSpec spec;
+  spec.width = nx;
+  spec.height = ny;
   std::size_t bytes = 8;
   switch (type) {
     case MemoryType::kInt16:
-      gt = GDT_Int16;
+      spec.type = GeoTiffType::kInt16;
       bytes = 2;
       break;
     case MemoryType::kInt32:
-      gt = GDT_Int32;
+      spec.type = GeoTiffType::kInt32;
       bytes = 4;
       break;
     case MemoryType::kFloat32:
-      gt = GDT_Float32;
+      spec.type = GeoTiffType::kFloat32;
       bytes = 4;
       break;
     case MemoryType::kFloat64:
-      gt = GDT_Float64;
+      spec.type = GeoTiffType::kFloat64;
       bytes = 8;
       break;
   }
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-  if (driver == nullptr) throw InputError("in-memory raster: GDAL has no GTiff driver");
-  const char* options[] = {"BIGTIFF=IF_SAFER", nullptr};
-  GDALDataset* ds =
-      driver->Create(path_.c_str(), static_cast<int>(nx), static_cast<int>(ny), 1, gt, const_cast<char**>(options));
-  if (ds == nullptr) throw InputError(fmt::format("in-memory raster: cannot create {}{}", path_, last_gdal_error()));
+  spec.creation_options = {"BIGTIFF=IF_SAFER"};
   // North-up: row 0 of the file is the northernmost latitude.
   const bool ascending = dlat > 0.0;
   const double north = std::max(lat[0], lat[ny - 1]) + 0.5 * ady;
-  double transform[6] = {lon[0] - 0.5 * dlon, dlon, 0.0, north, 0.0, -ady};
-  ds->SetGeoTransform(transform);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(4326);
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  ds->SetSpatialRef(&srs);
-  GDALRasterBand* band = ds->GetRasterBand(1);
+  spec.geotransform = {lon[0] - 0.5 * dlon, dlon, 0.0, north, 0.0, -ady};
   if (type == MemoryType::kFloat32 || type == MemoryType::kFloat64)
-    band->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
-  CPLErr err = CE_None;
-  const auto* base = static_cast<const unsigned char*>(values);
-  for (std::int64_t r = 0; r < ny && err == CE_None; ++r) {
-    const std::int64_t src = ascending ? ny - 1 - r : r;
-    err = band->RasterIO(GF_Write, 0, static_cast<int>(r), static_cast<int>(nx), 1,
-                         const_cast<unsigned char*>(base + static_cast<std::size_t>(src * row_stride) * bytes),
-                         static_cast<int>(nx), 1, gt, 0, 0);
-  }
-  GDALClose(GDALDataset::ToHandle(ds));
-  if (err != CE_None) {
-    VSIUnlink(path_.c_str());
-    throw InputError(fmt::format("in-memory raster: cannot write {}{}", path_, last_gdal_error()));
+    spec.no_data = std::numeric_limits<double>::quiet_NaN();
+  try {
+    GeoTiffWriter out(path_, spec);
+    const auto* base = static_cast<const unsigned char*>(values);
+    for (std::int64_t r = 0; r < ny; ++r) {
+      const std::int64_t src = ascending ? ny - 1 - r : r;
+      out.write_rows(1, r, 1, base + static_cast<std::size_t>(src * row_stride) * bytes);
+    }
+    out.close();
+  } catch (const OutputError& e) {
+    throw InputError(fmt::format("in-memory raster: {}", e.what()));
   }
 }
 

@@ -205,24 +205,10 @@ SizeField build_size_field(const std::function<FieldCells(const FieldGrid&)>& fi
   const config::SizeOptions& s = c.size;
   const double band_km = c.quadtree.coast_size_km;
   const int band_radius = std::max(c.quadtree.coast_band, 1);
-  for (const auto& [key, v] : {std::pair{"quadtree.size_km", c.quadtree.size_km}, std::pair{"quadtree.coast_size_km", band_km}})
-    if (!std::isfinite(v) || v < 0.0) throw ConfigError(fmt::format("{} = {}: must be a finite number >= 0 (0 = off)", key, v));
   if (!needs_grid(c)) return SizeField(band_km, band_radius);
-  if (s.h_min_km > 0.0 && s.h_max_km > 0.0 && s.h_min_km > s.h_max_km)
-    throw ConfigError(fmt::format("size.h_min_km = {} is above size.h_max_km = {}", s.h_min_km, s.h_max_km));
   const bool depth_size_rules = any_size_rule(c.quadtree.depth_rules);
   if ((needs_depth(s) || depth_size_rules || s.elevation.h0_km > 0.0) && bathy == nullptr)
     throw InternalError("size: depth and elevation terms need the bathymetry raster");
-  for (std::size_t k = 0; k < c.quadtree.depth_rules.size(); ++k) {
-    const double v = c.quadtree.depth_rules[k].size_km;
-    if (!std::isfinite(v) || v < 0.0)
-      throw ConfigError(fmt::format("quadtree.depth_rules[{}].size_km = {}: must be a finite number > 0 (km)", k, v));
-  }
-  for (std::size_t k = 0; k < c.quadtree.box_rules.size(); ++k) {
-    const double v = c.quadtree.box_rules[k].size_km;
-    if (!std::isfinite(v) || v < 0.0)
-      throw ConfigError(fmt::format("quadtree.box_rules[{}].size_km = {}: must be a finite number > 0 (km)", k, v));
-  }
 
   StageScope stage("size", report, log);
   Timer t_total;

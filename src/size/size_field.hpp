@@ -90,9 +90,9 @@ struct SizeFieldStats {
 /// Builds the field of `c.size` and the size rules of `c.quadtree` (size_km, coast_size_km) over
 /// the filled set. An inactive field (no term set) when nothing asks a size. `bathy` is sampled at
 /// the cell centres (mapped through `rotation`) when a depth or elevation term is on. Logs a
-/// "size" stage line and writes the report's "size" section when `report` is given. Throws
-/// ConfigError for inconsistent options (h_min > h_max) and InputError for a size raster that
-/// cannot be read or holds a value <= 0.
+/// "size" stage line and writes the report's "size" section when `report` is given. `c` is as
+/// validated at load (config/global_config.cpp: ranges, h_min <= h_max). Throws InputError for a
+/// size raster that cannot be read or holds a value <= 0.
 ///
 /// `coast` (mask/coast.hpp) says where the coast is: a cell is a coast cell when it holds a pixel
 /// that is not filled (not sea, with a floodplain) and not open water beyond a regional domain's

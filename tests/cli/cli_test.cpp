@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "config/load.hpp"
+#include "config/regional.hpp"
 #include "support/run_command.hpp"
 
 namespace cli_cli_test {
@@ -40,6 +42,22 @@ TEST(Cli, Version) {
   const auto r = run_aquatoria("--version");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_THAT(r.out, HasSubstr("aquatoria 0."));
+}
+
+// --keys lists every key with its default, and an enumerated key's names with their meanings, from
+// the one table of names (config/kinds.hpp).
+TEST(Cli, KeysListEveryKeyAndTheNamesOfEnumeratedOnes) {
+  const auto m = run_aquatoria("mesh --keys");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  for (const std::string& k : aq::config::global_keys()) EXPECT_THAT("\n" + m.out, HasSubstr("\n" + k + " = ")) << k;
+  EXPECT_THAT(m.out, HasSubstr("mask.sampling = \"vertex\""));
+  EXPECT_THAT(m.out, HasSubstr("\"area\" (the deepest raster cell inside the pixel decides)"));
+  EXPECT_THAT(m.out, HasSubstr("output.formats = [\"msh\",\"ugrid\",\"vtu\",\"fort14\",\"text\",\"png\"]"));
+  const auto r = run_aquatoria("regional --keys");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& k : aq::config::regional_keys()) EXPECT_THAT("\n" + r.out, HasSubstr("\n" + k + " = ")) << k;
+  EXPECT_THAT(r.out, HasSubstr("roms.distances = \"sphere\""));
+  EXPECT_THAT(r.out, HasSubstr("\"wgs84\" (geodesics on the WGS84 ellipsoid)"));
 }
 
 TEST(Cli, BadOptionIsUsageError) {

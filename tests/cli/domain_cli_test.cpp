@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "support/cli_outputs.hpp"
+#include "support/fort14_read.hpp"
 #include "support/msh_parse.hpp"
 #include "support/run_command.hpp"
 
@@ -65,75 +66,9 @@ fs::path basin_raster() {
   return p;
 }
 
-struct Segment {
-  int type = 0;
-  std::vector<long> nodes;
-};
-
-struct Fort14 {
-  std::vector<double> lon, lat;
-  std::vector<std::array<long, 3>> triangles;  // 0-based
-  long elements = 0;
-  long nope = -1, neta = -1, nbou = -1, nvel = -1;
-  std::vector<Segment> open, land;
-  std::string error;
-};
-
-// Reads a fort.14 / hgrid.gr3 (the same layout).
-Fort14 read_fort14(const fs::path& p) {
-  Fort14 f;
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);
-  long ne = 0, np = 0;
-  in >> ne >> np;
-  f.elements = ne;
-  for (long k = 0; k < np; ++k) {
-    long id = 0;
-    double x = 0, y = 0, d = 0;
-    in >> id >> x >> y >> d;
-    f.lon.push_back(x);
-    f.lat.push_back(y);
-  }
-  for (long k = 0; k < ne; ++k) {
-    long id = 0, n = 0, a = 0, b = 0, c = 0;
-    in >> id >> n >> a >> b >> c;
-    f.triangles.push_back({a - 1, b - 1, c - 1});
-  }
-  auto count_line = [&](long& v) {
-    in >> v;
-    std::getline(in, line);
-  };
-  count_line(f.nope);
-  count_line(f.neta);
-  for (long s = 0; s < f.nope; ++s) {
-    Segment sg;
-    long n = 0;
-    count_line(n);
-    for (long k = 0; k < n; ++k) {
-      long id = 0;
-      in >> id;
-      sg.nodes.push_back(id - 1);
-    }
-    f.open.push_back(sg);
-  }
-  count_line(f.nbou);
-  count_line(f.nvel);
-  for (long s = 0; s < f.nbou; ++s) {
-    Segment sg;
-    long n = 0;
-    in >> n >> sg.type;
-    std::getline(in, line);
-    for (long k = 0; k < n; ++k) {
-      long id = 0;
-      in >> id;
-      sg.nodes.push_back(id - 1);
-    }
-    f.land.push_back(sg);
-  }
-  if (!in) f.error = "file ends early: " + p.string();
-  return f;
-}
+using aq::test::Fort14;
+using aq::test::read_fort14;
+using Segment = Fort14::Segment;
 
 // Every boundary edge of the triangles (an edge of one triangle only) joins two consecutive nodes
 // of exactly one open or land segment, and every segment step is a boundary edge: the segments

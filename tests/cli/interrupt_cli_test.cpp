@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "support/run_command.hpp"
@@ -34,19 +35,27 @@ struct Interrupted {
   std::vector<std::string> left;  // every file left in the output folder
 };
 
+// Starts `aquatoria mesh <args>` with stderr to `err`, stdout to /dev/null, the signals at their
+// defaults (aquatoria keeps a signal that was ignored when it started, nohup) and `env` set.
+pid_t spawn_mesh(const fs::path& err, const std::vector<std::string>& args,
+                 const std::vector<std::pair<const char*, const char*>>& env = {}) {
+  const pid_t pid = ::fork();
+  if (pid != 0) return pid;
+  if (std::freopen(err.c_str(), "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
+    ::_exit(99);
+  for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}) std::signal(s, SIG_DFL);
+  for (const auto& [name, value] : env) ::setenv(name, value, 1);
+  std::vector<char*> argv{const_cast<char*>(AQ_BINARY), const_cast<char*>("mesh")};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  ::execv(AQ_BINARY, argv.data());
+  ::_exit(98);
+}
+
 Interrupted interrupt_run(int sig) {
   aq::testing::TempDir dir;
   const fs::path out = dir / "out", err = dir / "stderr.txt";
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    if (std::freopen(err.c_str(), "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
-      ::_exit(99);
-    // aquatoria keeps a signal that was ignored when it started (nohup): start it with defaults.
-    for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}) std::signal(s, SIG_DFL);
-    ::execl(AQ_BINARY, AQ_BINARY, "mesh", "--set", "output.png_width=8000", "-o", out.c_str(),
-            static_cast<char*>(nullptr));
-    ::_exit(98);
-  }
+  const pid_t pid = spawn_mesh(err, {"--set", "output.png_width=8000", "-o", out.string()});
   Interrupted r;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   int status = 0;
@@ -96,6 +105,28 @@ TEST(CliInterrupt, SigquitWhileWritingLeavesNothingAndExits131) {
 }
 TEST(CliInterrupt, SigpipeWhileWritingLeavesNothingAndExits141) {
   expect_clean(interrupt_run(SIGPIPE), 141, "SIGPIPE");
+}
+
+// Issue 33: a signal that arrived while the process was still starting (the shared libraries'
+// constructors, before main) killed it without a word. The handlers are installed before those
+// constructors run: a preloaded library whose constructor sleeps holds the process there while
+// SIGTERM arrives, and the run ends with the handler's line and 143, having written nothing.
+TEST(CliInterrupt, SigtermWhileStartingIsHandled) {
+  aq::testing::TempDir dir;
+  const fs::path out = dir / "out", err = dir / "stderr.txt";
+  // ASAN_OPTIONS: in the sanitizer build the preloaded library comes before ASan's runtime.
+  const pid_t pid = spawn_mesh(
+      err, {"-o", out.string()},
+      {{"LD_PRELOAD", AQ_SLOW_START_LIB}, {"AQ_SLOW_START_MS", "5000"}, {"ASAN_OPTIONS", "verify_asan_link_order=0"}});
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // inside the 5 s constructor
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  const std::string e = aq::test::slurp(err);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status) << " without the handler: " << e;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << e;
+  EXPECT_EQ(e, "aquatoria: interrupted by SIGTERM; 0 temporary file(s) removed\n");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

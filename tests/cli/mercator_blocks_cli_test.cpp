@@ -187,7 +187,7 @@ TEST(MercatorBlocksCli, BlocksContoursAndNestingOnTheRotatedMercatorMesh) {
     const fs::path toml = blk["config"].get<std::string>();
     const auto loaded = aq::config::load_regional(toml.string(), {});
     const auto& rp = loaded.options.params;
-    const aq::curvilinear::Projection proj(aq::curvilinear::projection_params(rp));
+    const aq::curvilinear::Projection proj(rp.projection);
     ASSERT_EQ(rp.x.size(), 32u);
     int on_mesh = 0;
     for (std::size_t k = 0; k < rp.x.size(); ++k) {

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/fort14_read.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
@@ -56,53 +57,28 @@ Defects count_defects(const std::vector<Tri>& tris) {
   return d;
 }
 
-// fort.14 / gr3: triangles and the land boundaries' edges (consecutive nodes of each segment).
-struct Fort14 {
+// fort.14 / gr3: triangles and the land boundaries' edges (consecutive nodes of each segment),
+// 0-based.
+struct ModelMesh {
   std::vector<Tri> tris;
   std::vector<std::pair<long, long>> land_edges;
   std::map<long, int> land_node_count;  // segments (less the closing repeat) listing a node
   long nodes = 0;
 };
 
-Fort14 read_fort14(const fs::path& p) {
-  Fort14 f;
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);
-  long ne = 0;
-  in >> ne >> f.nodes;
-  for (long k = 0; k < f.nodes; ++k) {
-    long id = 0;
-    double x = 0, y = 0, z = 0;
-    in >> id >> x >> y >> z;
-  }
-  f.tris.resize(static_cast<std::size_t>(ne));
-  for (auto& t : f.tris) {
-    long id = 0, three = 0;
-    in >> id >> three >> t[0] >> t[1] >> t[2];
-  }
-  long nope = 0, neta = 0, nbou = 0, nvel = 0;
-  std::getline(in, line);
-  in >> nope;
-  std::getline(in, line);
-  in >> neta;
-  std::getline(in, line);
-  in >> nbou;
-  std::getline(in, line);
-  in >> nvel;
-  std::getline(in, line);
-  for (long b = 0; b < nbou; ++b) {
-    long n = 0, type = 0;
-    in >> n >> type;
-    std::getline(in, line);
-    std::vector<long> seg(static_cast<std::size_t>(n));
-    for (auto& v : seg) in >> v;
-    for (std::size_t k = 0; k + 1 < seg.size(); ++k) f.land_edges.emplace_back(std::minmax(seg[k], seg[k + 1]));
-    for (std::size_t k = 0; k + 1 < seg.size(); ++k) ++f.land_node_count[seg[k]];
+ModelMesh read_model_mesh(const fs::path& p) {
+  const aq::test::Fort14 f = aq::test::read_fort14(p);
+  EXPECT_TRUE(f.error.empty()) << f.error;
+  ModelMesh m;
+  m.nodes = f.nodes();
+  m.tris = f.triangles;
+  for (std::size_t b = 0; b < f.land.size(); ++b) {
+    const std::vector<long>& seg = f.land[b].nodes;
+    for (std::size_t k = 0; k + 1 < seg.size(); ++k) m.land_edges.emplace_back(std::minmax(seg[k], seg[k + 1]));
+    for (std::size_t k = 0; k + 1 < seg.size(); ++k) ++m.land_node_count[seg[k]];
     EXPECT_EQ(seg.front(), seg.back()) << p << " boundary " << b;
   }
-  EXPECT_TRUE(in.good()) << p;
-  return f;
+  return m;
 }
 
 std::vector<Tri> read_elem2d(const fs::path& p) {
@@ -135,7 +111,7 @@ void check_run(const std::string& config, const std::string& name) {
   EXPECT_GT(cleaning.at("one_neighbour_triangles_removed").get<long>(), 0);  // there were some to remove
 
   for (const char* ext : {".14", ".gr3"}) {
-    const Fort14 f = read_fort14(dir / (name + ext));
+    const ModelMesh f = read_model_mesh(dir / (name + ext));
     const Defects d = count_defects(f.tris);
     EXPECT_EQ(d.lonely, 0) << name << ext;
     EXPECT_EQ(d.pinches, 0) << name << ext;

@@ -10,9 +10,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gdal_priv.h>
+
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
@@ -127,6 +132,55 @@ TEST(RobustMessages, RegionalSizesAndScalesNameTheirKeyAtOnce) {
   r = aq_run("regional -q -c " + kConfigs + "black_sea.toml --set regional.uscale=1e-300", 20);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_THAT(r.err, HasSubstr("regional.uscale: uscale = 1e-300: must be within [1e-9, 1e3]"));
+}
+
+// Issue 33: three inputs a new user may give that were taken: `info --at nan,nan` (exit 0), a
+// box meant as [-5, 10] but written [10, -5] (a 345° band meshed across the seam, exit 0), a
+// raster whose geotransform has a pixel of 1e300° (meshed as a tiny raster). Each is refused at
+// once with the value and exit 2 (usage, configuration) or 1 (the input file), writing nothing.
+TEST(RobustMessages, TheBadInputsOfIssue33AreRefused) {
+  aq::testing::TempDir dir;
+  CommandResult r = aq_run(std::string("info ") + AQ_ETOPO_DIR + "/etopo60.cdf --at nan,nan");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--at nan,nan: expected LON,LAT in degrees, finite"));
+  r = aq_run("mesh -q -c " + kConfigs + "north_sea.toml --set 'domain.box=[10, -5, 49, 61]' -o " +
+             (dir / "box").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("domain.box: lon_min = 10 > lon_max = -5 reads as a box across the seam 345° wide"));
+  EXPECT_THAT(r.err, HasSubstr("write [-5, 10, 49, 61]"));
+  EXPECT_FALSE(fs::exists(dir / "box"));
+  GDALAllRegister();
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create((dir / "huge.tif").c_str(), 20, 10, 1,
+                                                                             GDT_Int16, nullptr);
+  double gt[6] = {0.0, 1e300, 0.0, 90.0, 0.0, -18.0};
+  ds->SetGeoTransform(gt);
+  std::vector<std::int16_t> v(200, -3000);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 20, 10, v.data(), 20, 10, GDT_Int16, 0, 0, nullptr),
+            CE_None);
+  GDALClose(ds);
+  r = aq_run("mesh -q --set input.path=" + (dir / "huge.tif").string() + " -o " + (dir / "huge").string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr((dir / "huge.tif").string() + ": the geotransform's pixel is 1e+300° × -18°"));
+  EXPECT_THAT(fs::exists(dir / "huge") ? std::distance(fs::directory_iterator(dir / "huge"), {}) : 0, 0);
+}
+
+// Found by probing as a new user (issue 33): a graticule spacing of 1e-6° drew lines for minutes
+// (now coarsened to at most 200 lines a way), a picture edge at -1e300° reached the coastline
+// stage as an empty window naming no key, a FIFO as domain.polygon blocked OGR for ever.
+TEST(RobustMessages, ProbedRegionalAndDomainValuesAreHandled) {
+  aq::testing::TempDir dir;
+  CommandResult r = aq_run("regional -q -c " + kConfigs + "black_sea.toml --set regional.latlongrid=1e-6 " +
+                               "--stop-after map -o " + (dir / "map").string(),
+                           30);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "map" / "black_sea_map.png"));
+  r = aq_run("regional -q -c " + kConfigs + "black_sea.toml --set regional.west_edge=-1e300 --stop-after map");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("regional.west_edge: west_edge = -1e+300: must be a longitude within [-360, 360]"));
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
+  r = aq_run("mesh -q --set domain.polygon=" + (dir / "fifo").string() + " -o " + (dir / "out").string(), 30);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("domain.polygon: " + (dir / "fifo").string() + " is a FIFO"));
 }
 
 // A 1" lattice at L = 12 printed "memory: estimate -9223188109.45 GB" and died with bad_alloc;

@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <string>
 
 #include "support/client_summary.hpp"
+#include "support/fort14_read.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
@@ -40,17 +40,9 @@ inline void run_regional_client(const RegionalClientCase& c, const std::string& 
                                 " --set 'output.formats=[\"" + c.format + "\"]'");
   ASSERT_EQ(mesh.exit_code, 0) << mesh.err;
   const fs::path file = dir / (name + "." + c.ext);
-  std::ifstream f(file);
-  std::string line;
-  std::getline(f, line);
-  long ne = 0, np = 0;
-  f >> ne >> np;
-  std::getline(f, line);
-  for (long k = 0; k < ne + np; ++k) std::getline(f, line);
-  long nope = 0, neta = 0;
-  f >> nope;
-  std::getline(f, line);
-  f >> neta;
+  const Fort14 f = read_fort14(file);
+  ASSERT_TRUE(f.error.empty()) << f.error;
+  const long ne = f.elements, np = f.nodes(), nope = f.nope, neta = f.neta;
   ASSERT_GT(nope, 0) << file.string() << " has no open boundary";
   const auto run = run_command("bash " + script.string() + " run " + file.string() + " 24 --open-m2 0.5 --workdir " +
                                (dir / "run").string());

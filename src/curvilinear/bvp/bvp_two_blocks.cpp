@@ -33,8 +33,8 @@ double eta_on_interface(const SurfaceGrid& ref, const std::vector<double>& eta, 
 TwoBlockResult orthogonal_bvp_two_blocks(const SurfaceGrid& a_initial, const SurfaceGrid& b_initial,
                                          const BvpOptions& o, const std::vector<double>& b_theta_levels,
                                          const std::function<void(SurfaceGrid&)>& b_project) {
-  if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))
-    throw ConfigError(
+  if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))  // regional.bvp_iterations: at load
+    throw InternalError(
         fmt::format("two blocks: max_iterations = {}, min_iterations = {}, level_off = {} (need >= 1, >= 1, >= 0)",
                     o.max_iterations, o.min_iterations, o.level_off));
   TwoBlockResult r;

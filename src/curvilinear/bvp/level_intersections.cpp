@@ -186,7 +186,7 @@ std::vector<Vec3> intersections(const View& v, const std::vector<double>& f_leve
 void check_levels(const std::vector<double>& l, const char* name) {
   bool ok = l.size() >= 2 && l.front() == 0.0 && l.back() == 1.0;
   for (std::size_t k = 1; ok && k < l.size(); ++k) ok = l[k] > l[k - 1];
-  if (!ok) throw ConfigError(fmt::format("{} levels must increase strictly from 0 to 1 ({} given)", name, l.size()));
+  if (!ok) throw InternalError(fmt::format("{} levels must increase strictly from 0 to 1 ({} given)", name, l.size()));
 }
 
 }  // namespace
@@ -225,7 +225,7 @@ SurfaceGrid level_intersections(const SurfaceGrid& reference, const std::vector<
 
 std::vector<double> graded_levels(int n, double ratio) {
   if (n < 1 || !(ratio > 0.0) || !std::isfinite(ratio))
-    throw ConfigError(fmt::format("graded levels: n = {}, ratio = {} (need n >= 1, ratio > 0)", n, ratio));
+    throw InternalError(fmt::format("graded levels: n = {}, ratio = {} (need n >= 1, ratio > 0)", n, ratio));
   std::vector<double> l(static_cast<std::size_t>(n) + 1, 0.0);
   double sum = 0.0;
   for (int k = 0; k < n; ++k) sum += n > 1 ? std::pow(ratio, static_cast<double>(k) / (n - 1)) : 1.0;

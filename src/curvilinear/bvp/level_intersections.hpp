@@ -28,7 +28,7 @@ namespace aq::curvilinear {
 /// eta are nodal values on `reference` (as from solve_theta_eta: θ = 0, 1 on i = 0, nx−1 and
 /// η = 0, 1 on j = 0, ny−1). Throws NumericalError when a level line cannot be traced across
 /// (it leaves through the side it started from: θ or η not monotone along a boundary), naming the
-/// level; ConfigError for bad levels.
+/// level; InternalError for levels that do not increase from 0 to 1.
 SurfaceGrid level_intersections(const SurfaceGrid& reference, const std::vector<double>& theta,
                                 const std::vector<double>& eta, const std::vector<double>& theta_levels,
                                 const std::vector<double>& eta_levels, LevelInterpolation interpolation);

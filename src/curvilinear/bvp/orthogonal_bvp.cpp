@@ -15,8 +15,8 @@ bool bvp_leveled_off(double prev, double now, double tol) {
 }
 
 BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& o, const ThetaEta* initial_solution) {
-  if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))
-    throw ConfigError(
+  if (o.max_iterations < 1 || o.min_iterations < 1 || !(o.level_off >= 0.0))  // regional.bvp_iterations: at load
+    throw InternalError(
         fmt::format("bvp: max_iterations = {}, min_iterations = {}, level_off = {} (need >= 1, >= 1, >= 0)",
                     o.max_iterations, o.min_iterations, o.level_off));
   BvpResult r;

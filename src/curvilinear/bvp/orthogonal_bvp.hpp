@@ -45,7 +45,8 @@ struct BvpResult {
 
 /// Runs the outer iteration from `initial` (≥ 2 × 2 points, valid cells); `initial_solution`, when
 /// given, is solve_theta_eta(initial) already computed (e.g. for the conformal modulus). Throws
-/// ConfigError for bad levels or options, NumericalError from the solver or the tracing.
+/// InternalError for bad levels or options (regional.bvp_* are validated at load), NumericalError from the solver or
+/// the tracing.
 BvpResult orthogonal_bvp(const SurfaceGrid& initial, const BvpOptions& options,
                          const ThetaEta* initial_solution = nullptr);
 

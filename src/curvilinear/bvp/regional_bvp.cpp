@@ -37,7 +37,7 @@ struct Embedding {
     if (!std::isfinite(q.x) || !std::isfinite(q.y))
       throw InputError(
           fmt::format("bvp on the sphere: node at ({:.4f}, {:.4f}) lies where the {} projection is singular", lon, lat,
-                      projection_code(projection.params().kind)));
+                      std::string(name_of(projection.params().kind))));
     return q;
   }
 };

@@ -114,8 +114,8 @@ double next_node(const SplineContour& c, double s_prev, double h, double ds_gues
 
 BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, int ny_pts,
                                      const UniformOptions& options, UniformStats* stats) {
-  if (nx_pts < 2 || ny_pts < 2)
-    throw ConfigError(
+  if (nx_pts < 2 || ny_pts < 2)  // regional.nx, ny are validated at load
+    throw InternalError(
         fmt::format("uniform boundary nodes: a grid needs at least 2 x 2 points, got {} x {}", nx_pts, ny_pts));
   BoundaryNodes nodes;
   nodes.nx_pts = nx_pts;

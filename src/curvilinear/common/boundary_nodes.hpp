@@ -76,7 +76,7 @@ struct UniformStats {
 /// is found from the previous one by safeguarded Newton on |C(s) − C(s_prev)| = h (the first
 /// crossing along the contour); h starts from the control-point polyline length and is
 /// corrected by the miss at the next corner (secant on the last chord minus h), to round-off.
-/// nx_pts, ny_pts ≥ 2. Throws ConfigError for fewer points, NumericalError if the correction
+/// nx_pts, ny_pts ≥ 2 (InternalError otherwise). Throws NumericalError if the correction
 /// does not converge (the message names the side and the miss).
 BoundaryNodes uniform_boundary_nodes(const SplineContour& contour, int nx_pts, int ny_pts,
                                      const UniformOptions& options = {}, UniformStats* stats = nullptr);

@@ -40,22 +40,14 @@ double wgs84_distance(double lon1, double lat1, double lon2, double lat2) {
 
 }  // namespace
 
-DistanceModel parse_distance_model(const std::string& text, const std::string& key) {
-  if (text == "sphere") return DistanceModel::kSphere;
-  if (text == "wgs84") return DistanceModel::kWgs84;
-  throw ConfigError(fmt::format("{} = \"{}\" is not one of \"sphere\", \"wgs84\"", key, text));
-}
-
-const char* distance_model_name(DistanceModel m) { return m == DistanceModel::kWgs84 ? "wgs84" : "sphere"; }
-
 double great_circle_m(double lon1_deg, double lat1_deg, double lon2_deg, double lat2_deg, double radius_m) {
   return sphere_distance(lon1_deg, lat1_deg, lon2_deg, lat2_deg, radius_m);
 }
 
 CGrid build_cgrid(const Grid2D& g, const Projection& projection, const CGridOptions& options) {
+  // roms.earth_radius_m is validated at load: a bad radius here is a bug.
   if (!(options.earth_radius_m > 0.0) || !std::isfinite(options.earth_radius_m))
-    throw ConfigError(
-        fmt::format("roms.earth_radius_m = {} must be a positive number of metres", options.earth_radius_m));
+    throw InternalError(fmt::format("build_cgrid: earth radius {} m", options.earth_radius_m));
   if (g.nx_pts < 5 || g.ny_pts < 5 || g.nx_pts % 2 == 0 || g.ny_pts % 2 == 0 || g.x.size() != g.at(0, g.ny_pts) ||
       g.y.size() != g.x.size())
     throw InputError(fmt::format(
@@ -240,6 +232,53 @@ void rho_cell_corners(const CGrid& g, std::vector<double>& lon_deg, std::vector<
     }
   }
   for (double& v : lat_deg) v = std::clamp(v, -90.0, 90.0);
+}
+
+AreaJump max_area_jump(const CGrid& g) {
+  AreaJump w;
+  const int ni = g.L + 1, nj = g.M + 1;
+  const auto area = [&](int i, int j) {
+    const std::size_t k = g.rho.at(i, j);
+    return 1.0 / (g.pm[k] * g.pn[k]);
+  };
+  for (int j = 1; j < nj - 1; ++j)
+    for (int i = 1; i < ni - 1; ++i) {
+      const auto jump = [&](int i2, int j2) {
+        if (i2 < 1 || j2 < 1 || i2 > ni - 2 || j2 > nj - 2) return;
+        const double a = area(i, j), b = area(i2, j2);
+        const double r = std::max(a, b) / std::min(a, b);
+        if (r > w.ratio) {
+          w.ratio = r;
+          w.i = i;
+          w.j = j;
+        }
+      };
+      jump(i + 1, j);
+      jump(i, j + 1);
+    }
+  return w;
+}
+
+FinerThanRaster finer_than_raster(const CGrid& g, double dlon_deg, double dlat_deg, double radius_m) {
+  constexpr double kRad = 3.14159265358979323846 / 180.0;
+  const int ni = g.L + 1, nj = g.M + 1;
+  FinerThanRaster f;
+  for (int j = 1; j < nj - 1; ++j)
+    for (int i = 1; i < ni - 1; ++i) {
+      const std::size_t k = g.rho.at(i, j);
+      ++f.interior;
+      const double rx = dlon_deg * kRad * radius_m * std::cos(g.rho.lat_deg[k] * kRad), ry = dlat_deg * kRad * radius_m;
+      const double dx = 1.0 / g.pm[k], dy = 1.0 / g.pn[k];
+      const double ratio = std::min(rx / dx, ry / dy);  // > 1: the cell is finer than the raster both ways
+      if (ratio > 1.0) {
+        ++f.finer;
+        if (ratio > f.worst) {
+          f.worst = ratio;
+          f.worst_k = k;
+        }
+      }
+    }
+  return f;
 }
 
 CGridStats cgrid_stats(const CGrid& g) {

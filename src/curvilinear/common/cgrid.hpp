@@ -51,6 +51,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -61,15 +62,6 @@ namespace aq::curvilinear {
 
 /// Earth's rotation rate used for f, s⁻¹ (sidereal, 7.2921e-5 rounded as in most ROMS tools).
 inline constexpr double kEarthOmega = 7.2921e-5;
-
-enum class DistanceModel {
-  kSphere,  ///< great circles on a sphere of radius CGridOptions::earth_radius_m
-  kWgs84,   ///< geodesics on the WGS84 ellipsoid (GeographicLib)
-};
-
-/// "sphere" or "wgs84"; ConfigError naming `key` and the value otherwise.
-DistanceModel parse_distance_model(const std::string& text, const std::string& key = "distances");
-const char* distance_model_name(DistanceModel m);
 
 struct CGridOptions {
   /// Sphere radius, metres, > 0: pm, pn, xl, el with kSphere; x_*, y_* always.
@@ -115,7 +107,7 @@ struct CGridStats {
 /// Builds the C-grid of `supergrid` (plane coordinates of `projection`). Preconditions:
 /// nx_pts and ny_pts odd and ≥ 5 (L, M ≥ 2), coordinates finite. Throws InputError naming the
 /// size for an even or too small supergrid, InputError for points where the inverse projection is
-/// not finite, ConfigError for a non-positive or non-finite earth_radius_m, NumericalError when
+/// not finite, InternalError for a non-positive or non-finite earth_radius_m, NumericalError when
 /// two neighbouring supergrid points coincide on the Earth (pm or pn would be infinite).
 /// Parallel over rows with OpenMP; results do not depend on the thread count.
 CGrid build_cgrid(const Grid2D& supergrid, const Projection& projection, const CGridOptions& options = {});
@@ -129,6 +121,24 @@ void rho_cell_corners(const CGrid& g, std::vector<double>& lon_deg, std::vector<
 
 /// pm/pn ranges, isotropy and angle range of `g`.
 CGridStats cgrid_stats(const CGrid& g);
+
+/// The largest area ratio of two neighbouring interior ρ cells (area 1/(pm·pn); i and j from 1 to
+/// L−1, M−1) and the first cell (row by row) where it is reached; 1 with no pair.
+struct AreaJump {
+  double ratio = 1.0;
+  int i = 0, j = 0;
+};
+AreaJump max_area_jump(const CGrid& g);
+
+/// Interior ρ cells finer than a raster of `dlon_deg` × `dlat_deg` pixels in both directions (the
+/// pixel's size on a sphere of `radius_m` above both 1/pm and 1/pn): their depths are interpolated
+/// between raster points, not measured. `worst_k` is the ρ index with the most cells per raster spacing.
+struct FinerThanRaster {
+  std::int64_t finer = 0, interior = 0;
+  double worst = 0.0;  ///< the most cells per raster spacing (0 when none is finer)
+  std::size_t worst_k = 0;
+};
+FinerThanRaster finer_than_raster(const CGrid& g, double dlon_deg, double dlat_deg, double radius_m);
 
 /// Great-circle distance between two points on a sphere of `radius_m`, metres (atan2 form).
 double great_circle_m(double lon1_deg, double lat1_deg, double lon2_deg, double lat2_deg, double radius_m);

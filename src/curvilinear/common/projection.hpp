@@ -35,28 +35,9 @@
 
 #include "curvilinear/common/plane_point.hpp"
 #include "grid_params/grid_kinds.hpp"
+#include "grid_params/projection_params.hpp"
 
 namespace aq::curvilinear {
-
-struct ProjectionParams {
-  ProjectionKind kind = ProjectionKind::kMercator;
-  /// Latitude of the centre (plane origin), degrees, [-90, 90]; |rlat| < 90 for ME and LC.
-  double rlat_deg = 0.0;
-  /// Longitude of the centre (plane origin; LC central meridian), degrees, any value.
-  double rlon_deg = 0.0;
-  /// Azimuth of the plane's +y axis, degrees clockwise from north (see the file comment).
-  double rota_deg = 0.0;
-  /// LC only: standard parallels, degrees in (-90, 90), same hemisphere or one of them 0 is
-  /// fine, lat1 = -lat2 is not (the cone degenerates into Mercator). NaN = rlat (tangent cone).
-  double lat1_deg = kUnset;
-  double lat2_deg = kUnset;
-  /// Plane units per unit-sphere radian is 1/uscale, > 0 (the seed's `uscale`, 0.001 there).
-  double uscale = 0.001;
-  /// Sphere radius in metres, > 0 (only used by the metric scale factor).
-  double radius_m = 6371000.0;
-
-  static constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
-};
 
 /// Geographic point, degrees.
 struct GeoPoint {
@@ -68,9 +49,8 @@ struct GeoPoint {
 /// Forward and inverse agree to ~1e-13 degrees (round trips are tested to 1e-12).
 class Projection {
  public:
-  /// Validates the parameters: ConfigError naming the key and value for a Mercator or LC centre
-  /// at a pole, LC standard parallels at a pole or symmetric about the equator, non-positive or
-  /// non-finite uscale or radius, non-finite angles.
+  /// Validates the parameters (projection_problems(): the config reports the same at load, with
+  /// positions): ConfigError naming every bad key and value.
   explicit Projection(const ProjectionParams& params);
 
   /// Plane coordinates of (lon, lat) in degrees (any longitude; |lat| <= 90). Points where the

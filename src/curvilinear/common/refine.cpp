@@ -71,7 +71,8 @@ Grid2D refine_supergrid(const Grid2D& parent, const RefineBox& box, int pad) {
   std::vector<Where> ws, wt;
   if (!positions(box.i_left, r, -2 * pad, nS, nI, ws) || !positions(box.j_bottom, r, -2 * pad, nT, nJ, wt))
     throw ConfigError(fmt::format(
-        "the refinement of the parent's psi cells I {}..{}, J {}..{} by {} with {} extra fine cells on every side "
+        "nesting.parent_box: the refinement of the parent's psi cells I {}..{}, J {}..{} by {} with {} extra fine "
+        "cells on every side "
         "reaches outside the parent grid (psi I 1..{}, J 1..{})",
         box.i_left, box.i_right, box.j_bottom, box.j_top, r, pad, (nI - 1) / 2, (nJ - 1) / 2));
 

@@ -66,8 +66,8 @@ double max_r_factor(const std::vector<double>& h, const std::vector<std::uint8_t
 }
 
 int smooth_r_factor(std::vector<double>& h, const std::vector<std::uint8_t>& mask, int ni, int nj, double rmax) {
-  if (!(rmax >= 0.0 && rmax < 1.0))
-    throw ConfigError(fmt::format("roms.rmax = {} must be in [0, 1) (0 = no smoothing; 0.2 is common)", rmax));
+  if (!(rmax >= 0.0 && rmax < 1.0))  // roms.rmax, validated at load
+    throw InternalError(fmt::format("smooth_r_factor: rmax = {} is outside [0, 1)", rmax));
   check_sizes(h, mask, ni, nj, "smooth_r_factor");
   if (rmax == 0.0 || max_r_factor(h, mask, ni, nj) <= rmax) return 0;
   const double c = (1.0 - rmax) / (1.0 + rmax);
@@ -93,10 +93,9 @@ int smooth_r_factor(std::vector<double>& h, const std::vector<std::uint8_t>& mas
 
 DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::uint8_t>& mask, int ni, int nj,
                        const DepthOptions& o) {
-  if (!(o.hmin_m > 0.0) || !std::isfinite(o.hmin_m))
-    throw ConfigError(fmt::format("roms.hmin_m = {} must be a positive depth in metres (ROMS needs h > 0)", o.hmin_m));
-  if (!(o.rmax >= 0.0 && o.rmax < 1.0))
-    throw ConfigError(fmt::format("roms.rmax = {} must be in [0, 1) (0 = no smoothing; 0.2 is common)", o.rmax));
+  // roms.hmin_m and roms.rmax are validated at load.
+  if (!(o.hmin_m > 0.0) || !std::isfinite(o.hmin_m) || !(o.rmax >= 0.0 && o.rmax < 1.0))
+    throw InternalError(fmt::format("roms_depth: hmin {} m (> 0), rmax {} ([0, 1))", o.hmin_m, o.rmax));
   check_sizes(hraw, mask, ni, nj, "roms_depth");
 
   DepthResult r;

@@ -56,15 +56,15 @@ struct DepthResult {
 };
 
 /// Clips and optionally smooths `hraw` (finite values; ni, nj ≥ 1; mask values 0/1).
-/// Throws ConfigError naming roms.hmin_m / roms.rmax for values out of range, InternalError for
-/// inconsistent sizes or a non-finite hraw.
+/// Throws InternalError for roms.hmin_m / roms.rmax out of range (validated at load), inconsistent
+/// sizes or a non-finite hraw.
 DepthResult roms_depth(const std::vector<double>& hraw, const std::vector<std::uint8_t>& mask_rho, int ni, int nj,
                        const DepthOptions& options);
 
 /// Step 2 alone on `h` in place: raises depths (never lowers them) to the least field ≥ h with
 /// r ≤ rmax on every wet face; returns the number of Gauss–Seidel sweeps (0 when rmax = 0 or the
 /// bound already holds). No clipping: a parent grid whose own hmin is unknown keeps its depths.
-/// Throws ConfigError naming roms.rmax for rmax outside [0, 1), InternalError for inconsistent
+/// Throws InternalError for rmax outside [0, 1) (roms.rmax is validated at load) or inconsistent
 /// sizes, NumericalError if it does not settle.
 int smooth_r_factor(std::vector<double>& h, const std::vector<std::uint8_t>& mask_rho, int ni, int nj, double rmax);
 

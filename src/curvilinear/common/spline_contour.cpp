@@ -120,7 +120,8 @@ SplineContour::SplineContour(std::vector<double> x, std::vector<double> y, const
       param_(options.parametrisation),
       source_(options.source) {
   if (degree_ != 3 && degree_ != 5)
-    throw ConfigError(fmt::format("{}: spline degree {} is not supported (3 = cubic, 5 = quintic)", source_, degree_));
+    throw InternalError(
+        fmt::format("{}: spline degree {} is not supported (3 = cubic, 5 = quintic)", source_, degree_));
   const int n = static_cast<int>(x_.size());
   if (y_.size() != x_.size() || corner.size() != x_.size())
     throw InternalError("SplineContour: x, y and corner flags differ in length");

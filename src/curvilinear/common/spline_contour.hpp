@@ -63,7 +63,7 @@ class SplineContour {
   /// Throws InputError (naming `options.source`, point numbers counted from 1 and coordinates)
   /// for: a number of corners other than 4, fewer than 4 points, non-finite or repeated
   /// consecutive points, a clockwise contour, a self-intersecting spline (which segments and
-  /// where). ConfigError for a degree other than 3/5. NumericalError if the arc-length iteration
+  /// where). InternalError for a degree other than 3/5. NumericalError if the arc-length iteration
   /// does not converge.
   SplineContour(std::vector<double> x, std::vector<double> y, const std::vector<bool>& corner,
                 const ContourOptions& options = {});

@@ -164,18 +164,15 @@ RectangleMeasure measure_rectangle(const std::vector<double>& x, const std::vect
 
 InverseResult solve_inverse_problem(const SplineContour& contour, const BoundaryNodes& initial,
                                     const InverseOptions& options, const Logger& log) {
-  if (!(options.tolerance > 0.0))
-    throw ConfigError(fmt::format("inverse problem: tolerance = {} must be positive", options.tolerance));
-  if (options.interpolation_points < 2 || options.interpolation_points > 8)
-    throw ConfigError(
-        fmt::format("inverse problem: interpolation points = {} must be within 2..8", options.interpolation_points));
+  // regional.tolerance, interp_points and max_outer are validated at load: these are preconditions.
+  if (!(options.tolerance > 0.0) || options.interpolation_points < 2 || options.interpolation_points > 8 ||
+      options.max_outer_iterations < 1)
+    throw InternalError(fmt::format("inverse problem: tolerance {}, {} interpolation points, {} outer iterations",
+                                    options.tolerance, options.interpolation_points, options.max_outer_iterations));
   if (options.cell_multiple < 1 || (initial.ny_pts - 1) % options.cell_multiple != 0 ||
       (initial.nx_pts - 1) % options.cell_multiple != 0)
-    throw ConfigError(fmt::format("inverse problem: grid {} x {} points does not fit cell multiple {}", initial.nx_pts,
-                                  initial.ny_pts, options.cell_multiple));
-  if (options.max_outer_iterations < 1)
-    throw ConfigError(
-        fmt::format("inverse problem: max outer iterations = {} must be >= 1", options.max_outer_iterations));
+    throw InternalError(fmt::format("inverse problem: grid {} x {} points does not fit cell multiple {}",
+                                    initial.nx_pts, initial.ny_pts, options.cell_multiple));
   const Timer timer;
   const ProgressFn progress = log.progress("regional inverse problem");
   InverseResult res;
@@ -270,7 +267,7 @@ InverseResult solve_inverse_problem(const SplineContour& contour, const Boundary
             "inverse problem (mode 3) did not converge in {} outer iterations: residual {:.3e} reached, tolerance "
             "{:.1e} (inner schedule '{}', IZ89 {}converged in the last iteration, max angle {:.2e}); raise the "
             "iteration limit or smooth the contour",
-            m, meas.residual, tol, inner_schedule_name(options.schedule), iz.converged ? "" : "not ",
+            m, meas.residual, tol, std::string(name_of(options.schedule)), iz.converged ? "" : "not ",
             res.iz89_angle.back()));
       break;
     }

@@ -113,8 +113,8 @@ RectangleMeasure measure_rectangle(const std::vector<double>& x, const std::vect
 /// Solves the inverse problem from `initial` (e.g. uniform_boundary_nodes()). Throws
 /// NumericalError when max_outer_iterations pass without convergence (message: the residual
 /// reached, the tolerance and the schedule), when IZ89 fails, or when a side's image is not
-/// monotone; ConfigError for bad options (tolerance ≤ 0, interpolation_points outside 2..8,
-/// cell_multiple < 1, M − 1 not a multiple of cell_multiple).
+/// monotone; InternalError for bad options (tolerance ≤ 0, interpolation_points outside 2..8,
+/// cell_multiple < 1, M − 1 not a multiple of cell_multiple: the config validates its keys at load).
 InverseResult solve_inverse_problem(const SplineContour& contour, const BoundaryNodes& initial,
                                     const InverseOptions& options = {}, const Logger& log = Logger::null());
 

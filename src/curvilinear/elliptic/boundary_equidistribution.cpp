@@ -50,8 +50,9 @@ std::vector<double> equidistribute(const ArcPolyline& line, int n, const Control
       const PlanePoint m = line.at(0.5 * (s[k] + s[k + 1]));
       rho[k] = w(m.x, m.y);
       if (!(rho[k] > 0.0) || !std::isfinite(rho[k]))
-        throw ConfigError(
-            fmt::format("control function w = {} at ({:.6g}, {:.6g}): must be finite and > 0", rho[k], m.x, m.y));
+        throw ConfigError(fmt::format(
+            "regional.weight: the control function w = {} at ({:.6g}, {:.6g}) on the contour: must be finite and > 0",
+            rho[k], m.x, m.y));
       cum[k + 1] = cum[k] + rho[k] * (s[k + 1] - s[k]);
     }
     // New node k at W = k/(n−1)·W_total, inverting the piecewise linear W(s).
@@ -81,8 +82,8 @@ std::vector<PlanePoint> equidistributed_points(const ArcPolyline& line, int n, c
 
 BoundaryNodes equidistributed_boundary_nodes(const SplineContour& contour, int nx_pts, int ny_pts,
                                              const ControlFunction& w, int samples_per_segment) {
-  if (nx_pts < 2 || ny_pts < 2)
-    throw ConfigError(fmt::format("boundary nodes: {} x {} points; need at least 2 x 2", nx_pts, ny_pts));
+  if (nx_pts < 2 || ny_pts < 2)  // regional.nx, ny are validated at load
+    throw InternalError(fmt::format("boundary nodes: {} x {} points; need at least 2 x 2", nx_pts, ny_pts));
   BoundaryNodes nodes;
   nodes.nx_pts = nx_pts;
   nodes.ny_pts = ny_pts;

@@ -237,8 +237,8 @@ Criteria grid_criteria(const Grid2D& grid, const ControlFunction& w) {
 EllipticResult elliptic_smooth(Grid2D& g, const ControlFunction& w, const EllipticOptions& o) {
   if (!(o.relaxation > 0.0 && o.relaxation <= 1.0) || !(o.tolerance > 0.0) || !(o.criteria_tolerance > 0.0) ||
       o.max_iterations < 1 || o.check_every < 1 || !(o.inner_tolerance > 0.0 && o.inner_tolerance < 1.0) ||
-      o.inner_iterations < 1)
-    throw ConfigError(
+      o.inner_iterations < 1)  // regional.relaxation, elliptic_* are validated at load
+    throw InternalError(
         fmt::format("elliptic grid: relaxation {} must be in (0, 1], tolerances > 0, iterations >= 1", o.relaxation));
   const int L = g.nx_pts, M = g.ny_pts;
   if (L < 3 || M < 3) throw InternalError("elliptic_smooth: need at least 3 x 3 points");

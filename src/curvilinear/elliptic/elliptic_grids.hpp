@@ -90,7 +90,7 @@ struct EllipticResult {
 };
 
 /// Smooths the interior of `grid` (boundary nodes kept) by ED2 or RL. Needs ≥ 3 × 3 points.
-/// ConfigError for bad options; InputError when w is not positive and finite at a face midpoint.
+/// InternalError for bad options (validated at load); InputError when w is not positive and finite at a face midpoint.
 EllipticResult elliptic_smooth(Grid2D& grid, const ControlFunction& w, const EllipticOptions& options = {});
 
 /// "ed2" or "rl".

@@ -57,8 +57,6 @@ void log_criteria_table(const std::vector<Candidate>& c, int chosen, const Logge
 
 }  // namespace
 
-ControlFunction regional_weight(const RegionalParams& p) { return ControlFunction::parse(p.weight, "regional.weight"); }
-
 ControlFunction depth_weighted(const ControlFunction& w, double a, std::array<double, 4> box,
                                const Projection& projection, const DepthSampler& depth) {
   constexpr int n = 257;
@@ -207,19 +205,19 @@ MethodRun build_method_grid(const RegionalParams& p, const SplineContour& contou
     run.elliptic = elliptic_smooth(run.grid, w, eo);
     if (!run.elliptic->converged)
       log.warn("regional {}: not settled after {} iterations (last node move {:.2e} of the diameter)",
-               grid_method_name(elliptic), run.elliptic->iterations, run.elliptic->last_move);
+               std::string(name_of(elliptic)), run.elliptic->iterations, run.elliptic->last_move);
     // Never trade a valid grid for a folded one.
     const int folded = self_intersecting_cells(run.grid);
     if (folded > 0 && run.self_intersecting_cells == 0) {
       log.warn("regional {}: the grid has {} self-intersecting cells; keeping the {} grid, which has none",
-               grid_method_name(elliptic), folded, run.initial);
+               std::string(name_of(elliptic)), folded, run.initial);
       run.grid = std::move(initial);
       run.elliptic_rejected = true;
       run.rejected_because = "folded";
     } else if (p.method == GridMethod::kBest) {
       // best never returns a grid worse than the winner: the elliptic grid replaces it only if B.6
       // between the two (the same f1..f4 steps, ties to the winner) picks it.
-      const std::string final_name = grid_method_name(elliptic);
+      const std::string final_name = std::string(name_of(elliptic));
       run.final_check = {run.candidates[static_cast<std::size_t>(run.selection.chosen)],
                          make_candidate(final_name + " from " + run.initial, run.grid, w)};
       const Selection keep = select_best_grid(run.final_check);

@@ -48,9 +48,6 @@ struct MethodRun {
   std::vector<Candidate> final_check;  ///< best: {the chosen candidate, the elliptic grid} as compared by B.6
 };
 
-/// The control function of `params.weight` (ConfigError naming regional.weight for a bad formula).
-ControlFunction regional_weight(const RegionalParams& params);
-
 /// Sea depth (m, positive down) at a longitude and latitude (degrees); NaN where unknown (taken as 0).
 using DepthSampler = std::function<double(double lon_deg, double lat_deg)>;
 

@@ -54,7 +54,8 @@ Written write_all(const std::filesystem::path& dir, const mesh::Mesh& m, const r
   o.name = "tiny";
   o.png_width = 400;
   o.png_zoom = {150.0, 210.0, -60.0, -10.0};
-  o.formats = {"msh", "ugrid", "vtu", "fort14", "text", "png", "fesom", "schism"};
+  using F = config::OutputFormat;
+  o.formats = {F::kMsh, F::kUgrid, F::kVtu, F::kFort14, F::kText, F::kPng, F::kFesom, F::kSchism};
   MeshOutputInfo info;
   info.concurrent = concurrent;
   info.elements = elements;
@@ -179,18 +180,21 @@ TEST(MeshOutputs, EveryFormatWithItsFileNameAndOneLogLine) {
   EXPECT_EQ(w[0].stats.seam_duplicates, 2);
 }
 
-TEST(MeshOutputs, UnknownFormatIsAConfigErrorAndNothingIsWritten) {
+// A model format of a mesh without triangles is refused before anything is written.
+TEST(MeshOutputs, AModelFormatWithoutTrianglesIsAConfigErrorAndNothingIsWritten) {
   testing::TempDir dir;
   config::OutputOptions o;
-  o.formats = {"msh", "stl"};
+  o.formats = {config::OutputFormat::kMsh, config::OutputFormat::kFort14};
+  MeshOutputInfo info;
+  info.elements = ElementKinds::kSquares;
   try {
     OutputSet set(dir.path());
-    write_mesh_outputs(testing::tiny_mesh(), flat_sea(), o, set, Logger::null());
+    write_mesh_outputs(testing::tiny_mesh(false), flat_sea(), o, set, Logger::null(), info);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("output.formats"), std::string::npos) << what;
-    EXPECT_NE(what.find("\"stl\""), std::string::npos) << what;
+    EXPECT_NE(what.find("output.formats, mesh.elements"), std::string::npos) << what;
+    EXPECT_NE(what.find("\"fort14\" needs triangles"), std::string::npos) << what;
   }
   EXPECT_TRUE(files_in(dir.path()).empty());
 }
@@ -207,20 +211,21 @@ TEST(MeshOutputs, OptionErrorsNameTheirKeys) {
   config::OutputOptions o;
   EXPECT_EQ(message(o, ElementKinds::kTriangles), "");
   EXPECT_NE(message(o, ElementKinds::kSquares).find("mesh.elements"), std::string::npos);
-  o.vtu_coordinates = "ecef";
-  EXPECT_NE(message(o, ElementKinds::kTriangles).find("output.vtu_coordinates"), std::string::npos);
-  o = {};
-  o.png_zoom = {1, 2};
-  EXPECT_NE(message(o, ElementKinds::kTriangles).find("output.png_zoom"), std::string::npos);
+  o.png_color = config::PreviewColour::kAngle;
+  o.formats = {config::OutputFormat::kPng};
+  EXPECT_NE(message(o, ElementKinds::kSquares).find("output.png_color, mesh.elements"), std::string::npos);
   o = {};
   o.name = "a/b";
+  EXPECT_NE(message(o, ElementKinds::kTriangles).find("output.name"), std::string::npos);
+  o.name = "..";
   EXPECT_NE(message(o, ElementKinds::kTriangles).find("output.name"), std::string::npos);
 }
 
 TEST(MeshOutputs, SquaresOnlyAndDuplicateFormats) {
   testing::TempDir dir;
   config::OutputOptions o;
-  o.formats = {"msh", "ugrid", "msh", "text"};
+  using F = config::OutputFormat;
+  o.formats = {F::kMsh, F::kUgrid, F::kMsh, F::kText};
   MeshOutputInfo info;
   info.elements = ElementKinds::kSquares;
   OutputSet set(dir.path());
@@ -233,7 +238,7 @@ TEST(MeshOutputs, SquaresOnlyAndDuplicateFormats) {
 TEST(MeshOutputs, AFailingWriterLeavesNoFiles) {
   testing::TempDir dir;
   config::OutputOptions o;
-  o.formats = {"text", "msh"};
+  o.formats = {config::OutputFormat::kText, config::OutputFormat::kMsh};
   const auto m = testing::band_mesh(Lattice::make(4.0, 1, -180.0), 10, 80);
   try {
     OutputSet set(dir.path());

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include <toml.hpp>
 
 #include "config/load.hpp"
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 
 namespace unit_config_config_test {
@@ -79,11 +82,168 @@ TEST(ExampleToml, AndReadmeListEveryOutputFormat) {
   const auto from = readme.find("## Output formats");
   ASSERT_NE(from, std::string::npos);
   const std::string section = readme.substr(from, readme.find("\n## ", from + 1) - from);
-  for (const auto& f : aq::config::output_format_names()) {
+  for (const auto& row : aq::names_of<aq::config::OutputFormat>()) {
+    const std::string f(row.name);
     EXPECT_NE(formats_line.find("\"" + f + "\""), std::string::npos) << f << " is not in example.toml's formats line";
     EXPECT_NE(section.find("`" + f + "`"), std::string::npos) << f << " is not in README's Output formats section";
   }
-  EXPECT_EQ(aq::config::output_format_names().size(), 9u);
+  EXPECT_EQ(aq::names_of<aq::config::OutputFormat>().size(), 9u);
+}
+
+// The comment of every enumerated key in example.toml names every value of the key's table (the
+// one list of names: config/kinds.hpp, core/lattice.hpp), and every name loads and echoes as itself.
+TEST(ExampleToml, CommentsNameEveryValueOfEveryEnumeratedKey) {
+  std::ifstream in(fs::path(AQ_SOURCE_DIR) / "configs" / "example.toml");
+  const std::string text(std::istreambuf_iterator<char>(in), {});
+  int enumerated = 0;
+  for (const auto& k : aq::config::global_key_info()) {
+    if (k.values.empty()) continue;
+    ++enumerated;
+    const std::string section = k.key.substr(0, k.key.find('.')), name = k.key.substr(k.key.find('.') + 1);
+    const auto sec_at = text.find("\n[" + section + "]");
+    ASSERT_NE(sec_at, std::string::npos) << k.key;
+    const auto at = text.find("\n" + name + " = ", sec_at);
+    ASSERT_NE(at, std::string::npos) << k.key;
+    const std::string line = text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+    for (const std::string& v : k.values) {
+      EXPECT_NE(line.find("\"" + v + "\""), std::string::npos) << k.key << ": \"" << v << "\" is not in: " << line;
+      const std::string value = k.key == "output.formats" ? "[\"" + v + "\"]" : "\"" + v + "\"";
+      std::vector<std::string> sets{k.key + "=" + value};
+      if (v == "box") sets.push_back("domain.box=[-5, 10, 49, 61]");
+      if (v == "polygon") sets.push_back("domain.polygon=\"x.geojson\"");
+      if (v == "squares") sets.push_back("output.formats=[\"msh\"]");
+      const auto c = load_global(std::nullopt, sets);
+      const auto& echoed = c.echo[section][name];
+      EXPECT_EQ(k.key == "output.formats" ? echoed[0] : echoed, v) << k.key;
+    }
+    EXPECT_THAT(k.help, HasSubstr("one of \"" + k.values[0] + "\"")) << k.key;
+  }
+  EXPECT_EQ(enumerated, 11);  // with quadtree.engine (dense, forest)
+}
+
+// Each enumerated key refuses a name its table does not have, listing the ones it has.
+TEST(Config, AnUnknownNameListsTheTable) {
+  EXPECT_THAT(
+      error_of(std::nullopt, {"mask.sampling=\"bilinear\""}),
+      HasSubstr("--set mask.sampling=\"bilinear\": mask.sampling: \"bilinear\" is not one of \"vertex\", \"area\""));
+  EXPECT_THAT(error_of(std::nullopt, {"output.formats=[\"msh\", \"stl\"]"}),
+              HasSubstr("output.formats: element 1: \"stl\" is not one of \"msh\", \"ugrid\", \"vtu\", \"fort14\", "
+                        "\"text\", \"png\", \"fesom\", \"schism\", \"tif\""));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.lattice=3"}),
+              HasSubstr("quadtree.lattice: expected one of \"lonlat\", \"mercator\" in quotes"));
+}
+
+// One config with a bad value of nearly every kind: every one is reported in one message, each at
+// the file:line:column of its value (a cross-key problem at the key set last, naming both keys).
+TEST(Config, EveryBadValueIsReportedWithItsPositionInOneMessage) {
+  const auto p = write_temp("many_bad.toml",
+                            "[input]\n"
+                            "interpolation = \"cubic\"\n"  // 2
+                            "[mask]\n"
+                            "min_depth_m = -500.0\n"     // 4
+                            "cursor = 0\n"               // 5
+                            "sampling = \"bilinear\"\n"  // 6
+                            "seeds = [[0.0, nan]]\n"     // 7
+                            "[quadtree]\n"
+                            "step_deg = 7.0\n"      // 9
+                            "levels = 2\n"          // 10
+                            "balance = \"edge\"\n"  // 11
+                            "box_rules = [{lon_min_deg = 0, lon_max_deg = 5, lat_min_deg = 0, lat_max_deg = 5, "
+                            "level = 4}]\n"  // 12
+                            "[size]\n"
+                            "h_min_km = 50.0\n"  // 14
+                            "h_max_km = 10.0\n"  // 15
+                            "[domain]\n"
+                            "box = [10.0, -5.0, 49.0, 61.0]\n"  // 17
+                            "[mesh]\n"
+                            "elements = \"squares\"\n"  // 19
+                            "[output]\n"
+                            "formats = [\"msh\", \"fort14\"]\n"         // 21
+                            "png_color = \"angle\"\n"                   // 22
+                            "png_width = 100\n"                         // 23
+                            "png_zoom = [0.0, 400.0, -10.0, 10.0]\n");  // 24
+  const std::string e = error_of(p.string(), {"output.vtu_coordinates=\"ecef\""});
+  const std::string f = p.string();
+  const std::vector<std::string> expected{
+      f + ":2:17: input.interpolation: \"cubic\" is not one of \"bilinear\", \"bicubic\"",
+      f + ":4:15: mask.min_depth_m: -500 is outside [-100, 12000]",
+      f + ":5:10: mask.cursor: 0 is outside [1, 64]",
+      f + ":6:12: mask.sampling: \"bilinear\" is not one of \"vertex\", \"area\"",
+      f + ":7:9: mask.seeds: seed 0 = [0, nan]: expected a longitude in [-360, 360] and a latitude in [-90, 90]",
+      f + ":9:12: quadtree.step_deg: 7: ",
+      f + ":11:11: quadtree.balance: \"edge\" is not one of \"face\", \"corner\"",
+      f + ":12:13: quadtree.box_rules[0].level, quadtree.levels: level 4 exceeds quadtree.levels = 2",
+      f + ":15:12: size.h_min_km, size.h_max_km: size.h_min_km = 50 is above size.h_max_km = 10",
+      f + ":17:7: domain.box: lon_min = 10 > lon_max = -5 reads as a box across the seam 345° wide",
+      f + ":21:11: output.formats, mesh.elements: \"fort14\" needs triangles but mesh.elements = \"squares\"",
+      f + ":22:13: output.png_color, mesh.elements: output.png_color = \"angle\" colours triangles",
+      f + ":23:13: output.png_width: 100 is outside [200, 20000]",
+      f + ":24:12: output.png_zoom: expected 4 finite numbers",
+      "--set output.vtu_coordinates=\"ecef\": output.vtu_coordinates: \"ecef\" is not one of \"sphere\", \"wgs84\""};
+  EXPECT_THAT(e, HasSubstr(fmt::format("{} configuration errors:", expected.size())));
+  std::size_t last = 0;
+  for (const std::string& x : expected) {
+    const auto at = e.find(x);
+    EXPECT_NE(at, std::string::npos) << "missing: " << x << "\nin:\n" << e;
+    if (at != std::string::npos) {
+      EXPECT_GT(at, last) << "out of order: " << x;  // sorted by position, --set after the file
+      last = at;
+    }
+  }
+}
+
+// A cross-key problem is reported where the key set last was set: a --set when the other key is
+// at its default (the default output.formats hold fort14).
+TEST(Config, ACrossKeyProblemNamesWhereItsKeysWereSet) {
+  EXPECT_THAT(error_of(std::nullopt, {"size.h_max_km=10", "size.h_min_km=20"}),
+              HasSubstr("--set size.h_min_km=20: size.h_min_km, size.h_max_km: size.h_min_km = 20 is above "
+                        "size.h_max_km = 10"));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"size.h_min_km=20"}));  // h_max_km = 0: no upper clamp
+  EXPECT_THAT(error_of(std::nullopt, {"mesh.elements=\"squares\""}),
+              HasSubstr("--set mesh.elements=\"squares\": output.formats, mesh.elements: \"fort14\" needs triangles"));
+  EXPECT_THAT(error_of(std::nullopt, {"domain.kind=\"box\""}),
+              HasSubstr("--set domain.kind=\"box\": domain.kind: \"box\" needs domain.box"));
+}
+
+// Found by probing (issue 33): a seed at longitude 1e300 meshed from wherever it landed, a box
+// rule at 1e15° applied nowhere, a zoom at 1000° drew nothing; a FIFO as domain.polygon blocked
+// OGR for ever and one as size.raster was refused only when the run reached the size stage.
+TEST(Config, LongitudesAreWithin360AndInputFilesAreFilesAtLoad) {
+  EXPECT_THAT(error_of(std::nullopt, {"mask.seeds=[[1e300, 0]]"}),
+              HasSubstr("mask.seeds: seed 0 = [1e+300, 0]: expected a longitude in [-360, 360]"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.box_rules=[{lon_min_deg = 1e15, lon_max_deg = 2e15, lat_min_deg = "
+                                      "0, lat_max_deg = 10, level = 1}]"}),
+              HasSubstr("quadtree.box_rules[0]: needs -360 <= lon_min_deg < lon_max_deg <= 360"));
+  EXPECT_THAT(error_of(std::nullopt, {"output.png_zoom=[1000, 1100, 0, 10]"}), HasSubstr("output.png_zoom: expected"));
+  EXPECT_THAT(error_of(std::nullopt, {"blocks.boxes=[[400, 410, 0, 10]]"}), HasSubstr("blocks.boxes: box 0"));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"mask.seeds=[[350, -50]]", "output.png_zoom=[150, 210, 0, 10]"}));
+  const fs::path dir = fs::temp_directory_path() / "aq_config_test";
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(error_of(std::nullopt, {"domain.polygon=\"" + fifo.string() + "\""}),
+              HasSubstr("domain.polygon: " + fifo.string() + " is a FIFO (named pipe), not a regular file"));
+  EXPECT_THAT(error_of(std::nullopt, {"size.raster=\"" + fifo.string() + "\""}),
+              HasSubstr("size.raster: " + fifo.string() + " is a FIFO (named pipe), not a regular file"));
+  fs::remove(fifo);
+}
+
+// Issue 33: `domain.box = [10, -5, 49, 61]` (meant as [-5, 10, ...]) meshed a 345° band of the
+// North Pacific. A box across the seam wider than 180° is refused with both readings; one
+// narrower than 180° is taken as across the seam, and the wide one can still be written with
+// lon_max > lon_min.
+TEST(Config, AWideBoxAcrossTheSeamIsRefusedNamingBothReadings) {
+  const std::string e = error_of(std::nullopt, {"domain.box=[10, -5, 49, 61]"});
+  EXPECT_THAT(e, HasSubstr("reads as a box across the seam 345° wide (east from 10° to -5°)"));
+  EXPECT_THAT(e, HasSubstr("for the 15° from -5° to 10° write [-5, 10, 49, 61] (lon_max > lon_min)"));
+  EXPECT_THAT(e, HasSubstr("for that seam-crossing box write [10, 355, 49, 61]"));
+  EXPECT_THAT(error_of(std::nullopt, {"domain.box=[100, 10, 49, 61]"}), HasSubstr("write [-260, 10, 49, 61]"));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"domain.box=[200, 10, 49, 61]"}));  // 170° across the seam
+  const auto across = load_global(std::nullopt, {"domain.box=[170, -170, -10, 10]"});  // 20° across the seam
+  EXPECT_EQ(across.options.domain.resolved, aq::config::DomainKind::kBox);
+  const auto wide = load_global(std::nullopt, {"domain.box=[10, 355, 49, 61]"});  // the 345° band, unambiguous
+  EXPECT_EQ(wide.options.domain.box[1], 355.0);
 }
 
 TEST(ExampleToml, StatesTheDefaults) {
@@ -120,6 +280,51 @@ TEST(Config, AllBadValuesReportedInOneRun) {
   EXPECT_THAT(e, HasSubstr("quadtree.step_deg"));
   EXPECT_THAT(e, HasSubstr("three.toml:6:"));
   EXPECT_THAT(e, HasSubstr("\"sw\" is not one of"));
+}
+
+TEST(Config, AStepNotWithinRoundingIsRefusedWithTheReason) {
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.step_deg=0.26667"}),
+              HasSubstr("quadtree.step_deg: 0.26667: Δ0 = 960.012\" is not a whole number of arc-seconds"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.mercator_lat_max_deg=90"}),
+              HasSubstr("quadtree.mercator_lat_max_deg: 90 is outside [1, 89.5]"));
+}
+
+TEST(Config, PreviewSizeAndZoomAreCheckedAtLoad) {
+  EXPECT_THAT(error_of(std::nullopt, {"output.png_width=10"}),
+              HasSubstr("output.png_width: 10 is outside [200, 20000]"));
+  for (const char* z : {"[1, 2, 3]", "[10, 5, 0, 1]", "[0, 10, 20, 10]", "[0, 10, -95, 0]", "[0, inf, 0, 1]",
+                        "[0, 400, 0, 1]", "[0, nan, 0, 1]"})
+    EXPECT_THAT(error_of(std::nullopt, {std::string("output.png_zoom=") + z}),
+                HasSubstr("output.png_zoom: expected 4 finite numbers"))
+        << z;
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"output.png_zoom=[150, 210, -60, -10]"}));
+}
+
+// The size targets and depth bands the quadtree and size stages once checked themselves.
+TEST(Config, SizeTargetsAndRuleRangesAreCheckedAtLoad) {
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.size_km=-1"}),
+              HasSubstr("quadtree.size_km: -1 is outside [0, 100000]"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.coast_size_km=nan"}),
+              HasSubstr("quadtree.coast_size_km: nan is outside [0, 100000]"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.coast_band=-1"}),
+              HasSubstr("quadtree.coast_band: -1 is outside [0, 64]"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.depth_rules=[{min_depth_m = 100, max_depth_m = 50, level = 1}]"}),
+              HasSubstr("quadtree.depth_rules[0]: needs min_depth_m < max_depth_m"));
+  EXPECT_THAT(
+      error_of(std::nullopt, {"quadtree.box_rules=[{lon_min_deg = 0, lon_max_deg = 10, lat_min_deg = 20, "
+                              "lat_max_deg = 10, level = 1}]"}),
+      HasSubstr("quadtree.box_rules[0]: needs -360 <= lon_min_deg < lon_max_deg <= 360 and -90 <= lat_min_deg"));
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.depth_rules=[{min_depth_m = 0, max_depth_m = 50, level = 9}]"}),
+              HasSubstr("quadtree.depth_rules[0].level, quadtree.levels: level 9 exceeds quadtree.levels = 3"));
+}
+
+// Found by fuzzing (issue 33): toml11 read past its buffer on an invalid UTF-8 byte inside a
+// literal string. A configuration file or --set value that is not UTF-8 is refused first.
+TEST(Config, TextThatIsNotUtf8IsRefusedWithItsPosition) {
+  const auto p = write_temp("latin1.toml", "[output]\nname = 'Caf\xe9'\n");
+  EXPECT_THAT(error_of(p.string()), HasSubstr("latin1.toml: line 2, column 12: not UTF-8 text"));
+  EXPECT_THAT(error_of(std::nullopt, {"output.name='\xff'"}), HasSubstr("value is neither TOML nor plain text"));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"output.name='Café'"}));
 }
 
 TEST(Config, WrongTypeIsReported) {
@@ -163,7 +368,9 @@ TEST(Config, RulesParseAndCrossCheckLevels) {
       "rules.toml",
       "[quadtree]\nlevels = 3\ndepth_rules = [{min_depth_m = 0.0, max_depth_m = 200.0, level = 2}]\n"
       "box_rules = [{lon_min_deg = -10.0, lon_max_deg = 40.0, lat_min_deg = 30.0, lat_max_deg = 46.0, level = 5}]\n");
-  EXPECT_THAT(error_of(p.string()), HasSubstr("quadtree.box_rules[0]: level 5 exceeds quadtree.levels = 3"));
+  EXPECT_THAT(
+      error_of(p.string()),
+      HasSubstr("rules.toml:4:13: quadtree.box_rules[0].level, quadtree.levels: level 5 exceeds quadtree.levels = 3"));
   const auto ok = load_global(p.string(), {"quadtree.levels=5"});
   ASSERT_EQ(ok.options.quadtree.depth_rules.size(), 1u);
   EXPECT_EQ(ok.options.quadtree.depth_rules[0].level, 2);
@@ -283,7 +490,7 @@ TEST(RunName, FollowsTheParameters) {
   EXPECT_EQ(name({"quadtree.step_deg=0.5"}), "global_30min_L3");
   EXPECT_EQ(name({"quadtree.step_deg=0.0625"}), "global_225sec_L3");
   EXPECT_EQ(name({"input.path=/data/my etopo1.nc", "quadtree.balance=\"corner\"", "quadtree.coast_band=0",
-                  "mesh.elements=\"squares\""}),
+                  "mesh.elements=\"squares\"", "output.formats=[\"msh\"]"}),
             "global_4deg_L3_my_etopo1_corner_cb0_squares");
   // A key that changes the mesh but has no part in the name still gives a parameter name.
   EXPECT_EQ(name({"mesh.diagonal=\"nw\""}), "global_4deg_L3");
@@ -293,6 +500,16 @@ TEST(RunName, ListsWhatDiffersFromTheSeedRun) {
   const auto n = aq::config::default_run_name(
       load_global(std::nullopt, {"quadtree.step_deg=1", "mask.min_depth_m=10", "output.name=ignored"}).options);
   EXPECT_THAT(n.changed, ::testing::ElementsAre("mask.min_depth_m = 10.0", "quadtree.step_deg = 1.0"));
+  EXPECT_TRUE(n.unnamed.empty());  // both are in the name
+}
+
+// What the name does not show is listed (`aquatoria mesh` warns: such runs write the same files).
+TEST(RunName, ListsWhatTheNameDoesNotShow) {
+  const auto n = aq::config::default_run_name(
+      load_global(std::nullopt, {"quadtree.step_deg=1", "mesh.diagonal=\"nw\"", "size.wavelength.wl=30"}).options);
+  EXPECT_EQ(n.name, "global_1deg_L3");
+  EXPECT_THAT(n.unnamed, ::testing::ElementsAre("size.wavelength.wl = 30.0", "mesh.diagonal = \"nw\""));
+  EXPECT_TRUE(aq::config::default_run_name(load_global(std::nullopt, {}).options).unnamed.empty());
 }
 
 }  // namespace unit_config_config_test

@@ -144,10 +144,12 @@ TEST(Lattice, SizesAndCoordinates) {
   EXPECT_EQ(f.pixel_count(), 86400LL * 43200LL);
 }
 
+// quadtree.step_deg and levels are validated at load (tests/unit/config); here they are
+// preconditions, whose failure is a bug.
 TEST(Lattice, RejectsStepsThatDoNotDivide180) {
-  EXPECT_THROW((void)aq::Lattice::make(7.0, 3, -180.0), aq::ConfigError);
-  EXPECT_THROW((void)aq::Lattice::make(0.0, 3, -180.0), aq::ConfigError);
-  EXPECT_THROW((void)aq::Lattice::make(4.0, 21, -180.0), aq::ConfigError);
+  EXPECT_THROW((void)aq::Lattice::make(7.0, 3, -180.0), aq::InternalError);
+  EXPECT_THROW((void)aq::Lattice::make(0.0, 3, -180.0), aq::InternalError);
+  EXPECT_THROW((void)aq::Lattice::make(4.0, 21, -180.0), aq::InternalError);
   EXPECT_NO_THROW((void)aq::Lattice::make(1.0 / 60.0, 0, -180.0));
 }
 
@@ -184,8 +186,8 @@ TEST(Lattice, StepsNotWithinRoundingAreRefusedWithTheReason) {
   try {
     (void)aq::Lattice::make(0.26667, 4, -180.0);
     FAIL() << "0.26667 was accepted";
-  } catch (const aq::ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("quadtree.step_deg = 0.26667"));
+  } catch (const aq::InternalError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("Δ0 = 0.26667°"));
     EXPECT_THAT(e.what(), HasSubstr("960.012\" is not a whole number of arc-seconds"));
   }
   EXPECT_THAT(aq::Lattice::step_problem(7.0), HasSubstr("does not divide 180°"));

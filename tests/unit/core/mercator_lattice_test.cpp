@@ -41,8 +41,8 @@ TEST(MercatorLattice, RowsEndAtWholeLevel0SquaresBeyondTheLatitudeLimit) {
   EXPECT_LT(Lattice::make_mercator(4.0, 3, -180.0, 86.5 - 1e-6).ny, d.ny + 1);
   EXPECT_EQ((d.ny >> d.levels) % 2, 0);  // whole level-0 squares, symmetric about the equator
   EXPECT_LT(aq::mercator_y_deg(d.lat_max_deg()) - aq::mercator_y_deg(86.5), d.step0_deg);
-  EXPECT_THROW((void)Lattice::make_mercator(4.0, 3, -180.0, 90.0), aq::ConfigError);
-  EXPECT_THROW((void)Lattice::make_mercator(3.7, 3, -180.0, 80.0), aq::ConfigError);
+  EXPECT_THROW((void)Lattice::make_mercator(4.0, 3, -180.0, 90.0), aq::InternalError);
+  EXPECT_THROW((void)Lattice::make_mercator(3.7, 3, -180.0, 80.0), aq::InternalError);
 }
 
 TEST(MercatorLattice, RowMapRoundTrips) {

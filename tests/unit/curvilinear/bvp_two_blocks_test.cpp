@@ -112,7 +112,7 @@ TEST(BvpTwoBlocks, OuterIterationsStopWhenFmaxAndFavgLevelOff) {
   bad.theta_levels = bad.eta_levels = graded_levels(4);
   bad.max_iterations = 0;
   EXPECT_THROW(orthogonal_bvp_two_blocks(block(0.0, kCut, 5, 5), block(kCut, 2.0, 9, 5), bad, graded_levels(8)),
-               ConfigError);
+               InternalError);
 }
 
 }  // namespace

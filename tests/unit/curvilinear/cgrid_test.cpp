@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "support/uniform_grid.hpp"
 
 namespace aq::curvilinear::unit_curvilinear_cgrid_test {
 namespace {
@@ -28,15 +29,7 @@ double initial_bearing(double lon1, double lat1, double lon2, double lat2) {
 }
 
 // A plane rectangle [-ax, ax] x [-ay, ay] as a (2nx+1) x (2ny+1) supergrid with uniform steps.
-Grid2D rectangle(int nx, int ny, double ax, double ay) {
-  Grid2D g(2 * nx + 1, 2 * ny + 1);
-  for (int j = 0; j < g.ny_pts; ++j)
-    for (int i = 0; i < g.nx_pts; ++i) {
-      g.x[g.at(i, j)] = -ax + 2.0 * ax * i / (g.nx_pts - 1);
-      g.y[g.at(i, j)] = -ay + 2.0 * ay * j / (g.ny_pts - 1);
-    }
-  return g;
-}
+Grid2D rectangle(int nx, int ny, double ax, double ay) { return aq::testing::uniform_supergrid(nx, ny, ax, ay); }
 
 Projection mercator(double rlat, double rlon, double rota) {
   ProjectionParams p;
@@ -150,8 +143,8 @@ TEST(CGrid, Wgs84GeodesicsDifferFromTheSphereByTheFlattening) {
     EXPECT_GT(rel, 1e-5);                       // but not the same model
     EXPECT_NEAR(w.angle[k], s.angle[k], 2e-3);  // geodetic vs spherical azimuths at 60°N
   }
-  EXPECT_EQ(parse_distance_model("wgs84"), DistanceModel::kWgs84);
-  EXPECT_THROW(parse_distance_model("ellipsoid", "roms.distances"), ConfigError);
+  EXPECT_EQ(parse_name<DistanceModel>("wgs84"), DistanceModel::kWgs84);
+  EXPECT_FALSE(parse_name<DistanceModel>("ellipsoid").has_value());
 }
 
 TEST(CGrid, AngleFollowsTheBearingOfXiLines) {
@@ -246,7 +239,7 @@ TEST(CGrid, BadInputIsRefused) {
   EXPECT_THROW(build_cgrid(rectangle(1, 3, 10, 10), pr), InputError);  // L = 1
   CGridOptions o;
   o.earth_radius_m = -1.0;
-  EXPECT_THROW(build_cgrid(rectangle(3, 3, 10, 10), pr, o), ConfigError);
+  EXPECT_THROW(build_cgrid(rectangle(3, 3, 10, 10), pr, o), InternalError);
   Grid2D same = rectangle(3, 3, 10, 10);
   same.x[same.at(1, 2)] = same.x[same.at(2, 2)];  // u and ρ coincide
   same.y[same.at(1, 2)] = same.y[same.at(2, 2)];

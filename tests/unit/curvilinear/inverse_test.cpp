@@ -135,7 +135,7 @@ TEST(InverseTest, ScheduleReadingsCompared) {
     std::printf(
         "[ info ] schedule %-11s: %2d outer iterations, %3d IZ89 passes, %.2f s; measured residual %.2e, "
         "true residual %.2e, W/H %.9f\n",
-        inner_schedule_name(sch), r.outer_iterations, passes, sec, r.residual, t.residual, t.aspect_ratio);
+        std::string(name_of(sch)).c_str(), r.outer_iterations, passes, sec, r.residual, t.residual, t.aspect_ratio);
     std::printf("[ info ]   measured history:");
     for (double v : r.residual_history) std::printf(" %.1e", v);
     std::printf("\n");
@@ -215,14 +215,15 @@ TEST(InverseTest, StagesStopWhereAsked) {
   EXPECT_EQ(r.contour->degree(), 5);
   EXPECT_EQ(r.cubic_contour->degree(), 3);
   EXPECT_TRUE(r.uniform_nodes.s.empty());
-  EXPECT_EQ(parse_stage("conformal"), Stage::kConformal);
-  EXPECT_EQ(parse_stage("5"), Stage::kGrid);
-  EXPECT_THROW(parse_stage("mesh"), ConfigError);
+  EXPECT_EQ(parse_name<Stage>("conformal"), Stage::kConformal);
+  EXPECT_EQ(parse_name<Stage>("5"), Stage::kGrid);
+  EXPECT_FALSE(parse_name<Stage>("mesh").has_value());
+  EXPECT_EQ(name_list<Stage>(), "\"map\", \"contour\", \"uniform\", \"conformal\", \"grid\"");  // not the digits
 }
 
 TEST(InverseTest, GeographicControlPointsAreProjectedFirst) {
   RegionalParams p = black_sea_params();
-  const Projection proj(projection_params(p));
+  const Projection proj(p.projection);
   for (std::size_t k = 0; k < p.x.size(); ++k) {
     const GeoPoint g = proj.inverse(p.x[k], p.y[k]);
     p.x[k] = g.lon_deg;

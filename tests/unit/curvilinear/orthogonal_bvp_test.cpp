@@ -253,10 +253,10 @@ TEST(OrthogonalBvp, TransfiniteInterpolationReproducesBilinearAndLevelsAreChecke
   EXPECT_EQ(l.front(), 0.0);
   EXPECT_EQ(l.back(), 1.0);
   EXPECT_NEAR((l[10] - l[9]) / (l[1] - l[0]), 3.0, 1e-12);
-  EXPECT_THROW(graded_levels(0), ConfigError);
+  EXPECT_THROW(graded_levels(0), InternalError);
   BvpOptions o = options(4, 1);
   o.theta_levels = {0.0, 0.5, 0.5, 1.0};
-  EXPECT_THROW(orthogonal_bvp(tfi_of(sector, 5, 5), o), ConfigError);
+  EXPECT_THROW(orthogonal_bvp(tfi_of(sector, 5, 5), o), InternalError);
 }
 
 }  // namespace

@@ -67,14 +67,14 @@ TEST(ProjectionTest, RoundTripsToOneTrillionthOfADegree) {
       const double lat = std::clamp(c.rlat + dlat(rng), -89.0, 89.0);
       const double lon = c.rlon + dlon(rng);
       const PlanePoint q = proj.forward(lon, lat);
-      ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << projection_code(c.kind) << " at " << lon << " " << lat;
+      ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << name_of(c.kind) << " at " << lon << " " << lat;
       const GeoPoint g = proj.inverse(q.x, q.y);
       worst = std::max({worst, std::fabs(g.lat_deg - lat), std::fabs(lon_diff(g.lon_deg, lon)) * std::cos(lat * kDeg)});
       // And the other way: plane -> sphere -> plane.
       const PlanePoint back = proj.forward(g.lon_deg, g.lat_deg);
       worst = std::max({worst, std::fabs(back.x - q.x) * 1e-3, std::fabs(back.y - q.y) * 1e-3});
     }
-    EXPECT_LT(worst, 1e-12) << projection_code(c.kind) << " centred at " << c.rlat << ", " << c.rlon;
+    EXPECT_LT(worst, 1e-12) << name_of(c.kind) << " centred at " << c.rlat << ", " << c.rlon;
   }
 }
 
@@ -89,8 +89,8 @@ TEST(ProjectionTest, CentreIsOriginAndAxesFollowRota) {
     if (std::fabs(c.rlat) < 89.0) {
       const PlanePoint n = proj.forward(c.rlon, c.rlat + 0.01);
       const double len = std::hypot(n.x, n.y);
-      EXPECT_NEAR(n.x / len, -std::sin(c.rota * kDeg), 1e-4) << projection_code(c.kind);
-      EXPECT_NEAR(n.y / len, std::cos(c.rota * kDeg), 1e-4) << projection_code(c.kind);
+      EXPECT_NEAR(n.x / len, -std::sin(c.rota * kDeg), 1e-4) << name_of(c.kind);
+      EXPECT_NEAR(n.y / len, std::cos(c.rota * kDeg), 1e-4) << name_of(c.kind);
     }
   }
 }
@@ -141,17 +141,15 @@ TEST(ProjectionTest, ConformalWithTheStatedScaleFactor) {
       const GeoPoint o = proj.inverse(x, y), ex = proj.inverse(x + h, y), ey = proj.inverse(x, y + h);
       const double k = proj.metres_per_unit(x, y) * h;
       const double r = proj.params().radius_m;
-      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ex.lon_deg, ex.lat_deg, r) / k, 1.0, 2e-6)
-          << projection_code(c.kind);
-      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ey.lon_deg, ey.lat_deg, r) / k, 1.0, 2e-6)
-          << projection_code(c.kind);
+      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ex.lon_deg, ex.lat_deg, r) / k, 1.0, 2e-6) << name_of(c.kind);
+      EXPECT_NEAR(distance_m(o.lon_deg, o.lat_deg, ey.lon_deg, ey.lat_deg, r) / k, 1.0, 2e-6) << name_of(c.kind);
       // Perpendicular: the diagonal has length sqrt(2) k.
       const GeoPoint exy = proj.inverse(x + h, y + h);
       const GeoPoint em = proj.inverse(x + h, y - h);
       const double d1 = distance_m(o.lon_deg, o.lat_deg, exy.lon_deg, exy.lat_deg, r);
       const double d2 = distance_m(ey.lon_deg, ey.lat_deg, em.lon_deg, em.lat_deg, r);
-      EXPECT_NEAR(d1 / (std::sqrt(2.0) * k), 1.0, 1e-5) << projection_code(c.kind);
-      EXPECT_NEAR(d2 / (std::sqrt(5.0) * k), 1.0, 1e-5) << projection_code(c.kind);
+      EXPECT_NEAR(d1 / (std::sqrt(2.0) * k), 1.0, 1e-5) << name_of(c.kind);
+      EXPECT_NEAR(d2 / (std::sqrt(5.0) * k), 1.0, 1e-5) << name_of(c.kind);
     }
   }
 }
@@ -188,10 +186,12 @@ TEST(ProjectionTest, RefusesSingularConfigurations) {
   p.lat1_deg = 30.0;
   p.uscale = 0.0;
   EXPECT_THROW(Projection{p}, ConfigError);
-  EXPECT_THROW(parse_projection_kind("XY"), ConfigError);
-  EXPECT_EQ(parse_projection_kind("me"), ProjectionKind::kMercator);
-  EXPECT_EQ(parse_projection_kind("Lambert"), ProjectionKind::kLambertConic);
-  EXPECT_EQ(projection_code(ProjectionKind::kStereographic), "ST");
+  EXPECT_FALSE(parse_name_any_case<ProjectionKind>("XY").has_value());
+  EXPECT_EQ(parse_name_any_case<ProjectionKind>("me"), ProjectionKind::kMercator);
+  EXPECT_EQ(parse_name_any_case<ProjectionKind>("Lambert"), ProjectionKind::kLambertConic);
+  EXPECT_FALSE(parse_name<ProjectionKind>("me").has_value());  // exact names only
+  EXPECT_EQ(name_of(ProjectionKind::kStereographic), "ST");
+  EXPECT_EQ(name_list<ProjectionKind>(), "\"ME\", \"LC\", \"ST\"");  // aliases are not listed
 }
 
 }  // namespace

@@ -8,8 +8,9 @@
 #include <numbers>
 #include <vector>
 
-#include "curvilinear/elliptic/boundary_equidistribution.hpp"
 #include "curvilinear/common/grid2d.hpp"
+#include "curvilinear/elliptic/boundary_equidistribution.hpp"
+#include "support/uniform_grid.hpp"
 
 namespace aq::curvilinear::test {
 
@@ -76,14 +77,6 @@ inline Grid2D wavy_channel_boundary(int L, int M, double a, const ControlFunctio
 }
 
 /// Uniform W × H rectangle grid with L × M nodes, SW corner at the origin.
-inline Grid2D rectangle(int L, int M, double W, double H) {
-  Grid2D g(L, M);
-  for (int j = 0; j < M; ++j)
-    for (int i = 0; i < L; ++i) {
-      g.x[g.at(i, j)] = W * i / (L - 1);
-      g.y[g.at(i, j)] = H * j / (M - 1);
-    }
-  return g;
-}
+inline Grid2D rectangle(int L, int M, double W, double H) { return aq::testing::uniform_grid(L, M, 0.0, W, 0.0, H); }
 
 }  // namespace aq::curvilinear::test

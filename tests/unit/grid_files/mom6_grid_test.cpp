@@ -14,19 +14,19 @@
 #include "grid_files/any_grid.hpp"
 #include "grid_files/roms_grid.hpp"
 #include "support/temp_dir.hpp"
+#include "support/uniform_grid.hpp"
 
 namespace aq::io::unit_grid_files_mom6_grid_test {
 namespace {
 
 // A curved (but conformal-map-like) supergrid of (2nx+1) x (2ny+1) points in Mercator plane units.
 curvilinear::Grid2D plane_grid(int nx, int ny) {
-  curvilinear::Grid2D g(2 * nx + 1, 2 * ny + 1);
-  for (int j = 0; j < g.ny_pts; ++j)
-    for (int i = 0; i < g.nx_pts; ++i) {
-      const double u = -50.0 + 100.0 * i / (g.nx_pts - 1), v = -30.0 + 60.0 * j / (g.ny_pts - 1);
-      g.x[g.at(i, j)] = u + 1e-3 * (u * u - v * v);  // z + 0.001 z²: conformal, orthogonal lines
-      g.y[g.at(i, j)] = v + 2e-3 * u * v;
-    }
+  curvilinear::Grid2D g = aq::testing::uniform_supergrid(nx, ny, 50.0, 30.0);
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    const double u = g.x[k], v = g.y[k];
+    g.x[k] = u + 1e-3 * (u * u - v * v);  // z + 0.001 z²: conformal, orthogonal lines
+    g.y[k] = v + 2e-3 * u * v;
+  }
   return g;
 }
 
@@ -113,17 +113,17 @@ TEST(Mom6Grid, CheckReadsRomsAndMom6FilesAsOrthogonalGrids) {
   write_roms_grid(dir / "x_grd.nc", data);
 
   const AnyGrid roms = read_any_grid(dir / "x_grd.nc");
-  EXPECT_EQ(roms.kind, "roms");
+  EXPECT_EQ(roms.kind, GridFileKind::kRoms);
   EXPECT_EQ(roms.xy.grid.nx_pts, f.super.nx_pts);
   EXPECT_EQ(roms.xy.grid.ny_pts, f.super.ny_pts);
   const AnyGrid mom6 = read_any_grid(dir / "h.nc");
-  EXPECT_EQ(mom6.kind, "mom6");
+  EXPECT_EQ(mom6.kind, GridFileKind::kMom6);
   EXPECT_EQ(mom6.xy.grid.nx_pts, f.super.nx_pts - 2);
   // The source grid is conformal, so the checks see orthogonal cells on the sphere too.
   for (const AnyGrid* g : {&roms, &mom6}) {
     const curvilinear::GridQuality q = curvilinear::check_grid(g->xy.grid, {});
     EXPECT_TRUE(q.non_finite.empty());
-    EXPECT_LT(q.ortho_50.worst, 1e-3) << g->kind;
+    EXPECT_LT(q.ortho_50.worst, 1e-3) << name_of(g->kind);
   }
   EXPECT_THROW(read_any_grid(dir / "t.nc"), InputError);  // a topography is not a grid
 }

@@ -12,19 +12,12 @@
 
 #include "core/error.hpp"
 #include "support/temp_dir.hpp"
+#include "support/uniform_grid.hpp"
 
 namespace aq::io::unit_grid_files_roms_grid_test {
 namespace {
 
-curvilinear::Grid2D plane_rectangle(int nx, int ny) {
-  curvilinear::Grid2D g(2 * nx + 1, 2 * ny + 1);
-  for (int j = 0; j < g.ny_pts; ++j)
-    for (int i = 0; i < g.nx_pts; ++i) {
-      g.x[g.at(i, j)] = -50.0 + 100.0 * i / (g.nx_pts - 1);
-      g.y[g.at(i, j)] = -30.0 + 60.0 * j / (g.ny_pts - 1);
-    }
-  return g;
-}
+curvilinear::Grid2D plane_rectangle(int nx, int ny) { return aq::testing::uniform_supergrid(nx, ny, 50.0, 30.0); }
 
 struct Fixture {
   curvilinear::Grid2D super = plane_rectangle(6, 4);

@@ -31,17 +31,17 @@ TEST(IzogridFileTest, ReadsTheSeedBlackSeaFile) {
   EXPECT_EQ(p.latlongrid, 2.0);
   EXPECT_EQ(p.spline_type, 4);
   EXPECT_EQ(p.npass, 4);
-  EXPECT_EQ(p.proj, ProjectionKind::kMercator);
-  EXPECT_EQ(p.rlat, 43.75);
-  EXPECT_EQ(p.rlon, 34.5);
-  EXPECT_EQ(p.rota, 0.0);
+  EXPECT_EQ(p.projection.kind, ProjectionKind::kMercator);
+  EXPECT_EQ(p.projection.rlat_deg, 43.75);
+  EXPECT_EQ(p.projection.rlon_deg, 34.5);
+  EXPECT_EQ(p.projection.rota_deg, 0.0);
   EXPECT_EQ(p.west_edge, 26.5);
   EXPECT_EQ(p.east_edge, 43.0);
   EXPECT_EQ(p.south_edge, 40.75);
   EXPECT_EQ(p.north_edge, 47.25);
   EXPECT_EQ(p.nx, 65);
   EXPECT_EQ(p.ny, 50);
-  EXPECT_EQ(p.uscale, 0.001);
+  EXPECT_EQ(p.projection.uscale, 0.001);
   ASSERT_EQ(p.x.size(), 15u);
   EXPECT_EQ(p.x[6], 104.0);
   EXPECT_EQ(p.y[14], -6.2);
@@ -63,7 +63,7 @@ TEST(IzogridFileTest, AcceptsEveryDashMarkerAndComments) {
     const std::string text = "ny=20 # grid rows\nproj=st rlat=90 uscale=0.01\n" + marker + "\n" + kPoints;
     const RegionalParams p = parse_izogrid(text, "t");
     EXPECT_EQ(p.ny, 20) << marker;
-    EXPECT_EQ(p.proj, ProjectionKind::kStereographic);
+    EXPECT_EQ(p.projection.kind, ProjectionKind::kStereographic);
     EXPECT_EQ(p.x.size(), 15u) << marker;
   }
   // Two dashes are not a marker: the points are then read as bad key=value tokens.
@@ -139,10 +139,10 @@ TEST(IzogridFileTest, AquatoriaKeysMapToTheParams) {
       "solver=sor threads=2 xygrid=out.nc lwidth=2 gshhs_data=f\n---\n"
       "8 44\n12 44 <\n12 47 <\n8 47 <\n",
       "t");
-  EXPECT_EQ(p.proj, ProjectionKind::kLambertConic);
-  EXPECT_EQ(p.lat1, 35.0);
-  EXPECT_EQ(p.lat2, 55.0);
-  EXPECT_EQ(p.radius, 6378137.0);
+  EXPECT_EQ(p.projection.kind, ProjectionKind::kLambertConic);
+  EXPECT_EQ(p.projection.lat1_deg, 35.0);
+  EXPECT_EQ(p.projection.lat2_deg, 55.0);
+  EXPECT_EQ(p.projection.radius_m, 6378137.0);
   EXPECT_EQ(p.param, Parametrisation::kArcLength);
   EXPECT_TRUE(p.points_lonlat);
   EXPECT_FALSE(p.auto_nx);

@@ -171,12 +171,12 @@ TEST(BlockFiles, WrittenConfigLoadsWithCentreAndFourCorners) {
   const auto loaded = aq::config::load_regional((dir / "block_007.toml").string(), {});
   const auto& r = loaded.options;
   EXPECT_EQ(r.name, "block_007");
-  EXPECT_EQ(r.params.proj, aq::curvilinear::ProjectionKind::kMercator);
-  EXPECT_NEAR(r.params.rlat, 42.0, 1e-12);
-  EXPECT_NEAR(r.params.rlon, 30.0, 1e-12);
-  EXPECT_EQ(r.params.rota, 0.0);
+  EXPECT_EQ(r.params.projection.kind, aq::curvilinear::ProjectionKind::kMercator);
+  EXPECT_NEAR(r.params.projection.rlat_deg, 42.0, 1e-12);
+  EXPECT_NEAR(r.params.projection.rlon_deg, 30.0, 1e-12);
+  EXPECT_EQ(r.params.projection.rota_deg, 0.0);
   EXPECT_EQ(r.params.ny, 24);
-  EXPECT_DOUBLE_EQ(r.params.uscale, 0.0005);
+  EXPECT_DOUBLE_EQ(r.params.projection.uscale, 0.0005);
   EXPECT_FALSE(r.params.points_lonlat);
   ASSERT_EQ(r.params.x.size(), 20u);
   std::vector<std::size_t> corners;
@@ -184,7 +184,7 @@ TEST(BlockFiles, WrittenConfigLoadsWithCentreAndFourCorners) {
     if (r.params.corner[k]) corners.push_back(k);
   EXPECT_EQ(corners, (std::vector<std::size_t>{0, 5, 10, 15}));
   // The corners are the box's corners, projected.
-  const aq::curvilinear::Projection proj(aq::curvilinear::projection_params(r.params));
+  const aq::curvilinear::Projection proj(r.params.projection);
   const double lon[4] = {28, 32, 32, 28}, lat[4] = {40, 40, 44, 44};
   for (int q = 0; q < 4; ++q) {
     const auto e = proj.forward(lon[q], lat[q]);

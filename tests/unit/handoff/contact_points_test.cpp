@@ -17,6 +17,7 @@
 #include "grid_files/roms_grid.hpp"
 #include "handoff/contact_points.hpp"
 #include "support/temp_dir.hpp"
+#include "support/uniform_grid.hpp"
 
 namespace unit_handoff_contact_points_test {
 
@@ -32,13 +33,12 @@ constexpr int kPad = 4;
 
 // L x M cells on [cx-w, cx+w] x [cy-h, cy+h] plane units, warped by `warp` (curvilinear lines).
 Grid2D grid(int L, int M, double cx, double cy, double w, double h, double warp) {
-  Grid2D g(2 * L + 1, 2 * M + 1);
-  for (int j = 0; j < g.ny_pts; ++j)
-    for (int i = 0; i < g.nx_pts; ++i) {
-      const double x = cx - w + 2.0 * w * i / (g.nx_pts - 1), y = cy - h + 2.0 * h * j / (g.ny_pts - 1);
-      g.x[g.at(i, j)] = x + warp * std::sin(y / 40.0);
-      g.y[g.at(i, j)] = y + warp * std::sin(x / 50.0);
-    }
+  Grid2D g = aq::testing::uniform_grid(2 * L + 1, 2 * M + 1, cx - w, cx + w, cy - h, cy + h);
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    const double x = g.x[k], y = g.y[k];
+    g.x[k] = x + warp * std::sin(y / 40.0);
+    g.y[k] = y + warp * std::sin(x / 50.0);
+  }
   return g;
 }
 

@@ -40,7 +40,7 @@ inline const GlobalMeshFixture& etopo60_mesh(bool rotated, LatticeKind kind = La
   c.quadtree.levels = 3;
   c.mask.passages = false;
   c.rotation.enabled = rotated;
-  c.quadtree.lattice = kind == LatticeKind::kMercator ? "mercator" : "lonlat";
+  c.quadtree.lattice = kind;
   f->lattice = kind == LatticeKind::kMercator
                    ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                             c.quadtree.mercator_lat_max_deg)

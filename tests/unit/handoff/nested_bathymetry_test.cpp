@@ -254,7 +254,7 @@ TEST(NestedBathymetry, BadInputsAreRefused) {
   EXPECT_THROW((void)aq::handoff::nested_depth(bad_size.in), aq::InternalError);
   Case bad_hmin = c;
   bad_hmin.in.child_options.hmin_m = 0.0;
-  EXPECT_THROW((void)aq::handoff::nested_depth(bad_hmin.in), aq::ConfigError);
+  EXPECT_THROW((void)aq::handoff::nested_depth(bad_hmin.in), aq::InternalError);
 }
 
 }  // namespace

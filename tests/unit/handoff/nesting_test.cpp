@@ -15,6 +15,7 @@
 #include "grid_files/nesting_netcdf.hpp"
 #include "handoff/nesting.hpp"
 #include "support/temp_dir.hpp"
+#include "support/uniform_grid.hpp"
 #include "unit/handoff/global_mesh_fixture.hpp"
 
 namespace unit_handoff_nesting_test {
@@ -28,15 +29,7 @@ using aq::handoff::CPointType;
 using aq::handoff::RomsBoundary;
 
 // A uniform planar supergrid of L x M cells spanning [-w, w] x [-h, h] plane units.
-Grid2D plane_grid(int L, int M, double w, double h) {
-  Grid2D g(2 * L + 1, 2 * M + 1);
-  for (int j = 0; j < g.ny_pts; ++j)
-    for (int i = 0; i < g.nx_pts; ++i) {
-      g.x[g.at(i, j)] = -w + 2.0 * w * i / (g.nx_pts - 1);
-      g.y[g.at(i, j)] = -h + 2.0 * h * j / (g.ny_pts - 1);
-    }
-  return g;
-}
+Grid2D plane_grid(int L, int M, double w, double h) { return aq::testing::uniform_supergrid(L, M, w, h); }
 
 Projection mercator_at(double lon, double lat) {
   ProjectionParams p;

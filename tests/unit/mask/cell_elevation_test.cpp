@@ -112,15 +112,5 @@ TEST(CellElevation, AutoIsMeanOnlyWhenTheRasterIsFiner) {
   EXPECT_EQ(t.elevation_m[0], 12345.0);
 }
 
-TEST(CellElevation, ParseNamesTheKey) {
-  EXPECT_EQ(parse_cell_statistic("median", "roms.depth_statistic"), CellStatistic::kMedian);
-  try {
-    parse_cell_statistic("average", "roms.depth_statistic");
-    FAIL();
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("roms.depth_statistic = \"average\""), std::string::npos);
-  }
-}
-
 }  // namespace
 }  // namespace aq::mask::unit_mask_cell_elevation_test

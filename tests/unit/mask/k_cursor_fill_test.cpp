@@ -318,14 +318,18 @@ TEST(KFillSeeds, SeedOnLandOutsideRadiusIsAConfigErrorNamingTheSeed) {
   }
 }
 
-TEST(KFillSeeds, BadSeedsAndCursorAreConfigErrors) {
+// mask.seeds, mask.cursor and mask.seed_radius_deg are validated at load (tests/unit/config); the
+// fill refuses values outside their ranges as a bug.
+TEST(KFillSeeds, BadSeedsAndCursorBreakThePreconditions) {
   const Lattice lat = coarse_lattice();
   const Bitmap wet = draw(kBlock);
-  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {{0.0, 95.0}}, 5.0, Logger::null()), ConfigError);
-  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {}, 5.0, Logger::null()), ConfigError);
-  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 0, {{-33.75, 11.25}}, 5.0, Logger::null()), ConfigError);
-  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 65, {{-33.75, 11.25}}, 5.0, Logger::null()), ConfigError);
-  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {{-33.75, 11.25}}, -1.0, Logger::null()), ConfigError);
+  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {{0.0, 95.0}}, 5.0, Logger::null()), InternalError);
+  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {}, 5.0, Logger::null()), InternalError);
+  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 0, {{-33.75, 11.25}}, 5.0, Logger::null()), InternalError);
+  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 65, {{-33.75, 11.25}}, 5.0, Logger::null()),
+               InternalError);
+  EXPECT_THROW((void)k_cursor_fill(wet, lat, PoleRotation(), 2, {{-33.75, 11.25}}, -1.0, Logger::null()),
+               InternalError);
 }
 
 TEST(KFillSeeds, NearestWindowAcrossTheSeamAndOverThePole) {

@@ -55,9 +55,11 @@ void check_mesh(const Mesh& m, const Bitmap& filled, bool geodesic = false) {
 struct Case {
   std::uint32_t seed;
   int band;
-  const char* balance;
-  const char* diagonal;
+  config::BalanceMode balance;
+  config::Diagonal diagonal;
 };
+constexpr auto kFace = config::BalanceMode::kFace, kCorner = config::BalanceMode::kCorner;
+constexpr auto kNe = config::Diagonal::kNE, kNw = config::Diagonal::kNW, kAlt = config::Diagonal::kAlternate;
 
 class MeshRandom : public ::testing::TestWithParam<Case> {};
 
@@ -81,9 +83,9 @@ TEST_P(MeshRandom, WholeMeshInvariants) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, MeshRandom,
-                         ::testing::Values(Case{1, 0, "face", "ne"}, Case{2, 0, "face", "nw"},
-                                           Case{3, 2, "face", "alternate"}, Case{4, 2, "corner", "ne"},
-                                           Case{5, 1, "corner", "alternate"}, Case{6, 3, "face", "ne"}));
+                         ::testing::Values(Case{1, 0, kFace, kNe}, Case{2, 0, kFace, kNw}, Case{3, 2, kFace, kAlt},
+                                           Case{4, 2, kCorner, kNe}, Case{5, 1, kCorner, kAlt},
+                                           Case{6, 3, kFace, kNe}));
 
 TEST(Mesh, DrawnPinchAndSeamCrossing) {
   // 16 × 8 pixels (L = 2): a region across the seam (columns 13..15 and 0..5), and a pinch at
@@ -209,8 +211,8 @@ TEST(Mesh, SquaresOnlyAndBoth) {
   const Bitmap m = random_mask(lat.nx, lat.ny, 12u);
   const raster::Bathymetry bathy = testing::synthetic_bathymetry();
   config::MeshOptions squares, both;
-  squares.elements = "squares";
-  both.elements = "both";
+  squares.elements = config::ElementKinds::kSquares;
+  both.elements = config::ElementKinds::kBoth;
   const testing::Built s = build_all(m, lat, {}, squares, PoleRotation(), bathy);
   const testing::Built t = build_all(m, lat, {}, both, PoleRotation(), bathy);
   EXPECT_TRUE(s.mesh.triangles.empty());
@@ -234,12 +236,6 @@ TEST(Mesh, SquaresOnlyAndBoth) {
       EXPECT_EQ(J(ms), J(c[0]));
     }
   }
-  config::MeshOptions bad;
-  bad.elements = "quads";
-  EXPECT_THROW(build_mesh(s.leaves, lat, PoleRotation(), bathy, bad, Logger::null(), nullptr), ConfigError);
-  bad.elements = "triangles";
-  bad.diagonal = "up";
-  EXPECT_THROW(build_mesh(s.leaves, lat, PoleRotation(), bathy, bad, Logger::null(), nullptr), ConfigError);
 }
 
 TEST(Mesh, ReportSections) {
@@ -263,7 +259,7 @@ TEST(Mesh, IdenticalForOneAndTwoThreads) {
   const Bitmap m = random_mask(lat.nx, lat.ny, 21u, 0.6, 0.01, 10);
   const raster::Bathymetry bathy = testing::synthetic_bathymetry();
   config::MeshOptions mo;
-  mo.diagonal = "alternate";
+  mo.diagonal = config::Diagonal::kAlternate;
   const int saved = omp_get_max_threads();
   omp_set_num_threads(1);
   const testing::Built one = build_all(m, lat, {}, mo, PoleRotation(-44.858333, 78.141667), bathy);

@@ -407,7 +407,7 @@ TEST(Statistics, SquaresOnlyMeshIsCheckedOnItsSquares) {
     const Lattice lat = make_lattice(45.0, 4);
     const Bitmap m = random_mask(lat.nx, lat.ny, 5u, 0.6, 0.01, 8);
     config::MeshOptions squares, triangles;
-    squares.elements = "squares";
+    squares.elements = config::ElementKinds::kSquares;
     const PoleRotation rot = rotated ? greenland : PoleRotation();
     const Mesh sq = build_all(m, lat, {}, squares, rot, testing::synthetic_bathymetry()).mesh;
     const Mesh tr = build_all(m, lat, {}, triangles, rot, testing::synthetic_bathymetry()).mesh;
@@ -513,7 +513,7 @@ TEST(Statistics, SameReportForOneAndTwoThreads) {
   const Lattice lat = make_lattice(10.0, 4);  // 576 × 288 pixels
   const Bitmap m = random_mask(lat.nx, lat.ny, 7u, 0.6, 0.01, 8);
   for (const bool rotated : {false, true}) {
-    for (const char* elements : {"triangles", "squares"}) {
+    for (const config::ElementKinds elements : {config::ElementKinds::kTriangles, config::ElementKinds::kSquares}) {
       config::MeshOptions mo;
       mo.elements = elements;
       Mesh mesh = build_all(m, lat, {}, mo, rotated ? greenland : PoleRotation(), testing::synthetic_bathymetry()).mesh;
@@ -531,8 +531,8 @@ TEST(Statistics, SameReportForOneAndTwoThreads) {
         const testing::ThreadCount use(2);
         return compute_statistics(mesh);
       }();
-      EXPECT_TRUE(one.failed_checks().empty()) << rotated << " " << elements;
-      EXPECT_EQ(statistics_json(one).dump(), statistics_json(two).dump()) << rotated << " " << elements;
+      EXPECT_TRUE(one.failed_checks().empty()) << rotated << " " << name_of(elements);
+      EXPECT_EQ(statistics_json(one).dump(), statistics_json(two).dump()) << rotated << " " << name_of(elements);
     }
   }
 }

@@ -180,8 +180,8 @@ TEST(Templates, DiagonalChoice) {
   EXPECT_TRUE(uses_nw_diagonal(Diagonal::kNW, 0, 0));
   EXPECT_FALSE(uses_nw_diagonal(Diagonal::kAlternate, 3, 5));
   EXPECT_TRUE(uses_nw_diagonal(Diagonal::kAlternate, 3, 4));
-  EXPECT_EQ(parse_diagonal("alternate"), Diagonal::kAlternate);
-  EXPECT_THROW(parse_diagonal("sw"), ConfigError);
+  EXPECT_EQ(parse_name<Diagonal>("alternate"), Diagonal::kAlternate);
+  EXPECT_FALSE(parse_name<Diagonal>("sw").has_value());
 }
 
 }  // namespace

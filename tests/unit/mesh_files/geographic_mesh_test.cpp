@@ -74,7 +74,7 @@ TEST(GeographicMesh, CapReplacesThePolarRow) {
   ASSERT_EQ(g.poles().size(), 1U);
   const PoleChange& c = g.poles()[0];
   EXPECT_TRUE(c.north);
-  EXPECT_EQ(c.method, "cap");
+  EXPECT_EQ(c.method, PoleMethod::kCap);
   EXPECT_EQ(c.ring_lat_deg, 80.0);
   EXPECT_EQ(c.ring_nodes, 37);                 // 36 corners + the midside node at I = 21
   EXPECT_EQ(c.removed_triangles, 2 * 35 + 5);  // 35 plain level-0 squares + one with 5 triangles
@@ -150,7 +150,7 @@ TEST(GeographicMesh, RotatedLatticeCapsInTheLatticeFrame) {
   const mesh::Mesh lm = testing::make_leaf_mesh(lat, leaves, true, rot);
   const GeographicMesh g(lm, ElementKinds::kTriangles, kSampler);
   ASSERT_EQ(g.poles().size(), 1U);
-  EXPECT_EQ(g.poles()[0].method, "cap");
+  EXPECT_EQ(g.poles()[0].method, PoleMethod::kCap);
   const Facts f = facts(g.mesh()), fl = facts(lm);
   EXPECT_EQ(f.duplicate_points, 0);
   EXPECT_EQ(f.tiny_triangles, 0);
@@ -173,7 +173,7 @@ TEST(GeographicMesh, PolarRowWithLandFallsBackToTheMerge) {
   const GeographicMesh g(lm, ElementKinds::kTriangles, kSampler);
   ASSERT_EQ(g.poles().size(), 1U);
   const PoleChange& c = g.poles()[0];
-  EXPECT_EQ(c.method, "merge");
+  EXPECT_EQ(c.method, PoleMethod::kMerge);
   EXPECT_NE(c.reason.find("not all ocean"), std::string::npos) << c.reason;
   EXPECT_EQ(c.removed_nodes, 35);  // the 36 pole-row nodes (the land square leaves no gap) into one
   EXPECT_EQ(c.removed_triangles, 35);
@@ -195,7 +195,7 @@ TEST(GeographicMesh, SquaresMergeThePoleRow) {
     const GeographicMesh g(lm, kinds, kSampler);
     ASSERT_TRUE(g.changed());
     ASSERT_EQ(g.poles().size(), 1U);
-    EXPECT_EQ(g.poles()[0].method, "merge");
+    EXPECT_EQ(g.poles()[0].method, PoleMethod::kMerge);
     EXPECT_NE(g.poles()[0].reason.find("squares"), std::string::npos) << g.poles()[0].reason;
     EXPECT_EQ(g.poles()[0].removed_nodes, 35);
     const mesh::Mesh& m = g.mesh();

@@ -142,8 +142,8 @@ TEST(VtuWriter, Wgs84CoordinatesInMetres) {
   const double r = std::hypot(pts[0], pts[1], pts[2]);
   EXPECT_GT(r, 6356752.0);
   EXPECT_LT(r, 6378137.1);
-  EXPECT_EQ(parse_vtu_coordinates("sphere"), VtuCoordinates::kUnitSphere);
-  EXPECT_THROW(parse_vtu_coordinates("ecef"), ConfigError);
+  EXPECT_EQ(parse_name<VtuCoordinates>("sphere"), VtuCoordinates::kUnitSphere);
+  EXPECT_FALSE(parse_name<VtuCoordinates>("ecef").has_value());
 }
 
 TEST(VtuWriter, SameBytesEveryRun) {

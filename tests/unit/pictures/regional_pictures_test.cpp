@@ -81,7 +81,7 @@ TEST(RegionalPicturesTest, RefusesStagesThatWereNotRun) {
       curvilinear::read_izogrid_file(std::string(AQ_SOURCE_DIR) + "/configs/black_sea.izogrid");
   const curvilinear::RegionalResult r = curvilinear::run_regional(p, Stage::kContour);
   const auto path = std::filesystem::temp_directory_path() / "aq_regional_refused.png";
-  EXPECT_THROW(write_regional_png(path, r, Stage::kGrid), ConfigError);
+  EXPECT_THROW(write_regional_png(path, r, Stage::kGrid), InternalError);
   EXPECT_THROW(write_regional_png("/nonexistent-dir/x.png", r, Stage::kContour), OutputError);
 }
 

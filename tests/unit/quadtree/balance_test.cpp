@@ -116,10 +116,11 @@ TEST(Balance, WorksAcrossTheSeam) {
   EXPECT_EQ(after.size(), 1u + 3u + 4u);
 }
 
-TEST(Balance, ParseMode) {
-  EXPECT_EQ(parse_balance_mode("face"), BalanceMode::kFace);
-  EXPECT_EQ(parse_balance_mode("corner"), BalanceMode::kCorner);
-  EXPECT_THROW(parse_balance_mode("edge"), ConfigError);
+TEST(Balance, ModeNames) {
+  EXPECT_EQ(parse_name<BalanceMode>("face"), BalanceMode::kFace);
+  EXPECT_EQ(parse_name<BalanceMode>("corner"), BalanceMode::kCorner);
+  EXPECT_FALSE(parse_name<BalanceMode>("edge").has_value());
+  EXPECT_EQ(fmt::format("{}-balanced", BalanceMode::kCorner), "corner-balanced");  // fmt prints the name
 }
 
 }  // namespace

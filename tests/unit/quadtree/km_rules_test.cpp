@@ -276,30 +276,5 @@ TEST(KmRules, TargetsBeyondTheLevelsClampToLevelLOrLeaveLevelZero) {
   EXPECT_EQ(level_for_size(lat, 150.0, lat.row_of_lat(60.0)), 2);
 }
 
-TEST(KmRules, BadTargetsNameTheRule) {
-  const Lattice lat = Lattice::make_mercator(15.0, 3, -180.0, 80.0);
-  LevelMasks m = make_level_masks(all_filled(lat), lat, 0);
-  const auto error = [&](const config::QuadtreeOptions& o) {
-    try {
-      apply_refinement_rules(m, lat, o, PoleRotation(), nullptr);
-    } catch (const ConfigError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  config::QuadtreeOptions o;
-  o.box_rules.push_back(km_box(0.0, 10.0, 0.0, 10.0, 100.0));
-  o.box_rules.push_back(km_box(0.0, 10.0, 0.0, 10.0, -5.0));
-  EXPECT_NE(error(o).find("quadtree.box_rules[1].size_km = -5"), std::string::npos) << error(o);
-  o.box_rules[1].size_km = std::nan("");
-  EXPECT_NE(error(o).find("quadtree.box_rules[1].size_km = nan"), std::string::npos) << error(o);
-  o.box_rules[1].size_km = std::numeric_limits<double>::infinity();
-  EXPECT_NE(error(o).find("quadtree.box_rules[1].size_km = inf"), std::string::npos) << error(o);
-  o.box_rules[1].size_km = 50.0;
-  o.box_rules[1].level = 2;
-  EXPECT_NE(error(o).find("quadtree.box_rules[1]: gives both level = 2 and size_km = 50"), std::string::npos)
-      << error(o);
-}
-
 }  // namespace
 }  // namespace aq::quadtree::unit_quadtree_km_rules_test

@@ -354,14 +354,6 @@ TEST(Leaves, DepthRuleUsesTheRasterThroughTheRotation) {
     }
   }
   EXPECT_GT(finest, 0);
-  // Bad rules are configuration errors naming the key.
-  o.depth_rules[0].level = 9;
-  EXPECT_THROW(apply_refinement_rules(masks, lat, o, rot, &bathy), ConfigError);
-  o.depth_rules[0] = {100.0, 50.0, 1};
-  EXPECT_THROW(apply_refinement_rules(masks, lat, o, rot, &bathy), ConfigError);
-  o.depth_rules.clear();
-  o.box_rules.push_back({0.0, 10.0, 20.0, 10.0, 1});
-  EXPECT_THROW(apply_refinement_rules(masks, lat, o, rot, &bathy), ConfigError);
 }
 
 TEST(Leaves, LocatorFindsTheLeafOfEveryPixel) {
@@ -386,7 +378,7 @@ TEST(Leaves, LocatorFindsTheLeafOfEveryPixel) {
 TEST(Leaves, BadInputIsReported) {
   const Lattice lat = make_lattice(30.0, 3);
   EXPECT_THROW(make_level_masks(Bitmap(10, 10), lat, 0), InternalError);
-  EXPECT_THROW(make_level_masks(Bitmap(lat.nx, lat.ny), lat, -1), ConfigError);
+  EXPECT_THROW(make_level_masks(Bitmap(lat.nx, lat.ny), lat, -1), InternalError);
   std::vector<Leaf> overlap{{0, 0, 0}, {1, 0, 0}};
   EXPECT_THROW(leaf_coverage(overlap, lat), InternalError);
   std::vector<Leaf> unsorted{{0, 1, 0}, {0, 0, 0}};

@@ -106,17 +106,5 @@ TEST(SizeRules, TheCoastalBandStopsAtTheLevelNearestItsTarget) {
   EXPECT_LT(leaves.size(), extract_leaves(plain, lat).size());
 }
 
-TEST(SizeRules, BadTargetsNameTheKey) {
-  const Lattice lat = Lattice::make_mercator(4.0, 2, -180.0, 80.0);
-  LevelMasks m = make_level_masks(all_filled(lat), lat, 0);
-  try {
-    apply_size_rules(m, lat, -1.0, 0.0, 0);
-    FAIL() << "no error";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("quadtree.size_km = -1"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW(apply_size_rules(m, lat, 0.0, std::nan(""), 0), ConfigError);
-}
-
 }  // namespace
 }  // namespace aq::quadtree::unit_quadtree_size_rules_test

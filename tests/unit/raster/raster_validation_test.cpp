@@ -143,6 +143,25 @@ TEST(RasterValidation, ANonFiniteGeotransformIsRefused) {
               HasSubstr("geotransform (0, 1, 0, nan, 0, -1) is not finite"));
 }
 
+// Issue 33: a geotransform with a pixel of 1e300 degrees was opened (and meshed) as a small
+// raster. A lon/lat pixel is between 1e-9° and the globe, and the columns span at most 360°.
+TEST(RasterValidation, AnImpossiblePixelSizeIsRefusedNamingTheFile) {
+  aq::testing::TempDir dir;
+  const auto error = [&](const char* name, double dx, double dy, int w = 30) {
+    const double gt[6] = {0.0, dx, 0.0, 50.0, 0.0, -dy};
+    return open_error(write_tif(dir / name, GDT_Float32, -1000.0, 0.0, w, 20, 1.0, nullptr, gt));
+  };
+  const std::string huge = error("huge.tif", 1e300, 1.0);
+  EXPECT_THAT(huge, HasSubstr((dir / "huge.tif").string() + ": the geotransform's pixel is 1e+300° × -1°"));
+  EXPECT_THAT(huge, HasSubstr("between 1e-09° and 360° × 180°"));
+  EXPECT_THAT(error("tall.tif", 1.0, 200.0), HasSubstr("pixel is 1° × -200°"));
+  EXPECT_THAT(error("tiny.tif", 1e-300, 1.0), HasSubstr("pixel is 1e-300° × -1°"));
+  EXPECT_THAT(error("wide.tif", 13.0, 1.0), HasSubstr("30 columns of 13° span 390° of longitude"));
+  EXPECT_EQ(error("fine.tif", 1e-6, 1e-6), "(opened)");                     // 0.1 m pixels
+  EXPECT_EQ(error("global.tif", 12.0, 1.0), "(opened)");                    // exactly the globe
+  EXPECT_EQ(error("duplicate_column.tif", 360.0 / 29.0, 1.0), "(opened)");  // 0..360 with 360 repeated
+}
+
 // Values beyond ±max_abs_elevation_m (12 km by default) are no-data, counted.
 TEST(RasterValidation, ImplausibleValuesAreNoData) {
   aq::testing::TempDir dir;
