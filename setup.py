@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The build of the Python package for setuptools (pyproject.toml names it as the backend).
 
 The compiled module aquatoria._core is a target of the project's CMake (python/CMakeLists.txt), so

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A 1/9-arc-second tile stack of a coast, made from the installed ETOPO5 without storing a pixel.
 
 NOAA's coastal DEMs (CUDEM) come as thousands of 1/9" GeoTIFF tiles of 0.25 degree along the coast,

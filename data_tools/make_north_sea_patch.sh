@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Makes the fine source of README "Several bathymetry sources": ETOPO5 resampled (cubic) to a 1'
 # grid over the North Sea (4°W..10°E, 50..62°N; 840 × 720 Float32 GeoTIFF) with its sea floor
 # raised by a visible 40 m (a GDAL band offset: Dogger Bank and the shallow southern bight fall

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Makes a finer global raster from the installed ETOPO5 with aquatoria's own sampling
 # (aq_resample; longitude wraps, so there is no seam gap as with gdalwarp on a 0..360 source),
 # for benchmarks of big lattices. Cached outside the repository, never committed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // aq_resample: writes a global lon/lat GeoTIFF (Int16 or Float32) sampled from any raster that
 // aquatoria reads, with aquatoria's own sampling (longitude wraps, so a 0..360 source gives a
 // seamless result, which gdalwarp does not). Used to make big rasters for benchmarks.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Speed and memory benchmarks (ARCHITECTURE §8), printed as a table: wall, CPU and peak RSS per
 # stage from each run's report, against the targets. Not a test: it never fails on a missed
 # target, it reports it.

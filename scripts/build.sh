@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Configures and builds one flavour of aquatoria: everything, or only the given CMake targets.
 #   scripts/build.sh [release|asan|noomp] [TARGET...]   (default release, all targets)
 #     -> build/, build-asan/, build-noomp/;  e.g. scripts/build.sh release aquatoria

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fails (exit 1) if any C++ file differs from .clang-format; `--fix` rewrites them in place.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks that the .cpp files of one library can be compiled as one unity translation unit.
 
 CMake's unity build (CMakeLists.txt, AQ_UNITY) compiles the .cpp files of a library a batch at a

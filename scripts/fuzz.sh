@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fuzzes one parser with libFuzzer (Debian's clang, ASan+UBSan) for SECONDS seconds.
 #   scripts/fuzz.sh TARGET SECONDS     e.g. scripts/fuzz.sh config_global 600
 #   scripts/fuzz.sh list               the targets (tests/fuzz/targets.hpp says what each reads)

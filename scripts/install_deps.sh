@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The one list of system packages aquatoria needs (ARCHITECTURE §2). Idempotent: quiet and fast
 # when everything is present; otherwise runs `apt-get update` once and installs what is missing.
 # Only Debian's registry is used; nothing is downloaded from anywhere else.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the Python package `aquatoria` for Debian's /usr/bin/python3 with pip (pyproject.toml;
 # README "Python"), for those who want it without a virtual environment. A thin wrapper around
 #   /usr/bin/python3 -m pip install --no-build-isolation --no-deps --no-index --upgrade --target DEST .

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The main job: installs what is missing, builds the Release `aquatoria` binary only (not the
 # test suite; scripts/test.sh later builds the rest in the same tree, reusing these objects), and
 # runs the global mesh with the seed's reference parameters on the installed ETOPO5 (outputs in

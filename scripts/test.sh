@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds and runs the whole test suite: Release (with OpenMP), the configuration sweep (label
 # sweep, release build), then the sanitizer build (ASan+UBSan, OpenMP off, so the no-OpenMP build
 # is tested too; what it runs is said below), then the slow label (which includes the ADCIRC, ROMS, FESOM2 and SCHISM client

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria in Python: global ocean meshes and their stages as numpy arrays and xarray datasets.
 
 The same pipeline as the ``aquatoria`` command, compiled into this package (``aquatoria._core``)

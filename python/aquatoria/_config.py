@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Configuration plumbing shared by aquatoria.mesh and aquatoria.mask: Python overrides become the
 ``--set section.key=value`` strings of the command line (values as TOML), an in-memory raster
 becomes an ``input.path`` override, and the run's log lines become Python warnings."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """What ``import aquatoria`` checks before it loads the compiled module, so that a missing piece is
 one message at the import naming what to install or which interpreter to use, not an error at the
 first array (``No module named 'numpy'``) or a bare ``No module named 'aquatoria._core'``:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Ctrl-C during a long call: the C++ work runs on a worker thread while the main thread waits for
 it, so Python's SIGINT handler runs at once and raises KeyboardInterrupt in the main thread; the
 wait then asks the C++ side to stop (a CancelToken, core/cancel.hpp: the pipeline looks at it

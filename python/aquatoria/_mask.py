@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria.mask: the mask stage and the quadtree levels of a run, as arrays, without a mesh."""
 
 from . import _core

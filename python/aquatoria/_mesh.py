@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria.mesh: a global mesh run and its meshes as arrays: the geographic mesh (the UGRID,
 VTU and text files), the lattice mesh (MSH, the quadtree's own) and each model format's mesh as
 its files hold it (fort.14, hgrid.gr3, FESOM2)."""

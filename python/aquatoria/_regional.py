@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria.regional: a regional orthogonal curvilinear grid and its C-grid as arrays."""
 
 import os

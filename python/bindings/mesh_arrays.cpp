@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The meshes of a run as numpy arrays (see mesh_arrays.hpp).
 #include "mesh_arrays.hpp"
 

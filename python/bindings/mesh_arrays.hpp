@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The meshes of a run handed to Python as dicts of numpy arrays (python/aquatoria/_mesh.py wraps
 // them): a mesh::Mesh as it is (the lattice mesh, the geographic mesh), a model format's mesh as
 // its files hold it (the writers' own functions make the numbers: mesh_files/model_columns.hpp,

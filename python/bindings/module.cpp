@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The compiled part of the Python package `aquatoria` (module aquatoria._core, pybind11): the
 // global pipeline of aq_app run on the caller's configuration, its results handed to numpy as
 // views of the C++ arrays (no copy) where the layout allows, and aq::Error mapped to Python

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What every binding of the compiled module shares: the GIL and the process-wide lock around
 // C++ work, the OpenMP team size of one call, the log lines of a run, read-only numpy views of
 // C++ arrays and the report as a Python dict (see module.cpp for the design).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // aquatoria.regional in the compiled module: a regional orthogonal grid as `aquatoria regional`
 // builds it (contour -> conformal map -> Laplace fill, or a regional.method generator), up to the
 // complete grid, with its C-grid (the ROMS ρ/u/v/ψ points and metrics, app/regional_roms.hpp's

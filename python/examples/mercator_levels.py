@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The README's Python example: the Mercator mesh and its mask stage, drawn with matplotlib.
 
     PYTHONPATH=build/python /usr/bin/python3 python/examples/mercator_levels.py docs/images/python_mercator.png

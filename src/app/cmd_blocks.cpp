@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria blocks`: the hand-off from the global mesh to regional grids (ARCHITECTURE §6). Runs
 // the global pipeline (app/global_run.hpp, the same as `aquatoria mesh`), ranks the candidate
 // coastal blocks (handoff/coastal_blocks.hpp) and writes, for the best `blocks.top` of them, a

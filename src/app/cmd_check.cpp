@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria check GRID.nc [-o OUT.nc] [--png FILE] [--json FILE]`: the izogrid `checkort`
 // (seed 000 Sec. 2.6, eqs. (46)–(52)) plus the seed-004 cell criteria f1–f4 on a planar grid file,
 // a ROMS grid or a MOM6 supergrid (grid_files/any_grid.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria info FILE [--at LON,LAT ...]`: what the raster is, as found and as normalised, and
 // sampled elevations at given points.
 #include <fmt/format.h>

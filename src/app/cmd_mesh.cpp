@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria mesh`: the global discretizer end to end (ARCHITECTURE §4): bathymetry → wet
 // pixels → K-cursor fill → quadtree leaves → 2:1 smoothing → nodes → triangle templates →
 // depths → statistics → mesh files, pictures and the run report. With no -c it runs the seed's

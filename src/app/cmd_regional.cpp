@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional`: a regional orthogonal curvilinear grid by the izogrid method (seed 000,
 // ARCHITECTURE §5): map -> contour -> uniform boundary nodes -> inverse conformal problem ->
 // Laplace fill, or by a seed-004 method (regional.method; curvilinear/regional_methods.hpp),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Subcommands of the `aquatoria` executable. Each file cmd_<name>.cpp defines one
 // add_<name>_command(); it registers options on the CLI11 app and sets ctx.run to the action.
 // The action returns the exit code; aq::Error escaping it is printed by main with its exit code.

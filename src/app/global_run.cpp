@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global pipeline core (see global_run.hpp).
 #include "app/global_run.hpp"
 

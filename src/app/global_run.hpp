@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global discretizer's pipeline core, shared by `aquatoria mesh` (which writes the mesh),
 // `aquatoria blocks` (which ranks coastal blocks of the same run) and `aquatoria regional` (which
 // locates a nested grid's boundary points in the same mesh): configuration -> lattice and memory

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SIGINT/SIGTERM/SIGHUP/SIGQUIT/SIGPIPE handler: async-signal-safe throughout (gettid/tgkill/unlink/write/_exit, no
 // allocation, no stdio).
 #include "app/interrupt.hpp"

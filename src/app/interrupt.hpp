@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Clean interruption (ARCHITECTURE §9): SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE remove the
 // run's temporary files (and undo an unfinished commit; core/temp_registry.hpp), print one line
 // on stderr and exit with 128 + the signal number (130, 143, 129, 131, 141).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The key list of --keys (see key_list.hpp).
 #include "app/key_list.hpp"
 

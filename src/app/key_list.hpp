@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria mesh --keys` and `aquatoria regional --keys`: every configuration key with its default
 // and help, the names of an enumerated key with their meanings (from the one name table of each
 // option, config/kinds.hpp), as TOML lines a user can copy.

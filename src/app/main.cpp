@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The `aquatoria` command: parses the command line, runs one subcommand, maps errors to exit
 // codes (0 ok, 1 run/input failure, 2 usage/config error; ARCHITECTURE §7).
 #include <fmt/format.h>

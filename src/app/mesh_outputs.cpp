@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Writing every requested output of a global mesh run (see mesh_outputs.hpp).
 #include "app/mesh_outputs.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // All outputs of a global mesh run (ARCHITECTURE §4.8): calls the writer of every format listed
 // in output.formats, each into a temporary file of the run's OutputSet (renamed into place only
 // when the whole run succeeds), logs one line per file and returns what was written.

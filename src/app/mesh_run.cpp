@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The files of a global mesh run (see mesh_run.hpp).
 #include "app/mesh_run.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The files of a global mesh run, shared by `aquatoria mesh` and the Python interface
 // (python/aquatoria, Run.write): every output.formats file of a pipeline's result into an
 // OutputSet, the report's "outputs" section, and the run report <name>_report.json. Both callers

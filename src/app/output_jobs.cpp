@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Ordered writing of planned output files, one of them beside the others (see output_jobs.hpp).
 #include "app/output_jobs.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Writing a run's files in a fixed order while one of them is written on a thread of its own
 // (ARCHITECTURE §4.8). The caller plans every file first (its temporary path reserved in the
 // OutputSet, its writer ready to run, the log lines that precede it); write_output_jobs then runs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a run was made from (see provenance.hpp).
 #include "app/provenance.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a run was made from, and what changed since (the hand-off a user can trust): every run
 // report lists its inputs ("inputs": file, checksum, and the configuration that made the file when
 // aquatoria wrote it), so a later run can tell, before it overwrites the outputs of an earlier

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The nesting step of `aquatoria regional` (see regional_nesting.hpp).
 #include "app/regional_nesting.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional`, after the ROMS grid file: the nesting data of the regional grid in the
 // global mesh it is handed off from (ARCHITECTURE §6; handoff/nesting.hpp), <name>_nesting.nc
 // beside <name>_grd.nc. Written when the grid is complete, the ROMS file is enabled and

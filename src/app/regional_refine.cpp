@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The refinement grid of a regional run and its contact points (see regional_refine.hpp).
 #include "app/regional_refine.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional` for a refinement grid ([nesting] refine_factor, parent_box): the grid is not
 // built from a contour but cut from the parent's ROMS grid file, the parent's ψ cells
 // parent_box split refine_factor × refine_factor in the parent's own conformal plane

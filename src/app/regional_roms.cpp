@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ROMS grid file of a regional run: global mask and depth from roms.global_config, C-grid
 // metrics on the Earth, depth clip/smoothing, netCDF and picture (see regional_roms.hpp).
 #include "app/regional_roms.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional`, stage 5 on the sphere (ARCHITECTURE §5): the ROMS grid file
 // <name>_grd.nc and its picture <name>_roms.png from a complete regional grid. The global run
 // named by roms.global_config supplies the bathymetry (with its sampling), the threshold h, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The key table of the global run (ARCHITECTURE §7) and its validation. Adding a key here
 // without documenting it in configs/example.toml fails tests/unit/config/example_toml_test.
 #include <algorithm>

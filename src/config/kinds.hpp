@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The enumerated options of the global run and of the regional run's [roms] section: each an enum
 // with ONE name table (core/enum_names.hpp) that the key table (global_config.cpp, regional.cpp),
 // its error messages and help, the run report's echo, the command line and the Python binding read.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Loading configurations: read -> validate (all problems in one ConfigError) -> echo.
 // Relative input paths resolve against the configuration file's folder; output.dir is relative
 // to the working directory (so `-c configs/x.toml` writes to ./out by default).

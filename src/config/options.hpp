@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Plain option structs of the global run, one per TOML section (ARCHITECTURE §7). Defaults here
 // are the defaults of the program; configs/example.toml documents every key (a test keeps the two
 // in step). Only src/config knows TOML; every other stage receives these structs. Enumerated

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The key table of the regional run. [regional] reuses the izogrid keys through
 // curvilinear::set_izogrid_key; the rest are aquatoria's.
 #include "config/regional.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Configuration of a regional grid run (`aquatoria regional -c FILE.toml`, ARCHITECTURE §5, §7).
 // The [regional] keys are exactly the izogrid file's keys (curvilinear/izogrid_file.hpp), set by
 // the same function, so a TOML config and a seed-format .izogrid file mean the same thing;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Private to src/config: a table of configuration keys (section, name, help, setter, getter)
 // that reads a TOML document into a plain option struct. Every problem (unknown section or key,
 // wrong type, bad value) is collected with file:line:column and reported together in one

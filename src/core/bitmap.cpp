@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Counting the set bits of bitmaps (see bitmap.hpp).
 #include "core/bitmap.hpp"
 

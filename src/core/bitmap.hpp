@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A 2-D bitmap, 1 bit per pixel, row-major with each row padded to whole 64-bit words so that
 // rows can be written by different threads. Used for wet/dry/coastal and filled-pixel masks
 // (ARCHITECTURE §4.2: 466 MB for a 15" global lattice).

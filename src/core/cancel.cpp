@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cooperative cancellation (see cancel.hpp).
 #include "core/cancel.hpp"
 

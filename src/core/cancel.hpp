@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cooperative cancellation of a run by another thread: the Python package's Ctrl-C
 // (python/aquatoria/_interrupt.py). The command line does not need it: its signal handler
 // (app/interrupt.hpp) removes the temporaries and ends the process, which a library caller such as

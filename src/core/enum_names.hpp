@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Names of enumerated options: ONE table per enum, beside the enum, that everything else reads
 // (the config's key table and its error messages, the help text, the echo in the run report, the
 // command-line parsers, the Python binding; a test keeps configs/example.toml's comments in step).

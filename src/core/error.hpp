@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Error types of aquatoria. The library throws; only src/app prints and exits.
 // Exit codes (ARCHITECTURE §7): ConfigError and UsageError -> 2, every other aq::Error -> 1.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Non-finite checks (see finite.hpp).
 #include "core/finite.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Checks that fail on non-finite values. Any comparison with NaN is false, so a check written
 // `if (error > tolerance) fail` or `if (area > 0) use it` lets a NaN through: a mesh whose wet area
 // is NaN used to pass "all checks". Every pass/fail decision on a computed number goes through

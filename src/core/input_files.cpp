@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Input path checks: one stat(2) each, never an open(2) (opening a FIFO blocks).
 #include "core/input_files.hpp"
 

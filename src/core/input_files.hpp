@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What an input path must be before anything opens it (issue 23): a regular file (after
 // symbolic links), not a FIFO that blocks the reader forever, a device such as /dev/zero that
 // never ends, a directory or a socket. Text inputs (configs, contours) are also bounded in size,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global pixel lattice (ARCHITECTURE §3): level-0 squares of side Δ0 (Δ0 divides 180°),
 // L levels of halving, pixels = level-L squares. Lattice vertex (I, J) sits at
 //   λ = lon0 + I·Δ_L,   φ = -90 + J·Δ_L,   0 <= I < nx (periodic: I = nx is I = 0), 0 <= J <= ny.

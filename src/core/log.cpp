@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Logger: stderr sink with level prefixes, and a terminal progress bar.
 #include "core/log.hpp"
 

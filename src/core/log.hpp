@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Logging to stderr and progress reporting. The library never prints by itself: it receives a
 // Logger (messages and stage lines) whose sink the application chooses. Progress bars are drawn
 // by the sink only on a terminal and only from the calling thread.

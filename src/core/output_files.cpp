@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // OutputSet and file checksums.
 #include "core/output_files.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // All-or-nothing output (ARCHITECTURE §4.8, §9): every file is written under a temporary name
 // in the destination folder and renamed only when the whole run succeeded. If the run fails
 // (an exception unwinds past the OutputSet), the temporaries are removed: no partial outputs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Run report and stage timing.
 #include "core/report.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The run report: an ordered JSON document (parameters, counts, timings, checksums) that every
 // command fills in, plus per-stage timing with the "stage: done ... (t s)" line on the logger.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pole rotation by a rotation matrix.
 #include "core/rotation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pole rotation (ARCHITECTURE §4.7, seed 002 Fig. 8): a rotated spherical system whose North
 // pole sits at geographic (λp, φp). Implemented as a 3×3 rotation matrix R = Rz(λp)·Ry(90°-φp):
 // the rotated system's North pole maps to (λp, φp) and the rotated meridian λ' = 0 passes through

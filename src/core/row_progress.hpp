@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Progress of an OpenMP loop over rows, reported from the calling thread only (ProgressFn is
 // not thread-safe and draws on the terminal).
 #pragma once

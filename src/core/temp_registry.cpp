@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // TempRegistry: fixed-size slots in chunks published through atomic pointers (see the header for
 // the state diagram). Adding takes a mutex only to allocate a chunk; the signal-handler side
 // reads atomics and char buffers only.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A process-wide registry of the temporary files of unfinished outputs, readable from a signal
 // handler (ARCHITECTURE §4.8, §9: an interrupted run leaves no temporaries and no partial
 // outputs). OutputSet registers every temporary it hands out and the final name it will be

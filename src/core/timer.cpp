@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Process CPU time and memory figures from the C library.
 #include "core/timer.hpp"
 

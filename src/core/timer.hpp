@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Wall-clock and process CPU timers, and peak resident memory (getrusage).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Index types and angle helpers shared by every stage (ARCHITECTURE §3).
 // Pixel and lattice indices are 64-bit: a 15" lattice has 3.7e9 pixels.
 #pragma once

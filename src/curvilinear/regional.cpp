@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The regional izogrid pipeline; see regional.hpp (seed 000 Sec. 1–2.5, modes 0–4).
 #include "curvilinear/regional.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The regional izogrid pipeline, stages 0–4 (seed 000 Sec. 1 "modes"; digest izogrid.md §1;
 // ARCHITECTURE §5): map -> contour -> uniform boundary nodes -> inverse problem -> Laplace fill.
 // With params.method other than conformal, stage 2 puts the boundary nodes by equidistribution,

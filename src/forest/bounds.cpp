@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bounds of the bathymetry under a box (see bounds.hpp).
 #include "forest/bounds.hpp"
 

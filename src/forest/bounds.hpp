@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bounds of the bathymetry under a geographic box, for deciding a patch at its own size
 // (README "The forest engine", exactness conditions). The bilinear value inside a raster cell is a
 // convex combination of its 4 corner values, so every sample in a box lies within the minimum and

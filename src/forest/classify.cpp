@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel classes on the forest (see classify.hpp).
 #include "forest/classify.hpp"
 

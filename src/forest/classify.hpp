@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel classes on the forest (ARCHITECTURE §4.2, the vertex rule of mask/pixel_classes.hpp) patch
 // by patch: a patch whose vertices the bathymetry's bounds put on one side of the threshold
 // (forest/bounds.hpp) is decided at its own size, without sampling; any other patch samples its

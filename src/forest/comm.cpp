@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MPI session and collectives of the forest engine (see mpi_session.hpp and comm.hpp).
 #include "forest/comm.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MPI helpers of the forest engine: a communicator with the collectives the stages use (sums,
 // bitwise reductions, gathers of plain-data vectors, all-to-all exchanges) and the error
 // agreement that makes a stage fail on every rank with the same message and exit code.

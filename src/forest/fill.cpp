@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The K-cursor fill on the forest (see fill.hpp).
 #include "forest/fill.hpp"
 

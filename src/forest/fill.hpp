@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The K-cursor fill on the forest (ARCHITECTURE §4.3; mask/k_cursor_fill.hpp is the dense form):
 // connected components of the all-wet K × K windows across patches and ranks.
 //

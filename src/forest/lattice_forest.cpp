@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The lattice's brick of trees (see lattice_forest.hpp).
 #include "forest/lattice_forest.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The lattice (core/lattice.hpp) as a p4est forest (FOREST.md §1): one tree per level-0 square,
 // a brick of nx0 × ny0 trees, periodic in x when the lattice spans all longitudes (the λ seam is
 // a periodic face; the rows at the poles are the brick's edge). The brick numbers its trees along

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quadtree's leaves as a p4est forest (see mesh_forest.hpp).
 #include "forest/mesh_forest.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quadtree's leaves as a p4est forest (FOREST.md §2): refined from the level pyramid
 // (forest/pyramid.hpp: a square is split while it holds a filled pixel and is not inside a leaf of
 // its level), every leaf flagged filled (a leaf of Ω_L) or land, then 2:1-balanced.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MPI for the `aquatoria` binary (README "The forest engine"). aquatoria stays one binary: MPI is
 // started only when it is needed — when the process was launched by mpirun (its environment names
 // a world size) or when a run asks for the forest engine (quadtree.engine = "forest"; a singleton

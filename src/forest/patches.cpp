@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Patches of the forest engine (see patches.hpp).
 #include "forest/patches.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Patches: the forest engine's unit of pixel work (README "The forest engine"). The lattice is cut
 // into squares of P × P pixels, P = 2^min(L, 7): the level-lp squares of the quadtree, lp = L −
 // log2 P (a level-0 square is one patch when L <= 7). A patch is uniform — none or all of its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The forest engine's stages of the global run (see pipeline.hpp).
 #include "forest/pipeline.hpp"
 

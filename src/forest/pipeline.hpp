@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The forest engine's stages of the global run (README "The forest engine"; ARCHITECTURE §4.12):
 // pixel classes, K-cursor fill, pinches and passages, the size field, the quadtree's refinement and
 // 2:1 balance — on the patches and the p4est forest of every rank — and, on rank 0, the leaves

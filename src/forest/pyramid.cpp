@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The level pyramid on the forest (see pyramid.hpp).
 #include "forest/pyramid.hpp"
 

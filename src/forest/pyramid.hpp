@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quadtree's level pyramid on the forest (quadtree/leaves.hpp's omega and any, ARCHITECTURE
 // §4.4) in two parts, so that no level is held over every pixel:
 //

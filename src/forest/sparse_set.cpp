@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The forest's pixel sets gathered on rank 0, and their pinch vertices (see sparse_set.hpp).
 #include "forest/sparse_set.hpp"
 

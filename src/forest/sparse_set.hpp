@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A pixel set of the forest gathered on rank 0 as patches (mask/pixel_set.hpp): a state byte per
 // patch of the lattice and the bitmaps of the mixed ones, so its memory follows the coast. The
 // algorithms that visit a few pixels of the whole set in a fixed global order — the pinch

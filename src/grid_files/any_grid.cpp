@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Any aquatoria grid file as a planar grid (see any_grid.hpp).
 #include "grid_files/any_grid.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Any grid file aquatoria writes, as a planar grid for `aquatoria check`: a planar xygrid
 // (<name>_xygrid.nc: x, y), a ROMS grid (<name>_grd.nc: the supergrid put together from its ρ, u,
 // v and ψ points) or a MOM6 supergrid (ocean_hgrid.nc: x, y). Geographic positions (ROMS, MOM6) are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS grid field reader and contact-point writer; schema in contact_netcdf.hpp.
 #include "grid_files/contact_netcdf.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS nested-grid contact points (ROMS Data/ROMS/CDL/nesting.cdl; the ROMS Matlab tools
 // c_contact.m / contact.m / write_contact.m, which write the same layout; ROMS reads it in
 // Utility/set_contact.F): the parent ROMS grid fields the contact points need, read from a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MOM6 supergrid, topography and mask files (see mom6_grid.hpp). Every nc_* return code is
 // checked; errors name the path and carry nc_strerror.
 #include "grid_files/mom6_grid.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MOM6 grid files of a regional grid (what MOM6's MOM_grid_initialize reads with GRID_CONFIG =
 // "mosaic", and its topography with TOPO_CONFIG = "file"; the FMS "mosaic" supergrid convention):
 //

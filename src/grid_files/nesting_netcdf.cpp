@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nesting data netCDF writer and reader; schema in nesting_netcdf.hpp. Every nc_* status is
 // checked; errors name the path and carry nc_strerror.
 #include "grid_files/nesting_netcdf.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nesting data of a regional grid in the global mesh, as netCDF (`<name>_nesting.nc`, written
 // beside the ROMS grid file; ARCHITECTURE §6). One record per boundary point of the regional
 // C-grid (ρ, u and v points of the four open boundaries; corner points appear once per side):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS grid file writer (schema in roms_grid.hpp, after ROMS's grd_spherical.cdl). Every nc_*
 // status is checked; errors name the path and carry nc_strerror.
 #include "grid_files/roms_grid.hpp"

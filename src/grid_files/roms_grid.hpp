@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ROMS grid file (myroms/roms Data/ROMS/CDL/grd_spherical.cdl; field.md D3; ARCHITECTURE §5
 // stage 5): every variable of grd_spherical.cdl with its attributes, written with the netCDF-C API
 // as netCDF classic 64-bit offset (read by every ROMS/CROCO build, with or without netCDF-4; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Planar grid netCDF ("xygrid") writer and reader; schema in xygrid_netcdf.hpp. Every nc_* return
 // code is checked; errors name the path and carry nc_strerror.
 #include "grid_files/xygrid_netcdf.hpp"

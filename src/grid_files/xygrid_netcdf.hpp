@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The planar grid file ("xygrid", izogrid's mode-4 output; digest izogrid.md §9 [S]): the
 // supergrid's nodes x(eta_s, xi_s), y(eta_s, xi_s) in the projection plane, the computational
 // steps, the generation parameters as global attributes, the Laplace solver's convergence

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Control function w(x, y): a tiny formula compiler (recursive descent to postfix) and a sampled
 // lattice field; see control_function.hpp.
 #include "grid_params/control_function.hpp"

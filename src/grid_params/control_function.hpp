@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The control function w(x, y) ≥ 1 of seed 004's adaptive grids (digest orthogonal_bvp_and_elliptic.md
 // B.2, B.4, B.5): large w gives small cells. Either a formula in the plane coordinates x, y (e.g. the
 // paper's Fig. 1 "1 + 10*x*(1-x) + y^3") or a field sampled on a regular lattice (the app samples

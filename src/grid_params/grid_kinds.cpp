@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The regional run's kinds (grid_kinds.hpp): what is not a name table.
 #include "grid_params/grid_kinds.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The vocabulary of a regional grid run: the kinds a user chooses by name (projection, contour
 // parametrisation, inner-pass schedule, level interpolation, Laplace solver, generator method,
 // surface, units of the control points, the stage to stop after, the ROMS distances). Each enum has

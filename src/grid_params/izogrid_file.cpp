@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // izogrid input file reader; see izogrid_file.hpp (seed 000 Appendix 1, Fig. 3).
 #include "grid_params/izogrid_file.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reader of the seed's izogrid input file (seed 000 Appendix 1 and Fig. 3; digest izogrid.md
 // §2.1–2.3; ARCHITECTURE §5 "Input compatibility").
 //

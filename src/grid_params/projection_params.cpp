@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Validation of the projection fields (see projection_params.hpp).
 #include "grid_params/projection_params.hpp"
 

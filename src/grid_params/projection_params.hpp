@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The conformal projection of a regional grid's map (curvilinear/common/projection.hpp draws it):
 // its fields, defined once for the izogrid keys (RegionalParams::projection) and every projection
 // the program makes itself (a block's, a parent grid's), and their one validation. The izogrid

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Validation of RegionalParams (seed 000 Appendix 1 ranges; digest izogrid.md §2.2).
 #include "grid_params/regional_params.hpp"
 

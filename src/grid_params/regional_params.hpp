@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Parameters of a regional izogrid run (seed 000 Appendix 1; digest izogrid.md §2.2). One plain
 // struct with a default for every field; the izogrid-file parser (izogrid_file.hpp) and the TOML
 // config fill it. Field names follow the seed's input-file keys where it has them (the izogrid

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A block's projection and contour (see block_contour.hpp).
 #include "handoff/block_contour.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A block's regional projection and contour (ARCHITECTURE §6; the contour format of seed 000,
 // digest izogrid.md §2–4): the conformal projection centred on the block and the control points
 // of its outline in the projection's plane units, counter-clockwise from the SW corner with the

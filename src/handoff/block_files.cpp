@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Texts of a block's contour file and regional config (see block_files.hpp).
 #include "handoff/block_files.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The files `aquatoria blocks` writes for one block (ARCHITECTURE §6): a seed-format contour file
 // (.izogrid, digest izogrid.md §2: key=value preamble, a dash line, control points
 // counter-clockwise from the SW corner with the corners labelled) holding the projection and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Candidate coastal blocks and their ranking (see coastal_blocks.hpp).
 #include "handoff/coastal_blocks.hpp"
 

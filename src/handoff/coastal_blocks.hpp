@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Candidate coastal blocks of a global run, ranked by how much coast they hold (ARCHITECTURE §6,
 // "aquatoria blocks"). A block is a longitude/latitude box in one of two spherical systems:
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS contact points of a refinement grid and its parent (see contact_points.hpp).
 #include "handoff/contact_points.hpp"
 

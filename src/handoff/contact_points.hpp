@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS contact points of a refinement grid (receiver of region 1, "fine") and its parent (donor of
 // region 1, "coarse"), as ROMS's contact.m sets them for refinement and ROMS's nesting.F uses them
 // (io/contact_netcdf.hpp for the file). The fine grid is the parent's ψ box I_left..I_right ×

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Point location in a global mesh (see mesh_locator.hpp).
 #include "handoff/mesh_locator.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Point location in a global mesh by its integer structure (ARCHITECTURE §3–4): no search over
 // elements. A point (λ, φ) is mapped to the lattice system (pole rotation) and to fractional
 // pixel coordinates (x, y); its pixel (⌊x⌋ mod nx, ⌊y⌋) lies in one level-0 square, whose leaves

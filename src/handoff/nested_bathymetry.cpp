@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Consistent masks and depths of a refinement grid and its parent (see nested_bathymetry.hpp).
 #include "handoff/nested_bathymetry.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Consistent land masks and depths of a refinement grid ("child") and its parent for ROMS two-way
 // nesting. ROMS's fine-to-coarse feedback (nesting.F, fine2coarse) replaces the parent's zeta, T,
 // S, u and v inside the child's footprint by averages of the child's values, level by level with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nesting data in the global mesh (see nesting.hpp).
 #include "handoff/nesting.hpp"
 

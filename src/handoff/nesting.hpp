@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nesting data of a regional grid in the global mesh (ARCHITECTURE §6): for every open-boundary
 // ρ, u and v point of the regional C-grid, the global triangle holding it and its barycentric
 // weights, and the refinement ratio there. The C-grid staggering is curvilinear/cgrid.hpp's

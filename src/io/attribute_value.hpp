@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The value of an attribute of aquatoria's netCDF files (written by io::put_attribute,
 // netcdf_file.hpp): text, a real number or an integer.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A netCDF-like dataset as a writer describes it: dimensions, typed variables with attributes,
 // then every variable's values in blocks of rows. A writer that describes its file through this
 // interface does it once for two destinations: NetcdfDataset (io/netcdf_dataset.hpp) puts it into a

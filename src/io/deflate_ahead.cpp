@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // netCDF-4 chunks compressed ahead, handed to HDF5 through the program's compress2 (see
 // deflate_ahead.hpp).
 #include "io/deflate_ahead.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // netCDF-4 chunks compressed ahead on the OpenMP team: the same bytes as HDF5's deflate filter,
 // in a fraction of the time on the writing thread.
 //

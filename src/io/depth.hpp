@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The depth every writer stores: metres below the datum, positive down (ADCIRC DP, CF
 // sea_floor_depth_below_geoid), from the mesh's elevation (negative below sea level).
 #pragma once

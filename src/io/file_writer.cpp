@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Buffered POSIX output with errno-checked writes.
 #include "io/file_writer.hpp"
 

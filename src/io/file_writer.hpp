@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Buffered output file used by every text and binary writer of src/io. Bytes are collected in
 // a memory buffer (text through fmt::format_to, binary through `put`) and handed to the kernel
 // in chunks of ~4 MiB with POSIX write(2), so that every failure (no permission, ENOSPC, EIO,

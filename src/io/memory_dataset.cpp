@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A dataset in memory (see memory_dataset.hpp).
 #include "io/memory_dataset.hpp"
 

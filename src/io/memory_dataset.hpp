@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A dataset kept in memory (see dataset.hpp): what a writer would put into its netCDF file, as
 // flat arrays with their dimensions and attributes, for callers that want the file's contents
 // without a file (the Python package's to_xarray). Values are stored in the variable's own type

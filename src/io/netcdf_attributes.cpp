@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The attribute writer of every netCDF file aquatoria writes (see netcdf_file.hpp).
 #include <fmt/format.h>
 #include <netcdf.h>

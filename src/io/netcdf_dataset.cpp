@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A dataset written into a netCDF file (see netcdf_dataset.hpp).
 #include "io/netcdf_dataset.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A dataset written into a netCDF file (see dataset.hpp), with the netCDF-C API. deflate 1..9:
 // netCDF-4 (HDF5) with every array chunked (65536 rows of the first dimension, whole rows) and
 // compressed (shuffle + deflate at that level); 0: the classic 64-bit-offset format, uncompressed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shared by the netCDF readers and writers (xygrid, ROMS grid, nesting, contact): status checks
 // that throw with the path and nc_strerror, the attribute writer, and an open-file handle closed
 // on scope exit.

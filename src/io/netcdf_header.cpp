@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A check of the classic netCDF header (CDF-1, CDF-2 and CDF-5; the netCDF "Classic Format
 // Specification") before libnetcdf parses it. libnetcdf trusts the header's counts: a damaged
 // file can make nc_open allocate gigabytes for one name (fuzzing found a 4 GB calloc from a 9-byte

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What a mesh writer reports back to its caller (counts go into the run report and the log).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Word-parallel bitmap row primitives (see bit_rows.hpp).
 #include "mask/bit_rows.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Word-parallel primitives on one bitmap row (aq::Bitmap layout: bit i of the row is bit (i & 63)
 // of word i >> 6; bits at and beyond the row length n are padding and stay clear). They serve
 // the K-cursor fill of seed 002 (§4.3 of ARCHITECTURE.md): periodic window AND/OR along λ,

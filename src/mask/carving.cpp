@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Carving passages, channels and blockages into the bathymetry (see carving.hpp).
 #include "mask/carving.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Carving passages, channels and land blockages into the bathymetry before the fill (README
 // "Passages, channels and rivers", ARCHITECTURE §4.13; MPAS/compass carve "critical passages" and
 // block "critical land blockages" the same way). Not in seed 002: its K-fill closes every strait

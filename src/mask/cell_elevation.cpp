@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cell statistics of a fine raster (see cell_elevation.hpp).
 #include "mask/cell_elevation.hpp"
 

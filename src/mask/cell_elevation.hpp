@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The elevation of a grid cell from a raster finer than the cell (issue 9, regional depth from a
 // fine raster): a statistic over the raster sample points that fall inside the cell's polygon,
 // instead of one interpolated sample at the cell centre.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the coastal band (quadtree/leaves.hpp) and the size field's coast terms (size/size_field.hpp)
 // take for the coast, beyond the edge of the filled set Ω_L (README "Regional FE meshes", "A
 // storm-surge mesh"):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The meshed domain of a regional run (see domain.hpp).
 #include "mask/domain.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The meshed domain of a regional run (README "Regional FE meshes"): the pixels of the lattice
 // inside a lon/lat box or a polygon. The K-cursor fill runs on wet ∩ domain, so water outside
 // the domain is not meshed; a boundary edge of the mesh whose outside pixel is wet and outside

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Dropped wet components: measured, named and explained (see dropped_seas.hpp).
 #include "mask/dropped_seas.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The wet components the K-cursor fill leaves out, measured, named and explained (README
 // "Passages, channels and rivers"): no sea is dropped in silence. Not in seed 002, whose fill
 // keeps the component of the seed and reports nothing of the rest.

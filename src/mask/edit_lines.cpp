@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading lines of transects and channels through GDAL/OGR (see edit_lines.hpp).
 #include "mask/edit_lines.hpp"
 

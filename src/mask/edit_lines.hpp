@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lines that edit the bathymetry before the fill (README "Passages, channels and rivers"), read
 // from any GDAL/OGR vector layer of lines in lon/lat (GeoJSON, GeoPackage, Shapefile, KML, ...):
 //   mask.transects  user passages (carved open, like mask.passages_open) and land blockages

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global run as a GeoTIFF (see global_run_file.hpp).
 #include "mask/global_run_file.hpp"
 

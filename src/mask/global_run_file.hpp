@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global run as a file (issue 9): the filled set Ω_L, the pixel classes and the quadtree level
 // of every lattice pixel as one compact GeoTIFF (raster/byte_geotiff.hpp), written by
 // `aquatoria mesh` (output.formats "tif", <name>.tif) and read back by `aquatoria blocks` and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // K-cursor fill (seed 002 §2, ARCHITECTURE §4.3): erosion to all-wet windows, span flood fill
 // over windows from the seeds, dilation back to pixels, seed placement and statistics.
 #include "mask/k_cursor_fill.hpp"

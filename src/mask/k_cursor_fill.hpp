@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // K-cursor fill of seed 002 (Kireev & Pyataev 2009, §2 "K-заливка", Fig. 2) in the efficient
 // form of ARCHITECTURE §4.3:
 //   W(i, j) = the K×K window with lower-left pixel (i, j) is all wet  (separable running AND),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Row mapping of rotated lattice points to geographic coordinates (see lattice_coords.hpp).
 #include "mask/lattice_coords.hpp"
 

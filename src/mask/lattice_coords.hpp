@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Named conversions between the index spaces of the mask stage (ARCHITECTURE §3, seed 002 §2):
 // pixels (i, j), lattice vertices (I, J), K-windows (lower-left pixel), lattice (rotated) degrees
 // and geographic degrees. Every place that converts goes through these functions.

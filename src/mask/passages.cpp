@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Critical passages: the built-in table and the box-restricted connectivity test (passages.hpp).
 #include "mask/passages.hpp"
 

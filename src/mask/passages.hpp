@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Critical passages (ARCHITECTURE §4.3; reference/field.md §C2: users hand-curate lists of straits
 // that must stay open). Not in seed 002; it reports what its K-fill does to the narrow straits.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pinch vertices of Ω_L: word-parallel detection and the round-based removal (see pinches.hpp).
 #include "mask/pinches.hpp"
 

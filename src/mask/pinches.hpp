@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pinch vertices of the filled set Ω_L (ARCHITECTURE §4.6: "p pinch vertices where the filled set
 // touches itself at a single corner"; the Euler check V - E + F = 2 - b - p counts them) and their
 // optional removal (mask.remove_pinches). Seed 002 does not discuss them; several ocean models

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel classes (seed 002 §2; ARCHITECTURE §4.2): vertex sampling row by row into a wet-vertex
 // bitmap, the 4-vertex rule by word arithmetic, and the optional area rule.
 #include "mask/pixel_classes.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel classes of seed 002 (Kireev & Pyataev 2009, §2 "мокрые/сухие/прибрежные пиксели"):
 // a lattice vertex is wet when the elevation there is d <= -h (h = mask.min_depth_m, negative for
 // a floodplain above the datum; NaN = no data = dry); a pixel is wet when its 4 vertices are wet,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A set of lattice pixels seen through get/clear, for the algorithms that visit only a few pixels
 // of it (the pinch removal's choices, the passage table): the dense engine's bitmap, or the forest
 // engine's patches gathered on one rank (forest/sparse_set.hpp), which never holds the lattice.

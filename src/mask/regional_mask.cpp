@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Regional (ROMS) masks from the global Ω_L; the rules are drawn in regional_mask.hpp.
 #include "mask/regional_mask.hpp"
 

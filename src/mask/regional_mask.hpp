@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The land mask of a regional (ROMS) grid from the global run's ocean (ARCHITECTURE §5 stage 5,
 // §6: "the regional land mask agrees with the global Ω_L"; field.md D3; roms-tools #66), so the
 // regional ocean is exactly the globally connected ocean: a lake or an unconnected sea inside the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mask stage entry point: classify -> K-fill -> pinches -> passages, with stage lines,
 // progress and the "mask" report section.
 #include "mask/wet_area.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mask stage in one call (seed 002 §2; ARCHITECTURE §4.2-4.3): pixel classes from the
 // bathymetry, the K-cursor fill from the seeds, pinch vertices (optionally removed) and the
 // critical-passage table. Everything the quadtree stage needs is in WetArea::filled (Ω_L).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Boundary typing of regional meshes (see boundaries.hpp).
 #include "mesh/boundaries.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Boundary typing of regional meshes (README "Regional FE meshes"): every boundary edge is
 // open, mainland or island, and the loops are cut into the segments the model formats write.
 //

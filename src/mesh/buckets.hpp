@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stable counting sort of (bucket, value) pairs in parallel, for the per-node adjacency of mesh
 // checks (statistics.cpp: half-edges by their smaller node; mesh_files/sphere_quality.cpp:
 // triangles round each node). Items 0..n-1 emit pairs; the values of a bucket come out in item

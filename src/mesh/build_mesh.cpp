@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mesh stage: nodes, squares, template triangles, boundary (see build_mesh.hpp).
 #include "mesh/build_mesh.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mesh stage (seed 002: square mesh of Fig. 5, triangulation by the templates of Fig. 4,
 // geographic coordinates and depths of the nodes, pole rotation of Fig. 8; ARCHITECTURE §4.5–4.7):
 // balanced quadtree leaves -> aq::mesh::Mesh (mesh/mesh.hpp), which every writer consumes.

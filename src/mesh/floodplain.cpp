@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The floodplain of a surge mesh (see floodplain.hpp).
 #include "mesh/floodplain.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The floodplain of a storm-surge mesh (mask.min_depth_m = −z < 0; README "A storm-surge mesh"):
 // the part of the mesh above the datum, as a model sees it. A model interpolates the node depths
 // linearly over each triangle (ADCIRC, SCHISM: P1), so the floodplain is where that surface is

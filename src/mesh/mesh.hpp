@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global mesh handed from the discretizer to the writers (ARCHITECTURE §4.5–4.8).
 // Topology is integer: every node is a lattice vertex (I, J) (see core/lattice.hpp); the
 // geographic coordinates are computed from (I, J) only for output. Arrays are flat and indexed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cleaning a triangle mesh for the models (see model_cleaning.hpp).
 #include "mesh/model_cleaning.hpp"
 

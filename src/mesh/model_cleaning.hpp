@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cleaning a triangle mesh for the finite-element ocean models (ARCHITECTURE §1, §4.11): no
 // triangle with fewer than two edge neighbours and no pinch vertex.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The open boundary of a polygon domain moved onto the polygon (see open_snap.hpp).
 #include "mesh/open_snap.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The open boundary of a polygon domain moved onto the polygon (README "Regional FE meshes").
 //
 // The open boundary of a polygon domain runs along the lattice next to the polygon: its edges

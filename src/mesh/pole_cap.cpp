@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pole cap triangulation (see pole_cap.hpp).
 #include "mesh/pole_cap.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pole cap: a well-shaped triangulation of the disc around a pole of the lattice system
 // (ARCHITECTURE §4.5; issue 11). Without rotation the Arctic is wet up to φ = 90°, and the
 // lattice mesh closes it with a row of nodes on φ = 90° (one physical point) and triangles with

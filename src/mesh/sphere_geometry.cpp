@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Triangles on the unit sphere (see sphere_geometry.hpp).
 #include "mesh/sphere_geometry.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Triangles on the unit sphere: unit vectors, signed areas and angles (used by the geographic
 // mesh, the shape quality of the files and the open-boundary snapping of regional meshes).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Mesh statistics and checks (see statistics.hpp).
 #include "mesh/statistics.hpp"
 

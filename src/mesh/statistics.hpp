@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Quality facts and physical sizes of a triangle mesh (seed 002: "сгущение сетки подобными
 // треугольными элементами с коэффициентами подобия (√2)^-k"; ARCHITECTURE §4.6):
 //

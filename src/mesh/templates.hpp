@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Triangle templates of a quadtree square (seed 002, Fig. 4 "шаблоны разбиения квадрата на
 // треугольники"; ARCHITECTURE §4.6). A square is split into right isosceles triangles according
 // to which of its sides carry a midside (hanging) node — a 4-bit code, one bit per side:

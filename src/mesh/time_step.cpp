@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The explicit barotropic time step of a mesh (see time_step.hpp).
 #include "mesh/time_step.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The explicit barotropic time step a mesh allows (ARCHITECTURE §4.10): for every triangle the
 // shortest edge (great circle on the sphere of radius 6371.0088 km, from the nodes' geographic
 // coordinates) over the gravity-wave speed √(g·H), H the deepest of its three nodes (depth

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Element kinds of the writers.
 #include "mesh_files/element_kinds.hpp"
 

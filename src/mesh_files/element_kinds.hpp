@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Which elements of a Mesh a writer writes (mesh.elements: triangles, squares or both),
 // and the polygon view of a square with its hanging (midside) nodes.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // FESOM2 nod2d.out, elem2d.out, aux3d.out (see fesom_writer.hpp).
 #include "mesh_files/fesom_writer.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // FESOM2 mesh files (the reader is read_mesh in FESOM2's src/oce_mesh.F90; its partitioner reads
 // the same three files). All are whitespace-separated text read with Fortran list-directed input:
 //

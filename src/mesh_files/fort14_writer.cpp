@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC fort.14 writer (see fort14_writer.hpp).
 #include "mesh_files/fort14_writer.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC grid and boundary information file (fort.14), as described in the ADCIRC technical
 // reference (adcirc.github.io/adcirc/technical_reference/input_files/fort14.html):
 //

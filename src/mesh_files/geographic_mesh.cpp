@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The geographic mesh: pole cap or pole merge (see geographic_mesh.hpp).
 #include "mesh_files/geographic_mesh.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mesh as written in geographic (or 3-D) coordinates: no element of zero area on the Earth
 // and no two nodes at one point (ARCHITECTURE §4.5, §4.8; issue 11).
 //

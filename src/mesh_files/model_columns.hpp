@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The numbers the model formats write for a node or a triangle, one function each, used by the
 // writers (fort14_writer, schism_writer, fesom_writer) and by whoever hands the same numbers over
 // as arrays (the Python package's Run.model_mesh), so the arrays are the files' numbers:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Gmsh MSH 4.1 writer (see msh_writer.hpp for the layout).
 #include "mesh_files/msh_writer.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Gmsh MSH 4.1 writer (ASCII "4.1 0 8" or binary "4.1 1 8", little-endian, size_t = 8 bytes),
 // as specified in the Gmsh reference manual, section "MSH file format".
 //

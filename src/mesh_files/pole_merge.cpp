@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Merging of pole-row nodes for 3-D writers.
 #include "mesh_files/pole_merge.hpp"
 

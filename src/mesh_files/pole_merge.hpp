@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mesh in 3-D (x, y, z on the sphere): every lattice node on the row J = 0 (or J = ny) is
 // the same physical point, the South (North) pole (ARCHITECTURE §4.5). 3-D writers merge each
 // pole row into its lowest-numbered node and drop the elements that become degenerate:

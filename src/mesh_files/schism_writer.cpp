@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SCHISM hgrid.gr3 / hgrid.ll (see schism_writer.hpp): the fort.14 layout with SCHISM's names.
 #include "mesh_files/schism_writer.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SCHISM horizontal grid files hgrid.gr3 and hgrid.ll (schism-dev.github.io, "Horizontal grid";
 // the reader is aquire_hgrid in SCHISM's src/Hydro/grid_subs.F90). A global mesh is in
 // longitude/latitude, which SCHISM runs with ics = 2 (coordinates on the sphere); with ics = 2

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Seam duplicates of the λ–φ plane view.
 #include "mesh_files/seam_nodes.hpp"
 

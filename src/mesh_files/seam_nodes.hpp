@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mesh drawn on the λ–φ rectangle [λ0, λ0+360] × [-90, 90] (ARCHITECTURE §4.5, §4.8).
 // Lattice column I = nx is column 0, so an element east of the last column uses nodes at I = 0
 // that must be drawn at I = nx (Mesh::unwrapped_i). Writers in the plane give each such node a

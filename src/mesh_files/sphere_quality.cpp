@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shape quality of a triangle mesh on the sphere (see sphere_quality.hpp).
 #include "mesh_files/sphere_quality.hpp"
 

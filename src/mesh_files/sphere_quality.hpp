@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shape quality of a triangle mesh on the sphere (issue 12): the figures finite-element ocean
 // models take their time step and accuracy from, computed for the triangles as written to the
 // geographic files (mesh_files/geographic_mesh.hpp: after the pole cap), from the nodes' lon/lat

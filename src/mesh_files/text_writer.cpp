@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Plain-text mesh writer (see text_writer.hpp for the format).
 #include "mesh_files/text_writer.hpp"
 

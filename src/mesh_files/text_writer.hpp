@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Plain-text mesh, in the spirit of the seed's own output (seed 002: node list with coordinates
 // and depth, element list, boundary): self-describing, one record per line, whitespace
 // separated, '#' starts a comment line. Format version 1:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // UGRID-1.0 netCDF writer (see ugrid_writer.hpp for the file layout): the dataset is described
 // once, through io::DatasetSink, into a netCDF file or into memory.
 #include "mesh_files/ugrid_writer.hpp"

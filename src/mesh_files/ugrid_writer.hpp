@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // UGRID-1.0 netCDF writer (CF-1.8, "Conventions = CF-1.8 UGRID-1.0"), netCDF-C API. By default
 // netCDF-4 (HDF5) with every array chunked (65536 rows of the first dimension, whole rows) and
 // compressed (shuffle + deflate at UgridOptions::deflate, output.ugrid_deflate): a global mesh of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // VTK XML UnstructuredGrid writer (see vtu_writer.hpp).
 #include "mesh_files/vtu_writer.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // VTK XML UnstructuredGrid writer (.vtu, file version 1.0, header_type UInt64, little-endian),
 // for ParaView and the VTK readers (vtkXMLUnstructuredGridReader). All arrays are in one
 // <AppendedData encoding="raw"> block (each array: a UInt64 byte count, then the values), which

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Owning handles of cairo surfaces and contexts, shared by the picture writers.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cairo heat map of a per-cell quality field of a curvilinear grid (see grid_quality_png.hpp).
 //
 //   +------------------------------------------------------+

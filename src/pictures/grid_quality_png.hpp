@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PNG heat map of a per-cell grid quality field (e.g. the orthogonality error (50) of seed 000's
 // checkort): the cells drawn in the projection plane, coloured by log10 |value|, thin grid lines,
 // a colour bar and a title. Cairo image surface; the picture depends only on the inputs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PNG encoder (see png_encode.hpp).
 #include "pictures/png_encode.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PNG encoding of an RGB picture held in Cairo's RGB24 layout (one 32-bit 0x00RRGGBB word per
 // pixel, `stride` bytes per row), written through a FileWriter (PNG 1.2 / ISO 15948).
 //

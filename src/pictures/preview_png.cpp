@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cairo previews of a global mesh (see preview_png.hpp).
 #include "pictures/preview_png.hpp"
 

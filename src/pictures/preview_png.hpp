@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Preview pictures of a global mesh (PNG through Cairo): an equirectangular map of the lattice
 // plane λ ∈ [λ0, λ0+360], φ ∈ [-90, 90] (the rotated system's λ', φ' when the pole is rotated).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PNG pictures of the regional stages with Cairo; see regional_pictures.hpp (seed 000 Figs. 2,
 // 3, 10, 11).
 #include "pictures/regional_pictures.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PNG pictures of the regional izogrid stages (seed 000 Figs. 2, 3, 10, 11: the pictures izogrid
 // draws after each mode with NCAR Graphics), drawn with Cairo in the projection plane:
 //   map        graticule (every latlongrid degrees) and coastline in the projection, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cairo picture of a ROMS grid's mask and depth; see roms_grid_png.hpp.
 #include "pictures/roms_grid_png.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Picture of a ROMS grid (<name>_roms.png): every ρ control volume filled in the projection plane,
 // land tan, water blue shaded by the model depth h on a logarithmic scale, with the 0 m coastline,
 // every k-th grid line (ψ lines), the contour and a depth legend. Drawn with Cairo; the bytes

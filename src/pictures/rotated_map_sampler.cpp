@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The raster under the pixels of a rotated map, by cells and tiles (see rotated_map_sampler.hpp).
 #include "pictures/rotated_map_sampler.hpp"
 

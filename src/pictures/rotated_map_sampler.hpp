@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The raster under every pixel centre of a map drawn in a rotated frame (the preview's background,
 // preview_png.cpp). Pixel (x, y) shows the raster at rotated (λ'(x), φ'(y)); its geographic
 // position costs an atan2 and an asin, and Bathymetry::sample costs as much again (together

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // 2:1 balance on the bitmap pyramid and its checker (see balance.hpp).
 #include "quadtree/balance.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Smoothing of the quadtree: 2:1 balance (seed 002: "итерационное сглаживание сетки с контролем
 // максимальности уровней вложенности граничных квадратов", Fig. 1б; ARCHITECTURE §4.4).
 // Neighbouring leaves — sharing a piece of side ("face"), or also only a corner ("corner") —

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Word tricks on bitmap rows (see bits.hpp).
 #include "quadtree/bits.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Word tricks on bitmap rows for the quadtree stage (seed 002 §"построение покрытия"; ARCHITECTURE
 // §4.4: "a level pyramid of bitmaps gives this in O(N)"). In the spirit of p4est's `bits`: small
 // branch-free helpers that the level pyramid, the coastal band, the 2:1 balance and the node

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quadtree stage driver (see build_leaves.hpp).
 #include "quadtree/build_leaves.hpp"
 

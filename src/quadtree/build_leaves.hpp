@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quadtree stage (seed 002 §"дискретный аналог акватории", Fig. 1; ARCHITECTURE §4.4): from
 // the filled set Ω_L to balanced leaves, in the order Ω_l/D_l -> coastal band -> depth/box rules
 // -> 2:1 smoothing -> leaves -> checkers (partition of Ω_L, balance).

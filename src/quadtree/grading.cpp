@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The achieved grading of a leaf set (see grading.hpp).
 #include "quadtree/grading.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The achieved grading of a leaf set: how fast the element size grows. Along every row and column
 // of a level map (the finest leaf level per level-c square), a run of n squares of one level v
 // between a finer and a coarser neighbour level spans a distance D = n·(side of a level-c square);

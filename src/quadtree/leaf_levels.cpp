@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel levels from quadtree leaves (see leaf_levels.hpp).
 #include "quadtree/leaf_levels.hpp"
 

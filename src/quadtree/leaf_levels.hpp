@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quadtree level of every lattice pixel, painted from the leaves a band of rows at a time
 // (for the global run file, mask/global_run_file.hpp): leaves are bucketed once by the bands of
 // kLevelBandRows rows they touch, so a band costs the leaves that touch it, not all of them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Level pyramid, coastal band, refinement rules and leaf extraction (see leaves.hpp).
 #include "quadtree/leaves.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Quadtree leaves from the filled set Ω_L (seed 002, §"дискретный аналог акватории": the sets
 // Ω_l and D_l; ARCHITECTURE §4.4). The quadtree lives in a pyramid of bitmaps, one per level,
 // built in O(N) with word tricks (bits.hpp):

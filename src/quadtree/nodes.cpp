@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Node numbering, midside nodes, boundary loops and pinches of a balanced quadtree (see nodes.hpp).
 #include "quadtree/nodes.hpp"
 

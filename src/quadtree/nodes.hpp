@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nodes, midside (hanging) nodes, boundary edges and loops, pinch vertices and the λ seam of a
 // balanced quadtree (seed 002: "узлы сетки нумеруются... устанавливается принадлежность узлов и
 // ребер границе и выделяются номера узлов, лежащих на серединах сторон квадратов", Fig. 3;

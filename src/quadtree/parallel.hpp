@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Deterministic OpenMP work splitting for the quadtree and mesh stages (STYLE.md "OpenMP"):
 // a range [0, n) is cut into contiguous blocks (one per thread, or one when the work is small).
 // Per-block outputs concatenated by block index, or placed by prefix sums of per-block counts,

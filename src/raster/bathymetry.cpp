@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bathymetry: GDAL raster input, normalisation (longitude origin, registration, duplicated
 // column, orientation, no-data, scale/offset, positive-down) and sampling (ARCHITECTURE §4.1).
 // Bilinear sampling on the smallest cell of raster points containing the point is the seed's

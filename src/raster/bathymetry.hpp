@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bathymetry input (ARCHITECTURE §4.1): any GDAL raster in geographic coordinates, normalised to
 // a south-up grid of sample points with a known longitude origin, and sampled bilinearly on the
 // smallest cell of raster points containing the point (the seed's rule; longitude wraps on a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Byte GeoTIFF writer and reader through GDAL (see byte_geotiff.hpp).
 #include "raster/byte_geotiff.hpp"
 

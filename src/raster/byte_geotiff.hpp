@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A compact lon/lat byte raster as GeoTIFF (issue 9, "the global run as a file"): several byte
 // bands, deflate-compressed at level 1 (the masks still compress ~100×; level 6 was ~2 s slower
 // on the 1′ lattice for a 1.5× smaller file) in 512 × 512 tiles, EPSG:4326 georeferencing (north-up: row 0 is the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Iso-depth polylines (the coastline for regional maps, ARCHITECTURE §5 stage 0) by GDAL's
 // contour generator on an in-memory copy of the raster window (longitudes unwrapped).
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Corridor edits of the sampled elevation (see elevation_edits.hpp).
 #include "raster/elevation_edits.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Edits of the sampled elevation (README "Passages, channels and rivers", ARCHITECTURE §4.13):
 // corridors along polylines inside which every sample of the bathymetry is lowered (a channel:
 // z -> elevation_m where z is above the corridor's keep_at_or_below_m, by default z -> min(z,

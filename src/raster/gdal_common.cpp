@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // GDAL set-up shared by the raster folder (see gdal_common.hpp).
 #include "raster/gdal_common.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Private to src/raster: what every GDAL user of this folder shares. GDAL is set up once (drivers
 // registered, its errors kept quiet: they become exceptions carrying GDAL's message, since
 // nothing below app/ prints, and a small block cache), its last message is appended to ours, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The GeoTIFF writer (see geotiff_writer.hpp).
 #include "raster/geotiff_writer.hpp"
 

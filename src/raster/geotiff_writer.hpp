@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Private to src/raster: the one GeoTIFF writer of aquatoria, through GDAL. It writes the global
 // run file (byte_geotiff.hpp: byte bands, tiled, deflated, lon/lat or spherical Mercator) and the
 // Python interface's in-memory rasters (memory_raster.hpp: one band of the caller's type in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // An in-memory raster as a /vsimem/ GeoTIFF (see memory_raster.hpp).
 #include "raster/memory_raster.hpp"
 

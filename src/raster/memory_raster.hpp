@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A bathymetry raster held in memory by the caller (the Python interface: a numpy array with its
 // longitude and latitude vectors, or an xarray DataArray) made readable through the one raster
 // path every input takes: it is written once as a GeoTIFF in GDAL's in-memory file system

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Coordinate-variable check of netCDF rasters (see the header).
 #include "raster/netcdf_coordinates.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A netCDF raster's coordinate variables checked against the geotransform GDAL derived from them
 // (issue 23). GDAL's netCDF driver looks at the spacing of a coordinate variable only at a few
 // places, so a latitude vector with two values swapped, or one repeated, got a regular

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Several bathymetry sources behind one Bathymetry: priority with an optional blend at the
 // sources' data edges (the rule and the distance field: raster/source_stack.hpp).
 #include "raster/source_stack.hpp"

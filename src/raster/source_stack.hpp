@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Private to src/raster: several bathymetry sources behind one Bathymetry (README "Several
 // bathymetry sources"). Each source is an ordinary Bathymetry (opened, validated and normalised
 // like a single raster); the stack only decides, point by point, which source's sample is used:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Uniform-grid cubic spline slopes by the tridiagonal (Thomas) and cyclic (Sherman–Morrison) sweeps.
 #include "raster/spline1d.hpp"
 

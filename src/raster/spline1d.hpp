@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Slopes of the C2 interpolating cubic spline on a uniform grid (reference splines.md §3.1,
 // sweep solvers §7): d[k-1] + 4 d[k] + d[k+1] = 3 (f[k+1] - f[k-1]) / h, with periodic ends
 // (cyclic sweep) or natural ends (zero second derivative: 2 d0 + d1 = 3 (f1 - f0) / h).

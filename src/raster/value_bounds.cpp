@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Block minima/maxima of a raster and their box queries (value_bounds.hpp).
 #include "raster/value_bounds.hpp"
 

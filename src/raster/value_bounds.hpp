@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bounds of the raster values under a geographic box, from per-block minima and maxima: lets a
 // caller decide that every bilinear sample inside the box is on one side of a threshold without
 // sampling it (the rotated classify skips whole tiles of open ocean and inland this way).

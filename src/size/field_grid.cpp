@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The size field's grid (see field_grid.hpp).
 #include "size/field_grid.hpp"
 

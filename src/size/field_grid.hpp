@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The grid the target size field lives on (ARCHITECTURE §4.10): the level-c squares of the
 // pixel lattice (core/lattice.hpp), in the lattice's own frame (rotated, lon-lat or Mercator
 // rows). Cell (i, j) is the level-c square (a = i, b = j); columns are periodic (i = nx is

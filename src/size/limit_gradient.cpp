@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nearest-source propagation for the gradient limit and distances (see limit_gradient.hpp).
 #include "size/limit_gradient.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The gradient limit of the size field, |∇h| <= g on the sphere (Persson 2006; OceanMesh2D's and
 // JIGSAW's `marche` solve the same Hamilton–Jacobi problem). Its solution is
 //

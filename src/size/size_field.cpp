@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The target size field: terms, combination, clamp, gradient limit, CFL (see size_field.hpp).
 #include "size/size_field.hpp"
 

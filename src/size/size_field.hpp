@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The target size field h(x) in km (ARCHITECTURE §4.10): the terms of a [size] section
 // (size/terms.hpp), quadtree.size_km, the size form of quadtree.depth_rules / box_rules
 // (a constant size on the cells whose centre is in the band or box) and a user raster of sizes combined by minimum on the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The physical terms of the size field (see terms.hpp).
 #include "size/terms.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The physical terms of the size field (ARCHITECTURE §4.10), each a function of grid values so
 // that it can be tested on a synthetic grid with a known answer. Sizes are in km, depths H in
 // metres (positive down), +inf means "no constraint". The formulas are the peers' (OceanMesh2D

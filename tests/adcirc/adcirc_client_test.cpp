@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC as a client (issues 11, 12): the real ocean model (v56.2, serial; ../shared/clients/adcirc
 // builds it once into a cache) runs the fort.14 of the default run (unrotated, the pole cap in
 // the Arctic; ICS = 22), of configs/rotated_greenland.toml and of configs/global_mercator.toml

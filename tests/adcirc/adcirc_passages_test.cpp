@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC on a global tide mesh whose straits are carved open (README "Passages, channels and
 // rivers"): configs/global_tides.toml at quadtree.levels = 3 (about 100 000 nodes: the 24 h run of
 // the full L = 5 mesh takes hours, the report gives it), 3 model hours of M2 tidal potential at

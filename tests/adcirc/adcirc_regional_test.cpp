@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC on the regional meshes (README "Regional FE meshes"): configs/north_sea.toml and
 // configs/gulf_of_mexico_fe.toml are meshed, and ADCIRC runs each fort.14 for 24 hours with a
 // 0.5 m M2 elevation on every open-boundary node (`adcirc.sh run MESH.14 24 --open-m2 0.5`). It

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC floods the shipped storm-surge mesh (README "A storm-surge mesh"): configs/gulf_surge.toml
 // is meshed into fort.14 (the floodplain up to +10 m written with negative depths) and ADCIRC runs
 // it for 24 hours with wetting and drying (NOLIFA = 2: `adcirc.sh run MESH.14 24 --ics 2

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria blocks`: ranks the coastal blocks of a small global run and writes their configs,
 // contours and pictures; a written block config runs `aquatoria regional` to its contour; user
 // boxes without water and bad --top values are refused with a clear message.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria check`: the table on stdout, the netCDF/PNG/JSON outputs, and failures (exit 1,
 // path named, no partial outputs).
 #include <gmock/gmock.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The command line: help, version, usage errors (exit 2), input errors (exit 1, path named),
 // configuration errors (exit 2, key and line named, all problems in one run).
 #include <gmock/gmock.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Regional domains end to end (README "Regional FE meshes"): a synthetic basin whose box cuts the
 // sea along a known edge, read back from fort.14 and hgrid.gr3 (open segment = exactly the mesh
 // nodes on that edge, in order, as coarse as the water's levels there; land pieces and islands closed and oriented as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global run as a file (issue 9): `aquatoria mesh` writes <name>.tif (Ω_L, pixel classes,
 // quadtree levels; a deflate-compressed, tiled, EPSG:4326 GeoTIFF that GDAL opens), and
 // `aquatoria blocks` / `aquatoria regional` reuse it instead of the global fill when its inputs

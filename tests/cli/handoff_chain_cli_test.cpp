@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The hand-off a user can trust: the global -> blocks -> regional -> refinement chain notices
 // when a file in it has been replaced. A block config whose global run was rewritten is refused;
 // `blocks` leaves no block of an earlier run; a refinement whose parent changed since it was cut is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Clean interruption (issue 11; SIGHUP, SIGQUIT and SIGPIPE since issue 23): a signal during the writing stage of a
 // real run removes every temporary file, leaves no output at all (no partial set), prints one line on stderr and exits
 // with 130 / 143. The run (the seed's reference run, every format, an 8000-pixel-wide preview) writes for about a

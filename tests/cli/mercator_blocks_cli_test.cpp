@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The hand-off on the rotated Mercator lattice (issue 12), end to end on ETOPO5 with
 // configs/global_mercator.toml:
 //   aquatoria mesh -c configs/global_mercator.toml;  aquatoria blocks -c ... --top 2;

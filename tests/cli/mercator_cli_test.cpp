@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Mercator lattice end to end on ETOPO5 (issue 12): configs/global_mercator.toml gives
 // triangles that are well shaped on the sphere (min angles computed here from the written UGRID
 // file with the netCDF C API, independently of the program's own statistics), leaf sizes within

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The model formats hold meshes the models accept (issue 20): fort.14, SCHISM's gr3 and FESOM2's
 // elem2d.out of the default run, configs/rotated_greenland.toml and configs/global_mercator.toml
 // are parsed back and have no triangle with fewer than two edge neighbours (FESOM2's partitioner

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // No sea dropped in silence (README "Passages, channels and rivers") on the real ETOPO5 and the
 // shipped configs: global_tides keeps the Mediterranean, Red Sea, Baltic, Black Sea and White
 // Sea, with those passages open (carved) in its table; the seed's reference run keeps its bytes

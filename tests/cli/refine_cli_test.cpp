@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional` for a refinement grid: the Black Sea grid as the parent, its north-western
 // shelf (configs/black_sea_nw_shelf.toml) split 3 x 3. The fine grid's ψ points at every third
 // index are the parent's ψ points, its size follows the box, its ROMS file carries coarse2fine's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional` with method = bvp (seed 003), end to end: the Black Sea contour in the plane
 // and on the sphere (the usual files, check tables in the report), seed 003's channel (f_max
 // history), same bytes on 1 and 2 threads, and a bad key value refused without output.

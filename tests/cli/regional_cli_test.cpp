@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional` as a user runs it: the seed's Black Sea from the TOML config and from the
 // seed's own .izogrid file, stop-after pictures, and bad contours refused with clear messages and
 // no partial files.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria regional` with the seed-004 methods (regional.method = tfi, star, ed2, rl, best): the
 // Black Sea end to end with the usual files, the swan config, the selection table, bad keys, and
 // the same bytes on 1 and 2 threads.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Issue 23: nothing crashes, hangs, lies or is left behind. Each test here failed on the code
 // before the issue: a FIFO or /dev/zero given for a path hung or read forever, a full disk ended
 // in SIGSEGV, sizes overflowed into negative numbers, late regional checks named no key, and a

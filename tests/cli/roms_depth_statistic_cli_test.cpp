@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roms.depth_statistic end to end (issue 9): the Black Sea grid (about 2 ETOPO5 points per ρ
 // cell) with "auto", "mean" and "min". auto keeps point there (fewer than 4 points per cell);
 // min is never shallower than mean, mean differs from point, and the file and report say which

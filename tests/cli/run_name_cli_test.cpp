@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Names say what was run (issue 11): without -c and output.name, a run whose parameters differ
 // from the seed's reference run is named after them, and says so; output-only keys keep the
 // seed's name.

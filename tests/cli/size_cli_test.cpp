@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The size field end to end on ETOPO5 (ARCHITECTURE §4.10): configs/global_tides.toml at a
 // coarser level runs, its report's time step equals a brute-force loop over the written UGRID file
 // (shortest great-circle edge / √(g·H), H the deepest node, read back with the netCDF C API), the

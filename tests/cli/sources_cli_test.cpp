@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `aquatoria mesh` with several bathymetry sources (input.paths, input.blend_km): with blend 0 the
 // mesh equals the mesh of one raster merged beforehand (byte for byte); the order matters; the
 // report's per-source node counts add up to the mesh's nodes; 1 and 2 threads give the same files;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Memory estimate and refusal of `aquatoria mesh` (issue 9): the estimate is printed before the
 // run and written to the report with the measured peak; a run whose estimate is above
 // input.max_memory_gb exits 2 before any raster data is read, naming the key and both numbers.

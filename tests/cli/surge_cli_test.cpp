@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Storm-surge meshes end to end (README "A storm-surge mesh"): a synthetic coast with a low plain
 // behind the shore and a second plain behind a ridge, meshed with mask.min_depth_m = -5. The plain
 // below the limit and connected to the sea is meshed, with negative depths in fort.14, hgrid.gr3

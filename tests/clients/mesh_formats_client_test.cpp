@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Our mesh files read by the programs users read them with: gmsh (MSH 4.1 ASCII/binary, with
 // $Periodic), ncdump and CDO (UGRID netCDF: CDO must see an unstructured grid with the right
 // cell count and bounds), and VTK's XML reader from python3-vtk9 (VTU). Each test skips only when

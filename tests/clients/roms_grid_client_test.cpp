@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Black Sea ROMS grid file (`aquatoria regional -c configs/black_sea.toml`) read the way users
 // read it: ncdump lists every grd_spherical.cdl variable with its dimensions, CDO sees a
 // curvilinear grid of 66 x 51 ρ points and its bilinear remap of ETOPO5 agrees with our hraw;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // FESOM2 as a client (issue 20): the real ocean model (../shared/clients/fesom2 builds FESOM2 and
 // its partitioner fesom_meshpart once into a cache, ~/.cache/aq-fesom2, under a lock) reads our
 // FESOM files as written, with the namelist's rotation from the report ("auto").

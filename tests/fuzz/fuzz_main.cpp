@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The libFuzzer entry point of one target, chosen at build time by AQ_FUZZ_TARGET (a name from
 // targets.hpp); tests/fuzz/CMakeLists.txt builds one executable fuzz_<target> per target.
 #include <cstdlib>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Replays every kept fuzz input (tests/fuzz_regressions/<target>/*: inputs that once crashed, hung
 // or tripped a sanitizer, found by scripts/fuzz.sh) through its target. Each must now end in a
 // clear aq::Error or succeed; when a file NAME.expect sits beside the input, the error message

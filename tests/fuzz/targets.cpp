@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fuzz targets (targets.hpp). File readers get the bytes through a file in a private temporary
 // folder (the readers take paths, as users give them); the folder also holds copies of the
 // configs/*.izogrid files so that a regional config's relative contour_file can resolve.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The parsers fuzzed by scripts/fuzz.sh (libFuzzer, tests/fuzz/fuzz_main.cpp) and replayed by the
 // regression test (tests/fuzz/fuzz_regressions_test.cpp) on every kept input in
 // tests/fuzz_regressions/<target>/. Each target feeds the bytes to one reader exactly as a user's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The global discretizer end to end on the real ETOPO5 (ferret-datasets), through the
 // `aquatoria mesh` command as a user runs it: counts against the seed and an independent
 // implementation, whole-mesh invariants from the report, determinism across 1 and 2 threads,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A box rule in kilometres on ETOPO5 (issue 12), on the Mercator lattice of the rotated frame
 // (configs/global_mercator.toml): the leaves whose centre is in the box take the size nearest the
 // target (within √2) at their latitude φ′, where the levels allow it; away from the box the leaves

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mask stage on the real NOAA ETOPO5 (5', 4320×2161) at the seed's reference parameters
 // (Δ0 = 4°, L = 3: 720×360 pixels of 0.5°; K = 2; h = 0), plus a rotated pole and finer lattices.
 // The numbers asserted here are what ETOPO5 gives (measured when the test was written), with the

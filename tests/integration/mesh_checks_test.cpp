@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Issue 11 on the real ETOPO5, through `aquatoria mesh`: a step typed within rounding of 16' gives
 // exactly the 16' lattice and a finite wet area equal to the area of the filled pixels computed
 // here independently; the rotated h = 200 ocean passes the area check because the rotated cells

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Quantisation of the size field into quadtree levels (ARCHITECTURE §4.10), on synthetic data
 // with a known answer:
 //  * the grading: a continent forces the finest level on its coast (the D_l rule) while the field

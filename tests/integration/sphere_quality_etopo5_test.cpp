@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shape quality on the sphere on the real ETOPO5 (issue 12): the seed reference run's figures
 // from the issue's table (lattice mesh), the report's figures recomputed independently from the
 // written UGRID file, and the FESOM, SCHISM and angle-coloured preview files bit-identical for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Streamed input (issue 9) end to end: the pixel classes of a streamed raster equal the whole
 // raster's bit for bit on ETOPO5 and on a synthetic fine raster (band heights 1, 7, the block
 // height; 1 and 2 threads), and a VRT of 4 tiles cut from ETOPO5 gives the mesh of ETOPO5 itself

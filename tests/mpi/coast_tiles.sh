@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The forest engine on a 1/9" tile stack (ctest label mpi): data_tools/make_coast_tiles.py makes a
 # stack of 0.05° VRT tiles resampled from ETOPO5 over Cape Hatteras (1° × 1°, tiles only where the
 # coast runs, none east of -75.5°: the lattice's window reaches past the stack's edge), above ETOPO5

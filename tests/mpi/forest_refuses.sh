@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Bad input on the forest engine under `mpirun -np NP` (ctest label mpi): every rank ends with the
 # configuration error's exit code 2, the message is printed once and names the key, and no file is
 # written. Cases: a floodplain (mask.min_depth_m < 0, dense engine only) and a coastal band wider

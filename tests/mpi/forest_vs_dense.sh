@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The forest engine against the dense engine (ctest label mpi; tests/CMakeLists.txt): one
 # `aquatoria mesh` run with quadtree.engine = "dense", one with "forest" under
 # `mpirun --oversubscribe -np NP`, and every file they write must be the same bytes (the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Fixtures of the Python interface's tests: the command line's files for the same runs.
 
 Run through ctest (label python), which first installs the package with pip into a virtual

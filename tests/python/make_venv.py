@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The ctest fixture of the Python tests (tests/CMakeLists.txt, test python_install): a fresh virtual
 environment inside the build tree with the package installed the way a user installs it,
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Errors raise Python exceptions carrying the command line's messages (bad key with its "did you
 mean", bad value, missing file), and nothing is written."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The package as Python users install it: pip into a fresh virtual environment (ctest's fixture
 python_install ran `pip install --no-build-isolation .`, make_venv.py), imported from outside the
 clone; a wheel made by `pip wheel`, installed into a second environment and imported there; and the

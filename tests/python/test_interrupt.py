@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Ctrl-C (SIGINT sent to the Python process) during a long aquatoria call: KeyboardInterrupt within
 a fraction of the run, nothing left behind, and the session usable afterwards.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria.mask: the classes, the filled area and the levels agree with the mesh run's report
 and its global run file; georeferencing of the lattice."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria.mesh: the geographic mesh's arrays equal the command line's UGRID file, write() gives
 its bytes, to_xarray() (made in memory) equals the UGRID file as xarray reads it and round-trips
 through netCDF (seed run and Mercator run). The model formats' meshes: test_model_mesh.py."""

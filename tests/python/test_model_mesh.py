@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Run.model_mesh: the arrays are the model files, node for node, triangle for triangle, boundary
 list for boundary list, read back from the files `aquatoria mesh` writes (fort.14, hgrid.gr3 /
 hgrid.ll and bctides.in, FESOM2's nod2d/elem2d/aux3d/obn), on the seed's reference run (a global

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """An in-memory raster (numpy array with lon/lat, or an xarray DataArray) gives the same mesh as
 the same data written to a GeoTIFF."""
 

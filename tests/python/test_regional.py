@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """aquatoria.regional: the grid equals the command line's files (xygrid supergrid, ROMS grid file's
 C-grid) and check() its report's quality figures."""
 

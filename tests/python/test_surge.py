@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A storm-surge mesh in Python (configs/gulf_surge.toml: mask.min_depth_m = -10, the floodplain
 above the datum): negative depths pass through unchanged, the model meshes are the files node for
 node (fort.14 and hgrid.gr3 with their negative depths, FESOM2's aux3d.out with 0 there and the

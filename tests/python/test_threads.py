@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Threads: the arrays do not depend on the OpenMP thread count; two Python threads may call at
 once (their calls run one after another, each result correct); the GIL is released meanwhile."""
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS itself as a client of our files (ctest labels slow and roms). ../shared/clients/roms beside
 // the repository holds the ROMS source (myroms 4.3), a build patch, an analytic closed-basin test
 // application and roms.sh, which builds a serial ROMS once into a cache ($ROMS_CACHE, default

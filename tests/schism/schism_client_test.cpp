@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SCHISM as a client (issue 20): the real ocean model (../shared/clients/schism builds pschism once
 // into a cache, ~/.cache/aq-schism, under a lock) runs the hgrid.gr3 of the default run and of
 // configs/global_mercator.toml as written for a day of M2 tidal potential with momentum advection

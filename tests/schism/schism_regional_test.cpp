@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SCHISM on the regional meshes (README "Regional FE meshes"): configs/north_sea.toml and
 // configs/gulf_of_mexico_fe.toml are meshed, and SCHISM (2 MPI ranks) runs each hgrid.gr3 for 24
 // hours with a 0.5 m M2 elevation on every open-boundary node (`schism.sh run MESH.gr3 24

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SCHISM floods the shipped storm-surge mesh (README "A storm-surge mesh"): configs/gulf_surge.toml
 // is meshed into hgrid.gr3 and SCHISM (2 MPI ranks) runs it for 24 hours with a 2 m M2 on the open
 // boundary; SCHISM wets and dries by itself (param.nml h0 = 0.01 m).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The hand-off in three commands on configs/global_1deg_L5.toml (ETOPO5, Δ0 = 1°, L = 5):
 //   aquatoria mesh -c ... -o DIR;  aquatoria blocks -c ... -o DIR --top 2;
 //   aquatoria regional -c DIR/blocks/block_001.toml

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Writers on a ~10-million-triangle mesh (a regular band of the 0.4° L=2 lattice from the South
 // pole to 70°N): every format is written and its counts checked; wall times are printed (they are
 // benchmarks, not assertions: the machine is shared).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Output folders and reports of `aquatoria` runs in CLI tests.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper for the real-model clients in ../shared/clients: their `key: value` summaries.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Simulates a full disk for writer tests without touching devices: lowers the soft
 // RLIMIT_FSIZE of the process (with SIGXFSZ ignored, writes past the limit fail with EFBIG)
 // and restores both on destruction.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper: reads an ADCIRC fort.14 or a SCHISM hgrid.gr3 / .ll (the same layout: a title
 // line, "NE NP", NP node lines "id x y depth", NE element lines "id 3 a b c", then NOPE, NETA and
 // the open segments, NBOU, NVEL and the land segments "NVELL IBTYPE" with their nodes), the one

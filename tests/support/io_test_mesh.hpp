@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Hand-made meshes for the writer tests (tests/unit/io, tests/clients). A mesh is built from a
 // list of quadtree leaves on a tiny lattice the way ARCHITECTURE §4.5–4.6 describes (corner
 // nodes, midside nodes where a finer leaf's corner sits on a side, centre-node templates,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A small independent reader of Gmsh MSH 4.1 files (ASCII and binary) for the writer tests. It
 // follows the format description (Gmsh manual, "MSH file format"), not our writer, and fails
 // loudly (throws std::runtime_error) on anything it does not expect.

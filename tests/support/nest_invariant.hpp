@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper: the invariant ROMS two-way refinement needs, checked on the three files alone
 // (parent grid, refinement grid, contact points), independently of aquatoria's own code:
 //   1. over each parent ρ cell (I, J) inside the refinement (I_left..I_right−1 × J_bottom..J_top−1

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // OpenMP thread count for a scope (1 vs 2 threads must give the same bits): set on construction,
 // the previous count restored on destruction; nothing without OpenMP.
 #pragma once

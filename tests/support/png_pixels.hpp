@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper: a PNG read back through Cairo as ARGB32 pixels, for tests that check what a
 // picture shows (colours at map positions, counts of a line colour).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper for the regional client tests (tests/adcirc, tests/schism; README "Regional FE
 // meshes"): a configs/NAME.toml is meshed into one model format, and the model (through its
 // ../shared/clients script) runs it for 24 hours with a 0.5 m M2 elevation on every open-boundary

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper: run a shell command, capture stdout and stderr separately, return the exit code.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A shared library whose constructor sleeps AQ_SLOW_START_MS milliseconds (default 0), for
 // tests/cli/interrupt_cli_test.cpp: preloaded (LD_PRELOAD) into aquatoria, it stands for the
 // libraries whose constructors run while the process starts, so a signal can be sent then.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helpers of the streamed-input tests: small synthetic global rasters written through GDAL,
 // and the OpenMP thread count.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A fresh temporary directory per test, removed (with its contents) at the end of the test.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reads the triangles of a UGRID file written by aquatoria with the netCDF C API (tests that check
 // the written mesh independently of the program's own statistics).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test helper: the uniform planar grids the curvilinear, grid-file and hand-off tests build (the
 // one builder; a test that wants curved lines maps its points afterwards).
 #pragma once

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Configuration sweep (ctest label `sweep`): runs `aquatoria` over a deterministic sample of the
 configuration space and checks every run (exit 0, "all checks passed", finite areas).
 

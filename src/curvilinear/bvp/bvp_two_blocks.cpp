@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Two-block orthogonal-family grids; see bvp_two_blocks.hpp.
 #include "curvilinear/bvp/bvp_two_blocks.hpp"
 

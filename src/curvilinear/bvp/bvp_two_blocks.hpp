@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Two blocks of the orthogonal-family method sharing one interface side (seed 003 Sec. 4 end,
 // multi-block; digest orthogonal_bvp_and_elliptic.md A.9): block A's east side Γ3 (θ^A = 1) is
 // block B's west side Γ1 (θ^B = 0), the same curve, traversed south -> north in both.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Level-line tracing and intersection; see level_intersections.hpp.
 #include "curvilinear/bvp/level_intersections.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nodes of the orthogonal grid as intersections of the level lines θ = θ_p and η = η_q of the
 // nodal solutions on the reference grid (seed 003 Sec. 4; digest orthogonal_bvp_and_elliptic.md
 // A.6, A.7):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Natural cubic spline on integer knots; see natural_spline.hpp.
 #include "curvilinear/bvp/natural_spline.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Natural cubic spline through values f_0..f_N at the integer knots t = 0..N (s'' = 0 at both
 // ends), the index-parametrised spline of seed 003 Sec. 4.2 (digest orthogonal_bvp_and_elliptic.md
 // A.7). Second derivatives from the tridiagonal system M_{k−1} + 4 M_k + M_{k+1} =

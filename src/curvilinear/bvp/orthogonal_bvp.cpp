@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Outer iteration of the orthogonal-family method; see orthogonal_bvp.hpp.
 #include "curvilinear/bvp/orthogonal_bvp.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The orthogonal-family grid generator of seed 003 (digest orthogonal_bvp_and_elliptic.md A.1,
 // A.8): outer iterations of
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bvp method of the regional pipeline; see regional_bvp.hpp.
 #include "curvilinear/bvp/regional_bvp.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bvp method of `aquatoria regional` (regional.method = "bvp"; seed 003, digest
 // orthogonal_bvp_and_elliptic.md A): from the contour and its uniform boundary nodes to the same
 // (2nx+1) × (2ny+1) supergrid the Laplace fill gives, so every downstream file and check works.

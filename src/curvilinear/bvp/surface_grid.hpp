@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A logically rectangular grid of points in R^3: the reference and result grids of the
 // orthogonal-family method (seed 003; digest orthogonal_bvp_and_elliptic.md A.2, A.4), planar
 // (z = 0, plane units) or on a surface (the unit sphere). Same index convention as Grid2D

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // f_max, f_avg of seed 003; see surface_orthogonality.hpp.
 #include "curvilinear/bvp/surface_orthogonality.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Orthogonality of a grid in the plane or on a surface, seed 003 Sec. 5.1 (digest
 // orthogonal_bvp_and_elliptic.md A.10): per cell the cosine between the mean directions of its
 // two pairs of opposite edges, n_a ∝ a_0 + a_1 and n_b ∝ b_0 + b_1 (the direction of (46) in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Q1 finite elements and PCG for the θ-, η-equations; see theta_eta.hpp.
 #include "curvilinear/bvp/theta_eta.hpp"
 

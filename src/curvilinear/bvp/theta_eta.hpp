@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The θ- and η-equations of the orthogonal-family method (seed 003 eqs. (13), (19) in the plane,
 // (32), (33) on a surface; digest orthogonal_bvp_and_elliptic.md A.3–A.5), discretised by Q1
 // finite elements ("variational-difference", digest A.5 option 1) on a reference grid:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Classic transfinite interpolation; see transfinite_interpolation.hpp.
 #include "curvilinear/bvp/transfinite_interpolation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Classic transfinite interpolation (Coons patch) of a logically rectangular grid from its four
 // boundary polylines: the reference grid of iteration 0 of the orthogonal-family method (seed 003
 // Sec. 4; digest orthogonal_bvp_and_elliptic.md A.1, A.8). Bilinear blending in the index

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Boundary nodes and mode-2 uniform filling (seed 000 Sec. 2.4; digest izogrid.md §7.1).
 #include "curvilinear/common/boundary_nodes.hpp"
 

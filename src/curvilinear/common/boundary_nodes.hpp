@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Boundary nodes of a regional grid on the spline contour, and izogrid mode 2: uniform filling
 // of each side as the initial guess of the inverse problem (seed 000 Sec. 2.4 "initial
 // approximation", Fig. 10 top; digest izogrid.md §7 and §7.1).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The C-grid of a ROMS grid file from the izogrid supergrid; conventions in cgrid.hpp (digest
 // izogrid.md §9 [S], ROMS grd_spherical.cdl). Spherical distances use the atan2 form of the
 // great-circle angle (Vincenty's special case of the sphere) written without cancellation, exact to

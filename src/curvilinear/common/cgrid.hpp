@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Back to the sphere: the Arakawa C-grid of a ROMS grid file from the izogrid supergrid (seed 000
 // Sec. 2.5 end, digest izogrid.md §9 [S]; ROMS Data/ROMS/CDL/grd_spherical.cdl). The planar
 // (2L+1) × (2M+1) supergrid G is mapped to longitude/latitude by the inverse projection and split

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A logically rectangular planar grid: the izogrid "supergrid" of (2nx+1) x (2ny+1) points.
 // Index convention (row-major, eta rows):
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Grid quality criteria: izogrid checkort (seed 000 eqs. (46)–(52)) and seed-004 f1–f4 (B.5).
 //
 // Decisions on the digests' open points (izogrid.md §10, §13):

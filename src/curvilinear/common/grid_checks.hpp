@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Quality of a planar curvilinear grid: the izogrid `checkort` diagnostics (seed 000 Sec. 2.6,
 // eqs. (44)–(52); digest izogrid.md §10) and the seed-004 cell criteria f1–f4 (digest
 // orthogonal_bvp_and_elliptic.md B.5).

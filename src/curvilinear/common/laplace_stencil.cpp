@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mehrstellen stencil's weights and residual (see laplace_stencil.hpp).
 #include "curvilinear/common/laplace_stencil.hpp"
 

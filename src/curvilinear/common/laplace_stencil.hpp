@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The compact 4th-order "mehrstellen" 9-point Laplacian of the izogrid Laplace fill (seed 000
 // eqs. (32)–(35); digest izogrid.md §8; the weights are explained in conformal/laplace_fill.hpp):
 // its weights and its residual, shared by the fill (conformal/) and the grid checks (common/).

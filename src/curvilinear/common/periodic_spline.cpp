@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Periodic spline systems and sweeps; see periodic_spline.hpp for the equations.
 #include "curvilinear/common/periodic_spline.hpp"
 

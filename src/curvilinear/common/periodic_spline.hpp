@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Periodic (cyclic) spline systems and Hermite bases for the izogrid contour (seed 000 Sec. 2.2
 // and Appendix 2, eqs. (55)–(73), (85)–(87); digest izogrid.md §4.3–4.4 with the corrected
 // signs of (72)/(73); sweep solvers of seed 001 Ch. I §10, digest splines.md §7).

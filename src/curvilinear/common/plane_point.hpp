@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A point or vector of the izogrid projection plane (plane units, see projection.hpp).
 #pragma once
 

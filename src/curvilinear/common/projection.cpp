@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Conformal projections (digest izogrid.md §3; Snyder 1987, "Map projections: a working manual",
 // eqs. for the oblique Mercator via sphere rotation, stereographic (21-4) and Lambert conformal
 // conic (15-1)–(15-5) on the sphere).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Conformal projections between geographic coordinates (degrees) and the izogrid plane
 // (seed 000 Sec. 2.1, Appendix 1; digest izogrid.md §3). Sphere of radius R; no ellipsoid.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Refinement of a parent supergrid (see refine.hpp).
 #include "curvilinear/common/refine.hpp"
 

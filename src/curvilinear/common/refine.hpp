@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A refinement grid cut from a parent grid (ROMS refinement nesting; ROMS's coarse2fine.m lays its
 // fine grid the same way): the parent's ψ cells I_left..I_right × J_bottom..J_top are split r × r
 // (r odd), so every r-th fine ψ point on the perimeter is a parent ψ point and every parent cell

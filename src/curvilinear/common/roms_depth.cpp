@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Clip and r-factor smoothing of ROMS depths; the scheme and why it is deterministic are in
 // roms_depth.hpp.
 #include "curvilinear/common/roms_depth.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Model depth h of a ROMS grid from the raw depth hraw at ρ points (WikiROMS "Grid generation";
 // the smoothing is Sikirić, Janeković & Kuzmić 2009, Ocean Modelling 29, "A new approach to
 // bathymetry smoothing in sigma-coordinate ocean models", their positive rx0 method):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Spline contour with exact right-angle corners; see spline_contour.hpp (seed 000 eqs. (5)–(15),
 // (55)–(91); digest izogrid.md §4).
 #include "curvilinear/common/spline_contour.hpp"

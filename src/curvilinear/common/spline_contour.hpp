@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The closed spline contour of a regional grid with exactly right-angled corners (izogrid mode 1;
 // seed 000 Sec. 2.1–2.2, eqs. (5)–(15), Appendix 2 (55)–(91); digest izogrid.md §4).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Mode 3: outer inverse-problem loop around IZ89; see inverse_problem.hpp (seed 000 Sec. 2.4,
 // eqs. (22)–(26); digest izogrid.md §7.2).
 #include "curvilinear/conformal/inverse_problem.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // izogrid mode 3: the inverse problem for the boundary nodes (seed 000 Sec. 2.4, eqs. (22)–(26),
 // Fig. 10 bottom; digest izogrid.md §7.2).
 //

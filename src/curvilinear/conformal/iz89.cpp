@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Revised IZ89 straightening; see iz89.hpp (seed 000 Sec. 2.3–2.4; digest izogrid.md §5, §6.2).
 #include "curvilinear/conformal/iz89.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Revised Ives & Zacharias (1989) polygon -> rectangle straightening, "IZ89" (seed 000 Sec. 2.3
 // eqs. (17)–(21) and Sec. 2.4; digest izogrid.md §5 and §6.2, the reconstruction validated by a
 // prototype).

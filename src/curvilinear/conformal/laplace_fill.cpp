@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Mehrstellen Dirichlet fill: 4-colour Chebyshev SOR (seed 000 eqs. (42)–(43)) and a direct
 // 2-D DST-I solver (FFTW RODFT00). Stencil and eigenvalues: see laplace_fill.hpp.
 //

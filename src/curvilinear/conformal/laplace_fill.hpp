@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Dirichlet fill of a grid's interior: x(ξ,η) and y(ξ,η) harmonic with the boundary nodes fixed
 // (izogrid mode 4, seed 000 Sec. 2.5; digest izogrid.md §8).
 //

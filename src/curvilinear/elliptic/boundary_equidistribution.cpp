@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // 1-D equidistribution of boundary nodes (seed 004 Sec. 1; digest B.2); see boundary_equidistribution.hpp.
 #include "curvilinear/elliptic/boundary_equidistribution.hpp"
 

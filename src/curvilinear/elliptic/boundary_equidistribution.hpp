@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Boundary nodes by 1-D equidistribution (seed 004 Sec. 1; digest orthogonal_bvp_and_elliptic.md
 // B.2): on each side, nodes such that (s_{k+1} − s_k) · w(x(s_{k+1/2})) is the same for every 1-D
 // cell, so the nodes are denser where the control function w is large; w ≡ 1 gives equal arc length.

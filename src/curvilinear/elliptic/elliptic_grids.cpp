@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ED2 and Ryskin–Leal grids by Picard iteration with IC(0)-preconditioned CG (seed 004 Sec. 3;
 // digest B.4); see elliptic_grids.hpp.
 #include "curvilinear/elliptic/elliptic_grids.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Final grids of seed 004 Sec. 3 (digest orthogonal_bvp_and_elliptic.md B.4): the node coordinates
 // solve, on the unit-step index grid with the boundary nodes fixed (Dirichlet),
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Seed 004's automatic best-grid choice (digest B.6); see grid_selection.hpp.
 #include "curvilinear/elliptic/grid_selection.hpp"
 

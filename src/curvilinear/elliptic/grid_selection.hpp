@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Automatic choice of the best initial grid (seed 004 Sec. 5; digest orthogonal_bvp_and_elliptic.md
 // B.6). Each candidate carries its criteria f(k) (worst cell) and f(k)_o (average), k = 1..4, and
 // its validity flags; the procedure:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Initial grids of seed 004 Sec. 2 (digest B.3): TFI with normalised blending and internal sections,
 // STAR with the polygon kernel as pole, and the boundary-crossing test; see initial_grids.hpp.
 #include "curvilinear/elliptic/initial_grids.hpp"

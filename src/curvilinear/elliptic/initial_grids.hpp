@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Initial (algebraic) grids of seed 004 Sec. 2 (digest orthogonal_bvp_and_elliptic.md B.3): classic
 // transfinite interpolation (TFI), TFI with internal sections and normalised blending functions,
 // and STAR for star-shaped domains; plus the test whether interior coordinate lines cross the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Seed-004 methods in the regional pipeline (digest B.2–B.6); see regional_methods.hpp.
 #include "curvilinear/elliptic/regional_methods.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The seed-004 generators as regional methods (digest orthogonal_bvp_and_elliptic.md B.2–B.6): the
 // pipeline (regional.hpp) builds the contour as for the conformal method, then, for method tfi,
 // star, ed2, rl or best, puts the boundary nodes by 1-D equidistribution of w on each side

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // write_mesh_outputs: file names per format, one log line per file, facts, option errors before
 // any file is written, and all-or-nothing through the OutputSet.
 #include "app/mesh_outputs.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Model-ready ROMS depths by default: a regional config without roms.rmax smooths a steep
 // synthetic basin to rx0 <= 0.2, and rx1 (on the reference vertical grid) drops with it.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // write_output_jobs: the own_thread job really runs beside the others, yet the log lines and the
 // returned files keep the jobs' order, and the error thrown is the first failure in that order
 // (whichever thread failed first in time); steps run in their place, on the extra thread when

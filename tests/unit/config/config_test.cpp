@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Configuration: example.toml documents exactly the keys the code knows; unknown keys and bad
 // values are reported with file:line, all of them in one run; --set overrides; path resolution.
 #include <gmock/gmock.h>

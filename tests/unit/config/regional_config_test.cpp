@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Regional configuration: example_regional.toml documents exactly the known keys; a TOML config
 // and the seed's .izogrid file give the same parameters; errors name file, line and key.
 #include <gmock/gmock.h>

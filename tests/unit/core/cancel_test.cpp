@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cooperative cancellation (core/cancel.hpp): a request counts only inside the scope of its token,
 // on every thread; scopes nest; no stage starts, and a running one throws when it ends, once the
 // request is made (tests/unit/io/cancel_writer_test.cpp: the file writer).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Core: all-or-nothing outputs, lattice validation, bitmaps, angle helpers, the run report.
 #include <fmt/format.h>
 #include <gmock/gmock.h>

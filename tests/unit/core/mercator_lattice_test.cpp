@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Mercator lattice (issue 12): the row map round trips, a pixel is a square on the sphere to
 // second order in its size, the rows end at whole level-0 squares beyond φ_max, and the lon-lat
 // lattice keeps its exact row formula.

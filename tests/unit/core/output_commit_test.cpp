@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Issue 23, output side: a commit is all-or-nothing (a rename that fails midway puts the old
 // files back), temporaries of dead processes are removed by the next run in the folder, long
 // names get temporary names within 255 bytes, paths that are not regular files are named, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The window lattice of a regional run (core/lattice.hpp): a block of the global lattice whose
 // vertices have the same coordinates, bit for bit, as the global vertices they are.
 #include <gtest/gtest.h>

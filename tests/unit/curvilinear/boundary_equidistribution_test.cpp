@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of 1-D equidistribution of boundary nodes (seed 004, digest B.2).
 #include "curvilinear/elliptic/boundary_equidistribution.hpp"
 

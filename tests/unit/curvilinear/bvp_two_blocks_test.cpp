@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Two blocks of the orthogonal-family method sharing an interface (seed 003 multi-block; digest
 // orthogonal_bvp_and_elliptic.md A.9): seed 003's channel cut at x = 1 by a straight interface;
 // grid lines continuous (C0 to round-off) and smooth (C1: a small kink, shrinking with h) across it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ROMS C-grid on the sphere: metrics against great circles computed here independently
 // (haversine), angles against the bearings of ξ lines and against the projection's rotation,
 // f = 2Ω sin φ, the ρ/u/v/ψ index convention, and bad input.

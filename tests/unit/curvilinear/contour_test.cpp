@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the corner-exact spline contour (seed 000 eqs. (8)–(15), (55)–(73), (85)–(87); digest
 // izogrid.md §4) and of its periodic sweep solvers (seed 001 §10, digest splines.md §7):
 // exact 90° corners on random star-shaped contours, straight sides for four corners, the C²/C⁴

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of seed 004's ED2 and Ryskin–Leal grids (digest B.4, B.8).
 #include "curvilinear/elliptic/elliptic_grids.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the grid quality criteria: checkort forms (46), (50), (51), (52) and the Laplace
 // residual (seed 000), and the seed-004 cell criteria f1–f4, on grids with known answers.
 #include <gtest/gtest.h>

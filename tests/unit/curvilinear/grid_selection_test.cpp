@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of seed 004's automatic best-grid choice (digest B.6) on constructed candidate sets whose
 // answer follows from the procedure by hand.
 #include "curvilinear/elliptic/grid_selection.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of seed 004's initial grids (digest B.3): normalised blending, TFI with sections on the swan,
 // STAR and the kernel, the boundary-crossing test.
 #include "curvilinear/elliptic/initial_grids.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the inverse problem for the boundary nodes and of the whole regional pipeline (seed
 // 000 Sec. 2.4–2.5, Figs. 6, 10, 11; digest izogrid.md §7, §11) on the seed's Black Sea input
 // (configs/black_sea.izogrid, Fig. 3): automatic nx, the 131×101 supergrid, W/H, round-off

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the revised IZ89 straightening (seed 000 Sec. 2.3–2.4; digest izogrid.md §5–6) on
 // polygons whose conformal modulus is known exactly from symmetry:
 //

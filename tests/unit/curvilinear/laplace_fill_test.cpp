@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the mehrstellen Dirichlet fill (seed 000 eqs. (32)–(43)): weights, exactness on
 // harmonic polynomials, SOR = DST, bit-identical threads, convergence order on analytic conformal
 // maps (w = exp z, z²) with Δξ ≠ Δη, and timings at the Black Sea and Fig. 16 sizes.

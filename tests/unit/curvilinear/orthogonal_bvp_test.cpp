@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the orthogonal-family method (seed 003; digest orthogonal_bvp_and_elliptic.md A,
 // part D): exact answers (annular sector in the plane, latitude–longitude rectangle on the sphere)
 // reproduced with second order over three resolutions, the reciprocity E(θ)·E(η) ≥ 1 → 1, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the conformal projections (seed 000 Sec. 2.1, digest izogrid.md §3): round trips,
 // the Black Sea plane coordinates of the seed's Fig. 3, conformality and the scale factor
 // (numerical Jacobian), the rota convention, and the refused configurations.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Refinement of a parent supergrid (curvilinear/refine.hpp): the parent's points inside are copied
 // bit for bit, the sizes follow the box, the interpolation is fourth-order accurate on a conformal
 // map (the error falls ~16x when the parent's resolution doubles) and keeps it orthogonal, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS depth: clip to hmin, r-factor smoothing on wet faces that only deepens, is minimal (every
 // raised point is held by a tight neighbour), independent of sweep order, and leaves land alone.
 #include "curvilinear/common/roms_depth.hpp"

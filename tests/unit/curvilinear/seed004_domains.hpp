@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test domains of seed 004 (digest orthogonal_bvp_and_elliptic.md B.8) as boundary-only grids:
 // the swan and the B.8 Laplace-test domain, each side a dense polyline with nodes by 1-D
 // equidistribution of w; and a uniform rectangle grid.

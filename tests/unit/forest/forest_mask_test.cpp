@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The forest engine's lattice brick, pixel classes and K-cursor fill against the dense engine on
 // the real ETOPO5: the same bits on the seed's lattice, on a rotated one and on finer ones.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MOM6 grid files (ocean_hgrid.nc, ocean_topog.nc, ocean_mask.nc) of an izogrid supergrid, parsed
 // back: the supergrid's dx, dy and area summed on the sphere against the ROMS metrics pm, pn of
 // the same grid; the topography and mask on the cells; any_grid reads ROMS and MOM6 files for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Issue 23: the nesting file holds NaN (global_element_size, refinement_ratio) and -1
 // (element, element_nodes, element_level) at the boundary points outside the wet global mesh;
 // black_sea_nesting.nc had 113 such NaN values with no _FillValue, so CF readers took them for

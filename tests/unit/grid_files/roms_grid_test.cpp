@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ROMS grid writer: every grd_spherical.cdl variable with its dimensions and attributes,
 // read back with the netCDF-C API; same bytes on every write.
 #include "grid_files/roms_grid.hpp"

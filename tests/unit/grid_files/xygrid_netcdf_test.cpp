@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the planar grid netCDF (round trip, schema, errors, reproducibility).
 #include <gtest/gtest.h>
 #include <netcdf.h>

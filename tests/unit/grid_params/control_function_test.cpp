@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the control-function formulas (seed 004's w(x, y)).
 #include "grid_params/control_function.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the izogrid input-file reader (seed 000 Appendix 1, Fig. 3; ARCHITECTURE §5 "Input
 // compatibility"): the seed's Black Sea file read back verbatim, the end-of-preamble variants,
 // corner labels, and the errors (file:line, key, value, corner counts) for bad files.

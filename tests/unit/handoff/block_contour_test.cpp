@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Block contours: projection choice, the written .izogrid + TOML loading back through
 // config::load_regional with the expected centre and 4 corners, upright boxes of a rotated
 // lattice, poles, shrink-to-wet (moves over land only, smooth, corners kept at 90°), and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Coastal blocks: the coastal-pixel definition on a drawn mask, exact per-square counts, the
 // ranking order, suggested ny, user boxes (sampled counts), the error for a box without water, and
 // Mercator-lattice squares (boxes of their Mercator rows, 2^L pixels high).

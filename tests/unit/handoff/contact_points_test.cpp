@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROMS contact points of a refinement grid (handoff/contact_points.hpp): a warped parent written
 // with the ROMS grid writer and read back, its ψ box refined 3 × 3 (curvilinear/refine.hpp). The
 // worked example of the ROMS contact.m conventions (Idg/Jdg, bilinear weights), the point counts of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A real small global mesh for the hand-off tests: ETOPO60 (1°), Δ0 = 4°, L = 3, K = 2, h = 0,
 // optionally with the seed's rotated pole, on the lon-lat or the Mercator lattice (rows to
 // ±86.5°, as configs/global_mercator.toml; it needs the rotation, which puts the caps beyond the

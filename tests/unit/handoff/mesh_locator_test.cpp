@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Point location in a real global mesh (ETOPO60, Δ0 = 4°, L = 3): every triangle's centroid is
 // found in that triangle, random points agree with a brute-force search over all triangles,
 // barycentric weights reproduce the points to 1e-9° and lie in [0, 1] within 1e-12, points on

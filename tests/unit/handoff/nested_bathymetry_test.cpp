@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Consistent masks and depths of a refinement grid and its parent (handoff/nested_bathymetry.hpp):
 // synthetic parents and children on index grids. The parent's h over the footprint is the child's
 // area-weighted block average (wet points only), exactly; both r-factor bounds hold; the parent is

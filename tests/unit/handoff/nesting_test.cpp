@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nesting data: the ROMS boundary point layout, a regional grid in the open South Atlantic located
 // in the real global mesh (weights reproduce the boundary points to 1e-9°, refinement ratio
 // from the element and cell sizes), a grid over the coast (points outside flagged and counted),

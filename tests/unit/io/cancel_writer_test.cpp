@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A stop request (core/cancel.hpp) while a file is written: FileWriter does not hand another block
 // to the kernel, and the OutputSet the file belongs to leaves nothing behind (no temporary).
 #include <gtest/gtest.h>

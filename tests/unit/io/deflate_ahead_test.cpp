@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // DeflateAhead (io/deflate_ahead.hpp): chunks prepared on the threads come back from the
 // program's compress2 as the bytes zlib's gives (shuffled as HDF5 shuffles, a partial last chunk
 // padded), anything else is compressed by zlib, and a netCDF-4 file written with it has the bytes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // FileWriter (io/file_writer.hpp): chunks written by a second thread while the next one fills
 // arrive whole and in order, size() counts every byte, and a failing write is reported.
 #include <gtest/gtest.h>

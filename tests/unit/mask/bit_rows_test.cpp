@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Word-parallel row primitives against per-bit references on random rows of awkward lengths.
 #include "mask/bit_rows.hpp"
 

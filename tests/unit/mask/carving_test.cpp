@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Carving passages, channels and blockages (mask/carving.hpp) and the dropped-sea report
 // (mask/dropped_seas.hpp) on a synthetic world of 0.5° pixels: two basins joined through land by
 // a channel one pixel wide (closed at K = 2 unless a transect carves it), a wide channel (closed

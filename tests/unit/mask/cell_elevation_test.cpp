@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cell statistics of a fine raster (mask/cell_elevation.hpp) on synthetic rasters whose answers
 // are known: a linear field (mean = value at the centre), a checkerboard (mean, median, min), the
 // half-open edge rule (each raster point in exactly one cell) and the auto rule.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bit-identical results with 1 and 2 OpenMP threads (ARCHITECTURE §9) on a 2000 × 1000 lattice.
 #include <gtest/gtest.h>
 

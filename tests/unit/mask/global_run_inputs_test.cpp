@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The inputs of the global run file follow a VRT's tiles: changing a tile changes the checksum,
 // so `blocks` and `regional` do not reuse a run made from the old tile; a single file keeps the
 // items (and checksum) it always had.

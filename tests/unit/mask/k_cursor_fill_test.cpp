@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // K-cursor fill on drawn masks (seed 002 Fig. 2): channel widths vs K, the λ seam, lakes, seeds.
 #include "mask/k_cursor_fill.hpp"
 

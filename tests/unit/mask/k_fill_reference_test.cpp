@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The bitmap K-fill against a literal K-cursor (seed 002 §2): a K×K cursor is moved one pixel at
 // a time (BFS over cursor positions, periodic in i, bounded in j), a position is taken only when
 // every pixel under the cursor is wet, and Ω_L is the union of the cursors taken. 200 random masks

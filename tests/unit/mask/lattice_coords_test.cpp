@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Named index/coordinate conversions of the mask stage.
 #include "mask/lattice_coords.hpp"
 

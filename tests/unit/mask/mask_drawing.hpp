@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ASCII drawings of bitmaps for the mask tests. The first line of a drawing is the northernmost
 // row (j = ny-1), as on a map; column 0 is the westernmost (i = 0, just east of the seam).
 // '#' (or any of "#1SX") = set, anything else = clear.

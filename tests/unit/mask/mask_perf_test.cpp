@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Timing of the mask stage on a 1' global lattice (Δ0 = 16', L = 4: 21600×10800 = 2.3e8 pixels)
 // from a 1' raster (ARCHITECTURE §8: the whole 1' run < 10 s). Prints, does not assert times.
 // The raster is ETOPO5 upsampled bilinearly to 1' plus a deterministic 1'-scale relief of ±40 m,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The K-cursor fill on the Mercator lattice measures channel width physically (issue 12): an
 // east–west and a north–south channel of the same width in km at 60°N are both open (or both
 // closed) on the Mercator lattice; on the lon-lat lattice of the same λ step the east–west channel

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Critical passages: open/closed/not resolvable on drawn masks, with and without pole rotation,
 // and the consistency of the built-in table.
 #include "mask/passages.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pinch vertices (1001 / 0110 blocks) of drawn masks and their removal.
 #include "mask/pinches.hpp"
 

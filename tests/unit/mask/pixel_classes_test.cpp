@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel classes (seed 002 §2) on in-memory rasters with analytic values.
 #include "mask/pixel_classes.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Regional (ROMS) masks from the global Ω_L: the pixel of a point (edges, seam, poles, rotation,
 // beyond the Mercator rows), the wet rule against a drawn filled set with a lake and a sub-pixel
 // island, the boundary copy, the ROMS u/v/ψ product rules, and the raster-coverage error.

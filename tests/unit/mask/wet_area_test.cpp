@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mask stage entry point on an in-memory raster: stage lines, report section, pinches,
 // option validation.
 #include "mask/wet_area.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Boundary typing (mesh/boundaries.hpp): open runs from the predicate, short pieces merged, land
 // on a loop with open segments is mainland, other loops island (or mainland when outer), the
 // segments share their end nodes, a loop open all round becomes two open segments.

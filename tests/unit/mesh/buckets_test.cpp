@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stable parallel counting sort (mesh/buckets.hpp): the same buckets, in the same order, as the
 // serial counting sort, for one and two threads.
 #include "mesh/buckets.hpp"

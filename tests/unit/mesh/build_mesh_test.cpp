@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The mesh stage (build_mesh.hpp): whole-mesh invariants on random and drawn filled sets,
 // coordinates and depths, options, determinism across thread counts, and emission speed.
 #include "mesh/build_mesh.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The floodplain of a surge mesh (mesh/floodplain.hpp) and the time step with wetting and drying
 // (mesh/time_step.hpp): triangles cut by the 0 m line of their linear elevation surface keep the
 // corner above the datum (1/4 of a triangle whose one node is +1 and the others -1, 7/16 with two

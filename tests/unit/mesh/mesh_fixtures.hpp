@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Fixtures of the mesh tests: a synthetic global raster and the quadtree -> mesh pipeline on a
 // filled set, plus field-by-field mesh comparison.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cleaning for the models (mesh/model_cleaning.hpp) on synthetic coasts drawn as squares, each
 // square either the 4-triangle cross template (S, E, N, W round a centre node; every triangle
 // has two neighbours inside its square) or a hand-placed triangle:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pole cap triangulation (mesh/pole_cap.hpp): conforming to ring 0, anticlockwise, nearly
 // equilateral, modest valence, and exactly the area of the geodesic polygon of ring 0.
 #include "mesh/pole_cap.hpp"

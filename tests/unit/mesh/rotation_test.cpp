@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pole rotation round trips (core/rotation.hpp, used by the mesh stage; ARCHITECTURE §4.7):
 // geographic -> rotated -> geographic and back to 1e-12°.
 #include "core/rotation.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Mesh statistics (statistics.hpp): exact areas on WGS84, memoised sizes equal direct
 // GeographicLib computations, and every check fails on a deliberately broken mesh.
 #include "mesh/statistics.hpp"

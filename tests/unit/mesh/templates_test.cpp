@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The 16 triangle templates (templates.hpp): one parameterised case per 4-bit code (and both
 // diagonals of code 0), each checked geometrically and drawn in ASCII.
 #include "mesh/templates.hpp"

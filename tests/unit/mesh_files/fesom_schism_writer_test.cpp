@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // FESOM2 (nod2d/elem2d/aux3d.out) and SCHISM (hgrid.gr3/.ll) files, parsed back here
 // independently of the writers: counts, 1-based ids, every element's orientation on the sphere
 // (clockwise for FESOM, anticlockwise for SCHISM), depth signs, boundary flags and land boundary

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ADCIRC fort.14 and plain-text writers: header counts, node and element lines, land
 // boundaries (IBTYPE rule, closed loops), text sections, determinism and errors.
 #include <fmt/format.h>

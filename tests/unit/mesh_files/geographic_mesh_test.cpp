@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The geographic mesh (io/geographic_mesh.hpp): a wet pole row becomes a pole cap (or, when the
 // polar row is not all ocean, a merged pole node); no triangle of zero area on the sphere, no
 // two nodes at one point, conforming, the same total area, the boundary without the polar loop.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The model files' numbers as data (mesh_files/model_columns.hpp, fort14_boundaries,
 // schism_hgrid_layout, fesom_boundary_flags, fesom_open_boundary_nodes): what the Python package
 // hands over as arrays must be what the writers print. Each test writes the file and reads the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Gmsh MSH 4.1 writer: parse the written file back (ASCII and binary) with an independent reader
 // and check counts, seam duplication, $Periodic pairs, data views, pole merging in 3-D, errors.
 #include "mesh_files/msh_writer.hpp"

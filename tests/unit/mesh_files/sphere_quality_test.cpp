@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shape quality on the sphere: order statistics against a sort, per-triangle values against
 // closed forms and the spherical law of cosines (computed here independently), and the same
 // values for 1 and 2 threads.

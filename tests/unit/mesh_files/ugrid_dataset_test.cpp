@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The UGRID dataset described once (ugrid_dataset, io/dataset.hpp) for two destinations: the
 // netCDF file write_ugrid makes and a MemoryDataset (what the Python package's to_xarray turns into
 // an xarray.Dataset). Read back with the netCDF-C API, the file must hold exactly the memory

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // UGRID-1.0 writer: read the file back with the netCDF-C API and check conventions, topology
 // attributes, connectivity rows, unique edges, seam-aware face centres, data and errors.
 #include "mesh_files/ugrid_writer.hpp"

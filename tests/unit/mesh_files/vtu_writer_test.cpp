@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // VTU writer: decode the appended raw arrays by their declared offsets and check counts, pole
 // merging, cell types, coordinates, data and errors.
 #include "mesh_files/vtu_writer.hpp"

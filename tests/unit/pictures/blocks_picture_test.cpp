@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The blocks overview: block outlines drawn on the global mesh preview (io::PreviewOptions::
 // outlines) in magenta, also across the seam, with their labels; nothing magenta without them.
 #include <cairo.h>

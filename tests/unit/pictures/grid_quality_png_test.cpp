@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quality heat map PNG: cells coloured by their error on a log scale, same bytes every time,
 // errors naming the file.
 #include "pictures/grid_quality_png.hpp"

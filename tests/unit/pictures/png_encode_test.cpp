@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PNG encoder: pictures decoded again by libpng (through Cairo) must have exactly the pixels that
 // were encoded, including pictures whose data spans several IDAT chunks and strips.
 #include "pictures/png_encode.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Preview PNG: read the pictures back with Cairo and look at pixels (background, level fill,
 // seam-crossing squares at both ends, coast, zoom box), sizes, determinism and errors.
 #include "pictures/preview_png.hpp"

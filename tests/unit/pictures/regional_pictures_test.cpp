@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the regional stage pictures (seed 000 Figs. 2, 3, 10, 11) on the seed's Black Sea
 // input: every stage writes a readable PNG of the requested width, with the colours of what
 // that stage must show (contour in black, corners/tangents red, nodes blue, grid lines), a

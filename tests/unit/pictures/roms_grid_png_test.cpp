@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ROMS grid picture: land in the land colour, water shaded by depth, a legend.
 #include "pictures/roms_grid_png.hpp"
 

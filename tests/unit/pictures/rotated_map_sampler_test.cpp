@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // RotatedMapSampler: on rasters whose values are their own column or row index, a sample *is*
 // the raster position it was taken at, so the interpolated map can be checked against the exact
 // one position by position: within kMaxError on the ground on a rotated Mercator map from pole

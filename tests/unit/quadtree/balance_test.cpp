@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // 2:1 smoothing and its checker (balance.hpp), against a naive per-pixel checker and the naive
 // ripple algorithm.
 #include "quadtree/balance.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Depth and box rules in kilometres (issue 12, issue 19): a rule with size_km instead of a level is
 // a term of the size field — the target on the field cells whose centre is in its range — and a
 // square is split while its size on the sphere exceeds √2 × the field's minimum over it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel levels painted from leaves (quadtree/leaf_levels.hpp), in bands of rows, including a
 // leaf taller than a band.
 #include "quadtree/leaf_levels.hpp"

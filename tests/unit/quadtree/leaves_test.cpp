@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Leaves: pyramid, the D_l rule, coastal band, refinement rules, order and locator (leaves.hpp).
 #include "quadtree/leaves.hpp"
 

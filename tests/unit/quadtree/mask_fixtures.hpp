@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Test fixtures for the quadtree and mesh tests: small lattices, seeded random filled sets,
 // masks drawn in ASCII, and naive (per-pixel) reference implementations that the bitmap
 // algorithms are checked against.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nodes, midside nodes, boundary loops, pinches, poles and the seam (nodes.hpp).
 #include "quadtree/nodes.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Quantisation of a graded size field into quadtree levels (apply_size_field): on an all-ocean
 // Mercator lattice with a field h = h0 + g·dist to a point, every leaf is at most √2 × the field's
 // minimum over it, no leaf is split below what the field or the 2:1 balance asks, and the achieved

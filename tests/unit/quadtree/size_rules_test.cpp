@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Levels chosen by physical size (issue 12): on an all-ocean Mercator lattice the open-ocean rule
 // puts every leaf within √2 of the target from the equator to the rows' end, where the level-0
 // squares allow it; the lon-lat lattice's squares are sized by √cos φ; the coastal rule stops the

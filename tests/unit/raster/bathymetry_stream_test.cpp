@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The streamed raster path (issue 9): banded reads must give the whole path's values bit for bit
 // for any band height (1, 7, the file's block height, the default) and thread count, on tiled
 // and striped GeoTIFFs (north-up and south-up, int16 with scale/offset/no-data; compressed, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Bathymetry input: synthetic rasters written through GDAL (MEM → GTiff, netCDF) with analytic
 // values, in every origin/orientation/registration variant; error paths; and the real ETOPO files.
 #include <gdal_priv.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Byte GeoTIFF (raster/byte_geotiff.hpp): what is written reads back (values, georeferencing,
 // band names, metadata), the bytes do not depend on the run or the thread count, no sidecar
 // file appears, and a write failure names the file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Corridor edits of the sampled elevation (raster/elevation_edits.hpp): the corridor is the set
 // of points within the half-width of the polyline on the sphere (checked against the brute-force
 // distance), channels lower and blockages raise (land wins), the raster's own water stays under a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Issue 23, input side: a raster is validated before it is trusted. Each case was accepted before
 // (and read wrong): a netCDF-3 file cut to half its bytes (zeros past the cut), complex bands
 // (imaginary part dropped), signed-byte GeoTIFFs (read unsigned), latitude coordinates swapped or

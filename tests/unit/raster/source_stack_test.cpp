@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Several bathymetry sources (raster/source_stack.hpp): a fine patch over a coarse global raster
 // gives the patch's values inside, the coarse ones outside and in the patch's no-data holes, the
 // blend with its exact weights near the patch's edge; the order matters; every sampling path

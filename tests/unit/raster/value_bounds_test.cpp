@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Value bounds of a raster under a geographic box: every bilinear sample in the box lies within
 // them, a box that may sample no-data says so, and the threshold decision follows.
 #include "raster/value_bounds.hpp"

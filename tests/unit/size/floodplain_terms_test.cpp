@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The size field of a floodplain and of a regional domain (size/size_field.hpp with coast
 // sources, mask/coast.hpp), on a synthetic strip: sea west of column 100, a floodplain of
 // columns 100..139 whose elevation rises 0.5 m per degree east of the shoreline, land beyond.

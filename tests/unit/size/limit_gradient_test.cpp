@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The gradient limiter against the exact solution h′(x) = min over sources of (h_s + g·dist(s, x))
 // computed by brute force with great-circle distances: on a near-planar equatorial patch, across
 // the seam, over the pole of the lon-lat lattice, on the Mercator lattice of a rotated frame (with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Each term of the size field against a synthetic grid with a known answer: constant depth gives
 // a constant wavelength size; a linear slope gives H/|∇H|; a straight coast gives h0 + α·d; a
 // straight channel of width W gives W/R across it (2·(d_MA + d)/R with d = W/2 on the axis); the
