@@ -364,23 +364,8 @@ std::vector<mask::SeedInfo> place_seeds(const PatchForest& pf, WindowComponents&
     info.index = static_cast<int>(n);
     info.requested = {s[0], s[1]};
     if (!best.found()) {
-      const double half = 0.5 * static_cast<double>(k);
-      const auto jlo =
-          static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(r.lat_deg - radius_deg, -90.0)) - half)) - 1;
-      const auto jhi =
-          static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(r.lat_deg + radius_deg, 90.0)) - half)) + 1;
-      std::int64_t ilo = 0, ihi = nx - 1;
-      const double clat = std::cos(r.lat_deg * kDegToRad);
-      const double srad = std::sin(std::min(radius_deg, 90.0) * kDegToRad);
-      if (std::abs(r.lat_deg) + radius_deg < 89.0 && srad < clat) {
-        const double dlon = std::asin(srad / clat) * kRadToDeg;
-        const auto w = static_cast<std::int64_t>(std::ceil(dlon / dpx)) + k + 2;
-        if (2 * w + 1 < nx) {
-          const auto ic = static_cast<std::int64_t>(std::floor(x - half));
-          ilo = ic - w;
-          ihi = ic + w;
-        }
-      }
+      const mask::SeedSearchBox box = mask::seed_search_box(lattice, r.lat_deg, x, radius_deg, k);
+      const std::int64_t jlo = box.jlo, jhi = box.jhi, ilo = box.ilo, ihi = box.ihi;
       // This rank's patches in the box, nearest (by latitude, a lower bound of the distance) first;
       // a patch farther than the best so far cannot hold a nearer window.
       const std::int64_t j_from = std::max<std::int64_t>(jlo, 0), j_to = std::min(jhi, ny - k);

@@ -226,6 +226,27 @@ Bitmap k_fill(const Bitmap& wet, int k, std::span<const PixelIJ> seed_windows,
   return dilate_windows(reached, k);
 }
 
+SeedSearchBox seed_search_box(const Lattice& lattice, double lat_deg, double x, double radius_deg, std::int64_t k) {
+  const double half = 0.5 * static_cast<double>(k);
+  SeedSearchBox b;
+  b.jlo = static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(lat_deg - radius_deg, -90.0)) - half)) - 1;
+  b.jhi = static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(lat_deg + radius_deg, 90.0)) - half)) + 1;
+  b.ilo = 0;
+  b.ihi = lattice.nx - 1;
+  const double clat = std::cos(lat_deg * kDegToRad);
+  const double srad = std::sin(std::min(radius_deg, 90.0) * kDegToRad);
+  if (std::abs(lat_deg) + radius_deg < 89.0 && srad < clat) {
+    const double dlon = std::asin(srad / clat) * kRadToDeg;
+    const auto w = static_cast<std::int64_t>(std::ceil(dlon / lattice.pixel_deg())) + k + 2;
+    if (2 * w + 1 < lattice.nx) {
+      const auto ic = static_cast<std::int64_t>(std::floor(x - half));
+      b.ilo = ic - w;
+      b.ihi = ic + w;
+    }
+  }
+  return b;
+}
+
 std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& lattice, const PoleRotation& rot,
                                   const std::vector<std::array<double, 2>>& seeds, double radius_deg,
                                   const Logger& log) {
@@ -261,23 +282,8 @@ std::vector<SeedInfo> place_seeds(const Bitmap& windows, int k, const Lattice& l
     info.requested = {s[0], s[1]};
     if (!best.found()) {
       // 2. The nearest all-wet window centre within the radius (great-circle degrees).
-      const double half = 0.5 * static_cast<double>(k);
-      const auto jlo =
-          static_cast<std::int64_t>(std::floor(lattice.row_of_lat(std::max(r.lat_deg - radius_deg, -90.0)) - half)) - 1;
-      const auto jhi =
-          static_cast<std::int64_t>(std::ceil(lattice.row_of_lat(std::min(r.lat_deg + radius_deg, 90.0)) - half)) + 1;
-      std::int64_t ilo = 0, ihi = nx - 1;
-      const double clat = std::cos(r.lat_deg * kDegToRad);
-      const double srad = std::sin(std::min(radius_deg, 90.0) * kDegToRad);
-      if (std::abs(r.lat_deg) + radius_deg < 89.0 && srad < clat) {
-        const double dlon = std::asin(srad / clat) * kRadToDeg;
-        const auto w = static_cast<std::int64_t>(std::ceil(dlon / dpx)) + k + 2;
-        if (2 * w + 1 < nx) {
-          const auto ic = static_cast<std::int64_t>(std::floor(x - half));
-          ilo = ic - w;
-          ihi = ic + w;
-        }
-      }
+      const SeedSearchBox box = seed_search_box(lattice, r.lat_deg, x, radius_deg, k);
+      const std::int64_t jlo = box.jlo, jhi = box.jhi, ilo = box.ilo, ihi = box.ihi;
       Best near;
       for (std::int64_t j0 = std::max<std::int64_t>(jlo, 0); j0 <= std::min(jhi, ny - k); ++j0)
         for (std::int64_t i0 = ilo; i0 <= ihi; ++i0) offer(near, i0, j0);

@@ -89,6 +89,15 @@ struct SeedInfo {
   int same_fill_as = -1;             ///< an earlier seed whose fill already held this window, or -1
 };
 
+/// The lattice box a seed's nearest all-wet K-window is searched in (window corners (i0, j0)):
+/// rows jlo..jhi around latitude `lat_deg` ± `radius_deg` (great-circle degrees), columns ilo..ihi
+/// around column `x` where the radius spans less than the globe, else every column (0..nx-1;
+/// columns may run outside 0..nx-1 and wrap). Shared by the dense fill and the forest's.
+struct SeedSearchBox {
+  std::int64_t jlo = 0, jhi = 0, ilo = 0, ihi = 0;
+};
+SeedSearchBox seed_search_box(const Lattice& lattice, double lat_deg, double x, double radius_deg, std::int64_t k);
+
 /// Places each geographic seed (lon, lat) on an all-wet K window of `windows` (= W). A seed whose
 /// point lies in an all-wet window takes the one whose centre is nearest; otherwise it moves to
 /// the all-wet window with the nearest centre within `radius_deg` (great-circle degrees) and a
