@@ -35,6 +35,11 @@ struct ForestState {
   std::unique_ptr<LatticeBrick> brick;
   std::unique_ptr<PatchForest> patches;
   std::vector<PatchBits> wet;  ///< per local patch: the pixel classes' wet pixels
+  /// A floodplain run (h < 0): per local patch, the pixels wet at the datum (the pixel rule at
+  /// 0 m, mask::WetArea::datum_wet); empty otherwise.
+  std::vector<PatchBits> datum_wet;
+  /// The water at the datum, whose pixels beyond a regional domain make its edge open.
+  [[nodiscard]] const std::vector<PatchBits>& water() const { return datum_wet.empty() ? wet : datum_wet; }
 };
 
 namespace {
@@ -161,14 +166,18 @@ std::vector<std::int32_t> filled_counts(const PatchForest& pf, const std::vector
   return count;
 }
 
-// The size field's cells (size::FieldCells; no floodplain on the forest): the coast cells hold a
-// pixel that is neither filled nor, in a regional run, `open` water beyond the domain's edge
-// (size/terms.hpp shore_cells), else one not filled (coast_cells).
+// The size field's cells (size::FieldCells): the coast cells hold a pixel that is neither filled
+// (sea, with a floodplain) nor, in a regional run, `open` water beyond the domain's edge
+// (size/terms.hpp shore_cells), else one not filled (coast_cells); with a floodplain the cells'
+// sea pixels.
 size::FieldCells field_cells(const PatchForest& pf, const std::vector<PatchBits>& filled,
-                             const std::vector<PatchBits>& open, bool regional, const size::FieldGrid& grid) {
+                             const std::vector<PatchBits>& open, const std::vector<PatchBits>& sea, bool regional,
+                             const size::FieldGrid& grid) {
   size::FieldCells cells;
   cells.filled = filled_counts(pf, filled, grid);
-  if (!regional) {
+  const bool floodplain = !sea.empty();
+  if (floodplain) cells.sea = filled_counts(pf, sea, grid);
+  if (!regional && !floodplain) {
     cells.coast = size::coast_cells(grid, cells.filled);
     return cells;
   }
@@ -176,11 +185,63 @@ size::FieldCells field_cells(const PatchForest& pf, const std::vector<PatchBits>
   std::vector<PatchBits> coast(pf.local_count());
   PatchBits all;
   all.state = Fill::kAll;
-  for (std::size_t l = 0; l < coast.size(); ++l) coast[l] = subtract(subtract(all, filled[l], p), open[l], p);
+  for (std::size_t l = 0; l < coast.size(); ++l) {
+    coast[l] = subtract(all, floodplain ? sea[l] : filled[l], p);
+    if (regional) coast[l] = subtract(coast[l], open[l], p);
+  }
   const std::vector<std::int32_t> count = filled_counts(pf, coast, grid);
   cells.coast.resize(count.size());
   for (std::size_t k = 0; k < count.size(); ++k) cells.coast[k] = count[k] > 0 ? 1 : 0;
   return cells;
+}
+
+// mask's find_inland_sea on the forest: the sea pixels not 4-connected through sea to a seed
+// window's sea pixels (WetArea::inland_sea_*), counted and boxed over all ranks.
+void inland_sea(const PatchForest& pf, const std::vector<PatchBits>& sea, const std::vector<mask::PixelIJ>& windows,
+                int k, const Lattice& lattice, const PoleRotation& rot, mask::WetArea& area) {
+  const PatchGrid& g = pf.grid();
+  const std::int64_t p = g.size;
+  std::vector<PatchBits> starts(pf.local_count());
+  for (const mask::PixelIJ& w : windows)
+    for (std::int64_t dj = 0; dj < k; ++dj)
+      for (std::int64_t di = 0; di < k; ++di) {
+        const mask::PixelIJ q{(w.i + di) % lattice.nx, w.j + dj};
+        if (q.j >= lattice.ny) continue;
+        const std::int64_t l = pf.local_index(g.key(q.i / p, q.j / p));
+        if (l < 0) continue;
+        PatchBits& s = starts[static_cast<std::size_t>(l)];
+        if (s.state == Fill::kNone) {
+          s.state = Fill::kMixed;
+          s.bits = Bitmap(p, p);
+        }
+        s.bits.set(q.i % p, q.j % p);
+      }
+  for (std::size_t l = 0; l < starts.size(); ++l) starts[l] = intersect(starts[l], sea[l], p);
+  const Unreached u = forest_unreached(pf, sea, starts);
+  area.inland_sea_pixels = pf.comm().sum(count_pixels(u.pixels, p));
+  if (area.inland_sea_pixels == 0) return;
+  area.inland_sea_components = u.stats.count - u.stats.touching_probe;
+  std::array<double, 4> box{-1e9, -1e9, -1e9, -1e9};  // -lon_min, lon_max, -lat_min, lat_max
+  for (std::size_t l = 0; l < pf.local_count(); ++l) {
+    const PatchBits& b = u.pixels[l];
+    if (b.state == Fill::kNone) continue;
+    const std::int64_t key = pf.key(l), i0 = g.gx(key) * p, j0 = g.gy(key) * p;
+    for (std::int64_t y = 0; y < p; ++y)
+      for (std::int64_t x = 0; x < p; ++x) {
+        if (!b.get(x, y)) continue;
+        const mask::LonLat c =
+            mask::lattice_to_geographic(rot, mask::pixel_center_lattice_deg(lattice, {i0 + x, j0 + y}));
+        box = {std::max(box[0], -c.lon_deg), std::max(box[1], c.lon_deg), std::max(box[2], -c.lat_deg),
+               std::max(box[3], c.lat_deg)};
+      }
+  }
+  const std::vector<std::array<double, 4>> all = pf.comm().allgatherv(std::vector<std::array<double, 4>>{box});
+  for (const std::array<double, 4>& b : all)
+    for (std::size_t q = 0; q < 4; ++q) box[q] = std::max(box[q], b[q]);
+  area.inland_sea_lon_min = -box[0];
+  area.inland_sea_lon_max = box[1];
+  area.inland_sea_lat_min = -box[2];
+  area.inland_sea_lat_max = box[3];
 }
 
 std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
@@ -206,11 +267,6 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   collective(comm, [&] {
     if (!std::isfinite(mo.min_depth_m))
       throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", mo.min_depth_m));
-    if (mo.min_depth_m < 0.0)  // and with it [size.inland] and [size.elevation], which need a floodplain
-      throw ConfigError(fmt::format(
-          "mask.min_depth_m = {}: a floodplain (a threshold above the datum) is meshed by the dense engine only; "
-          "set quadtree.engine = \"dense\" or mask.min_depth_m >= 0",
-          mo.min_depth_m));
     if (mo.sampling != config::Sampling::kVertex)
       throw ConfigError(
           "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
@@ -248,17 +304,27 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     st->wet = std::move(pc.wet);
     out.area.classes = pc.counts;
     fj["classify"] = Json{{"patches_decided_by_bounds", pc.decided}, {"patches_sampled", pc.sampled}};
+    std::string datum;
+    if (mo.min_depth_m < 0.0) {  // a floodplain: the same pixel rule at the datum, for the sea inside Ω_L
+      PatchClasses at_datum = classify_patches(pf, bathy, bounds, rot, 0.0, window);
+      st->datum_wet = std::move(at_datum.wet);
+      out.area.datum_wet_pixels = at_datum.counts.wet;
+      fj["classify"]["datum_patches_decided_by_bounds"] = at_datum.decided;
+      fj["classify"]["datum_patches_sampled"] = at_datum.sampled;
+      datum = fmt::format("; {} wet at the datum", out.area.datum_wet_pixels);
+    }
     stage.done(
         fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule; {} patches "
-                    "decided by bounds, {} sampled)",
+                    "decided by bounds, {} sampled){}",
                     lat.nx, lat.ny, lat.mercator() ? "Mercator " : "", lat.pixel_deg(), pc.counts.wet,
-                    pc.counts.coastal, pc.counts.dry, mo.min_depth_m, mo.sampling, pc.decided, pc.sampled));
+                    pc.counts.coastal, pc.counts.dry, mo.min_depth_m, mo.sampling, pc.decided, pc.sampled, datum));
   }
 
   // The K-cursor fill (on wet ∩ domain for a regional run).
   std::vector<PatchBits> filled;
   std::vector<PatchBits> open;  // a regional run: the wet pixels beyond the domain (no coast, mask/coast.hpp)
   std::vector<mask::PixelIJ> seed_windows;
+  std::vector<PatchBits> sea;  // a floodplain run: the filled pixels wet at the datum
   {
     StageScope stage("fill", report, log);
     std::vector<PatchBits> wet_in = st->wet;
@@ -269,7 +335,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
         const PatchBits d = domain_patch(domain, g, pf.key(l));
         inside += d.state == Fill::kAll ? p * p : d.state == Fill::kMixed ? d.bits.count() : 0;
         wet_in[l] = intersect(wet_in[l], d, p);
-        open.push_back(subtract(st->wet[l], d, p));
+        open.push_back(subtract(st->water()[l], d, p));
       }
       inside = comm.sum(inside);
       if (inside == 0)
@@ -328,6 +394,21 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
       out.area.filled_pixels = comm.sum(count_pixels(filled, p));
       r.pixels_removed = before - out.area.filled_pixels;
     }
+    if (!st->datum_wet.empty()) {  // the sea inside Ω_L (after pinch removal); the rest is floodplain
+      sea.resize(pf.local_count());
+      for (std::size_t l = 0; l < sea.size(); ++l) sea[l] = intersect(filled[l], st->datum_wet[l], p);
+      out.area.floodplain_pixels = out.area.filled_pixels - comm.sum(count_pixels(sea, p));
+      inland_sea(pf, sea, seed_windows, mo.cursor, lat, rot, out.area);
+      const mask::WetArea& a = out.area;
+      if (a.inland_sea_pixels > 0)
+        log.warn(
+            "floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
+            "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
+            "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
+            "elevation (elev.ic) starts them dry",
+            a.inland_sea_pixels, a.inland_sea_components, a.inland_sea_lon_min, a.inland_sea_lon_max,
+            a.inland_sea_lat_min, a.inland_sea_lat_max);
+    }
     pr.total = total;
     pr.pinches = std::move(pinches);
     mask::locate_pinches(pr.pinches, lat, rot);
@@ -340,12 +421,17 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     }
   }
 
-  // The passage table, judged on rank 0's gathered set.
-  if (mo.passages && !regional) {
+  // The passage table (a regional run: the passages inside the domain), judged on rank 0's
+  // gathered set, marked when carved.
+  const std::vector<mask::Passage> table = mask::passage_table(lat, rot, &domain);
+  if (mo.passages && !table.empty()) {
     StageScope stage("passages", report, log);
     const SparseSet set = SparseSet::gather(pf, filled);
     collective(comm, [&] {
-      if (comm.root()) out.area.passages = mask::judge_passages(mask::critical_passages(), set, lat, rot);
+      if (comm.root()) {
+        out.area.passages = mask::judge_passages(table, set, lat, rot);
+        mask::mark_carved(out.area.passages, mo);
+      }
     });
     int n_open = 0, closed = 0;
     for (const mask::PassageResult& r : out.area.passages) {
@@ -355,6 +441,21 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     stage.done(fmt::format("{} open, {} closed, {} not resolvable", n_open, closed,
                            static_cast<int>(out.area.passages.size()) - n_open - closed));
   }
+  // The wet and filled pixels on rank 0 for the dropped seas (mask/dropped_seas.hpp), on a lattice
+  // small enough to hold them there (kDroppedSeasMaxPixels); beyond it the dropped components are
+  // counted over the ranks.
+  if (lat.pixel_count() <= kDroppedSeasMaxPixels) {
+    out.area.wet = gather_dense(pf, st->wet);
+    out.area.filled = gather_dense(pf, filled);
+  } else {
+    std::vector<PatchBits> dropped(pf.local_count());
+    for (std::size_t l = 0; l < dropped.size(); ++l) {
+      dropped[l] = subtract(st->wet[l], filled[l], p);
+      if (regional) dropped[l] = intersect(dropped[l], domain_patch(domain, g, pf.key(l)), p);
+    }
+    out.dropped_components = forest_components(pf, dropped, std::vector<PatchBits>(pf.local_count())).count;
+    out.dropped_pixels = comm.sum(count_pixels(dropped, p));
+  }
   if (report != nullptr) {
     (*report)["mask"] = mask::wet_area_json(out.area, mo);
     (*report)["mask"]["lattice"] = Json{{"nx", lat.nx}, {"ny", lat.ny}};
@@ -362,7 +463,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
 
   // The size field (its grid replicated on every rank, from the counts of all ranks).
   out.size_field =
-      size::build_size_field([&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, regional, grid); },
+      size::build_size_field([&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, sea, regional, grid); },
                              lat, c, rot, &bathy, log, report);
 
   // The quadtree: the pyramid's refinements, the p4est forest, its balance.
@@ -375,7 +476,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     std::vector<std::int64_t> bare, banded, refined;
     bare = ForestPyramid(pf, filled, 0).leaves_per_level();
     const int band = qo.coast_band != 0 && qo.coast_size_km == 0.0 ? qo.coast_band : 0;
-    auto pyr = std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr);
+    auto pyr = std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr, sea.empty() ? nullptr : &sea);
     banded = pyr->leaves_per_level();
     const double masks_s = t_masks.wall_s();
     Timer t_rules;
@@ -469,7 +570,7 @@ std::vector<char> wet_outside_domain(const ForestState& state, const mask::Domai
   for (std::size_t k = 0; k < q.size(); ++k) {
     const std::int64_t l = pf.local_index(g.key(q[k].i / p, q[k].j / p));
     if (l < 0) continue;
-    ans[k] = (!domain.contains(q[k].i, q[k].j) && state.wet[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
+    ans[k] = (!domain.contains(q[k].i, q[k].j) && state.water()[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
                  ? 1
                  : 0;
   }

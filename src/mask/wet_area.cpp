@@ -99,6 +99,24 @@ PixelWindow classify_window(const Lattice& lattice, const Domain& domain) {
   return w;
 }
 
+std::vector<Passage> passage_table(const Lattice& lattice, const PoleRotation& rot, const Domain* domain) {
+  const bool regional = domain != nullptr && domain->regional();
+  std::vector<Passage> table;
+  for (const Passage& p : critical_passages())
+    if (!regional || box_in_domain(p.box, *domain, lattice, rot)) table.push_back(p);
+  return table;
+}
+
+void mark_carved(std::vector<PassageResult>& passages, const config::MaskOptions& options) {
+  for (PassageResult& r : passages)
+    for (const std::string& n : options.passages_open)
+      if (const Passage* f = find_passage(n); f != nullptr && r.name == f->name) {
+        r.carved = true;
+        r.note =
+            r.note.empty() ? std::string("carved (mask.passages_open)") : "carved (mask.passages_open), but " + r.note;
+      }
+}
+
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                          const config::MaskOptions& options, const Logger& log, Report* report,
                          const Domain* domain) {
@@ -198,19 +216,11 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     }
   }
   // The table's passages (a regional run: those whose box lies in the domain), marked when carved.
-  std::vector<Passage> table;
-  for (const Passage& p : critical_passages())
-    if (!regional || box_in_domain(p.box, *domain, lattice, rot)) table.push_back(p);
+  const std::vector<Passage> table = passage_table(lattice, rot, domain);
   if (options.passages && !table.empty()) {
     StageScope stage("passages", report, log);
     area.passages = judge_passages(table, area.filled, lattice, rot);
-    for (PassageResult& r : area.passages)
-      for (const std::string& n : options.passages_open)
-        if (const Passage* f = find_passage(n); f != nullptr && r.name == f->name) {
-          r.carved = true;
-          r.note = r.note.empty() ? std::string("carved (mask.passages_open)")
-                                  : "carved (mask.passages_open), but " + r.note;
-        }
+    mark_carved(area.passages, options);
     int open = 0, closed = 0;
     for (const PassageResult& p : area.passages) {
       open += p.status == PassageStatus::kOpen ? 1 : 0;
