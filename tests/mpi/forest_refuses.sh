@@ -2,8 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Bad input on the forest engine under `mpirun -np NP` (ctest label mpi): every rank ends with the
 # configuration error's exit code 2, the message is printed once and names the key, and no file is
-# written. Cases: a floodplain (mask.min_depth_m < 0, dense engine only) and a coastal band wider
-# than the forest's patches.
+# written. Case: a coastal band wider than the forest's patches.
 #   forest_refuses.sh AQUATORIA MPIEXEC NP OUTDIR CONFIG
 set -uo pipefail
 bin=$1 mpiexec=$2 np=$3 out=$4 cfg=$5
@@ -24,7 +23,6 @@ check() {  # check NAME EXPECTED-TEXT --set ...
   fi
 }
 mkdir -p "$out"
-check floodplain "mask.min_depth_m = -5: a floodplain" --set mask.min_depth_m=-5
 check band "quadtree.coast_band = 40: the forest engine needs at most" --set quadtree.coast_band=40
 [ $fail = 0 ] && echo "OK: refused on $np rank(s) with exit 2, one message, no files"
 exit $fail
