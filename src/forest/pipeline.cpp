@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "core/error.hpp"
@@ -441,21 +442,6 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     stage.done(fmt::format("{} open, {} closed, {} not resolvable", n_open, closed,
                            static_cast<int>(out.area.passages.size()) - n_open - closed));
   }
-  // The wet and filled pixels on rank 0 for the dropped seas (mask/dropped_seas.hpp), on a lattice
-  // small enough to hold them there (kDroppedSeasMaxPixels); beyond it the dropped components are
-  // counted over the ranks.
-  if (lat.pixel_count() <= kDroppedSeasMaxPixels) {
-    out.area.wet = gather_dense(pf, st->wet);
-    out.area.filled = gather_dense(pf, filled);
-  } else {
-    std::vector<PatchBits> dropped(pf.local_count());
-    for (std::size_t l = 0; l < dropped.size(); ++l) {
-      dropped[l] = subtract(st->wet[l], filled[l], p);
-      if (regional) dropped[l] = intersect(dropped[l], domain_patch(domain, g, pf.key(l)), p);
-    }
-    out.dropped_components = forest_components(pf, dropped, std::vector<PatchBits>(pf.local_count())).count;
-    out.dropped_pixels = comm.sum(count_pixels(dropped, p));
-  }
   if (report != nullptr) {
     (*report)["mask"] = mask::wet_area_json(out.area, mo);
     (*report)["mask"]["lattice"] = Json{{"nx", lat.nx}, {"ny", lat.ny}};
@@ -553,6 +539,23 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     stage.done(fmt::format("{} leaves (levels 0..{}: {}), {}-balanced ({} on {} rank(s))", total_leaves, lat.levels,
                            fmt::join(balanced, "/"), name_of(mode), br.used_p4est ? "p4est_balance" : "the dense rule",
                            comm.size()));
+  }
+  // The wet and filled pixels on rank 0 for the dropped seas (mask/dropped_seas.hpp), on a lattice
+  // small enough to hold them there (kDroppedSeasMaxPixels); beyond it the dropped components are
+  // counted over the ranks. Last, so that rank 0 holds them only until the app has used them.
+  std::int64_t dense_max = kDroppedSeasMaxPixels;
+  if (const char* e = std::getenv("AQ_FOREST_DROPPED_MAX_PIXELS")) dense_max = std::atoll(e);  // a test knob
+  if (lat.pixel_count() <= dense_max) {
+    out.area.wet = gather_dense(pf, st->wet);
+    out.area.filled = gather_dense(pf, filled);
+  } else {
+    std::vector<PatchBits> dropped(pf.local_count());
+    for (std::size_t l = 0; l < dropped.size(); ++l) {
+      dropped[l] = subtract(st->wet[l], filled[l], p);
+      if (regional) dropped[l] = intersect(dropped[l], domain_patch(domain, g, pf.key(l)), p);
+    }
+    out.dropped_components = forest_components(pf, dropped, std::vector<PatchBits>(pf.local_count())).count;
+    out.dropped_pixels = comm.sum(count_pixels(dropped, p));
   }
   out.state = st;
   return out;

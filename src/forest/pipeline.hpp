@@ -29,7 +29,8 @@ struct ForestState;
 
 /// The dropped seas (mask::find_dropped_seas) are found on rank 0 from the wet and filled pixels
 /// gathered there on lattices up to this many pixels (two bitmaps of 256 MB); on larger ones
-/// the forest counts the dropped components over its ranks and names none.
+/// the forest counts the dropped components over its ranks and names none. (The hidden test knob
+/// AQ_FOREST_DROPPED_MAX_PIXELS sets another limit.)
 inline constexpr std::int64_t kDroppedSeasMaxPixels = std::int64_t{1} << 31;
 
 /// What the forest's stages made. On rank 0 `leaves` and `neighbourhoods` hold every filled leaf
