@@ -301,13 +301,18 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     const StackBounds bounds(bathy, lat.pixel_deg() * static_cast<double>(p), c.input.blend_km);
     const mask::PixelWindow window =
         regional && rot.identity() ? mask::classify_window(lat, domain) : mask::PixelWindow{};
-    PatchClasses pc = classify_patches(pf, bathy, bounds, rot, mo.min_depth_m, window);
+    // A floodplain: the same pixel rule at the datum as well (one sampling), for the sea inside Ω_L.
+    const bool floodplain = mo.min_depth_m < 0.0;
+    std::vector<PatchClasses> classes = classify_patches_at(
+        pf, bathy, bounds, rot, floodplain ? std::vector<double>{mo.min_depth_m, 0.0} : std::vector<double>{mo.min_depth_m},
+        window);
+    PatchClasses& pc = classes.front();
     st->wet = std::move(pc.wet);
     out.area.classes = pc.counts;
     fj["classify"] = Json{{"patches_decided_by_bounds", pc.decided}, {"patches_sampled", pc.sampled}};
     std::string datum;
-    if (mo.min_depth_m < 0.0) {  // a floodplain: the same pixel rule at the datum, for the sea inside Ω_L
-      PatchClasses at_datum = classify_patches(pf, bathy, bounds, rot, 0.0, window);
+    if (floodplain) {
+      PatchClasses& at_datum = classes.back();
       st->datum_wet = std::move(at_datum.wet);
       out.area.datum_wet_pixels = at_datum.counts.wet;
       fj["classify"]["datum_patches_decided_by_bounds"] = at_datum.decided;
