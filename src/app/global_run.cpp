@@ -900,14 +900,14 @@ static void report_forest_mask(GlobalRun& run, const forest::ForestLeaves& fl, c
   }
   if (fl.dropped_components < 0) {
     mask::Domain dense = run.domain;
-    if (dense.regional())
-      dense.inside = dense.window(0, 0, run.setup.lattice.nx, run.setup.lattice.ny);
+    if (dense.regional()) dense.inside = dense.window(0, 0, run.setup.lattice.nx, run.setup.lattice.ny);
     warn_dropped_seas(run, c, log, report, &dense);
   } else {
     StageScope stage("dropped", report, log);
-    log.warn("dropped: {} wet component(s) left out by the fill ({} pixels); the forest names and measures them on "
-             "lattices up to {} pixels, this one has {}: quadtree.engine = \"dense\" names them",
-             fl.dropped_components, fl.dropped_pixels, forest::kDroppedSeasMaxPixels, run.setup.lattice.pixel_count());
+    log.warn(
+        "dropped: {} wet component(s) left out by the fill ({} pixels); the forest names and measures them on "
+        "lattices up to {} pixels, this one has {}: quadtree.engine = \"dense\" names them",
+        fl.dropped_components, fl.dropped_pixels, forest::kDroppedSeasMaxPixels, run.setup.lattice.pixel_count());
     if (report != nullptr)
       (*report)["mask"]["dropped"] = Json{{"components", fl.dropped_components},
                                           {"pixels", fl.dropped_pixels},

@@ -111,7 +111,8 @@ bool rotated_range(const StackBounds& bounds, const Lattice& lattice, const Pole
 
 std::vector<PatchClasses> classify_patches_at(const PatchForest& pf, const raster::Bathymetry& bathy,
                                               const StackBounds& bounds, const PoleRotation& rot,
-                                              const std::vector<double>& min_depths_m, const mask::PixelWindow& window) {
+                                              const std::vector<double>& min_depths_m,
+                                              const mask::PixelWindow& window) {
   const PatchGrid& g = pf.grid();
   const Lattice& lat = g.lat;
   const std::int64_t p = g.size, nx = lat.nx;
@@ -160,16 +161,16 @@ std::vector<PatchClasses> classify_patches_at(const PatchForest& pf, const raste
         for (std::int64_t k = 0; k < nrows; ++k) lats[static_cast<std::size_t>(k)] = lat.lat_of(J_lo + k);
         const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), ncols);
         std::vector<Bitmap> v(nt, Bitmap(ncols, nrows));
-        bathy.sample_rows(cols, lats.data(), nrows,
-                          [&v, &vw, &thresholds, nt, ncols, I_lo, J_lo](std::int64_t k, const float* values) {
-                            for (std::size_t t = 0; t < nt; ++t) {
-                              std::uint64_t* row = v[t].row(k);
-                              for (std::int64_t c = 0; c < ncols; ++c)
-                                if (static_cast<double>(values[c]) <= thresholds[t] && vw.row(J_lo + k) &&
-                                    vw.col(I_lo + c))
-                                  row[c >> 6] |= std::uint64_t{1} << (c & 63);
-                            }
-                          });
+        bathy.sample_rows(
+            cols, lats.data(), nrows,
+            [&v, &vw, &thresholds, nt, ncols, I_lo, J_lo](std::int64_t k, const float* values) {
+              for (std::size_t t = 0; t < nt; ++t) {
+                std::uint64_t* row = v[t].row(k);
+                for (std::int64_t c = 0; c < ncols; ++c)
+                  if (static_cast<double>(values[c]) <= thresholds[t] && vw.row(J_lo + k) && vw.col(I_lo + c))
+                    row[c >> 6] |= std::uint64_t{1} << (c & 63);
+              }
+            });
         for (std::int64_t t = t0; t < t_end; ++t) {
           for (std::int64_t k = 0; k < g.per_tree * g.per_tree; ++k) {
             const std::int64_t local =

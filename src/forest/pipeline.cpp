@@ -27,6 +27,7 @@
 #include "mask/passages.hpp"
 #include "mask/pinches.hpp"
 #include "quadtree/balance.hpp"
+#include "quadtree/build_leaves.hpp"
 #include "size/terms.hpp"
 
 namespace aq::forest {
@@ -245,15 +246,6 @@ void inland_sea(const PatchForest& pf, const std::vector<PatchBits>& sea, const 
   area.inland_sea_lat_max = box[3];
 }
 
-std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
-  std::int64_t n = 0;
-  for (int l = 0; l <= levels; ++l) {
-    const std::int64_t s = std::int64_t{1} << (levels - l);
-    n += per_level[static_cast<std::size_t>(l)] * s * s;
-  }
-  return n;
-}
-
 }  // namespace
 
 ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat, const PoleRotation& rot,
@@ -304,8 +296,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     // A floodplain: the same pixel rule at the datum as well (one sampling), for the sea inside Ω_L.
     const bool floodplain = mo.min_depth_m < 0.0;
     std::vector<PatchClasses> classes = classify_patches_at(
-        pf, bathy, bounds, rot, floodplain ? std::vector<double>{mo.min_depth_m, 0.0} : std::vector<double>{mo.min_depth_m},
-        window);
+        pf, bathy, bounds, rot,
+        floodplain ? std::vector<double>{mo.min_depth_m, 0.0} : std::vector<double>{mo.min_depth_m}, window);
     PatchClasses& pc = classes.front();
     st->wet = std::move(pc.wet);
     out.area.classes = pc.counts;
@@ -405,15 +397,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
       for (std::size_t l = 0; l < sea.size(); ++l) sea[l] = intersect(filled[l], st->datum_wet[l], p);
       out.area.floodplain_pixels = out.area.filled_pixels - comm.sum(count_pixels(sea, p));
       inland_sea(pf, sea, seed_windows, mo.cursor, lat, rot, out.area);
-      const mask::WetArea& a = out.area;
-      if (a.inland_sea_pixels > 0)
-        log.warn(
-            "floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
-            "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
-            "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
-            "elevation (elev.ic) starts them dry",
-            a.inland_sea_pixels, a.inland_sea_components, a.inland_sea_lon_min, a.inland_sea_lon_max,
-            a.inland_sea_lat_min, a.inland_sea_lat_max);
+      mask::warn_inland_sea(out.area, log);
     }
     pr.total = total;
     pr.pinches = std::move(pinches);
@@ -453,9 +437,9 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   }
 
   // The size field (its grid replicated on every rank, from the counts of all ranks).
-  out.size_field =
-      size::build_size_field([&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, sea, regional, grid); },
-                             lat, c, rot, &bathy, log, report);
+  out.size_field = size::build_size_field(
+      [&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, sea, regional, grid); }, lat, c, rot,
+      &bathy, log, report);
 
   // The quadtree: the pyramid's refinements, the p4est forest, its balance.
   {
@@ -467,7 +451,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     std::vector<std::int64_t> bare, banded, refined;
     bare = ForestPyramid(pf, filled, 0).leaves_per_level();
     const int band = qo.coast_band != 0 && qo.coast_size_km == 0.0 ? qo.coast_band : 0;
-    auto pyr = std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr, sea.empty() ? nullptr : &sea);
+    auto pyr =
+        std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr, sea.empty() ? nullptr : &sea);
     banded = pyr->leaves_per_level();
     const double masks_s = t_masks.wall_s();
     Timer t_rules;
@@ -488,11 +473,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     const double balance_s = t_balance.wall_s();
     Timer t_check;
     // The checkers: the counts are global (the same on every rank), so is the error.
-    for (const std::vector<std::int64_t>* cnt :
-         std::array<const std::vector<std::int64_t>*, 4>{&bare, &banded, &refined, &balanced})
-      if (pixels_of(*cnt, lat.levels) != filled_pixels)
-        throw InternalError(
-            fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*cnt, lat.levels), filled_pixels));
+    const quadtree::LeafSteps steps{bare, banded, refined, balanced};
+    quadtree::check_leaf_steps(steps, lat.levels, filled_pixels);
     const std::int64_t violations = mf->count_violations(mode);
     if (violations != 0)
       throw InternalError(
@@ -516,20 +498,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     if (report != nullptr) {
       Json& q = (*report)["quadtree"];
       q["engine"] = "forest";
-      q["lattice"] = lat.kind_name();
-      q["size_km"] = qo.size_km;
-      q["coast_size_km"] = qo.coast_size_km;
-      q["levels"] = lat.levels;
-      q["step_deg"] = lat.step0_deg;
-      q["coast_band"] = qo.coast_band;
-      q["balance"] = std::string(name_of(mode));
-      q["filled_pixels"] = filled_pixels;
-      q["leaves_per_level_bare"] = bare;
-      q["leaves_per_level_coast_band"] = banded;
-      q["leaves_per_level_rules"] = refined;
-      q["leaves_per_level"] = balanced;
+      quadtree::leaf_steps_json(q, lat, qo, filled_pixels, steps, violations);
       q["leaves"] = total_leaves;
-      q["balance_violations"] = violations;
       if (out.size_field.has_grid() && out.size_field.gradation() > 0.0)
         q["grading"] = Json{{"gradation", out.size_field.gradation()},
                             {"grading_splits", grade.splits},
@@ -578,9 +548,10 @@ std::vector<char> wet_outside_domain(const ForestState& state, const mask::Domai
   for (std::size_t k = 0; k < q.size(); ++k) {
     const std::int64_t l = pf.local_index(g.key(q[k].i / p, q[k].j / p));
     if (l < 0) continue;
-    ans[k] = (!domain.contains(q[k].i, q[k].j) && state.water()[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
-                 ? 1
-                 : 0;
+    ans[k] =
+        (!domain.contains(q[k].i, q[k].j) && state.water()[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
+            ? 1
+            : 0;
   }
   comm.or_in_place(ans);
   if (!comm.root()) return {};

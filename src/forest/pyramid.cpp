@@ -134,10 +134,10 @@ Bitmap ForestPyramid::band_bits(std::size_t l, int radius) const {
   Bitmap open, sea;
   if (open_ != nullptr) open = pf_.assemble(l, *open_, open_ghosts_, OutsideRule{false, false});
   if (sea_ != nullptr) sea = pf_.assemble(l, *sea_, sea_ghosts_, OutsideRule{true, false});
-  return centre_of(quadtree::coastal_band(window, radius,
-                                          mask::CoastSources{open_ != nullptr ? &open : nullptr,
-                                                             sea_ != nullptr ? &sea : nullptr}),
-                   p_);
+  return centre_of(
+      quadtree::coastal_band(window, radius,
+                             mask::CoastSources{open_ != nullptr ? &open : nullptr, sea_ != nullptr ? &sea : nullptr}),
+      p_);
 }
 
 ForestPyramid::Fine& ForestPyramid::activate(std::size_t l) {
@@ -177,8 +177,7 @@ void ForestPyramid::sync_coarse() {
   }
 }
 
-bool ForestPyramid::omega(int l, std::int64_t a, std::int64_t b) const {
-  if (l <= lp_) return omega_c_[static_cast<std::size_t>(l)].get(a, b);
+bool ForestPyramid::fine_bit(int l, std::int64_t a, std::int64_t b, bool omega) const {
   const int d = l - lp_;
   const std::int64_t key = pf_.grid().key(a >> d, b >> d);
   const std::int64_t li = pf_.local_index(key);
@@ -186,19 +185,15 @@ bool ForestPyramid::omega(int l, std::int64_t a, std::int64_t b) const {
   const auto s = static_cast<std::size_t>(li);
   if (!fine_[s]) return all_[s] != 0;
   const std::int64_t m = (std::int64_t{1} << d) - 1;
-  return fine_[s]->omega[static_cast<std::size_t>(d)].get(a & m, b & m);
+  return (omega ? fine_[s]->omega : fine_[s]->any)[static_cast<std::size_t>(d)].get(a & m, b & m);
+}
+
+bool ForestPyramid::omega(int l, std::int64_t a, std::int64_t b) const {
+  return l <= lp_ ? omega_c_[static_cast<std::size_t>(l)].get(a, b) : fine_bit(l, a, b, true);
 }
 
 bool ForestPyramid::any(int l, std::int64_t a, std::int64_t b) const {
-  if (l <= lp_) return any_c_[static_cast<std::size_t>(l)].get(a, b);
-  const int d = l - lp_;
-  const std::int64_t key = pf_.grid().key(a >> d, b >> d);
-  const std::int64_t li = pf_.local_index(key);
-  if (li < 0) throw InternalError(fmt::format("forest: square ({}, {}, {}) is not in a local patch", l, a, b));
-  const auto s = static_cast<std::size_t>(li);
-  if (!fine_[s]) return all_[s] != 0;
-  const std::int64_t m = (std::int64_t{1} << d) - 1;
-  return fine_[s]->any[static_cast<std::size_t>(d)].get(a & m, b & m);
+  return l <= lp_ ? any_c_[static_cast<std::size_t>(l)].get(a, b) : fine_bit(l, a, b, false);
 }
 
 void ForestPyramid::apply_rules(const config::QuadtreeOptions& options, const PoleRotation& rotation,

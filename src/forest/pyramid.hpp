@@ -69,6 +69,8 @@ class ForestPyramid {
     std::vector<Bitmap> omega, any;  // index d = l - lp, 2^d × 2^d squares
   };
   Fine& activate(std::size_t l);
+  // The omega (or any) bit of a square of level l > lp in a local patch.
+  [[nodiscard]] bool fine_bit(int l, std::int64_t a, std::int64_t b, bool omega) const;
   [[nodiscard]] Bitmap band_bits(std::size_t l, int radius) const;
   void sync_coarse();
   [[nodiscard]] bool would_split(std::size_t l, const size::SizeField& field) const;

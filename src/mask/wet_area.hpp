@@ -77,6 +77,9 @@ struct WetArea {
 /// vertex is sampled and every pixel is dry.
 PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
 
+/// The floodplain's warning of inland seas (WetArea::inland_sea_*), when there are any.
+void warn_inland_sea(const WetArea& area, const Logger& log);
+
 /// The passages of the built-in table a run judges: all of them, or in a regional run (`domain`
 /// regional) those whose box lies inside the domain (its corners' and centre's pixels).
 std::vector<Passage> passage_table(const Lattice& lattice, const PoleRotation& rot, const Domain* domain);
