@@ -18,11 +18,18 @@ constexpr double kGravity = 9.81;
 // writers replace that row by a pole cap): not an edge a model sees.
 constexpr double kMinEdgeM = 1e-3;
 
-double great_circle_m(double lon1, double lat1, double lon2, double lat2) {
+// The haversine distance, given cos φ of both ends (computed once per node by the callers that
+// measure every edge: two of the six sines and cosines of each edge).
+double great_circle_m(double lon1, double lat1, double cos_lat1, double lon2, double lat2, double cos_lat2) {
   const double p1 = lat1 * kDegToRad, p2 = lat2 * kDegToRad;
   const double dp = p2 - p1, dl = (lon2 - lon1) * kDegToRad;
-  const double a = std::sin(dp / 2) * std::sin(dp / 2) + std::cos(p1) * std::cos(p2) * std::sin(dl / 2) * std::sin(dl / 2);
+  const double sp = std::sin(dp / 2), sl = std::sin(dl / 2);
+  const double a = sp * sp + cos_lat1 * cos_lat2 * sl * sl;
   return 2.0 * kEarthRadiusM * std::asin(std::min(1.0, std::sqrt(a)));
+}
+
+double great_circle_m(double lon1, double lat1, double lon2, double lat2) {
+  return great_circle_m(lon1, lat1, std::cos(lat1 * kDegToRad), lon2, lat2, std::cos(lat2 * kDegToRad));
 }
 
 double round6(double x) { return std::round(x * 1e6) / 1e6; }
@@ -33,19 +40,27 @@ std::vector<double> triangle_time_steps(const std::vector<double>& lon_deg, cons
                                         const std::vector<double>& depth_m,
                                         const std::vector<std::array<NodeId, 3>>& triangles, double min_depth_m) {
   const auto n = static_cast<std::int64_t>(triangles.size());
+  const auto nodes = static_cast<std::int64_t>(lat_deg.size());
+  std::vector<double> cos_lat(lat_deg.size());
   std::vector<double> dt(static_cast<std::size_t>(n));
-#pragma omp parallel for default(none) shared(lon_deg, lat_deg, depth_m, triangles, dt, n, min_depth_m) schedule(static)
-  for (std::int64_t t = 0; t < n; ++t) {
-    const auto& tri = triangles[static_cast<std::size_t>(t)];
-    double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
-    for (int k = 0; k < 3; ++k) {
-      const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
-      const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
-      const double len = great_circle_m(lon_deg[a], lat_deg[a], lon_deg[b], lat_deg[b]);
-      if (len > kMinEdgeM) edge = std::min(edge, len);
-      if (depth_m[a] > h) h = depth_m[a];
+#pragma omp parallel default(none) shared(lon_deg, lat_deg, cos_lat, depth_m, triangles, dt, n, nodes, min_depth_m)
+  {
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < nodes; ++k)
+      cos_lat[static_cast<std::size_t>(k)] = std::cos(lat_deg[static_cast<std::size_t>(k)] * kDegToRad);
+#pragma omp for schedule(static)
+    for (std::int64_t t = 0; t < n; ++t) {
+      const auto& tri = triangles[static_cast<std::size_t>(t)];
+      double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
+      for (int k = 0; k < 3; ++k) {
+        const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
+        const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
+        const double len = great_circle_m(lon_deg[a], lat_deg[a], cos_lat[a], lon_deg[b], lat_deg[b], cos_lat[b]);
+        if (len > kMinEdgeM) edge = std::min(edge, len);
+        if (depth_m[a] > h) h = depth_m[a];
+      }
+      dt[static_cast<std::size_t>(t)] = edge / std::sqrt(kGravity * h);
     }
-    dt[static_cast<std::size_t>(t)] = edge / std::sqrt(kGravity * h);
   }
   return dt;
 }
@@ -138,7 +153,8 @@ TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double cou
     }
     std::sort(cr.begin(), cr.end());
     for (const double p : {0.0, 0.5, 0.9, 0.99, 1.0})
-      r.courant_percentiles.push_back(cr[static_cast<std::size_t>(std::llround(p * static_cast<double>(cr.size() - 1)))]);
+      r.courant_percentiles.push_back(
+          cr[static_cast<std::size_t>(std::llround(p * static_cast<double>(cr.size() - 1)))]);
   }
   return r;
 }

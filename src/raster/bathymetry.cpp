@@ -969,6 +969,24 @@ struct Bathymetry::Impl {
     return normalise(x, implausible);
   }
 
+  // The values out[order[q]] of the points order[q0..q1) of one band (raw_points): bilinear(c0,
+  // c1, r0, r1, t, u) interpolates between the normalised values at columns c0, c1 and rows r0,
+  // r1 (south-up) at (t, u), through the file map or from the band's rows read into memory.
+  template <class Bilinear>
+  static void band_points(const Impl& im, const std::int64_t* order, std::int64_t q0, std::int64_t q1,
+                          const double* lon_deg, const double* lat_deg, double* out, Bilinear bilinear) {
+#pragma omp parallel for default(none) shared(im, order, q0, q1, lon_deg, lat_deg, out) firstprivate(bilinear) \
+    schedule(static) if (q1 - q0 > 20000)
+    for (std::int64_t q = q0; q < q1; ++q) {
+      const std::int64_t k = order[q];
+      std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+      double t = 0.0, u = 0.0;
+      (void)im.col(lon_deg[k], c0, c1, t);
+      (void)im.row(lat_deg[k], r0, r1, u);
+      out[k] = bilinear(c0, c1, r0, r1, t, u);
+    }
+  }
+
   // A stored value -> metres, elevation up; NaN for no-data, and for values beyond
   // ±max_abs_m (counted in `implausible`: a sentinel such as -1e29 or a wrong scale is not a depth).
   [[nodiscard]] float normalise(float x, std::int64_t& implausible) const {
@@ -1208,11 +1226,19 @@ void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::i
     // Through the file map: the four values of each point read where they lie, band after band
     // (the rows of a band released after it).
     const FileMap& m = *im->map;
-    const std::int64_t h = im->info.height;
-    const bool north_up = im->info.north_up;
     ++im->info.passes;
     const auto has_points = [&start](std::int64_t s) {
       return start[static_cast<std::size_t>(s + 1)] > start[static_cast<std::size_t>(s)];
+    };
+    const std::int64_t h = im->info.height;
+    const bool north_up = im->info.north_up;
+    const auto mapped = [im, &m, h, north_up](std::int64_t c0, std::int64_t c1, std::int64_t r0, std::int64_t r1,
+                                              double t, double u) {
+      const std::int64_t y0 = north_up ? h - 1 - r0 : r0, y1 = north_up ? h - 1 - r1 : r1;
+      std::int64_t implausible = 0;
+      const float a = im->normalise(m.value(c0, y0), implausible), b = im->normalise(m.value(c1, y0), implausible),
+                  c = im->normalise(m.value(c0, y1), implausible), d = im->normalise(m.value(c1, y1), implausible);
+      return bilinear4(a, b, c, d, t, u);
     };
     std::int64_t prefetched = -1;  // the bands with points up to this one were prefetched
     for (std::int64_t s = 0; s < nb; ++s) {
@@ -1223,20 +1249,7 @@ void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::i
       while (next < nb && !has_points(next)) ++next;
       for (; prefetched < std::min(next, nb - 1);)
         if (has_points(++prefetched)) m.prefetch(g.first(prefetched), g.end(prefetched));
-#pragma omp parallel for default(none) shared(im, m, order, lon_deg, lat_deg, out, k0, k1, h, north_up) \
-    schedule(static) if (k1 - k0 > 20000)
-      for (std::int64_t q = k0; q < k1; ++q) {
-        const std::int64_t k = order[static_cast<std::size_t>(q)];
-        std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
-        double t = 0.0, u = 0.0;
-        (void)im->col(lon_deg[k], c0, c1, t);
-        (void)im->row(lat_deg[k], r0, r1, u);
-        const std::int64_t y0 = north_up ? h - 1 - r0 : r0, y1 = north_up ? h - 1 - r1 : r1;
-        std::int64_t implausible = 0;
-        const float a = im->normalise(m.value(c0, y0), implausible), b = im->normalise(m.value(c1, y0), implausible),
-                    c = im->normalise(m.value(c0, y1), implausible), d = im->normalise(m.value(c1, y1), implausible);
-        out[k] = bilinear4(a, b, c, d, t, u);
-      }
+      Impl::band_points(*im, order.data(), k0, k1, lon_deg, lat_deg, out, mapped);
       m.release(g.first(s), g.end(s));
       if (progress) progress(static_cast<double>(s + 1) / static_cast<double>(nb), "bands of raster rows");
     }
@@ -1246,20 +1259,15 @@ void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::i
     return start[static_cast<std::size_t>(s + 1)] > start[static_cast<std::size_t>(s)];
   };
   const auto work = [&](std::int64_t s, const float* buf) {
-    const std::int64_t lo = g.lo(s), k0 = start[static_cast<std::size_t>(s)],
-                       k1 = start[static_cast<std::size_t>(s + 1)];
-#pragma omp parallel for default(none) shared(im, buf, order, lon_deg, lat_deg, out, lo, k0, k1, nc) \
-    schedule(static) if (k1 - k0 > 20000)
-    for (std::int64_t q = k0; q < k1; ++q) {
-      const std::int64_t k = order[static_cast<std::size_t>(q)];
-      std::int64_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
-      double t = 0.0, u = 0.0;
-      (void)im->col(lon_deg[k], c0, c1, t);
-      (void)im->row(lat_deg[k], r0, r1, u);
+    const std::int64_t lo = g.lo(s);
+    const auto buffered = [buf, lo, nc](std::int64_t c0, std::int64_t c1, std::int64_t r0, std::int64_t r1, double t,
+                                        double u) {
       const float* p0 = buf + (r0 - lo) * nc;
       const float* p1 = buf + (r1 - lo) * nc;
-      out[k] = bilinear4(p0[c0], p0[c1], p1[c0], p1[c1], t, u);
-    }
+      return bilinear4(p0[c0], p0[c1], p1[c0], p1[c1], t, u);
+    };
+    Impl::band_points(*im, order.data(), start[static_cast<std::size_t>(s)], start[static_cast<std::size_t>(s + 1)],
+                      lon_deg, lat_deg, out, buffered);
   };
   im->stream(wanted, work, nullptr, progress, "bands of raster rows");
 }
