@@ -29,6 +29,7 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/provenance.hpp"
 #include "config/load.hpp"
 #include "config/regional.hpp"
 #include "core/error.hpp"
@@ -344,9 +345,7 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   const config::GlobalConfig& c = loaded.options;
 
   Report report;
-  report["command"] = "blocks";
-  report["config_source"] = loaded.source;
-  report["config"] = loaded.echo;
+  start_report(report, "blocks", loaded.source, loaded.echo);
   report["config"]["output"]["dir"] = c.output.dir;
   report["config"]["blocks"]["top"] = c.blocks.top;
 

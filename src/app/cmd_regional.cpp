@@ -327,9 +327,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   const curvilinear::Stage stage = regional_stage(a, c, path, log);
 
   Report report;
-  report["command"] = "regional";
-  report["config_source"] = loaded.source;
-  report["config"] = loaded.echo;
+  start_report(report, "regional", loaded.source, loaded.echo);
   report["inputs"] = inputs;
   OutputSet out(c.output_dir, log);
 

@@ -969,10 +969,9 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   (void)report;
   (void)statistics;
   (void)keep_masks;
-  throw ConfigError(
-      fmt::format("quadtree.engine = \"{}\": this aquatoria was built without the forest engine "
-                  "(AQ_MPI=OFF: p4est and MPI were not found; scripts/install_deps.sh installs them)",
-                  config::engine_name(c.quadtree.engine)));
+  // config::load_global refuses quadtree.engine = "forest" in this build (forest_engine_built).
+  throw InternalError(fmt::format("quadtree.engine = \"{}\" in a build without the forest engine",
+                                  config::engine_name(c.quadtree.engine)));
 #endif
 }
 

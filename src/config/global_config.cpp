@@ -623,6 +623,10 @@ void cross_check(GlobalConfig& c, Problems& p) {
 // band and the K-cursor must fit in one. (A floodplain is refused by the forest itself for now.)
 void forest_check(const GlobalConfig& c, Problems& p) {
   if (c.quadtree.engine != QuadtreeEngine::kForest) return;
+  if (!forest_engine_built())
+    return p.add_key("quadtree.engine",
+                     "\"forest\": this aquatoria was built without the forest engine (AQ_MPI=OFF: p4est and MPI "
+                     "were not found; scripts/install_deps.sh installs them); use \"dense\"");
   if (c.mask.sampling == Sampling::kArea)
     p.add_keys({"mask.sampling", "quadtree.engine"},
                "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; quadtree.engine = "
@@ -690,6 +694,14 @@ void use_check(const GlobalConfig& c, GlobalUse use, Problems& p) {
 }
 
 }  // namespace
+
+bool forest_engine_built() {
+#ifdef AQ_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
 
 std::string output_name_problem(const std::string& name) {
   if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")

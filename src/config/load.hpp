@@ -37,6 +37,10 @@ enum class GlobalUse {
 Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides,
                                  GlobalUse use = GlobalUse::kMesh);
 
+/// Whether this build has the forest engine (AQ_MPI: p4est and MPI); without it load_global
+/// refuses quadtree.engine = "forest".
+bool forest_engine_built();
+
 /// A depth or box rule as the user gives it in [quadtree]: its range fields, then `size_km` when
 /// it is a size rule (size_km != 0), else `level`. The echo of quadtree.depth_rules / box_rules.
 Json rule_json(const DepthRule& r);

@@ -469,6 +469,7 @@ TEST(Config, FloodplainThresholdAndSizeTermsAreCheckedAtLoad) {
 // wider than its patches of 2^min(L, 7) pixels, the global run file). Now at load, every one at
 // the position of the key set last, together with the other problems of the file.
 TEST(Config, WhatTheForestEngineCannotDoIsRefusedAtLoadAllAtOnce) {
+  if (!aq::config::forest_engine_built()) GTEST_SKIP() << "built without the forest engine (AQ_MPI=OFF)";
   const auto p = write_temp("forest_bad.toml",
                             "[quadtree]\n"
                             "engine = \"forest\"\n"  // 2
@@ -508,6 +509,18 @@ TEST(Config, WhatTheForestEngineCannotDoIsRefusedAtLoadAllAtOnce) {
   EXPECT_EQ(aq::config::forest_patch_pixels(0), 1);
   EXPECT_EQ(aq::config::forest_patch_pixels(3), 8);
   EXPECT_EQ(aq::config::forest_patch_pixels(12), 128);
+}
+
+// A build without MPI and p4est refuses the forest engine at load, with the key's position (it
+// was refused when the pipeline started).
+TEST(Config, TheForestEngineIsRefusedAtLoadWhereItIsNotBuilt) {
+  const std::string e = error_of(std::nullopt, {"quadtree.engine=\"forest\""});
+  if (aq::config::forest_engine_built()) {
+    EXPECT_EQ(e, "");
+  } else {
+    EXPECT_THAT(e, HasSubstr("--set quadtree.engine=\"forest\": quadtree.engine: \"forest\": this aquatoria was "
+                             "built without the forest engine"));
+  }
 }
 
 // Issue 33: `aquatoria blocks` and a regional ROMS grid's roms.global_config refused a floodplain
