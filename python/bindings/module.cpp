@@ -65,7 +65,8 @@ namespace {
 config::Loaded<config::GlobalConfig> load(const std::optional<std::string>& path,
                                           const std::vector<std::string>& overrides, const char* command,
                                           Report& report) {
-  config::Loaded<config::GlobalConfig> loaded = config::load_global(path, overrides);
+  const config::GlobalUse use = std::string(command) == "mask" ? config::GlobalUse::kMask : config::GlobalUse::kMesh;
+  config::Loaded<config::GlobalConfig> loaded = config::load_global(path, overrides, use);
   report["command"] = command;
   report["interface"] = "python";
   report["config_source"] = loaded.source;

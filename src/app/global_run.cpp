@@ -638,10 +638,8 @@ static void input_json(const raster::Bathymetry& bathy, const config::GlobalConf
 
 GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
                             bool reuse) {
-  if (c.quadtree.engine == config::QuadtreeEngine::kForest)
-    throw ConfigError(
-        "quadtree.engine = \"forest\": this command needs the dense engine's bitmaps; quadtree.engine = "
-        "\"dense\" (aquatoria mesh runs the forest)");
+  if (c.quadtree.engine == config::QuadtreeEngine::kForest)  // refused at load (config::GlobalUse::kMask)
+    throw InternalError("run_global_leaves: the forest engine makes no bitmaps");
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;

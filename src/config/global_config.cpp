@@ -671,6 +671,13 @@ void png_zoom_check(const GlobalConfig& c, Problems& p) {
 // What the command the configuration is loaded for cannot take (load_global's `use`).
 void use_check(const GlobalConfig& c, GlobalUse use, Problems& p) {
   if (use == GlobalUse::kMesh) return;
+  if (use == GlobalUse::kMask) {
+    if (c.quadtree.engine == QuadtreeEngine::kForest)
+      p.add_key("quadtree.engine",
+                "\"forest\": the mask and levels are the dense engine's bitmaps, which the forest never makes; "
+                "quadtree.engine = \"dense\" (a mesh runs on the forest too)");
+    return;
+  }
   // The blocks become regional ROMS grids (app/regional_roms.cpp); a ROMS grid's mask follows the
   // global fill (land where the elevation is above −h) and its h is clipped at roms.hmin_m, so a
   // floodplain would become water hmin_m deep.

@@ -28,6 +28,7 @@ enum class GlobalUse {
   kMesh,        ///< `aquatoria mesh` (and the Python binding)
   kBlocks,      ///< `aquatoria blocks`: its blocks become ROMS grids (no floodplain)
   kRomsGlobal,  ///< roms.global_config of a regional ROMS grid (no floodplain, one raster)
+  kMask,        ///< the mask and levels of a run (Python's mask()): the dense engine's bitmaps
 };
 
 /// Reads the global-run configuration from `path` (or the built-in defaults when empty) and

@@ -558,6 +558,13 @@ TEST(Config, WhatACommandCannotTakeIsRefusedAtLoadWithItsPosition) {
   EXPECT_THAT(e, HasSubstr(f + ":4:15: mask.min_depth_m: mask.min_depth_m = -2 meshes a floodplain up to 2 m above "
                                "the datum, which a ROMS grid's land mask"));
   EXPECT_NO_THROW((void)load_global(f, {}));  // the same file meshes a surge domain
+  // Python's mask() returns the dense engine's bitmaps.
+  EXPECT_THAT(error_for({"quadtree.engine=\"forest\""}, GlobalUse::kMask),
+              aq::config::forest_engine_built()
+                  ? HasSubstr("--set quadtree.engine=\"forest\": quadtree.engine: \"forest\": the "
+                              "mask and levels are the dense engine's bitmaps")
+                  : HasSubstr("built without the forest engine"));
+  EXPECT_EQ(error_for({}, GlobalUse::kMask), "");
 }
 
 // output.png_zoom on the Mercator lattice must reach its rows: refused at load (it was refused
