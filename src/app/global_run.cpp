@@ -444,12 +444,14 @@ static void carve(GlobalRun& run, const config::GlobalConfig& c, const Logger& l
 
 // Every wet component the fill left out above mask.warn_dropped_km2, named, with its area, what
 // cut it and the key that keeps it (mask/dropped_seas.hpp); all of them in the report.
-static void warn_dropped_seas(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report) {
+// `domain`: the run's domain with its pixel bitmap (default: run.domain).
+static void warn_dropped_seas(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report,
+                              const mask::Domain* domain = nullptr) {
   StageScope stage("dropped", report, log);
   const mask::WetArea& a = run.area;
   const mask::DroppedSeas d =
       mask::find_dropped_seas(a.wet, a.filled, run.setup.lattice, run.setup.rotation, c.mask.cursor,
-                              c.mask.warn_dropped_km2, c.mask.passages_open, &run.domain);
+                              c.mask.warn_dropped_km2, c.mask.passages_open, domain != nullptr ? domain : &run.domain);
   for (const mask::DroppedSea& s : d.large) log.warn("dropped: {}", mask::describe(s, c.mask.cursor));
   if (report != nullptr) (*report)["mask"]["dropped"] = mask::dropped_json(d);
   double large = 0.0;
@@ -905,6 +907,41 @@ static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const Glo
   if (run.mesh.floodplain_top_m > 0.0) report_floodplain(run, log, report);
 }
 
+#ifdef AQ_HAVE_MPI
+// The forest's passage table, dropped seas and separate seeds, on rank 0: the dense engine's lines
+// and report entries, from the wet and filled pixels gathered there (forest/pipeline.hpp
+// kDroppedSeasMaxPixels; beyond it the dropped components are counted, not named).
+static void report_forest_mask(GlobalRun& run, const forest::ForestLeaves& fl, const config::GlobalConfig& c,
+                               const Logger& log, Report* report) {
+  if (c.mask.passages && !run.area.passages.empty()) {
+    log.info("critical passages{} (open = the filled ocean connects both sides):",
+             run.domain.regional() ? " inside the domain" : "");
+    for (const auto& line : mask::format_passage_table(run.area.passages)) log.info("  {}", line);
+  }
+  if (fl.dropped_components < 0) {
+    mask::Domain dense = run.domain;
+    if (dense.regional()) dense.inside = dense.window(0, 0, run.setup.lattice.nx, run.setup.lattice.ny);
+    warn_dropped_seas(run, c, log, report, &dense);
+  } else {
+    StageScope stage("dropped", report, log);
+    log.warn(
+        "dropped: {} wet component(s) left out by the fill ({} pixels); the forest names and measures them on "
+        "lattices up to {} pixels, this one has {}: quadtree.engine = \"dense\" names them",
+        fl.dropped_components, fl.dropped_pixels, forest::kDroppedSeasMaxPixels, run.setup.lattice.pixel_count());
+    if (report != nullptr)
+      (*report)["mask"]["dropped"] = Json{{"components", fl.dropped_components},
+                                          {"pixels", fl.dropped_pixels},
+                                          {"named", false},
+                                          {"threshold_km2", c.mask.warn_dropped_km2}};
+    stage.done(fmt::format("{} wet component(s) left out by the fill, {} pixels; not named above {} lattice pixels",
+                           fl.dropped_components, fl.dropped_pixels, forest::kDroppedSeasMaxPixels));
+  }
+  warn_separate_seeds(run, c, log, report);
+  run.area.wet = Bitmap();  // (gathered for the dropped seas only)
+  run.area.filled = Bitmap();
+}
+#endif
+
 // The forest engine (README "The forest engine"): the same stages on every MPI rank; rank 0
 // gathers the leaves, builds the mesh and runs the stages after it (the other ranks return a run
 // without a mesh and answer the open boundary's questions).
@@ -929,10 +966,7 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
     if (report != nullptr) (*report)["domain"]["pixels"] = run.domain.pixels;
   }
   input_json(*run.bathy, c, report);
-  if (c.mask.passages && !run.area.passages.empty()) {
-    log.info("critical passages (open = the filled ocean connects both sides):");
-    for (const auto& line : mask::format_passage_table(run.area.passages)) log.info("  {}", line);
-  }
+  if (comm.root()) report_forest_mask(run, fl, c, log, report);
   forest::collective(comm, [&] {  // the mesh, on rank 0
     if (!comm.root()) return;
     StageScope stage("mesh", report, log);
@@ -941,6 +975,7 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
         fl.leaves, fl.neighbourhoods, lat, quadtree::NodeOptions{mesh::mesh_needs_centres(c.mesh)});
     run.mesh = mesh::build_mesh(fl.leaves, std::move(qn), t.wall_s(), lat, setup.rotation, *run.bathy, c.mesh, log,
                                 report, stage);
+    run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
     fl.neighbourhoods = {};
     run.leaves = std::move(fl.leaves);
   });

@@ -620,7 +620,7 @@ void cross_check(GlobalConfig& c, Problems& p) {
 
 // What the forest engine (quadtree.engine = "forest", README "The forest engine") cannot do, from
 // the keys alone. Its patches are P × P pixels, P = 2^min(L, 7) (forest_patch_pixels): the coastal
-// band and the K-cursor must fit in one. (A floodplain is refused by the forest itself for now.)
+// band and the K-cursor must fit in one.
 void forest_check(const GlobalConfig& c, Problems& p) {
   if (c.quadtree.engine != QuadtreeEngine::kForest) return;
   if (!forest_engine_built())

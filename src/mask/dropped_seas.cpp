@@ -362,7 +362,9 @@ DroppedSeas find_dropped_seas(const Bitmap& wet, const Bitmap& filled, const Lat
     std::vector<std::size_t> chain;
     for (std::int64_t x = id; via.count(x) != 0; x = via[x].first) chain.push_back(via[x].second);
     s.cut = !chain.empty() && via[id].first == kFilledComponent;
-    std::vector<std::size_t> named = chain;
+    std::vector<std::size_t> named;  // a passage the chain crosses twice (its sides split between pieces) named once
+    for (const std::size_t p : chain)
+      if (std::find(named.begin(), named.end(), p) == named.end()) named.push_back(p);
     if (named.empty())
       for (const Edge& e : edges)
         if (e.a == id && std::find(named.begin(), named.end(), e.passage) == named.end()) named.push_back(e.passage);
