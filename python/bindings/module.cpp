@@ -17,6 +17,7 @@
 #include <netcdf.h>
 
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -59,9 +60,18 @@ namespace aq::python {
 
 namespace {
 
+// The configuration of a run from Python, loaded as `aquatoria mesh` loads it, and the header of
+// its report: the `command` ("mesh" or "mask"), the interface, the source and the echo.
 config::Loaded<config::GlobalConfig> load(const std::optional<std::string>& path,
-                                          const std::vector<std::string>& overrides) {
-  return config::load_global(path, overrides);
+                                          const std::vector<std::string>& overrides, const char* command,
+                                          Report& report) {
+  const config::GlobalUse use = std::string(command) == "mask" ? config::GlobalUse::kMask : config::GlobalUse::kMesh;
+  config::Loaded<config::GlobalConfig> loaded = config::load_global(path, overrides, use);
+  report["command"] = command;
+  report["interface"] = "python";
+  report["config_source"] = loaded.source;
+  report["config"] = loaded.echo;
+  return loaded;
 }
 
 // Unpacks rows of a bitmap into one byte per pixel (value `one` where set, added to out).
@@ -76,6 +86,20 @@ void add_bitmap(const Bitmap& b, std::uint8_t one, std::uint8_t* out) {
   }
 }
 
+// A (ny, nx) array of one byte per lattice pixel, zeroed, then filled by `fill` with the GIL
+// released.
+py::array_t<std::uint8_t> pixel_array(std::int64_t nx, std::int64_t ny,
+                                      const std::function<void(std::uint8_t*)>& fill) {
+  py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
+  std::uint8_t* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    std::fill(o, o + nx * ny, std::uint8_t{0});
+    fill(o);
+  }
+  return out;
+}
+
 }  // namespace
 
 /// One global mesh run: the configuration, the pipeline's result (the lattice mesh), and made when
@@ -87,12 +111,8 @@ class MeshRun {
           int threads)
       : lines_(std::make_shared<LogLines>()), log_(make_logger(lines_, verbose)) {
     WorkScope work(threads);
-    loaded_ = load(config_path, overrides);
+    loaded_ = load(config_path, overrides, "mesh", report_);
     const config::GlobalConfig& c = loaded_.options;
-    report_["command"] = "mesh";
-    report_["interface"] = "python";
-    report_["config_source"] = loaded_.source;
-    report_["config"] = loaded_.echo;
     const app::GlobalSetup setup = app::prepare_global_run(c);
     app::log_memory_estimate(setup, log_);
     run_ = app::run_global_pipeline(c, setup, log_, &report_);
@@ -226,12 +246,8 @@ class MaskRun {
           int threads)
       : lines_(std::make_shared<LogLines>()), log_(make_logger(lines_, verbose)) {
     WorkScope work(threads);
-    loaded_ = load(config_path, overrides);
+    loaded_ = load(config_path, overrides, "mask", report_);
     const config::GlobalConfig& c = loaded_.options;
-    report_["command"] = "mask";
-    report_["interface"] = "python";
-    report_["config_source"] = loaded_.source;
-    report_["config"] = loaded_.echo;
     const app::GlobalSetup setup = app::prepare_global_run(c);
     run_ = app::run_global_leaves(c, setup, log_, &report_);
   }
@@ -434,59 +450,40 @@ PYBIND11_MODULE(_core, m) {
       .def("classes",
            [](const MaskRun& r) {
              const auto& a = r.run().area;
-             const auto nx = a.wet.nx(), ny = a.wet.ny();
-             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
-             std::uint8_t* o = out.mutable_data();
-             {
-               py::gil_scoped_release release;
-               std::fill(o, o + nx * ny, std::uint8_t{0});
+             return aq::python::pixel_array(a.wet.nx(), a.wet.ny(), [&a](std::uint8_t* o) {
                aq::python::add_bitmap(a.coastal, 1, o);
                aq::python::add_bitmap(a.wet, 2, o);
-             }
-             return out;
+             });
            })
       .def("filled",
            [](const MaskRun& r) {
              const auto& a = r.run().area;
-             const auto nx = a.filled.nx(), ny = a.filled.ny();
-             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
-             std::uint8_t* o = out.mutable_data();
-             {
-               py::gil_scoped_release release;
-               std::fill(o, o + nx * ny, std::uint8_t{0});
-               aq::python::add_bitmap(a.filled, 1, o);
-             }
-             return out.attr("view")("bool");
+             return aq::python::pixel_array(a.filled.nx(), a.filled.ny(),
+                                            [&a](std::uint8_t* o) { aq::python::add_bitmap(a.filled, 1, o); })
+                 .attr("view")("bool");
            })
       .def("floodplain",
            [](const MaskRun& r) {
              // mask.min_depth_m < 0: the filled pixels not wet at the datum (WetArea::sea is the rest)
              const auto& a = r.run().area;
              const auto nx = a.filled.nx(), ny = a.filled.ny();
-             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nx)});
-             std::uint8_t* o = out.mutable_data();
-             {
-               py::gil_scoped_release release;
-               std::fill(o, o + nx * ny, std::uint8_t{0});
-               if (a.sea.nx() == nx && a.sea.ny() == ny) {
-                 aq::python::add_bitmap(a.filled, 1, o);
-                 aq::python::add_bitmap(a.sea, 1, o);  // sea ⊂ filled: 2 = sea, 1 = floodplain
-                 for (std::int64_t k = 0; k < nx * ny; ++k) o[k] = o[k] == 1 ? 1 : 0;
-               }
-             }
-             return out.attr("view")("bool");
+             return aq::python::pixel_array(nx, ny,
+                                            [&a, nx, ny](std::uint8_t* o) {
+                                              if (a.sea.nx() != nx || a.sea.ny() != ny) return;
+                                              aq::python::add_bitmap(a.filled, 1, o);
+                                              aq::python::add_bitmap(a.sea, 1,
+                                                                     o);  // sea ⊂ filled: 2 = sea, 1 = floodplain
+                                              for (std::int64_t k = 0; k < nx * ny; ++k) o[k] = o[k] == 1 ? 1 : 0;
+                                            })
+                 .attr("view")("bool");
            })
       .def("levels",
            [](const MaskRun& r) {
              const auto& lat = r.run().setup.lattice;
-             py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(lat.ny), static_cast<py::ssize_t>(lat.nx)});
-             std::uint8_t* o = out.mutable_data();
-             {
-               py::gil_scoped_release release;
+             return aq::python::pixel_array(lat.nx, lat.ny, [&r, &lat](std::uint8_t* o) {
                const aq::quadtree::LeafLevels levels(r.run().leaves, lat);
                levels.fill(0, lat.ny, o);
-             }
-             return out;
+             });
            })
       .def_property_readonly("lon_edges",
                              [](const MaskRun& r) { return aq::python::lattice_edges_lon(r.run().setup.lattice); })

@@ -29,6 +29,7 @@
 
 #include "app/commands.hpp"
 #include "app/global_run.hpp"
+#include "app/provenance.hpp"
 #include "config/load.hpp"
 #include "config/regional.hpp"
 #include "core/error.hpp"
@@ -257,27 +258,97 @@ void remove_stale_blocks_logged(const fs::path& dir, std::size_t count, const Lo
              removed.front(), removed.size() > 1 ? " … " + removed.back() : std::string());
 }
 
-int run_blocks(const BlocksArgs& a, const Logger& log) {
-  Timer total;
-  auto loaded = config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets);
+// The global configuration of `aquatoria blocks`: the file and --set, then -o and --top.
+config::Loaded<config::GlobalConfig> load_blocks_config(const BlocksArgs& a) {
+  auto loaded =
+      config::load_global(a.config ? a.config : std::optional<std::string>(), a.sets, config::GlobalUse::kBlocks);
   if (!a.out_dir.empty()) loaded.options.output.dir = a.out_dir;
   if (a.top > 0) loaded.options.blocks.top = a.top;
   const config::GlobalConfig& c = loaded.options;
   if (a.top < 0 || c.blocks.top < 1 || c.blocks.top > 999)
     throw ConfigError(fmt::format("--top {}: must be between 1 and 999", a.top < 0 ? a.top : c.blocks.top));
+  return loaded;
+}
+
+// global.toml: the effective global configuration, so each block's regional run sees this very
+// global run. Its final path and the checksum every block config records (a block outliving this
+// run is refused).
+std::pair<std::string, std::string> write_global_toml(OutputSet& out,
+                                                      const config::Loaded<config::GlobalConfig>& loaded) {
+  const std::string global_name = "global.toml";
+  write_text(out, global_name,
+             handoff::config_text_from_echo(
+                 effective_global_echo(loaded.echo, loaded.options),
+                 fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
+                             "included).\nEvery block_NNN.toml names it as roms.global_config.",
+                             loaded.source)));
+  return {out.final_path(global_name).string(), file_checksum(out.pending_path(global_name))};
+}
+
+// What the written blocks add up to: their blocks.json entries, the overview picture's outlines
+// and the table printed on stdout.
+struct BlockRows {
+  Json list = Json::array();
+  io::PreviewOptions overview;
+  std::vector<std::string> table;
+};
+
+// Writes the files of the ranked blocks (block_NNN.izogrid, .toml, .png) into `out`.
+struct BlockWriter {
+  const config::GlobalConfig& c;
+  const std::string& source;  // the configuration's file
+  const GlobalRun& run;
+  const Lattice& lat;
+  const PoleRotation& rot;
+  const fs::path& dir;
+  OutputSet& out;
+  std::string global_path, global_checksum;
+  bool has_global_key = false;
+  std::size_t candidates = 0;
+  const Logger& log;
+
+  void write(std::size_t k, const handoff::BlockCandidate& b, BlockRows& rows) const {
+    const std::string name = fmt::format("block_{:03d}", k + 1);
+    const handoff::BoxFrame frame(b.box, rot);
+    handoff::SideInsets insets;
+    if (c.blocks.shrink_to_wet) insets = handoff::shrink_to_wet(frame, run.area.filled, lat, rot, c.blocks.max_inset);
+    const handoff::BlockContour contour = usable_contour(frame, insets, c.blocks, name, log);
+    if (contour.trimmed)
+      log.warn("{}: a side on a pole was moved off it (a box cannot have a side of zero length)", name);
+    const auto& p = contour.projection;
+    const std::string description = fmt::format(
+        "aquatoria regional config of {} (written by `aquatoria blocks`): {} {}, rank {} of {} by coastal "
+        "pixels\n({} coastal pixels, wet fraction {:.3f}) of the global run from {}",
+        name, b.describe(), box_text(b.box), k + 1, candidates, b.coastal_pixels, b.wet_fraction, source);
+    write_text(out, name + ".izogrid",
+               handoff::izogrid_text(contour, b.suggested_ny, latlongrid_for(frame.box()), description));
+    write_text(
+        out, name + ".toml",
+        block_config_text(c, name, description, b.suggested_ny, dir, global_path, has_global_key, global_checksum));
+
+    io::PreviewOutline outline{map_outline(b.box, rot), fmt::format("{}", k + 1)};
+    rows.overview.outlines.push_back(outline);
+    write_block_picture(run, lat, outline, fmt::format("{}: {}", name, b.describe()), c.output.png_width,
+                        rows.overview.elements, out.temp_path(name + ".png"));
+
+    const auto g = frame.geographic(0.5, 0.5);
+    rows.list.push_back(block_json(b, k, name, g, contour.projection, insets, c.blocks.shrink_to_wet, out));
+    rows.table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6.1f} {:>5}  {} ({:.4g}, {:.4g})", k + 1,
+                                     name, b.describe(), box_text(b.box), b.coastal_pixels, 100.0 * b.wet_fraction,
+                                     b.suggested_ny, std::string(name_of(p.kind)), g.lon_deg, g.lat_deg));
+  }
+};
+
+int run_blocks(const BlocksArgs& a, const Logger& log) {
+  Timer total;
+  const auto loaded = load_blocks_config(a);
+  const config::GlobalConfig& c = loaded.options;
 
   Report report;
-  report["command"] = "blocks";
-  report["config_source"] = loaded.source;
-  report["config"] = loaded.echo;
+  start_report(report, "blocks", loaded.source, loaded.echo);
   report["config"]["output"]["dir"] = c.output.dir;
   report["config"]["blocks"]["top"] = c.blocks.top;
 
-  if (c.mask.min_depth_m < 0.0)  // the blocks become ROMS grids nested in this run (app/regional_roms.cpp)
-    throw ConfigError(fmt::format(
-        "{}: mask.min_depth_m = {} meshes a floodplain above the datum; the blocks' regional ROMS grids share this "
-        "run's land mask and cannot hold it: run `aquatoria blocks` with mask.min_depth_m >= 0",
-        loaded.source, c.mask.min_depth_m));
   const GlobalSetup setup = prepare_global_run(c, {.allow_window = false});  // blocks rank the global lattice's squares
   log_memory_estimate(setup, log);
   const Lattice& lat = setup.lattice;
@@ -297,64 +368,22 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
   const std::size_t count = std::min(ranked.size(), static_cast<std::size_t>(c.blocks.top));
   rank_stage.done(fmt::format("{} candidate blocks with coast, writing the best {}", ranked.size(), count));
 
-  // The effective global configuration, so each block's regional run sees this very global run.
-  const std::string global_name = "global.toml";
-  write_text(out, global_name,
-             handoff::config_text_from_echo(
-                 effective_global_echo(loaded.echo, c),
-                 fmt::format("The effective global configuration of `aquatoria blocks` from {} (--set overrides "
-                             "included).\nEvery block_NNN.toml names it as roms.global_config.",
-                             loaded.source)));
-  const std::string global_path = out.final_path(global_name).string();
-  // Each block config records what global.toml held, so a block outliving this run is refused.
-  const std::string global_checksum = file_checksum(out.pending_path(global_name));
+  const auto [global_path, global_checksum] = write_global_toml(out, loaded);
   const auto keys = config::regional_keys();
   const bool has_global_key = std::find(keys.begin(), keys.end(), "roms.global_config") != keys.end();
+  const BlockWriter w{
+      c, loaded.source, run, lat, rot, dir, out, global_path, global_checksum, has_global_key, ranked.size(), log};
 
   StageScope write_stage("write", &report, log);
-  Json list = Json::array();
-  io::PreviewOptions overview;
-  overview.width_px = c.output.png_width;
-  overview.elements = c.mesh.elements;
-  overview.title = fmt::format("aquatoria blocks: the {} best of {} coastal block{}", count, ranked.size(),
-                               ranked.size() == 1 ? "" : "s");
-  std::vector<std::string> table;
-  table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6} {:>5}  {}", "rank", "name", "block",
-                              "box (lon x lat, degrees)", "coast px", "wet %", "ny", "projection"));
-  for (std::size_t k = 0; k < count; ++k) {
-    const handoff::BlockCandidate& b = ranked[k];
-    const std::string name = fmt::format("block_{:03d}", k + 1);
-    const handoff::BoxFrame frame(b.box, rot);
-    handoff::SideInsets insets;
-    if (c.blocks.shrink_to_wet) insets = handoff::shrink_to_wet(frame, run.area.filled, lat, rot, c.blocks.max_inset);
-    const handoff::BlockContour contour = usable_contour(frame, insets, c.blocks, name, log);
-    if (contour.trimmed)
-      log.warn("{}: a side on a pole was moved off it (a box cannot have a side of zero length)", name);
-    const auto& p = contour.projection;
-    const std::string description = fmt::format(
-        "aquatoria regional config of {} (written by `aquatoria blocks`): {} {}, rank {} of {} by coastal "
-        "pixels\n({} coastal pixels, wet fraction {:.3f}) of the global run from {}",
-        name, b.describe(), box_text(b.box), k + 1, ranked.size(), b.coastal_pixels, b.wet_fraction, loaded.source);
-    {
-      write_text(out, name + ".izogrid",
-                 handoff::izogrid_text(contour, b.suggested_ny, latlongrid_for(frame.box()), description));
-    }
-    write_text(
-        out, name + ".toml",
-        block_config_text(c, name, description, b.suggested_ny, dir, global_path, has_global_key, global_checksum));
-
-    io::PreviewOutline outline{map_outline(b.box, rot), fmt::format("{}", k + 1)};
-    overview.outlines.push_back(outline);
-    write_block_picture(run, lat, outline, fmt::format("{}: {}", name, b.describe()), c.output.png_width,
-                        overview.elements, out.temp_path(name + ".png"));
-
-    const auto g = frame.geographic(0.5, 0.5);
-    list.push_back(block_json(b, k, name, g, contour.projection, insets, c.blocks.shrink_to_wet, out));
-    table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6.1f} {:>5}  {} ({:.4g}, {:.4g})", k + 1, name,
-                                b.describe(), box_text(b.box), b.coastal_pixels, 100.0 * b.wet_fraction, b.suggested_ny,
-                                std::string(name_of(p.kind)), g.lon_deg, g.lat_deg));
-  }
-  io::write_preview_png(run.mesh, *run.bathy, out.temp_path("blocks.png"), overview);
+  BlockRows rows;
+  rows.overview.width_px = c.output.png_width;
+  rows.overview.elements = c.mesh.elements;
+  rows.overview.title = fmt::format("aquatoria blocks: the {} best of {} coastal block{}", count, ranked.size(),
+                                    ranked.size() == 1 ? "" : "s");
+  rows.table.push_back(fmt::format("{:>4}  {:<10} {:<22} {:<44} {:>9} {:>6} {:>5}  {}", "rank", "name", "block",
+                                   "box (lon x lat, degrees)", "coast px", "wet %", "ny", "projection"));
+  for (std::size_t k = 0; k < count; ++k) w.write(k, ranked[k], rows);
+  io::write_preview_png(run.mesh, *run.bathy, out.temp_path("blocks.png"), rows.overview);
   write_stage.done(fmt::format("{} blocks (config, contour, picture) + blocks.png in {}", count, dir.string()));
 
   report["blocks"] = Json{{"lattice", lat.kind_name()},
@@ -362,14 +391,14 @@ int run_blocks(const BlocksArgs& a, const Logger& log) {
                           {"written", count},
                           {"coastal_pixel", "filled pixel with a non-filled pixel among its 8 neighbours"},
                           {"global_config", global_path},
-                          {"list", list}};
+                          {"list", rows.list}};
   report.finish();
   report["total"]["wall_s"] = std::round(total.wall_s() * 1000.0) / 1000.0;
   write_text(out, "blocks.json", report.dump() + "\n");
   out.commit();
   remove_stale_blocks_logged(dir, count, log);
 
-  for (const auto& line : table) fmt::print("{}\n", line);
+  for (const auto& line : rows.table) fmt::print("{}\n", line);
   std::fflush(stdout);
   log.info("blocks: {} configs in {}/ (global.toml, block_NNN.toml/.izogrid/.png, blocks.png, blocks.json; {:.2f} s)",
            count, dir.string(), total.wall_s());

@@ -153,9 +153,7 @@ int run_mesh(const MeshArgs& a, const Logger& main_log) {
   const config::GlobalConfig& c = loaded.options;
 
   Report report;
-  report["command"] = "mesh";
-  report["config_source"] = loaded.source;
-  report["config"] = loaded.echo;
+  start_report(report, "mesh", loaded.source, loaded.echo);
   report["config"]["output"]["name"] = c.output.name;
   report["config"]["output"]["dir"] = c.output.dir;
   warn_if_overwriting(c.output.dir, c.output.name + "_report.json", report["config"], Json::object(),

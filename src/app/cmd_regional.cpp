@@ -240,8 +240,10 @@ void write_xygrid_stage(const config::RegionalConfig& c, const std::string& sour
                       result.grid.nx_pts, result.grid.ny_pts, result.nx, result.ny, q.ortho_50.worst, q.ortho_50.rms));
 }
 
-int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
-  Timer total;
+// The configuration of a regional run (-c FILE.toml or a seed-format FILE.izogrid, --set, -o),
+// checked against the run's earlier outputs and its parent; `inputs` gets the input files'
+// checksums (regional_inputs).
+config::Loaded<config::RegionalConfig> load_regional_run(const RegionalArgs& a, Json& inputs, const Logger& log) {
   const std::string path = !a.config.empty() ? a.config : a.file;
   if (path.empty()) throw ConfigError("regional: give a configuration (-c FILE.toml) or a seed-format FILE.izogrid");
   if (!a.config.empty() && !a.file.empty())
@@ -250,7 +252,7 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
   auto& c = loaded.options;
   if (!a.out_dir.empty()) c.output_dir = a.out_dir;
   check_global_config_checksum(c, loaded.source);
-  const Json inputs = regional_inputs(c);
+  inputs = regional_inputs(c);
   {
     const auto old = read_report(std::filesystem::path(c.output_dir) / (c.name + "_report.json"));
     check_parent_unchanged(c, inputs, old ? &*old : nullptr, a.force, loaded.source, log);
@@ -266,47 +268,46 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
           "keep the runs apart",
           c.name, loaded.source);
   }
+  return loaded;
+}
 
-  const curvilinear::Stage stage = regional_stage(a, c, path, log);
-
-  Report report;
-  report["command"] = "regional";
-  report["config_source"] = loaded.source;
-  report["config"] = loaded.echo;
-  report["inputs"] = inputs;
-  OutputSet out(c.output_dir, log);
-
-  // A refinement grid is cut from its parent (app/regional_refine.hpp); any other from its contour.
-  std::optional<RefinedGrid> refined;
-  curvilinear::RegionalResult built;
+// The grid up to `stage`: a refinement grid is cut from its parent (app/regional_refine.hpp) into
+// `refined` (and `c.params` becomes the parent's plane, for the files' attributes); any other is
+// built from its contour and returned.
+curvilinear::RegionalResult build_regional_grid(config::RegionalConfig& c, const std::string& source,
+                                                const std::string& path, curvilinear::Stage stage,
+                                                std::optional<RefinedGrid>& refined, Report& report,
+                                                const Logger& log) {
   if (c.nesting.refinement()) {
     if (!c.params.x.empty() || !c.contour_file.empty())
       log.warn(
           "{}: a refinement grid is cut from nesting.parent; the contour (regional.control_points{}) is not "
           "used",
           path, c.contour_file.empty() ? "" : ", regional.contour_file = " + c.contour_file);
-    refined = build_refinement(c, loaded.source, log, &report);
+    refined = build_refinement(c, source, log, &report);
     c.params = refined->result.params;  // the parent's plane, for the files' attributes
-  } else {
-    // A bathymetry-weighted control function (regional.weight_depth) samples the [input] raster.
-    std::optional<raster::Bathymetry> bathy;
-    curvilinear::DepthSampler depth;
-    if (c.params.weight_depth > 0.0 && curvilinear::uses_weight(c.params.method) && !c.input.path.empty()) {
-      bathy.emplace(raster::Bathymetry::open(raster_options(c.input, 0), log));
-      depth = [&bathy](double lon, double lat) { return -bathy->sample(lon, lat); };
-    }
-    built = curvilinear::run_regional(c.params, stage, log, &report, bathy ? &depth : nullptr);
+    return {};
   }
-  const curvilinear::RegionalResult& result = refined ? refined->result : built;
+  // A bathymetry-weighted control function (regional.weight_depth) samples the [input] raster.
+  std::optional<raster::Bathymetry> bathy;
+  curvilinear::DepthSampler depth;
+  if (c.params.weight_depth > 0.0 && curvilinear::uses_weight(c.params.method) && !c.input.path.empty()) {
+    bathy.emplace(raster::Bathymetry::open(raster_options(c.input, 0), log));
+    depth = [&bathy](double lon, double lat) { return -bathy->sample(lon, lat); };
+  }
+  return curvilinear::run_regional(c.params, stage, log, &report, bathy ? &depth : nullptr);
+}
 
-  // Coastline from the bathymetry's contour at coast_level_m.
+// The picture of the completed stage, <name>_<stage>.png (not for the seed's mode 5 run to the
+// grid), its coastline the bathymetry's contour at coast_level_m.
+void write_regional_picture(const RegionalArgs& a, const config::RegionalConfig& c,
+                            const curvilinear::RegionalResult& result, curvilinear::Stage stage, OutputSet& out,
+                            Json& outputs, Report& report, const Logger& log) {
   io::RegionalPictureOptions po;
   po.line_width = c.params.lwidth;
   po.title = fmt::format("{}: {}", c.name, std::string(name_of(result.completed)));
   if (!a.no_coastline && !c.input.path.empty() && result.projection)
     po.coastlines = regional_coastlines(c, result, report, log);
-
-  Json outputs = Json::array();
   const std::string png = fmt::format("{}_{}.png", c.name, std::string(name_of(result.completed)));
   if (c.params.mode != 5 || stage != curvilinear::Stage::kGrid) {
     StageScope ps("picture", &report, log);
@@ -314,7 +315,28 @@ int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
     outputs.push_back(Json{{"file", png}, {kChecksumKey, file_checksum(out.pending_path(png))}});
     ps.done(png);
   }
+}
 
+int run_regional_cmd(const RegionalArgs& a, const Logger& log) {
+  Timer total;
+  const std::string path = !a.config.empty() ? a.config : a.file;
+  Json inputs;
+  auto loaded = load_regional_run(a, inputs, log);
+  auto& c = loaded.options;
+
+  const curvilinear::Stage stage = regional_stage(a, c, path, log);
+
+  Report report;
+  start_report(report, "regional", loaded.source, loaded.echo);
+  report["inputs"] = inputs;
+  OutputSet out(c.output_dir, log);
+
+  std::optional<RefinedGrid> refined;
+  const curvilinear::RegionalResult built = build_regional_grid(c, loaded.source, path, stage, refined, report, log);
+  const curvilinear::RegionalResult& result = refined ? refined->result : built;
+
+  Json outputs = Json::array();
+  write_regional_picture(a, c, result, stage, out, outputs, report, log);
   if (result.completed == curvilinear::Stage::kGrid)
     write_xygrid_stage(c, loaded.source, result, out, outputs, report, log);
 

@@ -177,10 +177,11 @@ static double forest_bytes(const Lattice& l, double triangles, int ranks) {
          kForestGatherBytesPerLeaf * leaves;
 }
 
-GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
-  GlobalSetup s;
+// The lattice (a window lattice for a regional run), the rotation, the memory limit and the
+// estimates of the lattice bitmaps and the mesh; refuses a dense lattice whose bitmaps alone pass
+// the limit.
+static void plan_lattice(GlobalSetup& s, const config::GlobalConfig& c, const SetupOptions& o) {
   s.masks_kept = o.keep_masks;
-  mask::check_passage_names(c.mask);  // a misspelt passage fails before anything is read
   s.lattice = c.quadtree.lattice == LatticeKind::kMercator
                   ? Lattice::make_mercator(c.quadtree.step_deg, c.quadtree.levels, c.quadtree.lon0_deg,
                                            c.quadtree.mercator_lat_max_deg)
@@ -213,10 +214,10 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
         lat.levels, lat.step0_deg, lat.nx, lat.ny, estimate_lattice_bytes_f(lat) / 1e9,
         static_cast<double>(s.memory_limit_bytes) / 1e9));
   }
-  // The rasters: their headers only (nothing is read), whole or streamed, and the whole estimate.
-  // Several sources (input.paths) add up; a source above another with input.blend_km > 0 also
-  // holds its distance field (4 bytes per cell) and, while it is computed, 9 bytes per cell more.
-  const std::vector<std::string> paths = c.input.sources();
+}
+
+// The lon/lat box [lon_min, lon_max, lat_min, lat_max] the rasters are read over (NaN: whole).
+static std::array<double, 4> raster_window(const GlobalSetup& s, const config::GlobalConfig& c) {
   // A regional run reads each raster over the window lattice (the domain's lon/lat box and one
   // level-0 square more on every side) and two pixels more (README "Regional FE meshes"): the
   // classification (mask/wet_area) samples the window, and nothing else samples outside the
@@ -245,6 +246,14 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
     }
     if (window[1] - window[0] >= 360.0) window[0] = window[1] = kNaN;
   }
+  return window;
+}
+
+// The rasters: their headers only (nothing is read), whole or streamed, and the whole estimate.
+// Several sources (input.paths) add up; a source above another with input.blend_km > 0 also
+// holds its distance field (4 bytes per cell) and, while it is computed, 9 bytes per cell more.
+static void plan_sources(GlobalSetup& s, const config::GlobalConfig& c, const std::array<double, 4>& window) {
+  const std::vector<std::string> paths = c.input.sources();
   for (std::size_t k = 0; k < paths.size(); ++k) {
     raster::OpenOptions ro = raster_options(c.input, s.memory_limit_bytes);
     ro.path = paths[k];
@@ -282,6 +291,11 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
     s.source_options.push_back(ro);
     s.source_plans.push_back(plan);
   }
+}
+
+// The whole estimate against input.max_memory_gb (ConfigError naming the key and why the raster
+// is held whole where it is).
+static void check_memory_estimate(GlobalSetup& s, const config::GlobalConfig& c) {
   s.estimate_bytes = saturate(model_bytes(s, static_cast<double>(s.mesh_bytes)));
   if (s.memory_limit_bytes > 0 && s.estimate_bytes > s.memory_limit_bytes) {
     std::string why;
@@ -300,6 +314,14 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
                     s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
                     gb(s.memory_limit_bytes)));
   }
+}
+
+GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions& o) {
+  GlobalSetup s;
+  mask::check_passage_names(c.mask);  // a misspelt passage fails before anything is read
+  plan_lattice(s, c, o);
+  plan_sources(s, c, raster_window(s, c));
+  check_memory_estimate(s, c);
   return s;
 }
 
@@ -618,10 +640,8 @@ static void input_json(const raster::Bathymetry& bathy, const config::GlobalConf
 
 GlobalRun run_global_leaves(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log, Report* report,
                             bool reuse) {
-  if (c.quadtree.engine == config::QuadtreeEngine::kForest)
-    throw ConfigError(
-        "quadtree.engine = \"forest\": this command needs the dense engine's bitmaps; quadtree.engine = "
-        "\"dense\" (aquatoria mesh runs the forest)");
+  if (c.quadtree.engine == config::QuadtreeEngine::kForest)  // refused at load (config::GlobalUse::kMask)
+    throw InternalError("run_global_leaves: the forest engine makes no bitmaps");
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -928,11 +948,7 @@ static void report_forest_mask(GlobalRun& run, const forest::ForestLeaves& fl, c
 static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const GlobalSetup& setup, const Logger& log,
                                      Report* report, bool statistics, bool keep_masks) {
 #ifdef AQ_HAVE_MPI
-  if (c.output.writes(config::OutputFormat::kTif))
-    throw ConfigError(
-        "output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the "
-        "forest engine never makes; quadtree.engine = \"dense\" writes it");
-  forest::start_mpi();
+  forest::start_mpi();  // (config::load_global refuses output.formats "tif" on the forest)
   GlobalRun run;
   run.setup = setup;
   const Lattice& lat = setup.lattice;
@@ -986,10 +1002,9 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   (void)report;
   (void)statistics;
   (void)keep_masks;
-  throw ConfigError(
-      fmt::format("quadtree.engine = \"{}\": this aquatoria was built without the forest engine "
-                  "(AQ_MPI=OFF: p4est and MPI were not found; scripts/install_deps.sh installs them)",
-                  config::engine_name(c.quadtree.engine)));
+  // config::load_global refuses quadtree.engine = "forest" in this build (forest_engine_built).
+  throw InternalError(fmt::format("quadtree.engine = \"{}\" in a build without the forest engine",
+                                  config::engine_name(c.quadtree.engine)));
 #endif
 }
 

@@ -12,6 +12,12 @@ namespace aq::app {
 
 namespace fs = std::filesystem;
 
+void start_report(Report& report, const char* command, const std::string& config_source, const Json& echo) {
+  report["command"] = command;
+  report["config_source"] = config_source;
+  report["config"] = echo;
+}
+
 std::vector<std::string> config_differences(const Json& before, const Json& after) {
   std::vector<std::string> out;
   const auto value_at = [](const Json& j, const std::string& sec, const std::string& key) -> const Json* {

@@ -15,6 +15,10 @@
 
 namespace aq::app {
 
+/// The head of a command's run report: "command", "config_source" (the configuration file, or
+/// "built-in defaults") and "config" (its echo), in that order.
+void start_report(Report& report, const char* command, const std::string& config_source, const Json& echo);
+
 /// The keys whose values differ between two configuration echoes ({section: {key: value}}), as
 /// "section.key: old -> new" (or "(absent)"), in the order of `after`, then keys only in `before`.
 std::vector<std::string> config_differences(const Json& before, const Json& after);

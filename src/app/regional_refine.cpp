@@ -165,6 +165,40 @@ RefinedGrid build_refinement(const config::RegionalConfig& c, const std::string&
   return g;
 }
 
+// The report's section of the parent/child depth rounds (nest_in_parent).
+static Json nesting_report_json(const config::RegionalConfig& c, const handoff::NestedDepthResult& nd,
+                                const handoff::NestedMaskStats& nm, double parent_rmax, double parent_rx0_input) {
+  return Json{{"parent_file", nested_parent_file(c)},
+              {"rounds", nd.rounds},
+              {"settled", nd.settled},
+              {"last_round_change_m", nd.last_round_change_m},
+              {"parent_rmax", parent_rmax},
+              {"parent_rx0_input", parent_rx0_input},
+              {"parent_rx0", nd.parent_rx0},
+              {"child_rx0", nd.child_rx0},
+              {"parent_points_changed", nd.parent_points_changed},
+              {"parent_points_changed_outside_footprint", nd.parent_outside_changed},
+              {"parent_max_change_m", nd.parent_max_change_m},
+              {"parent_mean_change_wet_footprint_m", nd.parent_mean_change_wet_m},
+              {"blocks_deepened", nd.blocks_raised},
+              {"block_deepening_max_m", nd.block_raise_max_m},
+              {"parent_mask_changed", nm.parent_rho_changed},
+              {"ring_mask_changed", nm.child_ring_changed},
+              {"invariant_residual_m", nd.invariant_residual_m}};
+}
+
+// The summary line of the parent/child depth rounds (nest_in_parent).
+static std::string nesting_summary_line(const config::RegionalConfig& c, const handoff::NestedDepthResult& nd,
+                                        const handoff::NestedMaskStats& nm) {
+  return fmt::format(
+      "; parent {} over the footprint: h = the block averages to {:.2g} m after {} round{} ({} parent points "
+      "changed, max {:.4g} m; {} blocks deepened, max {:.4g} m), rx0 {:.3g} (parent) and {:.3g}, masks: {} "
+      "parent cells and {} ring points changed",
+      nested_parent_file(c), nd.invariant_residual_m, nd.rounds, nd.rounds == 1 ? "" : "s", nd.parent_points_changed,
+      nd.parent_max_change_m, nd.blocks_raised, nd.block_raise_max_m, nd.parent_rx0, nd.child_rx0,
+      nm.parent_rho_changed, nm.child_ring_changed);
+}
+
 NestedDepths nest_in_parent(const config::RegionalConfig& c, const curvilinear::CGrid& cg,
                             const std::vector<double>& hraw, const curvilinear::DepthOptions& dopt,
                             mask::RomsMasks& masks, RefinedGrid& g, const Logger& log) {
@@ -239,30 +273,8 @@ NestedDepths nest_in_parent(const config::RegionalConfig& c, const curvilinear::
       "over the footprint = the refinement's at each cell's centre ({} changed), mask_u/v/psi products",
       box.i_left, box.i_right - 1, box.j_bottom, box.j_top - 1, in.parent_rmax, nd.parent_points_changed,
       nd.parent_outside_changed, nd.parent_max_change_m, nd.parent_mean_change_wet_m, nm.parent_rho_changed);
-  out.report = Json{{"parent_file", nested_parent_file(c)},
-                    {"rounds", nd.rounds},
-                    {"settled", nd.settled},
-                    {"last_round_change_m", nd.last_round_change_m},
-                    {"parent_rmax", in.parent_rmax},
-                    {"parent_rx0_input", parent_rx0_input},
-                    {"parent_rx0", nd.parent_rx0},
-                    {"child_rx0", nd.child_rx0},
-                    {"parent_points_changed", nd.parent_points_changed},
-                    {"parent_points_changed_outside_footprint", nd.parent_outside_changed},
-                    {"parent_max_change_m", nd.parent_max_change_m},
-                    {"parent_mean_change_wet_footprint_m", nd.parent_mean_change_wet_m},
-                    {"blocks_deepened", nd.blocks_raised},
-                    {"block_deepening_max_m", nd.block_raise_max_m},
-                    {"parent_mask_changed", nm.parent_rho_changed},
-                    {"ring_mask_changed", nm.child_ring_changed},
-                    {"invariant_residual_m", nd.invariant_residual_m}};
-  out.line = fmt::format(
-      "; parent {} over the footprint: h = the block averages to {:.2g} m after {} round{} ({} parent points "
-      "changed, max {:.4g} m; {} blocks deepened, max {:.4g} m), rx0 {:.3g} (parent) and {:.3g}, masks: {} "
-      "parent cells and {} ring points changed",
-      nested_parent_file(c), nd.invariant_residual_m, nd.rounds, nd.rounds == 1 ? "" : "s", nd.parent_points_changed,
-      nd.parent_max_change_m, nd.blocks_raised, nd.block_raise_max_m, nd.parent_rx0, nd.child_rx0,
-      nm.parent_rho_changed, nm.child_ring_changed);
+  out.report = nesting_report_json(c, nd, nm, in.parent_rmax, parent_rx0_input);
+  out.line = nesting_summary_line(c, nd, nm);
   return out;
 }
 

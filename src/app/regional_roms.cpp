@@ -367,20 +367,13 @@ RegionalGlobal run_regional_global(const config::RegionalConfig& c, const Logger
   };
   RegionalGlobal r;
   try {
-    r.loaded =
-        config::load_global(c.roms.global_config.empty() ? std::optional<std::string>() : c.roms.global_config, {});
+    // A floodplain or several rasters are refused there, at their positions (config::GlobalUse).
+    r.loaded = config::load_global(c.roms.global_config.empty() ? std::optional<std::string>() : c.roms.global_config,
+                                   {}, config::GlobalUse::kRomsGlobal);
   } catch (const ConfigError& e) {
     throw named(e);
   }
   config::GlobalConfig& g = r.loaded.options;
-  // A floodplain is land the FE models wet and dry; the ROMS grid's mask follows the global fill
-  // (land where the elevation is above −h) and its h is clipped at roms.hmin_m, so the floodplain
-  // would become water hmin_m deep.
-  if (g.mask.min_depth_m < 0.0)
-    throw named(ConfigError(fmt::format(
-        "mask.min_depth_m = {} meshes a floodplain up to {} m above the datum, which a ROMS grid's land mask and "
-        "depth (clipped at roms.hmin_m) cannot hold: give a global config with mask.min_depth_m >= 0",
-        g.mask.min_depth_m, -g.mask.min_depth_m)));
   if (g.mesh.elements == config::ElementKinds::kSquares)
     g.mesh.elements = config::ElementKinds::kTriangles;  // the nesting weights live on triangles
   GlobalSetup setup;
@@ -422,11 +415,9 @@ void write_regional_roms(const config::RegionalConfig& c, const std::string& con
     log.warn("roms: regional.radius = {} m but roms.earth_radius_m = {} m; the ROMS file uses roms.earth_radius_m",
              c.params.projection.radius_m, c.roms.earth_radius_m);
   const raster::Bathymetry& bathy = *global.run.bathy;
-  if (bathy.source_count() > 1)
-    throw ConfigError(fmt::format(
-        "roms.global_config = {}: its input.paths lists {} rasters; a ROMS grid's cell depths are statistics "
-        "over one raster's cells, so the global run it shares must read one raster (input.path)",
-        global.loaded.source, bathy.source_count()));
+  if (bathy.source_count() > 1)  // refused when roms.global_config was loaded (config::GlobalUse::kRomsGlobal)
+    throw InternalError(
+        fmt::format("roms: the global run {} reads {} rasters", global.loaded.source, bathy.source_count()));
 
   const int ni = cg.L + 1, nj = cg.M + 1;
   const std::size_t nr = cg.rho.size();

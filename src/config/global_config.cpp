@@ -618,7 +618,97 @@ void cross_check(GlobalConfig& c, Problems& p) {
                              key, c.mask.min_depth_m, key));
 }
 
+// What the forest engine (quadtree.engine = "forest", README "The forest engine") cannot do, from
+// the keys alone. Its patches are P × P pixels, P = 2^min(L, 7) (forest_patch_pixels): the coastal
+// band and the K-cursor must fit in one.
+void forest_check(const GlobalConfig& c, Problems& p) {
+  if (c.quadtree.engine != QuadtreeEngine::kForest) return;
+  if (!forest_engine_built())
+    return p.add_key("quadtree.engine",
+                     "\"forest\": this aquatoria was built without the forest engine (AQ_MPI=OFF: p4est and MPI "
+                     "were not found; scripts/install_deps.sh installs them); use \"dense\"");
+  if (c.mask.sampling == Sampling::kArea)
+    p.add_keys({"mask.sampling", "quadtree.engine"},
+               "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; quadtree.engine = "
+               "\"dense\" for the area rule");
+  if (c.output.writes(OutputFormat::kTif))
+    p.add_keys({"output.formats", "quadtree.engine"},
+               "output.formats = [..., \"tif\"]: the global run file holds the lattice's bitmaps, which the forest "
+               "engine never makes; quadtree.engine = \"dense\" writes it");
+  if (c.quadtree.levels < 1)
+    return p.add_keys({"quadtree.levels", "quadtree.engine"},
+                      "quadtree.levels = 0: the forest engine needs at least one level (quadtree.engine = \"dense\")");
+  const std::int64_t patch = forest_patch_pixels(c.quadtree.levels);
+  if (c.quadtree.coast_band > patch)
+    p.add_keys({"quadtree.coast_band", "quadtree.levels", "quadtree.engine"},
+               fmt::format("quadtree.coast_band = {}: the forest engine needs at most {} pixels (its patches of "
+                           "2^min(quadtree.levels, {}) pixels); more quadtree.levels, or quadtree.engine = \"dense\"",
+                           c.quadtree.coast_band, patch, kForestMaxPatchLog2));
+  if (c.mask.cursor > patch)
+    p.add_keys({"mask.cursor", "quadtree.levels", "quadtree.engine"},
+               fmt::format("mask.cursor = {}: the forest engine needs K <= {} pixels (its patches of "
+                           "2^min(quadtree.levels, {}) pixels); more quadtree.levels, or quadtree.engine = \"dense\"",
+                           c.mask.cursor, patch, kForestMaxPatchLog2));
+}
+
+// output.png_zoom on the Mercator lattice must reach its rows (|φ′| up to mercator_lat_max_deg
+// rounded up to whole level-0 squares).
+void png_zoom_check(const GlobalConfig& c, Problems& p) {
+  const QuadtreeOptions& q = c.quadtree;
+  const std::vector<double>& z = c.output.png_zoom;
+  if (q.lattice != LatticeKind::kMercator || z.size() != 4 || !Lattice::step_problem(q.step_deg).empty() ||
+      !in_range(q.mercator_lat_max_deg, 1.0, 89.5).empty() || !in_range(q.levels, 0, 20).empty() ||
+      !std::isfinite(q.lon0_deg))
+    return;
+  const double cap = Lattice::make_mercator(q.step_deg, q.levels, q.lon0_deg, q.mercator_lat_max_deg).lat_max_deg();
+  if (!(std::max(z[2], -cap) < std::min(z[3], cap)))
+    p.add_keys({"output.png_zoom", "quadtree.mercator_lat_max_deg", "quadtree.lattice"},
+               fmt::format("output.png_zoom: latitudes [{}, {}] are outside the Mercator lattice's rows (|φ′| <= "
+                           "{:.4f})",
+                           z[2], z[3], cap));
+}
+
+// What the command the configuration is loaded for cannot take (load_global's `use`).
+void use_check(const GlobalConfig& c, GlobalUse use, Problems& p) {
+  if (use == GlobalUse::kMesh) return;
+  if (use == GlobalUse::kMask) {
+    if (c.quadtree.engine == QuadtreeEngine::kForest)
+      p.add_key("quadtree.engine",
+                "\"forest\": the mask and levels are the dense engine's bitmaps, which the forest never makes; "
+                "quadtree.engine = \"dense\" (a mesh runs on the forest too)");
+    return;
+  }
+  // The blocks become regional ROMS grids (app/regional_roms.cpp); a ROMS grid's mask follows the
+  // global fill (land where the elevation is above −h) and its h is clipped at roms.hmin_m, so a
+  // floodplain would become water hmin_m deep.
+  if (c.mask.min_depth_m < 0.0)
+    p.add_key("mask.min_depth_m",
+              use == GlobalUse::kBlocks
+                  ? fmt::format("mask.min_depth_m = {} meshes a floodplain above the datum; the blocks' regional ROMS "
+                                "grids share this run's land mask and cannot hold it: run `aquatoria blocks` with "
+                                "mask.min_depth_m >= 0",
+                                c.mask.min_depth_m)
+                  : fmt::format("mask.min_depth_m = {} meshes a floodplain up to {} m above the datum, which a ROMS "
+                                "grid's land mask and depth (clipped at roms.hmin_m) cannot hold: give a global "
+                                "config with mask.min_depth_m >= 0",
+                                c.mask.min_depth_m, -c.mask.min_depth_m));
+  // A ROMS grid's cell depths are statistics over one raster's cells.
+  if (use == GlobalUse::kRomsGlobal && c.input.sources().size() > 1)
+    p.add_key("input.paths",
+              fmt::format("input.paths lists {} rasters; a ROMS grid's cell depths are statistics over one raster's "
+                          "cells, so the global run it shares must read one raster (input.path)",
+                          c.input.sources().size()));
+}
+
 }  // namespace
+
+bool forest_engine_built() {
+#ifdef AQ_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
 
 std::string output_name_problem(const std::string& name) {
   if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
@@ -648,7 +738,8 @@ std::vector<KeyProblem> output_problems(const OutputOptions& o, ElementKinds ele
 Json rule_json(const DepthRule& r) { return rule_json(r, kDepthRuleFields); }
 Json rule_json(const BoxRule& r) { return rule_json(r, kBoxRuleFields); }
 
-Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides,
+                                 GlobalUse use) {
   Loaded<GlobalConfig> out;
   Problems p;
   out.source = "built-in defaults";
@@ -665,6 +756,9 @@ Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const s
   // round, a non-empty input.paths is used anyway).
   if (out.options.input.path_layer == 2 && out.options.input.paths_layer == 1) out.options.input.paths.clear();
   cross_check(out.options, p);
+  forest_check(out.options, p);
+  png_zoom_check(out.options, p);
+  use_check(out.options, use, p);
   p.throw_if_any(out.source);
   out.echo = schema().echo(out.options);
   return out;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 
 #include "core/enum_names.hpp"
@@ -114,6 +115,14 @@ inline constexpr std::array<EnumName<QuadtreeEngine>, 2> kQuadtreeEngineNames{{
 constexpr std::span<const EnumName<QuadtreeEngine>> enum_names(QuadtreeEngine) { return kQuadtreeEngineNames; }
 /// The name of `e` (kQuadtreeEngineNames).
 [[nodiscard]] inline const char* engine_name(QuadtreeEngine e) { return name_of(e).data(); }
+
+/// The forest engine's patches (forest/patches.hpp) are P × P pixels, P = 2^min(L, this): what
+/// its stencils (the coastal band, the K-cursor) may reach across.
+inline constexpr int kForestMaxPatchLog2 = 7;
+/// P, the side of the forest engine's patches in pixels, for quadtree.levels = `levels` (>= 0).
+[[nodiscard]] constexpr std::int64_t forest_patch_pixels(int levels) {
+  return std::int64_t{1} << (levels < kForestMaxPatchLog2 ? levels : kForestMaxPatchLog2);
+}
 
 /// output.png_color: what fills the elements of the preview (pictures/preview_png.hpp).
 enum class PreviewColour { kLevel, kAngle, kSize, kTarget, kElevation };

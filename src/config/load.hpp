@@ -23,9 +23,24 @@ struct Loaded {
   std::string source;  ///< the file, or "built-in defaults"
 };
 
+/// What a global configuration is loaded for: the command's own refusals join the checks at load.
+enum class GlobalUse {
+  kMesh,        ///< `aquatoria mesh` (and the Python binding)
+  kBlocks,      ///< `aquatoria blocks`: its blocks become ROMS grids (no floodplain)
+  kRomsGlobal,  ///< roms.global_config of a regional ROMS grid (no floodplain, one raster)
+  kMask,        ///< the mask and levels of a run (Python's mask()): the dense engine's bitmaps
+};
+
 /// Reads the global-run configuration from `path` (or the built-in defaults when empty) and
-/// applies `overrides` ("section.key=value"). Throws ConfigError listing every problem.
-Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides);
+/// applies `overrides` ("section.key=value"). Throws ConfigError listing every problem, each at
+/// the position of the value at fault: bad values, keys that contradict each other, what the
+/// forest engine (quadtree.engine = "forest") cannot do, and what `use` cannot take.
+Loaded<GlobalConfig> load_global(const std::optional<std::string>& path, const std::vector<std::string>& overrides,
+                                 GlobalUse use = GlobalUse::kMesh);
+
+/// Whether this build has the forest engine (AQ_MPI: p4est and MPI); without it load_global
+/// refuses quadtree.engine = "forest".
+bool forest_engine_built();
 
 /// A depth or box rule as the user gives it in [quadtree]: its range fields, then `size_km` when
 /// it is a size rule (size_km != 0), else `level`. The echo of quadtree.depth_rules / box_rules.

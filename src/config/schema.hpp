@@ -23,6 +23,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/edit_distance.hpp"
 #include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/input_files.hpp"
@@ -452,20 +453,7 @@ class Schema {
       if (k.section == s && k.name == n) return &k;
     return nullptr;
   }
-  static std::size_t distance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> d(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) d[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      std::size_t prev = d[0];
-      d[0] = i;
-      for (std::size_t j = 1; j <= b.size(); ++j) {
-        const std::size_t cur = d[j];
-        d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (a[i - 1] == b[j - 1] ? 0 : 1)});
-        prev = cur;
-      }
-    }
-    return d[b.size()];
-  }
+  static std::size_t distance(const std::string& a, const std::string& b) { return edit_distance(a, b); }
   [[nodiscard]] std::string suggest_key(const std::string& sec, const std::string& name) const {
     std::string best;
     std::size_t bd = 3;

@@ -295,12 +295,8 @@ class WindowComponents {
 };
 
 void check_cursor(int k, std::int64_t p) {
-  if (k < 1 || k > 64) throw ConfigError(fmt::format("mask.cursor = {}: K must be between 1 and 64", k));
-  if (k > p)
-    throw ConfigError(
-        fmt::format("mask.cursor = {}: the forest engine needs K <= {} pixels (its patches of 2^min(L, "
-                    "7) pixels); more quadtree.levels, or quadtree.engine = \"dense\"",
-                    k, p));
+  // config::load_global refuses mask.cursor outside 1..64 and above the patch size (forest_check).
+  if (k < 1 || k > 64 || k > p) throw InternalError(fmt::format("forest_fill: K = {} with patches of {} pixels", k, p));
 }
 
 std::string seed_name(std::size_t n, const std::array<double, 2>& s) {
@@ -333,9 +329,9 @@ Candidate best_over_ranks(const Comm& comm, const Candidate& mine) {
 std::vector<mask::SeedInfo> place_seeds(const PatchForest& pf, WindowComponents& wc, int k, const PoleRotation& rot,
                                         const std::vector<std::array<double, 2>>& seeds, double radius_deg,
                                         const Logger& log) {
-  if (seeds.empty()) throw ConfigError("mask.seeds = []: give at least one [lon, lat] point in the ocean");
-  if (!std::isfinite(radius_deg) || radius_deg < 0.0)
-    throw ConfigError(fmt::format("mask.seed_radius_deg = {}: must be a finite number >= 0", radius_deg));
+  // config::load_global refuses an empty mask.seeds and a mask.seed_radius_deg outside [0, 180].
+  if (seeds.empty() || !std::isfinite(radius_deg) || radius_deg < 0.0)
+    throw InternalError(fmt::format("forest_fill: {} seeds, search radius {}°", seeds.size(), radius_deg));
   const Lattice& lattice = pf.grid().lat;
   const std::int64_t nx = lattice.nx, ny = lattice.ny, p = pf.grid().size;
   const double dpx = lattice.pixel_deg();

@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "config/kinds.hpp"
 #include "core/bitmap.hpp"
 #include "core/lattice.hpp"
 #include "forest/comm.hpp"
@@ -28,8 +29,8 @@
 
 namespace aq::forest {
 
-/// At most this many pixels per patch side (log2).
-inline constexpr int kMaxPatchLog2 = 7;
+/// At most this many pixels per patch side (log2); the configuration's checks at load know it too.
+inline constexpr int kMaxPatchLog2 = config::kForestMaxPatchLog2;
 
 struct PatchGrid {
   Lattice lat;

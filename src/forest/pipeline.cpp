@@ -260,16 +260,10 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   collective(comm, [&] {
     if (!std::isfinite(mo.min_depth_m))
       throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", mo.min_depth_m));
-    if (mo.sampling != config::Sampling::kVertex)
-      throw ConfigError(
-          "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
-          "quadtree.engine = \"dense\" for the area rule");
-    if (!std::isfinite(mo.seed_radius_deg) || mo.seed_radius_deg < 0.0)
-      throw ConfigError(fmt::format("mask.seed_radius_deg = {}: must be a finite number >= 0", mo.seed_radius_deg));
-    if (mo.seeds.empty()) throw ConfigError("mask.seeds = []: give at least one [lon, lat] point in the ocean");
-    if (lat.levels < 1)
-      throw ConfigError(
-          "quadtree.levels = 0: the forest engine needs at least one level (quadtree.engine = \"dense\")");
+    // mask.sampling, the seeds, quadtree.levels, coast_band and mask.cursor against the patches:
+    // config::load_global refuses what the forest cannot do (forest_check), with its position.
+    if (mo.sampling != config::Sampling::kVertex || mo.seeds.empty() || lat.levels < 1)
+      throw InternalError("forest: a configuration load_global refuses (area sampling, no seed or no level)");
   });
   st->brick = std::make_unique<LatticeBrick>(lat);
   st->patches = std::make_unique<PatchForest>(*st->brick, comm);

@@ -43,14 +43,10 @@ ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>
   lp_ = g.level;
   plog_ = g.plog;
   p_ = g.size;
-  if (plog_ < 1)
-    throw ConfigError("quadtree.levels = 0: the forest engine needs at least one level (quadtree.engine = \"dense\")");
-  if (coast_band < 0) throw ConfigError(fmt::format("quadtree.coast_band = {}: must be >= 0 (pixels)", coast_band));
-  if (coast_band > p_)
-    throw ConfigError(
-        fmt::format("quadtree.coast_band = {}: the forest engine needs at most {} pixels (its patches); "
-                    "quadtree.engine = \"dense\"",
-                    coast_band, p_));
+  // config::load_global refuses quadtree.levels = 0 and a coastal band wider than a patch.
+  if (plog_ < 1 || coast_band < 0 || coast_band > p_)
+    throw InternalError(
+        fmt::format("ForestPyramid: L = {}, coast band {} with patches of {} pixels", L_, coast_band, p_));
   ghosts_ = pf.exchange(filled);
   if (open_ != nullptr) open_ghosts_ = pf.exchange(*open_);
   if (sea_ != nullptr) sea_ghosts_ = pf.exchange(*sea_);

@@ -11,6 +11,7 @@
 #include <queue>
 #include <utility>
 
+#include "core/edit_distance.hpp"
 #include "core/error.hpp"
 #include "core/types.hpp"
 #include "mask/passages.hpp"
@@ -44,23 +45,6 @@ LonLat to_lonlat(const V3& v) {
 }
 double arc_deg(const V3& a, const V3& b) {
   return std::atan2(std::sqrt(dot(cross(a, b), cross(a, b))), dot(a, b)) * kRadToDeg;
-}
-
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> d(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) d[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t prev = d[0];
-    d[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cur = d[j];
-      const bool same =
-          std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
-      d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (same ? 0 : 1)});
-      prev = cur;
-    }
-  }
-  return d[b.size()];
 }
 
 // Douglas–Peucker on lon/lat points in a local plane (x scaled by cos of the mean latitude):
@@ -474,7 +458,7 @@ void check_passage_names(const config::MaskOptions& options) {
     std::string best;
     std::size_t bd = 4;
     for (const Passage& p : critical_passages())
-      if (const std::size_t d = edit_distance(p.name, name); d < bd) {
+      if (const std::size_t d = edit_distance(p.name, name, /*ignore_case=*/true); d < bd) {
         bd = d;
         best = p.name;
       }

@@ -15,11 +15,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "support/cli_outputs.hpp"
+#include "support/fort14_read.hpp"
 #include "support/run_command.hpp"
 
 namespace cli_passages_cli_test {
@@ -39,68 +41,8 @@ std::string bytes(const fs::path& p) {
   return s.str();
 }
 
-// The nodes and boundary segments of a fort.14.
-struct Fort14 {
-  std::vector<double> lon, lat;
-  std::vector<std::vector<long>> open;                  // 0-based node numbers per open segment
-  std::vector<std::pair<int, std::vector<long>>> land;  // IBTYPE, nodes
-};
-
-Fort14 read_fort14(const fs::path& p) {
-  Fort14 f;
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);
-  long ne = 0, np = 0;
-  in >> ne >> np;
-  f.lon.resize(static_cast<std::size_t>(np));
-  f.lat.resize(f.lon.size());
-  for (long k = 0; k < np; ++k) {
-    long id = 0;
-    double depth = 0.0;
-    in >> id >> f.lon[static_cast<std::size_t>(id - 1)] >> f.lat[static_cast<std::size_t>(id - 1)] >> depth;
-  }
-  for (long k = 0; k < ne; ++k) {
-    long id = 0, n = 0, a = 0, b = 0, c = 0;
-    in >> id >> n >> a >> b >> c;
-  }
-  long nope = 0, neta = 0;
-  in >> nope;
-  std::getline(in, line);
-  in >> neta;
-  std::getline(in, line);
-  for (long s = 0; s < nope; ++s) {
-    long n = 0;
-    in >> n;
-    std::getline(in, line);
-    std::vector<long> nodes(static_cast<std::size_t>(n));
-    for (long& x : nodes) {
-      in >> x;
-      --x;
-      std::getline(in, line);
-    }
-    f.open.push_back(std::move(nodes));
-  }
-  long nbou = 0, nvel = 0;
-  in >> nbou;
-  std::getline(in, line);
-  in >> nvel;
-  std::getline(in, line);
-  for (long s = 0; s < nbou; ++s) {
-    long n = 0;
-    int type = 0;
-    in >> n >> type;
-    std::getline(in, line);
-    std::vector<long> nodes(static_cast<std::size_t>(n));
-    for (long& x : nodes) {
-      in >> x;
-      --x;
-      std::getline(in, line);
-    }
-    f.land.emplace_back(type, std::move(nodes));
-  }
-  return f;
-}
+using aq::test::Fort14;
+using aq::test::read_fort14;
 
 // Whether a node lies within `r` degrees (λ and φ) of (lon, lat).
 bool node_near(const Fort14& f, double lon, double lat, double r) {
@@ -119,6 +61,28 @@ std::vector<std::string> dropped_names(const nlohmann::json& report) {
   std::vector<std::string> out;
   for (const auto& d : report["mask"]["dropped"]["above_threshold"]) out.push_back(d["name"].get<std::string>());
   return out;
+}
+
+// A 0.25° world raster at `tif`: land (+100 m) but where `wet(lon, lat)` (a pixel's centre), at
+// `depth_m` below the datum.
+fs::path quarter_degree_world(const fs::path& tif, float depth_m, const std::function<bool(double, double)>& wet) {
+  GDALAllRegister();
+  const int w = 1440, h = 720;
+  GDALDataset* ds =
+      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
+  double gt[6] = {-180.0, 0.25, 0.0, 90.0, 0.0, -0.25};
+  ds->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  ds->SetSpatialRef(&srs);
+  std::vector<float> buf(static_cast<std::size_t>(w) * h, 100.0F);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      if (wet(-180.0 + (c + 0.5) * 0.25, 90.0 - (r + 0.5) * 0.25)) buf[static_cast<std::size_t>(r) * w + c] = -depth_m;
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr),
+            CE_None);
+  GDALClose(ds);
+  return tif;
 }
 
 class PassagesCli : public testing::Test {
@@ -217,7 +181,7 @@ TEST_F(PassagesCli, NorthSeaHasTheChannelAndTheIrishSeaOpenOnTheWestEdge) {
   long segments = 0;
   for (const auto& s : f.open) {
     double lo = 90.0, hi = -90.0;
-    for (const long n : s)
+    for (const long n : s.nodes)
       if (std::abs(f.lon[static_cast<std::size_t>(n)] + 8.0) < 1e-6 && f.lat[static_cast<std::size_t>(n)] < 52.0) {
         lo = std::min(lo, f.lat[static_cast<std::size_t>(n)]);
         hi = std::max(hi, f.lat[static_cast<std::size_t>(n)]);
@@ -288,26 +252,9 @@ TEST_F(PassagesCli, BadNamesAndFilesFailClearlyWithoutOutputs) {
 TEST_F(PassagesCli, ASecondSeedsSeparateSeaIsMeshedApartWithItsCoastMainland) {
   const fs::path dir = aq::test::fresh_dir("passages", "lakes");
   fs::create_directories(dir);
-  const fs::path tif = dir.string() + "_lakes.tif";
-  GDALAllRegister();
-  const int w = 1440, h = 720;
-  GDALDataset* ds =
-      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
-  double gt[6] = {-180.0, 0.25, 0.0, 90.0, 0.0, -0.25};
-  ds->SetGeoTransform(gt);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(4326);
-  ds->SetSpatialRef(&srs);
-  std::vector<float> buf(static_cast<std::size_t>(w) * h, 100.0F);
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) {
-      const double lon = -180.0 + (c + 0.5) * 0.25, lat = 90.0 - (r + 0.5) * 0.25;
-      if ((lon > 2.0 && lon < 8.0 && lat > 2.0 && lat < 8.0) || (lon > 12.0 && lon < 18.0 && lat > 2.0 && lat < 8.0))
-        buf[static_cast<std::size_t>(r) * w + c] = -500.0F;
-    }
-  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr),
-            CE_None);
-  GDALClose(ds);
+  const fs::path tif = quarter_degree_world(dir.string() + "_lakes.tif", 500.0F, [](double lon, double lat) {
+    return (lon > 2.0 && lon < 8.0 && lat > 2.0 && lat < 8.0) || (lon > 12.0 && lon < 18.0 && lat > 2.0 && lat < 8.0);
+  });
   const auto r = aq::test::run_aquatoria(
       "mesh -o " + dir.string() + " --set input.path=" + tif.string() +
       " --set 'domain.box=[0.0, 20.0, 0.0, 10.0]' --set quadtree.step_deg=1 --set quadtree.levels=2"
@@ -327,26 +274,9 @@ TEST_F(PassagesCli, ASecondSeedsSeparateSeaIsMeshedApartWithItsCoastMainland) {
 // 30°E, and a river drawn from the basin east out of the box: it is burned in, and where it
 // crosses the box's edge it is a river inflow, typed so in every format that has the notion.
 fs::path basin_with_land_east(const fs::path& where) {
-  const fs::path tif = where.string() + "_basin.tif";
-  GDALAllRegister();
-  const int w = 1440, h = 720;
-  GDALDataset* ds =
-      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(tif.c_str(), w, h, 1, GDT_Float32, nullptr);
-  double gt[6] = {-180.0, 0.25, 0.0, 90.0, 0.0, -0.25};
-  ds->SetGeoTransform(gt);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(4326);
-  ds->SetSpatialRef(&srs);
-  std::vector<float> buf(static_cast<std::size_t>(w) * h, 100.0F);
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) {
-      const double lon = -180.0 + (c + 0.5) * 0.25, lat = 90.0 - (r + 0.5) * 0.25;
-      if (lon > 2.0 && lon < 28.0 && lat > 2.0 && lat < 18.0) buf[static_cast<std::size_t>(r) * w + c] = -800.0F;
-    }
-  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0, nullptr),
-            CE_None);
-  GDALClose(ds);
-  return tif;
+  return quarter_degree_world(where.string() + "_basin.tif", 800.0F, [](double lon, double lat) {
+    return lon > 2.0 && lon < 28.0 && lat > 2.0 && lat < 18.0;
+  });
 }
 
 TEST_F(PassagesCli, ARiverCrossingTheDomainEdgeIsARiverInflowInEveryFormat) {
@@ -385,7 +315,7 @@ TEST_F(PassagesCli, ARiverCrossingTheDomainEdgeIsARiverInflowInEveryFormat) {
   // hgrid.gr3: an open (flow) boundary; bctides.in: iettype 0, ifltype 2.
   const Fort14 g = read_fort14(dir / "river.gr3");
   ASSERT_EQ(g.open.size(), 1U);
-  for (const long n : g.open[0]) EXPECT_NEAR(g.lon[static_cast<std::size_t>(n)], 30.0, 1e-9);
+  for (const long n : g.open[0].nodes) EXPECT_NEAR(g.lon[static_cast<std::size_t>(n)], 30.0, 1e-9);
   const std::string bct = bytes(dir / "river_bctides.in");
   EXPECT_NE(bct.find("1 !nope"), std::string::npos) << bct;
   EXPECT_NE(bct.find(" 0 2 0 0 !open boundary 1"), std::string::npos) << bct;
@@ -405,7 +335,7 @@ TEST_F(PassagesCli, ARiverCrossingTheDomainEdgeIsARiverInflowInEveryFormat) {
   const Fort14 f2 = read_fort14(dir2 / "river.14");
   EXPECT_TRUE(f2.open.empty());
   ASSERT_EQ(f2.land.size(), 1U);
-  EXPECT_EQ(f2.land[0].first, 20);
+  EXPECT_EQ(f2.land[0].type, 20);
   EXPECT_FALSE(node_near(f2, 29.0, 10.2, 0.2));
   fs::remove(tif);
   fs::remove(river);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "support/cli_outputs.hpp"
+#include "support/fort14_read.hpp"
 #include "support/png_pixels.hpp"
 #include "support/run_command.hpp"
 
@@ -97,54 +98,14 @@ struct Model {
   bool ok = false;
 };
 
-// fort.14 / hgrid.gr3: nodes, then (after the elements) the open and land segments.
+// fort.14 / hgrid.gr3 (aq::test::read_fort14): nodes, and the open and land segments.
 Model read_model(const fs::path& p) {
+  const aq::test::Fort14 f = aq::test::read_fort14(p);
   Model m;
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);
-  long ne = 0, np = 0;
-  in >> ne >> np;
-  for (long k = 0; k < np; ++k) {
-    long id = 0;
-    Node n;
-    in >> id >> n.lon >> n.lat >> n.depth;
-    m.nodes.push_back(n);
-  }
-  for (long k = 0; k < ne; ++k) {
-    long id = 0, three = 0, a = 0, b = 0, c = 0;
-    in >> id >> three >> a >> b >> c;
-  }
-  long nope = 0, neta = 0, nbou = 0, nvel = 0;
-  in >> nope;
-  std::getline(in, line);
-  in >> neta;
-  std::getline(in, line);
-  for (long s = 0; s < nope; ++s) {
-    long n = 0, id = 0;
-    in >> n;
-    std::getline(in, line);
-    m.open.emplace_back();
-    for (long k = 0; k < n; ++k) {
-      in >> id;
-      m.open.back().push_back(id - 1);
-    }
-  }
-  in >> nbou;
-  std::getline(in, line);
-  in >> nvel;
-  std::getline(in, line);
-  for (long s = 0; s < nbou; ++s) {
-    long n = 0, type = 0, id = 0;
-    in >> n >> type;
-    std::getline(in, line);
-    m.land.emplace_back();
-    for (long k = 0; k < n; ++k) {
-      in >> id;
-      m.land.back().push_back(id - 1);
-    }
-  }
-  m.ok = static_cast<bool>(in);
+  for (std::size_t k = 0; k < f.lon.size(); ++k) m.nodes.push_back({f.lon[k], f.lat[k], f.depth[k]});
+  for (const auto& seg : f.open) m.open.push_back(seg.nodes);
+  for (const auto& seg : f.land) m.land.push_back(seg.nodes);
+  m.ok = f.error.empty();
   return m;
 }
 
@@ -398,7 +359,10 @@ TEST(SurgeCli, BlocksRefuseAFloodplain) {
       aq::test::run_command(std::string(AQ_BINARY) + " blocks -q --set input.path=" + coast_raster().string() +
                             " --set mask.min_depth_m=-5 -o " + aq::test::fresh_dir("surge", "blocks").string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("mask.min_depth_m = -5"), std::string::npos) << r.err;
+  // Refused when the configuration is loaded, at the --set that gave it.
+  EXPECT_NE(r.err.find("--set mask.min_depth_m=-5: mask.min_depth_m: mask.min_depth_m = -5 meshes a floodplain"),
+            std::string::npos)
+      << r.err;
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Bad input on the forest engine under `mpirun -np NP` (ctest label mpi): every rank ends with the
 # configuration error's exit code 2, the message is printed once and names the key, and no file is
-# written. Case: a coastal band wider than the forest's patches.
+# written. Case: a coastal band wider than the forest's patches (refused when the configuration is
+# loaded, with its position: config::load_global).
 #   forest_refuses.sh AQUATORIA MPIEXEC NP OUTDIR CONFIG
 set -uo pipefail
 bin=$1 mpiexec=$2 np=$3 out=$4 cfg=$5
@@ -16,7 +17,10 @@ check() {  # check NAME EXPECTED-TEXT --set ...
   local rc=$?
   if [ $rc != 2 ]; then echo "FAIL $name: exit $rc, not 2"; cat "$out/$name.log"; fail=1; fi
   local n
-  n=$(grep -c "^error: .*$text" "$out/$name.log")
+  # the message is printed once: its first line "error: ...", the text there or on a line of the
+  # configuration's list of problems below it
+  n=$(grep -c "$text" "$out/$name.log")
+  if ! grep -q "^error: " "$out/$name.log"; then echo "FAIL $name: no 'error:' line"; fail=1; fi
   if [ "$n" != 1 ]; then echo "FAIL $name: '$text' printed $n times, not once"; cat "$out/$name.log"; fail=1; fi
   if [ -d "$out/$name" ] && [ -n "$(ls -A "$out/$name")" ]; then
     echo "FAIL $name: files written:"; ls "$out/$name"; fail=1
@@ -24,5 +28,7 @@ check() {  # check NAME EXPECTED-TEXT --set ...
 }
 mkdir -p "$out"
 check band "quadtree.coast_band = 40: the forest engine needs at most" --set quadtree.coast_band=40
+check band_at "^  --set quadtree.coast_band=40: quadtree.coast_band, quadtree.levels, quadtree.engine: " \
+  --set quadtree.coast_band=40
 [ $fail = 0 ] && echo "OK: refused on $np rank(s) with exit 2, one message, no files"
 exit $fail

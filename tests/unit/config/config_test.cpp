@@ -464,6 +464,121 @@ TEST(Config, FloodplainThresholdAndSizeTermsAreCheckedAtLoad) {
   EXPECT_NO_THROW((void)load_global((fs::path(AQ_SOURCE_DIR) / "configs" / "gulf_surge.toml").string(), {}));
 }
 
+// Issue 33: what the forest engine cannot do was refused inside its stages, one problem at a time
+// and with no position (mask.sampling = "area", quadtree.levels = 0, a coastal band or K-cursor
+// wider than its patches of 2^min(L, 7) pixels, the global run file). Now at load, every one at
+// the position of the key set last, together with the other problems of the file.
+TEST(Config, WhatTheForestEngineCannotDoIsRefusedAtLoadAllAtOnce) {
+  if (!aq::config::forest_engine_built()) GTEST_SKIP() << "built without the forest engine (AQ_MPI=OFF)";
+  const auto p = write_temp("forest_bad.toml",
+                            "[quadtree]\n"
+                            "engine = \"forest\"\n"  // 2
+                            "levels = 2\n"           // 3: patches of 4 x 4 pixels
+                            "coast_band = 8\n"       // 4
+                            "[mask]\n"
+                            "cursor = 5\n"           // 6
+                            "sampling = \"area\"\n"  // 7
+                            "[output]\n"
+                            "formats = [\"msh\", \"tif\"]\n"  // 9
+                            "png_width = 10\n");              // 10: a problem of one key beside them
+  const std::string e = error_of(p.string());
+  const std::string f = p.string();
+  const std::vector<std::string> expected{
+      f + ":4:14: quadtree.coast_band, quadtree.levels, quadtree.engine: quadtree.coast_band = 8: the forest engine "
+          "needs at most 4 pixels (its patches of 2^min(quadtree.levels, 7) pixels)",
+      f + ":6:10: mask.cursor, quadtree.levels, quadtree.engine: mask.cursor = 5: the forest engine needs K <= 4 "
+          "pixels",
+      f + ":7:12: mask.sampling, quadtree.engine: mask.sampling = \"area\": the forest engine classifies by the "
+          "vertex rule only",
+      f + ":9:11: output.formats, quadtree.engine: output.formats = [..., \"tif\"]: the global run file holds the "
+          "lattice's bitmaps, which the forest engine never makes",
+      f + ":10:13: output.png_width: 10 is outside [200, 20000]"};
+  EXPECT_THAT(e, HasSubstr(fmt::format("{} configuration errors:", expected.size())));
+  for (const std::string& x : expected) EXPECT_THAT(e, HasSubstr(x));
+  // The same keys on the dense engine are fine.
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"quadtree.levels=2", "quadtree.coast_band=8", "mask.cursor=5",
+                                                   "mask.sampling=\"area\"", "output.formats=[\"msh\", \"tif\"]"}));
+  // quadtree.levels = 0: one problem (not the band and the cursor as well), where levels was set.
+  const std::string zero = error_of(std::nullopt, {"quadtree.engine=\"forest\"", "quadtree.levels=0"});
+  EXPECT_THAT(zero, HasSubstr("1 configuration error:"));
+  EXPECT_THAT(zero, HasSubstr("--set quadtree.levels=0: quadtree.levels, quadtree.engine: quadtree.levels = 0: the "
+                              "forest engine needs at least one level"));
+  // Patches stop growing at 2^7 = 128 pixels: L = 9 with a band of 64 and K = 64 fits.
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"quadtree.engine=\"forest\"", "quadtree.step_deg=4",
+                                                   "quadtree.levels=9", "quadtree.coast_band=64", "mask.cursor=64"}));
+  EXPECT_EQ(aq::config::forest_patch_pixels(0), 1);
+  EXPECT_EQ(aq::config::forest_patch_pixels(3), 8);
+  EXPECT_EQ(aq::config::forest_patch_pixels(12), 128);
+}
+
+// A build without MPI and p4est refuses the forest engine at load, with the key's position (it
+// was refused when the pipeline started).
+TEST(Config, TheForestEngineIsRefusedAtLoadWhereItIsNotBuilt) {
+  const std::string e = error_of(std::nullopt, {"quadtree.engine=\"forest\""});
+  if (aq::config::forest_engine_built()) {
+    EXPECT_EQ(e, "");
+  } else {
+    EXPECT_THAT(e, HasSubstr("--set quadtree.engine=\"forest\": quadtree.engine: \"forest\": this aquatoria was "
+                             "built without the forest engine"));
+  }
+}
+
+// Issue 33: `aquatoria blocks` and a regional ROMS grid's roms.global_config refused a floodplain
+// (and the ROMS grid several rasters) once the run had started, without a position; the command's
+// use of the configuration now joins the checks at load.
+TEST(Config, WhatACommandCannotTakeIsRefusedAtLoadWithItsPosition) {
+  using aq::config::GlobalUse;
+  const auto error_for = [](const std::vector<std::string>& over, GlobalUse use) -> std::string {
+    try {
+      (void)load_global(std::nullopt, over, use);
+    } catch (const aq::ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error_for({"mask.min_depth_m=-5"}, GlobalUse::kMesh), "");  // a surge mesh
+  EXPECT_THAT(error_for({"mask.min_depth_m=-5"}, GlobalUse::kBlocks),
+              HasSubstr("--set mask.min_depth_m=-5: mask.min_depth_m: mask.min_depth_m = -5 meshes a floodplain above "
+                        "the datum; the blocks' regional ROMS grids share this run's land mask"));
+  const auto p = write_temp("roms_global_bad.toml",
+                            "[input]\n"
+                            "paths = [\"" AQ_ETOPO_DIR "/etopo20.cdf\", \"" AQ_ETOPO_DIR
+                            "/etopo60.cdf\"]\n"  // 2
+                            "[mask]\n"
+                            "min_depth_m = -2.0\n");  // 4
+  const std::string f = p.string();
+  std::string e;
+  try {
+    (void)load_global(f, {}, GlobalUse::kRomsGlobal);
+  } catch (const aq::ConfigError& x) {
+    e = x.what();
+  }
+  EXPECT_THAT(e, HasSubstr("2 configuration errors:"));
+  EXPECT_THAT(e, HasSubstr(f + ":2:9: input.paths: input.paths lists 2 rasters; a ROMS grid's cell depths"));
+  EXPECT_THAT(e, HasSubstr(f + ":4:15: mask.min_depth_m: mask.min_depth_m = -2 meshes a floodplain up to 2 m above "
+                               "the datum, which a ROMS grid's land mask"));
+  EXPECT_NO_THROW((void)load_global(f, {}));  // the same file meshes a surge domain
+  // Python's mask() returns the dense engine's bitmaps.
+  EXPECT_THAT(error_for({"quadtree.engine=\"forest\""}, GlobalUse::kMask),
+              aq::config::forest_engine_built()
+                  ? HasSubstr("--set quadtree.engine=\"forest\": quadtree.engine: \"forest\": the "
+                              "mask and levels are the dense engine's bitmaps")
+                  : HasSubstr("built without the forest engine"));
+  EXPECT_EQ(error_for({}, GlobalUse::kMask), "");
+}
+
+// output.png_zoom on the Mercator lattice must reach its rows: refused at load (it was refused
+// when the preview was drawn, after the whole run).
+TEST(Config, APngZoomBeyondTheMercatorRowsIsRefusedAtLoad) {
+  EXPECT_THAT(error_of(std::nullopt, {"quadtree.lattice=\"mercator\"", "output.png_zoom=[0, 10, 89.9, 90]"}),
+              HasSubstr("--set output.png_zoom=[0, 10, 89.9, 90]: output.png_zoom, quadtree.mercator_lat_max_deg, "
+                        "quadtree.lattice: output.png_zoom: latitudes [89.9, 90] are outside the Mercator lattice's "
+                        "rows"));
+  EXPECT_NO_THROW(
+      (void)load_global(std::nullopt, {"quadtree.lattice=\"mercator\"", "output.png_zoom=[0, 10, 80, 90]"}));
+  EXPECT_NO_THROW((void)load_global(std::nullopt, {"output.png_zoom=[0, 10, 89.9, 90]"}));  // lon/lat rows reach 90°
+}
+
 TEST(Config, InputPathTildeIsHome) {
   const char* home = std::getenv("HOME");
   if (home == nullptr || *home == '\0') GTEST_SKIP() << "no HOME";
