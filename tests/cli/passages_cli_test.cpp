@@ -135,6 +135,30 @@ TEST_F(PassagesCli, GlobalTidesKeepsTheMediterraneanRedSeaBalticBlackAndWhiteSea
   EXPECT_NE(r.err.find("carve: Gibraltar"), std::string::npos);
 }
 
+// At L = 3 Hormuz's two sides fall in pieces that the fill leaves out one behind the other: the
+// Gulf of Oman's chain to the ocean crosses Hormuz twice. Each passage is named once, in the
+// report, the warning and the key it suggests.
+TEST_F(PassagesCli, ADroppedSeasChainNamesEachPassageOnce) {
+  const fs::path dir = aq::test::fresh_dir("passages", "tides_L3");
+  const auto r = aq::test::run_aquatoria("mesh -c " + config("global_tides") + " -o " + dir.string() +
+                                         " --set quadtree.levels=3 --set 'output.formats=[\"fort14\"]'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rep = aq::test::read_report(dir, "global_tides");
+  bool oman = false;
+  for (const auto& d : rep["mask"]["dropped"]["above_threshold"]) {
+    std::vector<std::string> p = d["passages"].get<std::vector<std::string>>();
+    std::sort(p.begin(), p.end());
+    EXPECT_EQ(std::adjacent_find(p.begin(), p.end()), p.end()) << d.dump();
+    if (d["name"] == "Gulf of Oman") {
+      oman = true;
+      EXPECT_EQ(d["passages"], nlohmann::json::array({"Hormuz"}));
+    }
+  }
+  EXPECT_TRUE(oman) << "the Gulf of Oman is no longer dropped at L = 3: pick another case";
+  EXPECT_EQ(r.err.find("Hormuz, Hormuz"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("\"Hormuz\", \"Hormuz\""), std::string::npos) << r.err;
+}
+
 TEST_F(PassagesCli, SeedRunKeepsItsBytesButWarnsOfTheMediterraneanAndCarvesItWithOneKey) {
   const fs::path dir = aq::test::fresh_dir("passages", "seed");
   const auto r = aq::test::run_aquatoria("mesh -o " + dir.string() + " --set 'output.formats=[\"fort14\"]'");
