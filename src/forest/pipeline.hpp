@@ -27,6 +27,15 @@ namespace aq::forest {
 /// What the stages keep for later collective questions (the open boundary of a regional run).
 struct ForestState;
 
+/// One rank's memory once the leaves are known, before rank 0 gathers them and builds the mesh
+/// (app/global_run.cpp turns these into the estimate per rank printed then).
+struct RankMemory {
+  std::int64_t rss_bytes = 0;   ///< resident then: the program, the raster, the patches' states and bits
+  std::int64_t peak_bytes = 0;  ///< the rank's peak so far (the classification, the fill, the pyramids)
+  std::int64_t leaves = 0;      ///< its filled leaves (the gather sends them with their neighbourhoods)
+  std::int64_t elements = 0;    ///< the triangles their templates make (mesh/templates.hpp; squares x 2 for quads)
+};
+
 /// What the forest's stages made. On rank 0 `leaves` and `neighbourhoods` hold every filled leaf
 /// in the dense engine's order; on the other ranks they are empty.
 struct ForestLeaves {
@@ -35,6 +44,7 @@ struct ForestLeaves {
   std::vector<quadtree::Leaf> leaves;
   std::vector<quadtree::LeafNeighbourhood> neighbourhoods;
   std::int64_t area_domain_pixels = 0;  ///< a regional run: the domain's pixels, over all ranks
+  std::vector<RankMemory> rank_memory;  ///< every rank's, in rank order, on every rank
   std::shared_ptr<ForestState> state;
 };
 
