@@ -2,17 +2,18 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Bad input on the forest engine under `mpirun -np NP` (ctest label mpi): every rank ends with the
 # configuration error's exit code 2, the message is printed once and names the key, and no file is
-# written. Cases: a floodplain (mask.min_depth_m < 0, dense engine only) and a coastal band wider
-# than the forest's patches.
+# written. Cases: a floodplain (mask.min_depth_m < 0, dense engine only), a coastal band wider
+# than the forest's patches, and a mesh above input.max_memory_gb once the leaves are known.
 #   forest_refuses.sh AQUATORIA MPIEXEC NP OUTDIR CONFIG
 set -uo pipefail
 bin=$1 mpiexec=$2 np=$3 out=$4 cfg=$5
 fail=0
+cfg_args=(-c "$cfg")
 check() {  # check NAME EXPECTED-TEXT --set ...
   local name=$1 text=$2
   shift 2
   rm -rf "$out/$name"
-  "$mpiexec" --oversubscribe -np "$np" "$bin" mesh -c "$cfg" --set quadtree.engine=forest "$@" -o "$out/$name" \
+  "$mpiexec" --oversubscribe -np "$np" "$bin" mesh "${cfg_args[@]}" --set quadtree.engine=forest "$@" -o "$out/$name" \
     >"$out/$name.log" 2>&1
   local rc=$?
   if [ $rc != 2 ]; then echo "FAIL $name: exit $rc, not 2"; cat "$out/$name.log"; fail=1; fi
@@ -26,5 +27,11 @@ check() {  # check NAME EXPECTED-TEXT --set ...
 mkdir -p "$out"
 check floodplain "mask.min_depth_m = -5: a floodplain" --set mask.min_depth_m=-5
 check band "quadtree.coast_band = 40: the forest engine needs at most" --set quadtree.coast_band=40
+# The memory limit once the leaves are known: the seed run with 20 km squares over the whole ocean
+# (1.45 million triangles) passes the estimate before the data (0.33 GB per rank) and is stopped
+# before the mesh (0.55 GB on rank 0).
+cfg_args=()
+check memory "once its 697044 leaves are known (1450796 triangles" --set quadtree.levels=5 --set quadtree.size_km=20 \
+  --set input.max_memory_gb=0.45
 [ $fail = 0 ] && echo "OK: refused on $np rank(s) with exit 2, one message, no files"
 exit $fail

@@ -3,7 +3,8 @@
 # The forest engine against the dense engine (ctest label mpi; tests/CMakeLists.txt): one
 # `aquatoria mesh` run with quadtree.engine = "dense", one with "forest" under
 # `mpirun --oversubscribe -np NP`, and every file they write must be the same bytes (the
-# _report.json aside: it holds timings). Also asserts the forest run's report names NP ranks.
+# _report.json aside: it holds timings). Also asserts the forest run's report names NP ranks and
+# its memory estimate per rank (the mesh's triangle count foreseen exactly, rank 0 near its peak).
 #   forest_vs_dense.sh AQUATORIA MPIEXEC NP OUTDIR [CONFIG]     (no CONFIG: the seed run)
 set -euo pipefail
 bin=$1 mpiexec=$2 np=$3 out=$4 cfg=${5:-}
@@ -28,5 +29,17 @@ for f in $dense_files; do
 done
 ranks=$(python3 -c 'import json,sys,glob; print(json.load(open(glob.glob(sys.argv[1] + "/*_report.json")[0]))["forest"]["ranks"])' "$out/forest")
 if [ "$ranks" != "$np" ]; then echo "FAIL: the forest report says $ranks ranks, not $np"; fail=1; fi
+# The memory estimate once the leaves are known: one per rank, the triangles the mesh made (an
+# exact count from the leaves' templates), and rank 0's estimate within its tolerance of its peak.
+python3 - "$out/forest" "$np" <<'PY' || fail=1
+import glob, json, sys
+r = json.load(open(glob.glob(sys.argv[1] + "/*_report.json")[0]))
+per, np = r["forest"]["memory"]["per_rank"], int(sys.argv[2])
+tri, est, peak = sum(k["triangles"] for k in per), per[0]["estimate_bytes"], r["memory"]["peak_rss_bytes"]
+ok = len(per) == np and tri == r["mesh_counts"]["triangles"] and 0.7 * peak <= est <= 1.5 * peak
+print(f"memory: {len(per)} ranks, {tri} triangles foreseen of {r['mesh_counts']['triangles']}, rank 0 estimate "
+      f"{est / 1e6:.0f} MB, peak {peak / 1e6:.0f} MB" + ("" if ok else ": FAIL"))
+sys.exit(0 if ok else 1)
+PY
 [ $fail = 0 ] && echo "OK: $n files identical (forest on $np rank(s) vs dense)"
 exit $fail
