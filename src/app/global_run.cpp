@@ -71,12 +71,12 @@ namespace {
 //            the part known from the lattice; the mesh's part is not guessed from the pixel count
 //            (350·√pixels assumes a coast at the finest level across a global lattice: 34 million
 //            triangles for the 1/9" coast, which made 8.5 million, 12 GB said for 2.65 GB used).
-//            Once the leaves are known (measured before rank 0 gathers them, printed before the
-//            mesh), every rank's estimate is what it holds then (its resident set: the patches' bits, the
-//            raster, the tile cache), or its peak so far if larger, plus the gathered leaves
-//            (kForestGatherBytesPerLeaf, on rank 0 twice: the receive buffer and the copy) and,
-//            on rank 0, kMeshBytesPerTriangle for the triangles the leaves' templates make (an
-//            exact count: forest::RankMemory); the run stops there if that is above the limit.
+//            Once the leaves are known (rank 0 has gathered them; printed before the mesh),
+//            every rank's estimate is what it holds then (its resident set: the program, the
+//            raster, the tile cache, the patches' states, on rank 0 the gathered leaves at
+//            kForestGatherBytesPerLeaf), or its peak so far if larger, and on rank 0
+//            kMeshBytesPerTriangle for the triangles the leaves' templates make (an exact count:
+//            forest::RankMemory); the run stops there if that is above the limit.
 constexpr double kLatticeBitsPerPixel = 8.0;
 constexpr double kForestBytesPerPatch = 200.0;
 constexpr double kForestGatherBytesPerLeaf = 27.0;
@@ -893,24 +893,25 @@ static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const Glo
 // The forest's estimate per rank once the leaves are known (the memory model above), logged and
 // in the report's "forest" section; above input.max_memory_gb the run stops there, before the
 // mesh (every rank holds every rank's figures, so every rank stops alike).
-static void check_forest_memory(const GlobalSetup& s, const std::vector<forest::RankMemory>& ranks, const Logger& log,
-                                Report* report) {
+static void check_forest_memory(const GlobalSetup& s, const std::vector<forest::RankMemory>& ranks,
+                                const forest::Comm& comm, const Logger& log, Report* report) {
+  // What each rank holds now, the forest's stages done: the raster, the tile cache, the patches.
+  const std::vector<std::int64_t> rss = comm.allgatherv(std::vector<std::int64_t>{current_rss_bytes()});
   std::int64_t leaves = 0, elements = 0;
   for (const forest::RankMemory& r : ranks) {
     leaves += r.leaves;
     elements += r.elements;
   }
-  const double gather = 2.0 * kForestGatherBytesPerLeaf * static_cast<double>(leaves);
+  const double gather = kForestGatherBytesPerLeaf * static_cast<double>(leaves);  // in rank 0's resident set
   const double mesh = kMeshBytesPerTriangle * static_cast<double>(elements);
   std::vector<std::int64_t> est(ranks.size());
   Json per = Json::array();
   for (std::size_t k = 0; k < ranks.size(); ++k) {
     const forest::RankMemory& r = ranks[k];
-    double e = static_cast<double>(r.rss_bytes) + kForestGatherBytesPerLeaf * static_cast<double>(r.leaves);
-    if (k == 0) e += gather + mesh;
+    const double e = static_cast<double>(rss[k]) + (k == 0 ? mesh : 0.0);
     est[k] = saturate(std::max(e, static_cast<double>(r.peak_bytes)));
     per.push_back(Json{{"rank", k},
-                       {"resident_bytes", r.rss_bytes},
+                       {"resident_bytes", rss[k]},
                        {"peak_bytes_so_far", r.peak_bytes},
                        {"leaves", r.leaves},
                        {"triangles", r.elements},
@@ -923,9 +924,9 @@ static void check_forest_memory(const GlobalSetup& s, const std::vector<forest::
     others += fmt::format(", ranks 8..{} {:.2f}-{:.2f} GB", est.size() - 1, gb(*lo), gb(*hi));
   }
   log.info(
-      "memory: estimate with the leaves known ({} leaves, {} triangles): rank 0 {:.2f} GB (resident {:.2f} GB, the "
-      "gathered leaves {:.2f} GB, the mesh {:.2f} GB){} of {:.2f} GB allowed (input.max_memory_gb)",
-      leaves, elements, gb(est[0]), gb(ranks[0].rss_bytes), gather / 1e9, mesh / 1e9, others, gb(s.memory_limit_bytes));
+      "memory: estimate with the leaves known ({} leaves, {} triangles): rank 0 {:.2f} GB (resident {:.2f} GB with "
+      "the gathered leaves' {:.2f} GB, the mesh {:.2f} GB){} of {:.2f} GB allowed (input.max_memory_gb)",
+      leaves, elements, gb(est[0]), gb(rss[0]), gather / 1e9, mesh / 1e9, others, gb(s.memory_limit_bytes));
   if (report != nullptr)
     (*report)["forest"]["memory"] = Json{{"estimate_bytes_before_data", s.estimate_bytes},
                                          {"mesh_bytes_per_triangle", kMeshBytesPerTriangle},
@@ -959,7 +960,7 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   forest::collective(comm, [&] { open_inputs(run, c, setup, log, report, false); });
   forest::ForestLeaves fl =
       forest::run_forest_leaves(c, lat, setup.rotation, *run.bathy, run.domain, log, comm.root() ? report : nullptr);
-  forest::collective(comm, [&] { check_forest_memory(setup, fl.rank_memory, log, comm.root() ? report : nullptr); });
+  forest::collective(comm, [&] { check_forest_memory(setup, fl.rank_memory, comm, log, comm.root() ? report : nullptr); });
   run.area = std::move(fl.area);
   run.size_field = std::move(fl.size_field);
   if (run.domain.regional()) {

@@ -198,7 +198,6 @@ std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
 RankMemory rank_memory(const std::vector<quadtree::Leaf>& leaves, const std::vector<quadtree::LeafNeighbourhood>& nb,
                        int levels, bool triangles) {
   RankMemory m;
-  m.rss_bytes = current_rss_bytes();
   m.peak_bytes = peak_rss_bytes();
   m.leaves = static_cast<std::int64_t>(leaves.size());
   for (std::size_t k = 0; k < leaves.size(); ++k)

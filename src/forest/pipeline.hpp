@@ -30,7 +30,6 @@ struct ForestState;
 /// One rank's memory once the leaves are known, before rank 0 gathers them and builds the mesh
 /// (app/global_run.cpp turns these into the estimate per rank printed then).
 struct RankMemory {
-  std::int64_t rss_bytes = 0;   ///< resident then: the program, the raster, the patches' states and bits
   std::int64_t peak_bytes = 0;  ///< the rank's peak so far (the classification, the fill, the pyramids)
   std::int64_t leaves = 0;      ///< its filled leaves (the gather sends them with their neighbourhoods)
   std::int64_t elements = 0;    ///< the triangles their templates make (mesh/templates.hpp; squares x 2 for quads)
