@@ -426,12 +426,14 @@ static void carve(GlobalRun& run, const config::GlobalConfig& c, const Logger& l
 
 // Every wet component the fill left out above mask.warn_dropped_km2, named, with its area, what
 // cut it and the key that keeps it (mask/dropped_seas.hpp); all of them in the report.
-static void warn_dropped_seas(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report) {
+// `domain`: the run's domain with its pixel bitmap (default: run.domain).
+static void warn_dropped_seas(GlobalRun& run, const config::GlobalConfig& c, const Logger& log, Report* report,
+                              const mask::Domain* domain = nullptr) {
   StageScope stage("dropped", report, log);
   const mask::WetArea& a = run.area;
   const mask::DroppedSeas d =
       mask::find_dropped_seas(a.wet, a.filled, run.setup.lattice, run.setup.rotation, c.mask.cursor,
-                              c.mask.warn_dropped_km2, c.mask.passages_open, &run.domain);
+                              c.mask.warn_dropped_km2, c.mask.passages_open, domain != nullptr ? domain : &run.domain);
   for (const mask::DroppedSea& s : d.large) log.warn("dropped: {}", mask::describe(s, c.mask.cursor));
   if (report != nullptr) (*report)["mask"]["dropped"] = mask::dropped_json(d);
   double large = 0.0;
@@ -940,6 +942,39 @@ static void check_forest_memory(const GlobalSetup& s, const std::vector<forest::
         "forest, not the mesh: a larger quadtree.step_deg or a coarser size field makes fewer triangles)",
         gb(*worst), worst - est.begin(), leaves, elements, mesh / 1e9, gb(s.memory_limit_bytes)));
 }
+
+// The forest's passage table, dropped seas and separate seeds, on rank 0: the dense engine's lines
+// and report entries, from the wet and filled pixels gathered there (forest/pipeline.hpp
+// kDroppedSeasMaxPixels; beyond it the dropped components are counted, not named).
+static void report_forest_mask(GlobalRun& run, const forest::ForestLeaves& fl, const config::GlobalConfig& c,
+                               const Logger& log, Report* report) {
+  if (c.mask.passages && !run.area.passages.empty()) {
+    log.info("critical passages{} (open = the filled ocean connects both sides):",
+             run.domain.regional() ? " inside the domain" : "");
+    for (const auto& line : mask::format_passage_table(run.area.passages)) log.info("  {}", line);
+  }
+  if (fl.dropped_components < 0) {
+    mask::Domain dense = run.domain;
+    if (dense.regional()) dense.inside = dense.window(0, 0, run.setup.lattice.nx, run.setup.lattice.ny);
+    warn_dropped_seas(run, c, log, report, &dense);
+  } else {
+    StageScope stage("dropped", report, log);
+    log.warn(
+        "dropped: {} wet component(s) left out by the fill ({} pixels); the forest names and measures them on "
+        "lattices up to {} pixels, this one has {}: quadtree.engine = \"dense\" names them",
+        fl.dropped_components, fl.dropped_pixels, forest::kDroppedSeasMaxPixels, run.setup.lattice.pixel_count());
+    if (report != nullptr)
+      (*report)["mask"]["dropped"] = Json{{"components", fl.dropped_components},
+                                          {"pixels", fl.dropped_pixels},
+                                          {"named", false},
+                                          {"threshold_km2", c.mask.warn_dropped_km2}};
+    stage.done(fmt::format("{} wet component(s) left out by the fill, {} pixels; not named above {} lattice pixels",
+                           fl.dropped_components, fl.dropped_pixels, forest::kDroppedSeasMaxPixels));
+  }
+  warn_separate_seeds(run, c, log, report);
+  run.area.wet = Bitmap();  // (gathered for the dropped seas only)
+  run.area.filled = Bitmap();
+}
 #endif
 
 // The forest engine (README "The forest engine"): the same stages on every MPI rank; rank 0
@@ -960,7 +995,6 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   forest::collective(comm, [&] { open_inputs(run, c, setup, log, report, false); });
   forest::ForestLeaves fl =
       forest::run_forest_leaves(c, lat, setup.rotation, *run.bathy, run.domain, log, comm.root() ? report : nullptr);
-  forest::collective(comm, [&] { check_forest_memory(setup, fl.rank_memory, comm, log, comm.root() ? report : nullptr); });
   run.area = std::move(fl.area);
   run.size_field = std::move(fl.size_field);
   if (run.domain.regional()) {
@@ -971,10 +1005,10 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
     if (report != nullptr) (*report)["domain"]["pixels"] = run.domain.pixels;
   }
   input_json(*run.bathy, c, report);
-  if (c.mask.passages && !run.area.passages.empty()) {
-    log.info("critical passages (open = the filled ocean connects both sides):");
-    for (const auto& line : mask::format_passage_table(run.area.passages)) log.info("  {}", line);
-  }
+  if (comm.root()) report_forest_mask(run, fl, c, log, report);
+  // The estimate per rank before the mesh (the dropped seas' gathered bitmaps are gone).
+  forest::collective(comm,
+                     [&] { check_forest_memory(setup, fl.rank_memory, comm, log, comm.root() ? report : nullptr); });
   forest::collective(comm, [&] {  // the mesh, on rank 0
     if (!comm.root()) return;
     StageScope stage("mesh", report, log);
@@ -983,6 +1017,7 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
         fl.leaves, fl.neighbourhoods, lat, quadtree::NodeOptions{mesh::mesh_needs_centres(c.mesh)});
     run.mesh = mesh::build_mesh(fl.leaves, std::move(qn), t.wall_s(), lat, setup.rotation, *run.bathy, c.mesh, log,
                                 report, stage);
+    run.mesh.floodplain_top_m = std::max(-c.mask.min_depth_m, 0.0);
     fl.neighbourhoods = {};
     run.leaves = std::move(fl.leaves);
   });

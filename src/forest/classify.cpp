@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 
@@ -87,10 +88,11 @@ void uniform(int s, std::int64_t p, bool top_row, PatchBits& wet, PatchCounts& c
 }
 
 // The rotated classification's bound on a block of vertices [I0, I1] × [J0, J1] (inclusive): the
-// cap around its centre through its farthest corner, as mask::sample_rotated's units do.
-int rotated_side(const StackBounds& bounds, const Lattice& lattice, const PoleRotation& rot, bool global_lon,
-                 double threshold, std::int64_t I0, std::int64_t I1, std::int64_t J0, std::int64_t J1) {
-  if (!bounds.available()) return 0;
+// cap around its centre through its farthest corner, as mask::sample_rotated's units do; false
+// when no box bounds it.
+bool rotated_range(const StackBounds& bounds, const Lattice& lattice, const PoleRotation& rot, bool global_lon,
+                   std::int64_t I0, std::int64_t I1, std::int64_t J0, std::int64_t J1, raster::ValueRange& range) {
+  if (!bounds.available()) return false;
   const mask::LonLat a = mask::vertex_lattice_deg(lattice, I0, J0), b = mask::vertex_lattice_deg(lattice, I1, J1);
   const mask::LonLat c{0.5 * (a.lon_deg + b.lon_deg), 0.5 * (a.lat_deg + b.lat_deg)};
   double r = 0.0;
@@ -98,20 +100,26 @@ int rotated_side(const StackBounds& bounds, const Lattice& lattice, const PoleRo
     r = std::max(r, mask::angular_distance_deg(c, q));
   r += 1e-9;
   const mask::LonLat g = mask::lattice_to_geographic(rot, c);
-  if (std::abs(g.lat_deg) + r >= 89.0) return 0;
+  if (std::abs(g.lat_deg) + r >= 89.0) return false;
   const double half = std::asin(std::min(1.0, std::sin(r * kDegToRad) / std::cos(g.lat_deg * kDegToRad))) * kRadToDeg;
-  if (!global_lon && (g.lon_deg - half < -180.0 || g.lon_deg + half > 180.0)) return 0;
-  return side(bounds.in_box(g.lon_deg - half, g.lon_deg + half, g.lat_deg - r, g.lat_deg + r), threshold, false);
+  if (!global_lon && (g.lon_deg - half < -180.0 || g.lon_deg + half > 180.0)) return false;
+  range = bounds.in_box(g.lon_deg - half, g.lon_deg + half, g.lat_deg - r, g.lat_deg + r);
+  return true;
 }
 
 }  // namespace
 
-PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& bathy, const StackBounds& bounds,
-                              const PoleRotation& rot, double min_depth_m, const mask::PixelWindow& window) {
+std::vector<PatchClasses> classify_patches_at(const PatchForest& pf, const raster::Bathymetry& bathy,
+                                              const StackBounds& bounds, const PoleRotation& rot,
+                                              const std::vector<double>& min_depths_m,
+                                              const mask::PixelWindow& window) {
   const PatchGrid& g = pf.grid();
   const Lattice& lat = g.lat;
   const std::int64_t p = g.size, nx = lat.nx;
-  const double threshold = -min_depth_m;
+  const std::size_t nt = min_depths_m.size();
+  if (nt < 1 || nt > 2) throw InternalError(fmt::format("classify: {} thresholds (1 or 2)", nt));
+  std::vector<double> thresholds(nt);
+  for (std::size_t t = 0; t < nt; ++t) thresholds[t] = -min_depths_m[t];
   const bool rotated = !rot.identity();
   const bool streamed = bathy.info().streamed;
   const bool global_lon = bathy.info().global_lon;
@@ -121,10 +129,11 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
                     "rotation.enabled = true needs the raster whole",
                     bathy.info().path));
   const VertexWindow vw(lat, rotated ? mask::PixelWindow{} : window);
-  PatchClasses out;
+  std::vector<PatchClasses> out(nt);
   const auto n = static_cast<std::int64_t>(pf.local_count());
-  out.wet.resize(static_cast<std::size_t>(n));
-  std::int64_t wv = 0, wet = 0, coastal = 0, decided = 0, sampled = 0;
+  for (PatchClasses& o : out) o.wet.resize(static_cast<std::size_t>(n));
+  // Per threshold: wet vertices, wet, coastal, decided, sampled (this rank's).
+  std::vector<std::int64_t> sums(5 * nt, 0);
 
   std::exception_ptr error;  // the first failure of this rank (sampling reads rasters)
   if (streamed) try {
@@ -151,30 +160,35 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
           lons[static_cast<std::size_t>(k)] = lat.lon_of(wrap_index(I_lo + k, nx));
         for (std::int64_t k = 0; k < nrows; ++k) lats[static_cast<std::size_t>(k)] = lat.lat_of(J_lo + k);
         const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), ncols);
-        Bitmap v(ncols, nrows);
-        bathy.sample_rows(cols, lats.data(), nrows,
-                          [&v, &vw, ncols, I_lo, J_lo, threshold](std::int64_t k, const float* values) {
-                            std::uint64_t* row = v.row(k);
-                            for (std::int64_t c = 0; c < ncols; ++c)
-                              if (static_cast<double>(values[c]) <= threshold && vw.row(J_lo + k) && vw.col(I_lo + c))
-                                row[c >> 6] |= std::uint64_t{1} << (c & 63);
-                          });
+        std::vector<Bitmap> v(nt, Bitmap(ncols, nrows));
+        bathy.sample_rows(
+            cols, lats.data(), nrows,
+            [&v, &vw, &thresholds, nt, ncols, I_lo, J_lo](std::int64_t k, const float* values) {
+              for (std::size_t t = 0; t < nt; ++t) {
+                std::uint64_t* row = v[t].row(k);
+                for (std::int64_t c = 0; c < ncols; ++c)
+                  if (static_cast<double>(values[c]) <= thresholds[t] && vw.row(J_lo + k) && vw.col(I_lo + c))
+                    row[c >> 6] |= std::uint64_t{1} << (c & 63);
+              }
+            });
         for (std::int64_t t = t0; t < t_end; ++t) {
           for (std::int64_t k = 0; k < g.per_tree * g.per_tree; ++k) {
             const std::int64_t local =
                 pf.local_index(g.key(brick.tree_a0(t) * g.per_tree, brick.tree_b0(t) * g.per_tree)) + k;
             const std::int64_t key = pf.key(static_cast<std::size_t>(local));
             const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
-            Bitmap pv(p + 1, p + 1);
-            for (std::int64_t r = 0; r <= p; ++r)
-              for (std::int64_t c = 0; c <= p; ++c)
-                if (v.get(I0 - I_lo + c, J0 - J_lo + r)) pv.set(c, r);
-            PatchCounts pc;
-            pixels_from_vertices(pv, p, g.gy(key) == g.npy - 1, out.wet[static_cast<std::size_t>(local)], pc);
-            wv += pc.wet_vertices;
-            wet += pc.wet;
-            coastal += pc.coastal;
-            ++sampled;
+            for (std::size_t h = 0; h < nt; ++h) {
+              Bitmap pv(p + 1, p + 1);
+              for (std::int64_t r = 0; r <= p; ++r)
+                for (std::int64_t c = 0; c <= p; ++c)
+                  if (v[h].get(I0 - I_lo + c, J0 - J_lo + r)) pv.set(c, r);
+              PatchCounts pc;
+              pixels_from_vertices(pv, p, g.gy(key) == g.npy - 1, out[h].wet[static_cast<std::size_t>(local)], pc);
+              sums[5 * h] += pc.wet_vertices;
+              sums[5 * h + 1] += pc.wet;
+              sums[5 * h + 2] += pc.coastal;
+              sums[5 * h + 4] += 1;
+            }
           }
         }
         t0 = t_end;
@@ -184,22 +198,27 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
     }
   else {
     std::vector<std::exception_ptr> errors(static_cast<std::size_t>(n));
-#pragma omp parallel default(none) shared(pf, g, lat, bathy, bounds, rot, vw, out, n, p, nx, threshold, rotated, \
-                                              global_lon, errors) reduction(+ : wv, wet, coastal, decided, sampled)
+    // The sums of the (at most two) thresholds as scalars, which OpenMP reduces.
+    std::int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0;
+#pragma omp parallel default(none) shared(pf, g, lat, bathy, bounds, rot, vw, out, n, p, nx, thresholds, nt, rotated, \
+                                              global_lon, errors) reduction(+ : s0, s1, s2, s3, s4, s5, s6, s7, s8, s9)
     {
+      std::array<std::int64_t, 10> mine{};
       std::vector<double> lons(static_cast<std::size_t>(p + 1)), la(lons.size()), vals(lons.size());
       std::vector<float> fv(lons.size());
       std::vector<double> x(lons.size());
+      std::vector<int> sides(nt, 0);
+      std::vector<Bitmap> v(nt);
 #pragma omp for schedule(dynamic, 4)
       for (std::int64_t l = 0; l < n; ++l) try {
           const std::int64_t key = pf.key(static_cast<std::size_t>(l));
           const std::int64_t I0 = g.gx(key) * p, J0 = g.gy(key) * p;
           const bool top = g.gy(key) == g.npy - 1;
-          PatchBits& w = out.wet[static_cast<std::size_t>(l)];
-          PatchCounts pc;
           if (vw.misses(I0, J0, p)) {
-            w.state = Fill::kNone;
-            ++decided;
+            for (std::size_t h = 0; h < nt; ++h) {
+              out[h].wet[static_cast<std::size_t>(l)].state = Fill::kNone;
+              ++mine[5 * h + 3];
+            }
             continue;
           }
           const bool whole = vw.holds(I0, J0, p);
@@ -207,17 +226,25 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
           // dense engine's vertex rule does (mask/pixel_classes.hpp): a box cannot bound it, so
           // the patches of the east edge are sampled.
           const bool wraps = !g.periodic && I0 + p >= nx;
-          int s = 0;
+          std::fill(sides.begin(), sides.end(), 0);
           if (whole && !wraps && bounds.available()) {
-            s = rotated ? rotated_side(bounds, lat, rot, global_lon, threshold, I0, I0 + p, J0, J0 + p)
-                        : side(bounds.in_box(lat.lon_of(I0), lat.lon_of(I0 + p), lat.lat_of(J0), lat.lat_of(J0 + p)),
-                               threshold, true);
+            raster::ValueRange range;
+            bool bounded = true;
+            if (rotated)
+              bounded = rotated_range(bounds, lat, rot, global_lon, I0, I0 + p, J0, J0 + p, range);
+            else
+              range = bounds.in_box(lat.lon_of(I0), lat.lon_of(I0 + p), lat.lat_of(J0), lat.lat_of(J0 + p));
+            if (bounded)
+              for (std::size_t h = 0; h < nt; ++h) sides[h] = side(range, thresholds[h], !rotated);
           }
-          if (s != 0) {
-            uniform(s, p, top, w, pc);
-            ++decided;
-          } else {
-            Bitmap v(p + 1, p + 1);
+          // Sampled once for every threshold a bound leaves open (the same calls as the dense engine).
+          const bool sample = std::any_of(sides.begin(), sides.end(), [](int q) { return q == 0; });
+          if (sample) {
+            for (std::size_t h = 0; h < nt; ++h) v[h] = sides[h] == 0 ? Bitmap(p + 1, p + 1) : Bitmap();
+            const auto take = [&](std::int64_t r, std::int64_t c, double value) {
+              for (std::size_t h = 0; h < nt; ++h)
+                if (sides[h] == 0 && value <= thresholds[h] && vw.row(J0 + r) && vw.col(I0 + c)) v[h].set(c, r);
+            };
             if (rotated) {
               for (std::int64_t k = 0; k <= p; ++k)
                 x[static_cast<std::size_t>(k)] = static_cast<double>(wrap_index(I0 + k, nx));
@@ -225,8 +252,7 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
               for (std::int64_t r = 0; r <= p; ++r) {
                 mapper.map_row(static_cast<double>(J0 + r), lons.data(), la.data());
                 bathy.sample_points(lons.data(), la.data(), p + 1, vals.data());
-                for (std::int64_t c = 0; c <= p; ++c)
-                  if (vals[static_cast<std::size_t>(c)] <= threshold && vw.row(J0 + r) && vw.col(I0 + c)) v.set(c, r);
+                for (std::int64_t c = 0; c <= p; ++c) take(r, c, vals[static_cast<std::size_t>(c)]);
               }
             } else {
               for (std::int64_t k = 0; k <= p; ++k)
@@ -234,34 +260,52 @@ PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& b
               const raster::Bathymetry::Columns cols = bathy.prepare_columns(lons.data(), p + 1);
               for (std::int64_t r = 0; r <= p; ++r) {
                 bathy.sample_row(cols, lat.lat_of(J0 + r), fv.data());
-                for (std::int64_t c = 0; c <= p; ++c)
-                  if (static_cast<double>(fv[static_cast<std::size_t>(c)]) <= threshold && vw.row(J0 + r) &&
-                      vw.col(I0 + c))
-                    v.set(c, r);
+                for (std::int64_t c = 0; c <= p; ++c) take(r, c, static_cast<double>(fv[static_cast<std::size_t>(c)]));
               }
             }
-            pixels_from_vertices(v, p, top, w, pc);
-            ++sampled;
           }
-          wv += pc.wet_vertices;
-          wet += pc.wet;
-          coastal += pc.coastal;
+          for (std::size_t h = 0; h < nt; ++h) {
+            PatchBits& w = out[h].wet[static_cast<std::size_t>(l)];
+            PatchCounts pc;
+            if (sides[h] != 0) {
+              uniform(sides[h], p, top, w, pc);
+              ++mine[5 * h + 3];
+            } else {
+              pixels_from_vertices(v[h], p, top, w, pc);
+              ++mine[5 * h + 4];
+            }
+            mine[5 * h] += pc.wet_vertices;
+            mine[5 * h + 1] += pc.wet;
+            mine[5 * h + 2] += pc.coastal;
+          }
         } catch (...) {
           errors[static_cast<std::size_t>(l)] = std::current_exception();
         }
+      s0 += mine[0], s1 += mine[1], s2 += mine[2], s3 += mine[3], s4 += mine[4];
+      s5 += mine[5], s6 += mine[6], s7 += mine[7], s8 += mine[8], s9 += mine[9];
     }
+    const std::array<std::int64_t, 10> all{s0, s1, s2, s3, s4, s5, s6, s7, s8, s9};
+    for (std::size_t k = 0; k < sums.size(); ++k) sums[k] += all[k];
     for (const std::exception_ptr& e : errors)
       if (e && !error) error = e;
   }
   agree(pf.comm(), error);
-  const Comm& comm = pf.comm();
-  out.counts.wet_vertices = comm.sum(wv);
-  out.counts.wet = comm.sum(wet);
-  out.counts.coastal = comm.sum(coastal);
-  out.counts.dry = lat.pixel_count() - out.counts.wet - out.counts.coastal;
-  out.decided = comm.sum(decided);
-  out.sampled = comm.sum(sampled);
+  pf.comm().sum_in_place(sums);
+  for (std::size_t h = 0; h < nt; ++h) {
+    PatchClasses& o = out[h];
+    o.counts.wet_vertices = sums[5 * h];
+    o.counts.wet = sums[5 * h + 1];
+    o.counts.coastal = sums[5 * h + 2];
+    o.counts.dry = lat.pixel_count() - o.counts.wet - o.counts.coastal;
+    o.decided = sums[5 * h + 3];
+    o.sampled = sums[5 * h + 4];
+  }
   return out;
+}
+
+PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& bathy, const StackBounds& bounds,
+                              const PoleRotation& rot, double min_depth_m, const mask::PixelWindow& window) {
+  return std::move(classify_patches_at(pf, bathy, bounds, rot, {min_depth_m}, window).front());
 }
 
 }  // namespace aq::forest

@@ -33,4 +33,11 @@ struct PatchClasses {
 PatchClasses classify_patches(const PatchForest& pf, const raster::Bathymetry& bathy, const StackBounds& bounds,
                               const PoleRotation& rot, double min_depth_m, const mask::PixelWindow& window);
 
+/// The same at one or two thresholds (a floodplain: mask.min_depth_m and the datum, 0 m), one
+/// PatchClasses each: a patch the bounds decide at every threshold is not sampled, any other is
+/// sampled once and thresholded at each, so every threshold's bits are the dense engine's.
+std::vector<PatchClasses> classify_patches_at(const PatchForest& pf, const raster::Bathymetry& bathy,
+                                              const StackBounds& bounds, const PoleRotation& rot,
+                                              const std::vector<double>& min_depths_m, const mask::PixelWindow& window);
+
 }  // namespace aq::forest

@@ -581,9 +581,13 @@ std::vector<PatchBits> forest_refill(const PatchForest& pf, const std::vector<Pa
   return dilate_reached(pf, wc, k, reached);
 }
 
-mask::ComponentStats forest_components(const PatchForest& pf, const std::vector<PatchBits>& set,
-                                       const std::vector<PatchBits>& probe) {
-  WindowComponents wc(pf, set, 1);
+namespace {
+
+// The 4-connected components of `set` over all ranks (labelled by their merged roots) with their
+// pixels and whether a `probe` pixel is in them; `touching` (when given) receives on every rank
+// the roots of the components a probe pixel is in, sorted.
+mask::ComponentStats component_totals(const PatchForest& pf, WindowComponents& wc, const std::vector<PatchBits>& probe,
+                                      std::vector<std::int64_t>* touching) {
   const std::int64_t p = wc.p();
   // Per merged component: pixels and whether a probe pixel is in it.
   std::unordered_map<std::int64_t, std::pair<std::int64_t, bool>> per;
@@ -623,6 +627,7 @@ mask::ComponentStats forest_components(const PatchForest& pf, const std::vector<
   }
   const std::vector<std::int64_t> all = pf.comm().gatherv(flat, 0);
   std::vector<std::int64_t> stats(4, 0);
+  std::vector<std::int64_t> hit_roots;
   if (pf.comm().root()) {
     std::unordered_map<std::int64_t, std::pair<std::int64_t, bool>> total;
     for (std::size_t q = 0; q + 2 < all.size(); q += 3) {
@@ -636,16 +641,70 @@ mask::ComponentStats forest_components(const PatchForest& pf, const std::vector<
       if (e.second) {
         ++stats[2];
         stats[3] += e.first;
+        if (touching != nullptr) hit_roots.push_back(root);
       }
     }
   }
   pf.comm().bcast(stats, 0);
+  if (touching != nullptr) {
+    std::sort(hit_roots.begin(), hit_roots.end());
+    pf.comm().bcast(hit_roots, 0);
+    *touching = std::move(hit_roots);
+  }
   mask::ComponentStats cs;
   cs.count = stats[0];
   cs.largest = stats[1];
   cs.touching_probe = stats[2];
   cs.cells_touching_probe = stats[3];
   return cs;
+}
+
+}  // namespace
+
+mask::ComponentStats forest_components(const PatchForest& pf, const std::vector<PatchBits>& set,
+                                       const std::vector<PatchBits>& probe) {
+  WindowComponents wc(pf, set, 1);
+  return component_totals(pf, wc, probe, nullptr);
+}
+
+Unreached forest_unreached(const PatchForest& pf, const std::vector<PatchBits>& set,
+                           const std::vector<PatchBits>& probe) {
+  WindowComponents wc(pf, set, 1);
+  Unreached out;
+  std::vector<std::int64_t> touching;
+  out.stats = component_totals(pf, wc, probe, &touching);
+  const auto hit = [&touching](std::int64_t root) {
+    return std::binary_search(touching.begin(), touching.end(), root);
+  };
+  const std::int64_t p = wc.p();
+  out.pixels.resize(pf.local_count());
+  std::vector<std::int32_t> lab;
+  for (std::size_t l = 0; l < pf.local_count(); ++l) {
+    const Windows& w = wc.windows(l);
+    const std::int64_t key = pf.key(l);
+    PatchBits& o = out.pixels[l];
+    if (w.kind == Kind::kCore) {
+      o.state = hit(wc.root(key * wc.stride())) ? Fill::kNone : Fill::kAll;
+    } else if (w.kind == Kind::kMat && w.comps > 0) {
+      std::vector<char> keep(static_cast<std::size_t>(w.comps), 0);
+      bool any = false;
+      for (std::int32_t c = 0; c < w.comps; ++c) {
+        keep[static_cast<std::size_t>(c)] = hit(wc.root(key * wc.stride() + c)) ? 0 : 1;
+        any = any || keep[static_cast<std::size_t>(c)] != 0;
+      }
+      if (!any) continue;
+      wc.labels(l, lab);
+      o.state = Fill::kMixed;
+      o.bits = Bitmap(p, p);
+      for (std::int64_t j = 0; j < p; ++j)
+        for (std::int64_t i = 0; i < p; ++i) {
+          const std::int32_t c = lab[static_cast<std::size_t>(j * p + i)];
+          if (c >= 0 && keep[static_cast<std::size_t>(c)] != 0) o.bits.set(i, j);
+        }
+      o.normalise();
+    }
+  }
+  return out;
 }
 
 }  // namespace aq::forest

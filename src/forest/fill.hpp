@@ -50,4 +50,14 @@ std::vector<PatchBits> forest_refill(const PatchForest& pf, const std::vector<Pa
 mask::ComponentStats forest_components(const PatchForest& pf, const std::vector<PatchBits>& set,
                                        const std::vector<PatchBits>& probe);
 
+/// The pixels of `set` whose 4-connected component (over all ranks, periodic as the lattice) holds
+/// no `probe` pixel, per local patch, and the components' statistics (forest_components). The
+/// forest's mask::flood_fill: `set` less what the probe's pixels reach. Collective.
+struct Unreached {
+  std::vector<PatchBits> pixels;
+  mask::ComponentStats stats;
+};
+Unreached forest_unreached(const PatchForest& pf, const std::vector<PatchBits>& set,
+                           const std::vector<PatchBits>& probe);
+
 }  // namespace aq::forest

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "core/error.hpp"
@@ -27,6 +28,7 @@
 #include "mask/pinches.hpp"
 #include "mesh/templates.hpp"
 #include "quadtree/balance.hpp"
+#include "quadtree/build_leaves.hpp"
 #include "size/terms.hpp"
 
 namespace aq::forest {
@@ -36,6 +38,11 @@ struct ForestState {
   std::unique_ptr<LatticeBrick> brick;
   std::unique_ptr<PatchForest> patches;
   std::vector<PatchBits> wet;  ///< per local patch: the pixel classes' wet pixels
+  /// A floodplain run (h < 0): per local patch, the pixels wet at the datum (the pixel rule at
+  /// 0 m, mask::WetArea::datum_wet); empty otherwise.
+  std::vector<PatchBits> datum_wet;
+  /// The water at the datum, whose pixels beyond a regional domain make its edge open.
+  [[nodiscard]] const std::vector<PatchBits>& water() const { return datum_wet.empty() ? wet : datum_wet; }
 };
 
 namespace {
@@ -162,14 +169,18 @@ std::vector<std::int32_t> filled_counts(const PatchForest& pf, const std::vector
   return count;
 }
 
-// The size field's cells (size::FieldCells; no floodplain on the forest): the coast cells hold a
-// pixel that is neither filled nor, in a regional run, `open` water beyond the domain's edge
-// (size/terms.hpp shore_cells), else one not filled (coast_cells).
+// The size field's cells (size::FieldCells): the coast cells hold a pixel that is neither filled
+// (sea, with a floodplain) nor, in a regional run, `open` water beyond the domain's edge
+// (size/terms.hpp shore_cells), else one not filled (coast_cells); with a floodplain the cells'
+// sea pixels.
 size::FieldCells field_cells(const PatchForest& pf, const std::vector<PatchBits>& filled,
-                             const std::vector<PatchBits>& open, bool regional, const size::FieldGrid& grid) {
+                             const std::vector<PatchBits>& open, const std::vector<PatchBits>& sea, bool regional,
+                             const size::FieldGrid& grid) {
   size::FieldCells cells;
   cells.filled = filled_counts(pf, filled, grid);
-  if (!regional) {
+  const bool floodplain = !sea.empty();
+  if (floodplain) cells.sea = filled_counts(pf, sea, grid);
+  if (!regional && !floodplain) {
     cells.coast = size::coast_cells(grid, cells.filled);
     return cells;
   }
@@ -177,20 +188,63 @@ size::FieldCells field_cells(const PatchForest& pf, const std::vector<PatchBits>
   std::vector<PatchBits> coast(pf.local_count());
   PatchBits all;
   all.state = Fill::kAll;
-  for (std::size_t l = 0; l < coast.size(); ++l) coast[l] = subtract(subtract(all, filled[l], p), open[l], p);
+  for (std::size_t l = 0; l < coast.size(); ++l) {
+    coast[l] = subtract(all, floodplain ? sea[l] : filled[l], p);
+    if (regional) coast[l] = subtract(coast[l], open[l], p);
+  }
   const std::vector<std::int32_t> count = filled_counts(pf, coast, grid);
   cells.coast.resize(count.size());
   for (std::size_t k = 0; k < count.size(); ++k) cells.coast[k] = count[k] > 0 ? 1 : 0;
   return cells;
 }
 
-std::int64_t pixels_of(const std::vector<std::int64_t>& per_level, int levels) {
-  std::int64_t n = 0;
-  for (int l = 0; l <= levels; ++l) {
-    const std::int64_t s = std::int64_t{1} << (levels - l);
-    n += per_level[static_cast<std::size_t>(l)] * s * s;
+// mask's find_inland_sea on the forest: the sea pixels not 4-connected through sea to a seed
+// window's sea pixels (WetArea::inland_sea_*), counted and boxed over all ranks.
+void inland_sea(const PatchForest& pf, const std::vector<PatchBits>& sea, const std::vector<mask::PixelIJ>& windows,
+                int k, const Lattice& lattice, const PoleRotation& rot, mask::WetArea& area) {
+  const PatchGrid& g = pf.grid();
+  const std::int64_t p = g.size;
+  std::vector<PatchBits> starts(pf.local_count());
+  for (const mask::PixelIJ& w : windows)
+    for (std::int64_t dj = 0; dj < k; ++dj)
+      for (std::int64_t di = 0; di < k; ++di) {
+        const mask::PixelIJ q{(w.i + di) % lattice.nx, w.j + dj};
+        if (q.j >= lattice.ny) continue;
+        const std::int64_t l = pf.local_index(g.key(q.i / p, q.j / p));
+        if (l < 0) continue;
+        PatchBits& s = starts[static_cast<std::size_t>(l)];
+        if (s.state == Fill::kNone) {
+          s.state = Fill::kMixed;
+          s.bits = Bitmap(p, p);
+        }
+        s.bits.set(q.i % p, q.j % p);
+      }
+  for (std::size_t l = 0; l < starts.size(); ++l) starts[l] = intersect(starts[l], sea[l], p);
+  const Unreached u = forest_unreached(pf, sea, starts);
+  area.inland_sea_pixels = pf.comm().sum(count_pixels(u.pixels, p));
+  if (area.inland_sea_pixels == 0) return;
+  area.inland_sea_components = u.stats.count - u.stats.touching_probe;
+  std::array<double, 4> box{-1e9, -1e9, -1e9, -1e9};  // -lon_min, lon_max, -lat_min, lat_max
+  for (std::size_t l = 0; l < pf.local_count(); ++l) {
+    const PatchBits& b = u.pixels[l];
+    if (b.state == Fill::kNone) continue;
+    const std::int64_t key = pf.key(l), i0 = g.gx(key) * p, j0 = g.gy(key) * p;
+    for (std::int64_t y = 0; y < p; ++y)
+      for (std::int64_t x = 0; x < p; ++x) {
+        if (!b.get(x, y)) continue;
+        const mask::LonLat c =
+            mask::lattice_to_geographic(rot, mask::pixel_center_lattice_deg(lattice, {i0 + x, j0 + y}));
+        box = {std::max(box[0], -c.lon_deg), std::max(box[1], c.lon_deg), std::max(box[2], -c.lat_deg),
+               std::max(box[3], c.lat_deg)};
+      }
   }
-  return n;
+  const std::vector<std::array<double, 4>> all = pf.comm().allgatherv(std::vector<std::array<double, 4>>{box});
+  for (const std::array<double, 4>& b : all)
+    for (std::size_t q = 0; q < 4; ++q) box[q] = std::max(box[q], b[q]);
+  area.inland_sea_lon_min = -box[0];
+  area.inland_sea_lon_max = box[1];
+  area.inland_sea_lat_min = -box[2];
+  area.inland_sea_lat_max = box[3];
 }
 
 // This rank's memory with its leaves known: the elements are those the mesh stage's templates make
@@ -219,11 +273,6 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   collective(comm, [&] {
     if (!std::isfinite(mo.min_depth_m))
       throw ConfigError(fmt::format("mask.min_depth_m = {}: must be a finite number", mo.min_depth_m));
-    if (mo.min_depth_m < 0.0)  // and with it [size.inland] and [size.elevation], which need a floodplain
-      throw ConfigError(fmt::format(
-          "mask.min_depth_m = {}: a floodplain (a threshold above the datum) is meshed by the dense engine only; "
-          "set quadtree.engine = \"dense\" or mask.min_depth_m >= 0",
-          mo.min_depth_m));
     if (mo.sampling != config::Sampling::kVertex)
       throw ConfigError(
           "mask.sampling = \"area\": the forest engine classifies by the vertex rule only; "
@@ -257,21 +306,36 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     const StackBounds bounds(bathy, lat.pixel_deg() * static_cast<double>(p), c.input.blend_km);
     const mask::PixelWindow window =
         regional && rot.identity() ? mask::classify_window(lat, domain) : mask::PixelWindow{};
-    PatchClasses pc = classify_patches(pf, bathy, bounds, rot, mo.min_depth_m, window);
+    // A floodplain: the same pixel rule at the datum as well (one sampling), for the sea inside Ω_L.
+    const bool floodplain = mo.min_depth_m < 0.0;
+    std::vector<PatchClasses> classes = classify_patches_at(
+        pf, bathy, bounds, rot,
+        floodplain ? std::vector<double>{mo.min_depth_m, 0.0} : std::vector<double>{mo.min_depth_m}, window);
+    PatchClasses& pc = classes.front();
     st->wet = std::move(pc.wet);
     out.area.classes = pc.counts;
     fj["classify"] = Json{{"patches_decided_by_bounds", pc.decided}, {"patches_sampled", pc.sampled}};
+    std::string datum;
+    if (floodplain) {
+      PatchClasses& at_datum = classes.back();
+      st->datum_wet = std::move(at_datum.wet);
+      out.area.datum_wet_pixels = at_datum.counts.wet;
+      fj["classify"]["datum_patches_decided_by_bounds"] = at_datum.decided;
+      fj["classify"]["datum_patches_sampled"] = at_datum.sampled;
+      datum = fmt::format("; {} wet at the datum", out.area.datum_wet_pixels);
+    }
     stage.done(
         fmt::format("{}×{} {}pixels of {:g}°: {} wet, {} coastal, {} dry (h = {:g} m, {} rule; {} patches "
-                    "decided by bounds, {} sampled)",
+                    "decided by bounds, {} sampled){}",
                     lat.nx, lat.ny, lat.mercator() ? "Mercator " : "", lat.pixel_deg(), pc.counts.wet,
-                    pc.counts.coastal, pc.counts.dry, mo.min_depth_m, mo.sampling, pc.decided, pc.sampled));
+                    pc.counts.coastal, pc.counts.dry, mo.min_depth_m, mo.sampling, pc.decided, pc.sampled, datum));
   }
 
   // The K-cursor fill (on wet ∩ domain for a regional run).
   std::vector<PatchBits> filled;
   std::vector<PatchBits> open;  // a regional run: the wet pixels beyond the domain (no coast, mask/coast.hpp)
   std::vector<mask::PixelIJ> seed_windows;
+  std::vector<PatchBits> sea;  // a floodplain run: the filled pixels wet at the datum
   {
     StageScope stage("fill", report, log);
     std::vector<PatchBits> wet_in = st->wet;
@@ -282,7 +346,7 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
         const PatchBits d = domain_patch(domain, g, pf.key(l));
         inside += d.state == Fill::kAll ? p * p : d.state == Fill::kMixed ? d.bits.count() : 0;
         wet_in[l] = intersect(wet_in[l], d, p);
-        open.push_back(subtract(st->wet[l], d, p));
+        open.push_back(subtract(st->water()[l], d, p));
       }
       inside = comm.sum(inside);
       if (inside == 0)
@@ -341,6 +405,13 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
       out.area.filled_pixels = comm.sum(count_pixels(filled, p));
       r.pixels_removed = before - out.area.filled_pixels;
     }
+    if (!st->datum_wet.empty()) {  // the sea inside Ω_L (after pinch removal); the rest is floodplain
+      sea.resize(pf.local_count());
+      for (std::size_t l = 0; l < sea.size(); ++l) sea[l] = intersect(filled[l], st->datum_wet[l], p);
+      out.area.floodplain_pixels = out.area.filled_pixels - comm.sum(count_pixels(sea, p));
+      inland_sea(pf, sea, seed_windows, mo.cursor, lat, rot, out.area);
+      mask::warn_inland_sea(out.area, log);
+    }
     pr.total = total;
     pr.pinches = std::move(pinches);
     mask::locate_pinches(pr.pinches, lat, rot);
@@ -353,12 +424,17 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     }
   }
 
-  // The passage table, judged on rank 0's gathered set.
-  if (mo.passages && !regional) {
+  // The passage table (a regional run: the passages inside the domain), judged on rank 0's
+  // gathered set, marked when carved.
+  const std::vector<mask::Passage> table = mask::passage_table(lat, rot, &domain);
+  if (mo.passages && !table.empty()) {
     StageScope stage("passages", report, log);
     const SparseSet set = SparseSet::gather(pf, filled);
     collective(comm, [&] {
-      if (comm.root()) out.area.passages = mask::judge_passages(mask::critical_passages(), set, lat, rot);
+      if (comm.root()) {
+        out.area.passages = mask::judge_passages(table, set, lat, rot);
+        mask::mark_carved(out.area.passages, mo);
+      }
     });
     int n_open = 0, closed = 0;
     for (const mask::PassageResult& r : out.area.passages) {
@@ -374,9 +450,9 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
   }
 
   // The size field (its grid replicated on every rank, from the counts of all ranks).
-  out.size_field =
-      size::build_size_field([&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, regional, grid); },
-                             lat, c, rot, &bathy, log, report);
+  out.size_field = size::build_size_field(
+      [&](const size::FieldGrid& grid) { return field_cells(pf, filled, open, sea, regional, grid); }, lat, c, rot,
+      &bathy, log, report);
 
   // The quadtree: the pyramid's refinements, the p4est forest, its balance.
   {
@@ -388,7 +464,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     std::vector<std::int64_t> bare, banded, refined;
     bare = ForestPyramid(pf, filled, 0).leaves_per_level();
     const int band = qo.coast_band != 0 && qo.coast_size_km == 0.0 ? qo.coast_band : 0;
-    auto pyr = std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr);
+    auto pyr =
+        std::make_unique<ForestPyramid>(pf, filled, band, regional ? &open : nullptr, sea.empty() ? nullptr : &sea);
     banded = pyr->leaves_per_level();
     const double masks_s = t_masks.wall_s();
     Timer t_rules;
@@ -409,11 +486,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     const double balance_s = t_balance.wall_s();
     Timer t_check;
     // The checkers: the counts are global (the same on every rank), so is the error.
-    for (const std::vector<std::int64_t>* cnt :
-         std::array<const std::vector<std::int64_t>*, 4>{&bare, &banded, &refined, &balanced})
-      if (pixels_of(*cnt, lat.levels) != filled_pixels)
-        throw InternalError(
-            fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*cnt, lat.levels), filled_pixels));
+    const quadtree::LeafSteps steps{bare, banded, refined, balanced};
+    quadtree::check_leaf_steps(steps, lat.levels, filled_pixels);
     const std::int64_t violations = mf->count_violations(mode);
     if (violations != 0)
       throw InternalError(
@@ -439,20 +513,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     if (report != nullptr) {
       Json& q = (*report)["quadtree"];
       q["engine"] = "forest";
-      q["lattice"] = lat.kind_name();
-      q["size_km"] = qo.size_km;
-      q["coast_size_km"] = qo.coast_size_km;
-      q["levels"] = lat.levels;
-      q["step_deg"] = lat.step0_deg;
-      q["coast_band"] = qo.coast_band;
-      q["balance"] = std::string(name_of(mode));
-      q["filled_pixels"] = filled_pixels;
-      q["leaves_per_level_bare"] = bare;
-      q["leaves_per_level_coast_band"] = banded;
-      q["leaves_per_level_rules"] = refined;
-      q["leaves_per_level"] = balanced;
+      quadtree::leaf_steps_json(q, lat, qo, filled_pixels, steps, violations);
       q["leaves"] = total_leaves;
-      q["balance_violations"] = violations;
       if (out.size_field.has_grid() && out.size_field.gradation() > 0.0)
         q["grading"] = Json{{"gradation", out.size_field.gradation()},
                             {"grading_splits", grade.splits},
@@ -467,6 +529,23 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
     stage.done(fmt::format("{} leaves (levels 0..{}: {}), {}-balanced ({} on {} rank(s))", total_leaves, lat.levels,
                            fmt::join(balanced, "/"), name_of(mode), br.used_p4est ? "p4est_balance" : "the dense rule",
                            comm.size()));
+  }
+  // The wet and filled pixels on rank 0 for the dropped seas (mask/dropped_seas.hpp), on a lattice
+  // small enough to hold them there (kDroppedSeasMaxPixels); beyond it the dropped components are
+  // counted over the ranks. Last, so that rank 0 holds them only until the app has used them.
+  std::int64_t dense_max = kDroppedSeasMaxPixels;
+  if (const char* e = std::getenv("AQ_FOREST_DROPPED_MAX_PIXELS")) dense_max = std::atoll(e);  // a test knob
+  if (lat.pixel_count() <= dense_max) {
+    out.area.wet = gather_dense(pf, st->wet);
+    out.area.filled = gather_dense(pf, filled);
+  } else {
+    std::vector<PatchBits> dropped(pf.local_count());
+    for (std::size_t l = 0; l < dropped.size(); ++l) {
+      dropped[l] = subtract(st->wet[l], filled[l], p);
+      if (regional) dropped[l] = intersect(dropped[l], domain_patch(domain, g, pf.key(l)), p);
+    }
+    out.dropped_components = forest_components(pf, dropped, std::vector<PatchBits>(pf.local_count())).count;
+    out.dropped_pixels = comm.sum(count_pixels(dropped, p));
   }
   out.state = st;
   return out;
@@ -484,9 +563,10 @@ std::vector<char> wet_outside_domain(const ForestState& state, const mask::Domai
   for (std::size_t k = 0; k < q.size(); ++k) {
     const std::int64_t l = pf.local_index(g.key(q[k].i / p, q[k].j / p));
     if (l < 0) continue;
-    ans[k] = (!domain.contains(q[k].i, q[k].j) && state.wet[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
-                 ? 1
-                 : 0;
+    ans[k] =
+        (!domain.contains(q[k].i, q[k].j) && state.water()[static_cast<std::size_t>(l)].get(q[k].i % p, q[k].j % p))
+            ? 1
+            : 0;
   }
   comm.or_in_place(ans);
   if (!comm.root()) return {};

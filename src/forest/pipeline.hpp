@@ -35,10 +35,21 @@ struct RankMemory {
   std::int64_t elements = 0;    ///< the triangles their templates make (mesh/templates.hpp; squares x 2 for quads)
 };
 
+/// The dropped seas (mask::find_dropped_seas) are found on rank 0 from the wet and filled pixels
+/// gathered there on lattices up to this many pixels (two bitmaps of 256 MB); on larger ones
+/// the forest counts the dropped components over its ranks and names none. (The hidden test knob
+/// AQ_FOREST_DROPPED_MAX_PIXELS sets another limit.)
+inline constexpr std::int64_t kDroppedSeasMaxPixels = std::int64_t{1} << 31;
+
 /// What the forest's stages made. On rank 0 `leaves` and `neighbourhoods` hold every filled leaf
 /// in the dense engine's order; on the other ranks they are empty.
 struct ForestLeaves {
-  mask::WetArea area;  ///< counts, seeds, pinches and passages (lists on rank 0); no bitmaps
+  /// Counts, seeds, pinches and passages (lists on rank 0); on rank 0, when the lattice has at
+  /// most kDroppedSeasMaxPixels pixels, the bitmaps `wet` and `filled` (for the dropped seas),
+  /// else no bitmap.
+  mask::WetArea area;
+  std::int64_t dropped_components = -1;  ///< above kDroppedSeasMaxPixels: the dropped components (else -1)
+  std::int64_t dropped_pixels = 0;       ///< and their pixels
   size::SizeField size_field;
   std::vector<quadtree::Leaf> leaves;
   std::vector<quadtree::LeafNeighbourhood> neighbourhoods;

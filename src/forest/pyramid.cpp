@@ -36,8 +36,8 @@ bool any_bit(const Bitmap& b) {
 }  // namespace
 
 ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>& filled, int coast_band,
-                             const std::vector<PatchBits>* open)
-    : pf_(pf), filled_(filled), open_(open) {
+                             const std::vector<PatchBits>* open, const std::vector<PatchBits>* sea)
+    : pf_(pf), filled_(filled), open_(open), sea_(sea) {
   const PatchGrid& g = pf.grid();
   L_ = g.lat.levels;
   lp_ = g.level;
@@ -53,6 +53,7 @@ ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>
                     coast_band, p_));
   ghosts_ = pf.exchange(filled);
   if (open_ != nullptr) open_ghosts_ = pf.exchange(*open_);
+  if (sea_ != nullptr) sea_ghosts_ = pf.exchange(*sea_);
   const std::size_t n = pf.local_count();
   fine_.resize(n);
   all_.assign(n, 0);
@@ -104,28 +105,39 @@ ForestPyramid::ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>
 
 Bitmap ForestPyramid::band_bits(std::size_t l, int radius) const {
   // Unfilled pixels within Chebyshev `radius` of a filled one (rows beyond the poles are no coast,
-  // columns beyond a window lattice are its unfilled padding, as in the dense engine's bitmaps).
+  // columns beyond a window lattice are its unfilled padding, as in the dense engine's bitmaps),
+  // and with a sea the sea pixels within `radius` of a pixel that is neither sea nor open water.
   const PatchGrid& g = pf_.grid();
   const std::int64_t key = pf_.key(l);
-  bool all_around = filled_[l].state == Fill::kAll;
-  for (std::int64_t dy = -1; dy <= 1 && all_around; ++dy)
-    for (std::int64_t dx = -1; dx <= 1 && all_around; ++dx) {
-      const std::int64_t nk = g.neighbour(g.gx(key), g.gy(key), dx, dy);
-      if (nk < 0) {
-        const bool row_out = g.gy(key) + dy < 0 || g.gy(key) + dy >= g.npy;
-        all_around = row_out;
-        continue;
+  // Whether `set` is all ones on the patch and its 8 neighbours (rows beyond the poles count).
+  const auto all_around = [&](const std::vector<PatchBits>& set, const std::vector<PatchBits>& ghosts) {
+    if (set[l].state != Fill::kAll) return false;
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        const std::int64_t nk = g.neighbour(g.gx(key), g.gy(key), dx, dy);
+        if (nk < 0) {
+          if (g.gy(key) + dy < 0 || g.gy(key) + dy >= g.npy) continue;
+          return false;
+        }
+        const PatchBits* b = pf_.find(nk, set, ghosts);
+        if (b == nullptr || b->state != Fill::kAll) return false;
       }
-      const PatchBits* b = pf_.find(nk, filled_, ghosts_);
-      all_around = b != nullptr && b->state == Fill::kAll;
-    }
-  if (all_around) return Bitmap(p_, p_);
+    return true;
+  };
+  const bool no_sea_band = sea_ == nullptr || (*sea_)[l].state == Fill::kNone || all_around(*sea_, sea_ghosts_);
+  if (no_sea_band && all_around(filled_, ghosts_)) return Bitmap(p_, p_);
   const Bitmap window = pf_.assemble(l, filled_, ghosts_, OutsideRule{true, false});
-  if (open_ == nullptr) return centre_of(quadtree::coastal_band(window, radius), p_);
+  if (open_ == nullptr && sea_ == nullptr) return centre_of(quadtree::coastal_band(window, radius), p_);
   // A regional run: the water beyond the domain's edge is no coast (its copy beyond the lattice
-  // never matters: the domain lies a level-0 square inside the window lattice).
-  const Bitmap open = pf_.assemble(l, *open_, open_ghosts_, OutsideRule{false, false});
-  return centre_of(quadtree::coastal_band(window, radius, mask::CoastSources{&open, nullptr}), p_);
+  // never matters: the domain lies a level-0 square inside the window lattice). A floodplain: the
+  // sea's rows beyond the poles are no coast either, its columns beyond a window are.
+  Bitmap open, sea;
+  if (open_ != nullptr) open = pf_.assemble(l, *open_, open_ghosts_, OutsideRule{false, false});
+  if (sea_ != nullptr) sea = pf_.assemble(l, *sea_, sea_ghosts_, OutsideRule{true, false});
+  return centre_of(
+      quadtree::coastal_band(window, radius,
+                             mask::CoastSources{open_ != nullptr ? &open : nullptr, sea_ != nullptr ? &sea : nullptr}),
+      p_);
 }
 
 ForestPyramid::Fine& ForestPyramid::activate(std::size_t l) {
@@ -165,8 +177,7 @@ void ForestPyramid::sync_coarse() {
   }
 }
 
-bool ForestPyramid::omega(int l, std::int64_t a, std::int64_t b) const {
-  if (l <= lp_) return omega_c_[static_cast<std::size_t>(l)].get(a, b);
+bool ForestPyramid::fine_bit(int l, std::int64_t a, std::int64_t b, bool omega) const {
   const int d = l - lp_;
   const std::int64_t key = pf_.grid().key(a >> d, b >> d);
   const std::int64_t li = pf_.local_index(key);
@@ -174,19 +185,15 @@ bool ForestPyramid::omega(int l, std::int64_t a, std::int64_t b) const {
   const auto s = static_cast<std::size_t>(li);
   if (!fine_[s]) return all_[s] != 0;
   const std::int64_t m = (std::int64_t{1} << d) - 1;
-  return fine_[s]->omega[static_cast<std::size_t>(d)].get(a & m, b & m);
+  return (omega ? fine_[s]->omega : fine_[s]->any)[static_cast<std::size_t>(d)].get(a & m, b & m);
+}
+
+bool ForestPyramid::omega(int l, std::int64_t a, std::int64_t b) const {
+  return l <= lp_ ? omega_c_[static_cast<std::size_t>(l)].get(a, b) : fine_bit(l, a, b, true);
 }
 
 bool ForestPyramid::any(int l, std::int64_t a, std::int64_t b) const {
-  if (l <= lp_) return any_c_[static_cast<std::size_t>(l)].get(a, b);
-  const int d = l - lp_;
-  const std::int64_t key = pf_.grid().key(a >> d, b >> d);
-  const std::int64_t li = pf_.local_index(key);
-  if (li < 0) throw InternalError(fmt::format("forest: square ({}, {}, {}) is not in a local patch", l, a, b));
-  const auto s = static_cast<std::size_t>(li);
-  if (!fine_[s]) return all_[s] != 0;
-  const std::int64_t m = (std::int64_t{1} << d) - 1;
-  return fine_[s]->any[static_cast<std::size_t>(d)].get(a & m, b & m);
+  return l <= lp_ ? any_c_[static_cast<std::size_t>(l)].get(a, b) : fine_bit(l, a, b, false);
 }
 
 void ForestPyramid::apply_rules(const config::QuadtreeOptions& options, const PoleRotation& rotation,

@@ -38,9 +38,10 @@ class ForestPyramid {
   /// The bare D_l rule of `filled` (per local patch) and, when `coast_band` > 0, the coastal band
   /// split to level L (quadtree::make_level_masks + apply_coast_band). Collective. Needs L >= 1.
   /// `open` (a regional run; null otherwise): per local patch, the water beyond the domain's edge,
-  /// which is no coast (mask/coast.hpp).
+  /// which is no coast (mask/coast.hpp). `sea` (a floodplain run; null otherwise): per local patch,
+  /// the filled pixels wet at the datum, whose side of the shoreline at 0 m is in the band as well.
   ForestPyramid(const PatchForest& pf, const std::vector<PatchBits>& filled, int coast_band,
-                const std::vector<PatchBits>* open = nullptr);
+                const std::vector<PatchBits>* open = nullptr, const std::vector<PatchBits>* sea = nullptr);
 
   /// quadtree::apply_refinement_rules (the level form). Collective.
   void apply_rules(const config::QuadtreeOptions& options, const PoleRotation& rotation,
@@ -68,6 +69,8 @@ class ForestPyramid {
     std::vector<Bitmap> omega, any;  // index d = l - lp, 2^d × 2^d squares
   };
   Fine& activate(std::size_t l);
+  // The omega (or any) bit of a square of level l > lp in a local patch.
+  [[nodiscard]] bool fine_bit(int l, std::int64_t a, std::int64_t b, bool omega) const;
   [[nodiscard]] Bitmap band_bits(std::size_t l, int radius) const;
   void sync_coarse();
   [[nodiscard]] bool would_split(std::size_t l, const size::SizeField& field) const;
@@ -77,6 +80,8 @@ class ForestPyramid {
   std::vector<PatchBits> ghosts_;  // the filled set of the ghost patches
   const std::vector<PatchBits>* open_ = nullptr;
   std::vector<PatchBits> open_ghosts_;  // the open water of the ghost patches (with open_)
+  const std::vector<PatchBits>* sea_ = nullptr;
+  std::vector<PatchBits> sea_ghosts_;  // the sea of the ghost patches (with sea_)
   int L_ = 0, lp_ = 0, plog_ = 0;
   std::int64_t p_ = 1;
   std::vector<Bitmap> omega_c_, any_c_;  // levels 0..lp

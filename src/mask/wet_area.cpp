@@ -99,6 +99,35 @@ PixelWindow classify_window(const Lattice& lattice, const Domain& domain) {
   return w;
 }
 
+void warn_inland_sea(const WetArea& area, const Logger& log) {
+  if (area.inland_sea_pixels == 0) return;
+  log.warn(
+      "floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
+      "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
+      "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
+      "elevation (elev.ic) starts them dry",
+      area.inland_sea_pixels, area.inland_sea_components, area.inland_sea_lon_min, area.inland_sea_lon_max,
+      area.inland_sea_lat_min, area.inland_sea_lat_max);
+}
+
+std::vector<Passage> passage_table(const Lattice& lattice, const PoleRotation& rot, const Domain* domain) {
+  const bool regional = domain != nullptr && domain->regional();
+  std::vector<Passage> table;
+  for (const Passage& p : critical_passages())
+    if (!regional || box_in_domain(p.box, *domain, lattice, rot)) table.push_back(p);
+  return table;
+}
+
+void mark_carved(std::vector<PassageResult>& passages, const config::MaskOptions& options) {
+  for (PassageResult& r : passages)
+    for (const std::string& n : options.passages_open)
+      if (const Passage* f = find_passage(n); f != nullptr && r.name == f->name) {
+        r.carved = true;
+        r.note =
+            r.note.empty() ? std::string("carved (mask.passages_open)") : "carved (mask.passages_open), but " + r.note;
+      }
+}
+
 WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice, const PoleRotation& rot,
                          const config::MaskOptions& options, const Logger& log, Report* report,
                          const Domain* domain) {
@@ -177,14 +206,7 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
       for (std::size_t k = 0; k < w.size(); ++k) w[k] &= d[k];
       area.floodplain_pixels = area.filled_pixels - area.sea.count();
       find_inland_sea(area, lattice, rot, options.cursor);
-      if (area.inland_sea_pixels > 0)
-        log.warn(
-            "floodplain: {} pixels of water below the datum in {} piece(s) ({:.2f}..{:.2f}°E, {:.2f}..{:.2f}°N) "
-            "are reached only across the floodplain (lakes, lagoons, depressions behind land above the datum): "
-            "the models start them wet at 0 m; ADCIRC's fort.13 surface_submergence_state or SCHISM's initial "
-            "elevation (elev.ic) starts them dry",
-            area.inland_sea_pixels, area.inland_sea_components, area.inland_sea_lon_min, area.inland_sea_lon_max,
-            area.inland_sea_lat_min, area.inland_sea_lat_max);
+      warn_inland_sea(area, log);
     }
     area.pinches.pinches = find_pinches(area.filled);
     locate_pinches(area.pinches.pinches, lattice, rot);
@@ -198,19 +220,11 @@ WetArea compute_wet_area(const raster::Bathymetry& bathy, const Lattice& lattice
     }
   }
   // The table's passages (a regional run: those whose box lies in the domain), marked when carved.
-  std::vector<Passage> table;
-  for (const Passage& p : critical_passages())
-    if (!regional || box_in_domain(p.box, *domain, lattice, rot)) table.push_back(p);
+  const std::vector<Passage> table = passage_table(lattice, rot, domain);
   if (options.passages && !table.empty()) {
     StageScope stage("passages", report, log);
     area.passages = judge_passages(table, area.filled, lattice, rot);
-    for (PassageResult& r : area.passages)
-      for (const std::string& n : options.passages_open)
-        if (const Passage* f = find_passage(n); f != nullptr && r.name == f->name) {
-          r.carved = true;
-          r.note = r.note.empty() ? std::string("carved (mask.passages_open)")
-                                  : "carved (mask.passages_open), but " + r.note;
-        }
+    mark_carved(area.passages, options);
     int open = 0, closed = 0;
     for (const PassageResult& p : area.passages) {
       open += p.status == PassageStatus::kOpen ? 1 : 0;

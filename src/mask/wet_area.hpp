@@ -77,6 +77,16 @@ struct WetArea {
 /// vertex is sampled and every pixel is dry.
 PixelWindow classify_window(const Lattice& lattice, const Domain& domain);
 
+/// The floodplain's warning of inland seas (WetArea::inland_sea_*), when there are any.
+void warn_inland_sea(const WetArea& area, const Logger& log);
+
+/// The passages of the built-in table a run judges: all of them, or in a regional run (`domain`
+/// regional) those whose box lies inside the domain (its corners' and centre's pixels).
+std::vector<Passage> passage_table(const Lattice& lattice, const PoleRotation& rot, const Domain* domain);
+
+/// Marks the judged passages that options.passages_open carves (PassageResult::carved and its note).
+void mark_carved(std::vector<PassageResult>& passages, const config::MaskOptions& options);
+
 /// Runs the mask stage on `options` as validated at load (config/global_config.cpp: every mask.*
 /// key's range; a negative min_depth_m is a floodplain); seeds as in place_seeds (ConfigError when no
 /// all-wet window is within the radius). Logs "classify: done ...", "fill: done ...",

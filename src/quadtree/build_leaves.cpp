@@ -101,6 +101,30 @@ Json rules_json(const std::vector<Rule>& rules, const char* key, const Lattice& 
 
 }  // namespace
 
+void check_leaf_steps(const LeafSteps& steps, int levels, std::int64_t filled_pixels) {
+  for (const std::vector<std::int64_t>* c : {&steps.bare, &steps.banded, &steps.refined, &steps.balanced})
+    if (pixels_of(*c, levels) != filled_pixels)
+      throw InternalError(
+          fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*c, levels), filled_pixels));
+}
+
+void leaf_steps_json(Json& q, const Lattice& lat, const config::QuadtreeOptions& options, std::int64_t filled_pixels,
+                     const LeafSteps& steps, std::int64_t violations) {
+  q["lattice"] = lat.kind_name();
+  q["size_km"] = options.size_km;
+  q["coast_size_km"] = options.coast_size_km;
+  q["levels"] = lat.levels;
+  q["step_deg"] = lat.step0_deg;
+  q["coast_band"] = options.coast_band;
+  q["balance"] = std::string(name_of(options.balance));
+  q["filled_pixels"] = filled_pixels;
+  q["leaves_per_level_bare"] = steps.bare;
+  q["leaves_per_level_coast_band"] = steps.banded;
+  q["leaves_per_level_rules"] = steps.refined;
+  q["leaves_per_level"] = steps.balanced;
+  q["balance_violations"] = violations;
+}
+
 std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const config::QuadtreeOptions& options,
                                const PoleRotation& rotation, const raster::Bathymetry* bathy, const Logger& log,
                                Report* report, const size::SizeField* field, const mask::CoastSources& coast) {
@@ -146,12 +170,8 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   masks = LevelMasks{};
 
   Timer t_check;
-  for (const std::vector<std::int64_t>* c : {&bare, &banded, &refined, &balanced}) {
-    if (pixels_of(*c, lat.levels) != filled_pixels) {
-      throw InternalError(
-          fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*c, lat.levels), filled_pixels));
-    }
-  }
+  const LeafSteps steps{bare, banded, refined, balanced};
+  check_leaf_steps(steps, lat.levels, filled_pixels);
   const std::int64_t violations = count_balance_violations(leaves, lat, mode);
   if (violations != 0) {
     throw InternalError(fmt::format("quadtree: {} {}-balance violations left after smoothing", violations, mode));
@@ -189,24 +209,12 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   if (report != nullptr) {
     Json& q = (*report)["quadtree"];
     if (!grading_json.is_null()) q["grading"] = grading_json;
-    q["lattice"] = lat.kind_name();
-    q["size_km"] = options.size_km;
-    q["coast_size_km"] = options.coast_size_km;
+    leaf_steps_json(q, lat, options, filled_pixels, steps, violations);
     q["size_by_latitude"] = size_bands;
-    q["levels"] = lat.levels;
-    q["step_deg"] = lat.step0_deg;
-    q["coast_band"] = options.coast_band;
-    q["balance"] = std::string(name_of(mode));
     q["depth_rules"] = depth_rules;
     q["box_rules"] = box_rules;
-    q["filled_pixels"] = filled_pixels;
-    q["leaves_per_level_bare"] = bare;
-    q["leaves_per_level_coast_band"] = banded;
-    q["leaves_per_level_rules"] = refined;
-    q["leaves_per_level"] = balanced;
     q["leaves"] = leaves.size();
     q["balance_forced_splits"] = bstats.forced_splits;
-    q["balance_violations"] = violations;
     q["timings_s"] = Json{{"masks", round3(masks_s)},
                           {"rules", round3(rules_s)},
                           {"balance", round3(balance_s)},

@@ -40,4 +40,18 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
                                Report* report, const size::SizeField* field = nullptr,
                                const mask::CoastSources& coast = {});
 
+/// Leaves per level after each step of the stage: the bare D_l rule, the coastal band, the rules
+/// and size field, the balance (both engines; the report's leaves_per_level_*).
+struct LeafSteps {
+  std::vector<std::int64_t> bare, banded, refined, balanced;
+};
+
+/// Throws InternalError unless the leaves of every step hold the `filled_pixels` pixels of Ω_L.
+void check_leaf_steps(const LeafSteps& steps, int levels, std::int64_t filled_pixels);
+
+/// The "quadtree" report entries of both engines: the lattice, the options, the steps' leaf counts
+/// and the balance violations left (none).
+void leaf_steps_json(Json& q, const Lattice& lat, const config::QuadtreeOptions& options, std::int64_t filled_pixels,
+                     const LeafSteps& steps, std::int64_t violations);
+
 }  // namespace aq::quadtree

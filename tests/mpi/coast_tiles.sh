@@ -4,8 +4,9 @@
 # stack of 0.05° VRT tiles resampled from ETOPO5 over Cape Hatteras (1° × 1°, tiles only where the
 # coast runs, none east of -75.5°: the lattice's window reaches past the stack's edge), above ETOPO5
 # (input.paths); a 0.5° box meshed at 14" pixels with a coast size term must give the dense
-# engine's files on NP ranks. Both engines read the stack in tiles (AQ_RASTER_TILES_ABOVE=1): a
-# VRT that resamples on read can differ in the last float bit between one whole read and tile reads.
+# engine's files on NP ranks, and so must the same box with a floodplain up to 3 m. Both engines
+# read the stack in tiles (AQ_RASTER_TILES_ABOVE=1): a VRT that resamples on read can differ in the
+# last float bit between one whole read and tile reads.
 #   coast_tiles.sh AQUATORIA MPIEXEC NP OUTDIR
 set -euo pipefail
 bin=$1 mpiexec=$2 np=$3 out=$4
@@ -36,3 +37,6 @@ TOML
 export AQ_RASTER_TILES_ABOVE=1
 "$here/forest_vs_dense.sh" "$bin" "$mpiexec" "$np" "$out/run" "$out/coast.toml"
 grep -q "tiles.vrt supplied" "$out/run/forest.log" || { echo "FAIL: the tile stack supplied no node"; exit 1; }
+# A floodplain on the stack (land up to 3 m): each patch classified at the threshold and the datum.
+"$here/forest_vs_dense.sh" "$bin" "$mpiexec" "$np" "$out/run_floodplain" "$out/coast.toml" --set mask.min_depth_m=-3
+grep -q "floodplain: done [1-9]" "$out/run_floodplain/forest.log" || { echo "FAIL: no floodplain node on the stack"; exit 1; }

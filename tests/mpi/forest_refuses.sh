@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Bad input on the forest engine under `mpirun -np NP` (ctest label mpi): every rank ends with the
 # configuration error's exit code 2, the message is printed once and names the key, and no file is
-# written. Cases: a floodplain (mask.min_depth_m < 0, dense engine only), a coastal band wider
-# than the forest's patches, and a mesh above input.max_memory_gb once the leaves are known.
+# written. Cases: a coastal band wider than the forest's patches, and a mesh above
+# input.max_memory_gb once the leaves are known.
 #   forest_refuses.sh AQUATORIA MPIEXEC NP OUTDIR CONFIG
 set -uo pipefail
 bin=$1 mpiexec=$2 np=$3 out=$4 cfg=$5
@@ -25,7 +25,6 @@ check() {  # check NAME EXPECTED-TEXT --set ...
   fi
 }
 mkdir -p "$out"
-check floodplain "mask.min_depth_m = -5: a floodplain" --set mask.min_depth_m=-5
 check band "quadtree.coast_band = 40: the forest engine needs at most" --set quadtree.coast_band=40
 # The memory limit once the leaves are known: the seed run with 20 km squares over the whole ocean
 # (1.45 million triangles) passes the estimate before the data (0.33 GB per rank) and is stopped

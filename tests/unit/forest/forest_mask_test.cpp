@@ -153,5 +153,74 @@ INSTANTIATE_TEST_SUITE_P(Etopo5, ForestMask,
                          ::testing::Values(Case{4.0, 3, 2, false}, Case{4.0, 3, 3, true}, Case{1.0, 5, 2, false},
                                            Case{2.0, 1, 1, false}));
 
+// A floodplain (h = -30 m on the seed's lattice): the pixels wet at the datum and the inland seas
+// (sea pixels the seed windows reach only across the floodplain, forest_unreached over every
+// rank's patches) are the dense engine's bits and counts.
+TEST(ForestFloodplain, DatumPixelsAndInlandSeasEqualTheDenseEngine) {
+  start_mpi();
+  const Lattice lat = Lattice::make(4.0, 3, -180.0);
+  const PoleRotation rot;
+  config::MaskOptions o;
+  o.min_depth_m = -30.0;
+  o.passages = false;
+  const mask::WetArea dense = mask::compute_wet_area(etopo5(), lat, rot, o, Logger::null(), nullptr);
+  ASSERT_GT(dense.inland_sea_pixels, 0) << "the case tests no inland sea";
+  ASSERT_GT(dense.inland_sea_components, 1);
+
+  const LatticeBrick brick(lat);
+  const Comm comm;
+  const PatchForest pf(brick, comm);
+  const std::int64_t p = pf.grid().size;
+  const StackBounds bounds(etopo5(), lat.pixel_deg() * static_cast<double>(p), 0.0);
+  const PatchClasses pc = classify_patches(pf, etopo5(), bounds, rot, o.min_depth_m, mask::PixelWindow{});
+  const PatchClasses at_datum = classify_patches(pf, etopo5(), bounds, rot, 0.0, mask::PixelWindow{});
+  EXPECT_EQ(at_datum.counts.wet, dense.datum_wet_pixels);
+  const Bitmap datum = gather_dense(pf, at_datum.wet);
+  if (comm.root()) {
+    EXPECT_TRUE(datum == dense.datum_wet);
+  }
+  const ForestFill ff = forest_fill(pf, pc.wet, rot, o.cursor, o.seeds, o.seed_radius_deg, Logger::null());
+  std::vector<PatchBits> sea(pf.local_count()), starts(pf.local_count());
+  for (std::size_t l = 0; l < sea.size(); ++l) {
+    Bitmap b = ff.filled[l].dense(p);
+    const Bitmap d = at_datum.wet[l].dense(p);
+    for (std::size_t w = 0; w < b.words().size(); ++w) b.words()[w] &= d.words()[w];
+    sea[l].state = Fill::kMixed;
+    sea[l].bits = std::move(b);
+    sea[l].normalise();
+  }
+  for (const mask::SeedInfo& s : ff.seeds)
+    for (std::int64_t dj = 0; dj < o.cursor; ++dj)
+      for (std::int64_t di = 0; di < o.cursor; ++di) {
+        const std::int64_t i = (s.window.i + di) % lat.nx, j = s.window.j + dj;
+        const std::int64_t l = pf.local_index(pf.grid().key(i / p, j / p));
+        if (l < 0 || !sea[static_cast<std::size_t>(l)].get(i % p, j % p)) continue;
+        PatchBits& b = starts[static_cast<std::size_t>(l)];
+        if (b.state == Fill::kNone) {
+          b.state = Fill::kMixed;
+          b.bits = Bitmap(p, p);
+        }
+        b.bits.set(i % p, j % p);
+      }
+  const Unreached u = forest_unreached(pf, sea, starts);
+  EXPECT_EQ(u.stats.count - u.stats.touching_probe, dense.inland_sea_components);
+  const Bitmap inland = gather_dense(pf, u.pixels);
+  if (comm.root()) {
+    EXPECT_EQ(inland.count(), dense.inland_sea_pixels);
+    // The dense engine's: its sea less what the seed windows' sea pixels reach.
+    std::vector<mask::PixelIJ> from;
+    for (const mask::SeedInfo& s : dense.seeds)
+      for (std::int64_t dj = 0; dj < o.cursor; ++dj)
+        for (std::int64_t di = 0; di < o.cursor; ++di) {
+          const mask::PixelIJ q{(s.window.i + di) % lat.nx, s.window.j + dj};
+          if (dense.sea.get(q.i, q.j)) from.push_back(q);
+        }
+    Bitmap expect = dense.sea;
+    const Bitmap reached = mask::flood_fill(dense.sea, from);
+    for (std::size_t w = 0; w < expect.words().size(); ++w) expect.words()[w] &= ~reached.words()[w];
+    EXPECT_TRUE(inland == expect);
+  }
+}
+
 }  // namespace
 }  // namespace aq::forest::unit_forest_forest_mask_test
