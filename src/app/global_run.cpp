@@ -295,10 +295,12 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
                 : "";
     }
     throw ConfigError(
-        fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
+        fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, {}), "
                     "more than input.max_memory_gb = {:.2f} GB; nothing was read",
                     gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
-                    s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
+                    s.forest ? "the forest's patches per rank" : "lattice bitmaps", gb(s.lattice_bytes),
+                    s.forest ? std::string("the mesh not yet counted: it follows the leaves")
+                             : fmt::format("mesh {:.2f} GB", gb(s.mesh_bytes)),
                     gb(s.memory_limit_bytes)));
   }
   return s;
