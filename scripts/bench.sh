@@ -17,7 +17,7 @@
 #                               the seed run, the 1' global lattice (and the 15" one with
 #                               AQ_BENCH_FOREST_15S=1) and the 1/9" coast (configs/us_east_19.toml;
 #                               forest only, with its tile stack) on 1 and 2 MPI ranks: wall, CPU
-#                               (summed over the ranks), peak RSS per rank, leaves, same bytes
+#                               and peak RSS per rank, the memory estimate per rank, leaves, same bytes
 #   scripts/bench.sh tides      configs/global_tides.toml (the size field from physics) on ETOPO5
 #                               and on the 1' raster (Δ0 = 16', L = 4): the stage table and the
 #                               size stage's share of the run (target <= 25 %)
@@ -193,8 +193,9 @@ forest_case() {
       /usr/bin/time -f "%e %U %S %M" -o "$out.time.0" "$bin" mesh -q "$@" --set quadtree.engine=dense -o "$out" \
         >/dev/null 2>"$out.log"
     else
-      np=${e#f}
-      OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 /usr/bin/time -f "%e" -o "$out.wall" \
+      np=${e#f}  # ranks x threads = OMP_NUM_THREADS (one thread per rank at least)
+      OMP_NUM_THREADS=$((OMP_NUM_THREADS / np > 0 ? OMP_NUM_THREADS / np : 1)) \
+        OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 /usr/bin/time -f "%e" -o "$out.wall" \
         mpirun --oversubscribe -np "$np" bash -c '/usr/bin/time -f "%e %U %S %M" -o "$0.time.$OMPI_COMM_WORLD_RANK" "$@"' \
         "$out" "$bin" mesh -q "$@" --set quadtree.engine=forest -o "$out" >/dev/null 2>"$out.log"
     fi
@@ -204,12 +205,14 @@ import filecmp, glob, json, os, sys
 name, e, out, first = sys.argv[1:]
 times = [open(f).read().split() for f in sorted(glob.glob(out + ".time.*"))]
 wall = float(open(out + ".wall").read().split()[0]) if os.path.exists(out + ".wall") else float(times[0][0])
-cpu = sum(float(t[1]) + float(t[2]) for t in times)
-peak = max(int(t[3]) for t in times) / 1e6
+cpu = "/".join(f"{float(t[1]) + float(t[2]):.1f}" for t in times)
+peak = "/".join(f"{int(t[3]) / 1e6:.2f}" for t in times)
 r = json.load(open(glob.glob(out + "/*_report.json")[0]))
+fm = r.get("forest", {}).get("memory")
+est = "/".join(f"{k['estimate_bytes'] / 1e9:.2f}" for k in fm["per_rank"]) if fm else f"{r['memory']['estimate_bytes'] / 1e9:.2f}"
 files = sorted(f for f in os.listdir(first) if not f.endswith("_report.json"))
 same = "-" if out == first else ("yes" if all(filecmp.cmp(f"{first}/{f}", f"{out}/{f}", shallow=False) for f in files) else "NO")
-print(f"{name:<12}{e:>6}{wall:>9.1f}{cpu:>9.1f}{peak:>10.2f}{r['quadtree']['leaves']:>12}{r['mesh_counts']['triangles']:>12}  {same}")
+print(f"{name:<12}{e:>6}{wall:>9.1f}{cpu:>13}{peak:>12}{est:>12}{r['quadtree']['leaves']:>10}{r['mesh_counts']['triangles']:>10}  {same}")
 PY
 )")
   done
@@ -226,8 +229,10 @@ if [ "$mode" = forest ]; then
   [ -f "$tiles" ] || data_tools/make_coast_tiles.py "$(dirname "$tiles")" -80 -70 32 42 >/dev/null
   forest_case us_east_19 "f1 f2" -c configs/us_east_19.toml --set 'output.formats=["ugrid","fort14"]'
   echo
-  echo "== forest vs dense: wall s, CPU s (all ranks), peak GB (largest rank), leaves, triangles, same bytes as the first row; load: $(uptime | sed 's/.*load average: //')"
-  printf '%-12s%6s%9s%9s%10s%12s%12s  %s\n' case run wall cpu peak_GB leaves triangles same
+  echo "== forest vs dense: wall s; CPU s (user + sys) and peak RSS GB per rank (rank 0/rank 1); the memory estimate"
+  echo "   (dense: before the run; forest: per rank once the leaves are known); leaves, triangles, same bytes as the"
+  echo "   first row; load: $(uptime | sed 's/.*load average: //')"
+  printf '%-12s%6s%9s%13s%12s%12s%10s%10s  %s\n' case run wall cpu_s peak_GB est_GB leaves triangles same
   for row in "${forest_rows[@]}"; do echo "$row"; done
   exit 0
 fi

@@ -64,16 +64,21 @@ namespace {
 // term has 37 % more triangles than the guess). Measured peak / estimate for the mesh's count
 // (2026-11-28): 15" with every size term 6.58 / 6.80 GB (before the run, from the guessed count:
 // 5.10); global_tides on the 1' raster (rotated: no copy) 2.94 / 3.09 GB.
-//   forest   (quadtree.engine = "forest") instead of the lattice bitmaps, per rank: kForestBytesPerPatch
-//            for every patch of its trees (p4est's quadrant, the patch's sets and their ghosts),
-//            kForestBytesPerActivePixel·P per coastal pixel (the mixed patches' bitmaps and fine
-//            pyramids; coastal pixels ~ triangles / 10) and kForestBytesPerQuadrant per mesh-forest
-//            quadrant (leaves ~ triangles / 2.4, land included ×1.5); rank 0 holds the mesh and the
-//            gathered leaves as well (kForestGatherBytesPerLeaf).
+//   forest   (quadtree.engine = "forest") instead of the lattice bitmaps, in two steps, because
+//            what it holds follows the coast and the size field, which no header tells:
+//            before the run, per rank, kForestBytesPerPatch for every patch of its trees (p4est's
+//            quadrant, the patch's states and their ghosts) beside the raster and the program —
+//            the part known from the lattice; the mesh's part is not guessed from the pixel count
+//            (350·√pixels assumes a coast at the finest level across a global lattice: 34 million
+//            triangles for the 1/9" coast, which made 8.5 million, 12 GB said for 2.65 GB used).
+//            Once the leaves are known (rank 0 has gathered them; printed before the mesh),
+//            every rank's estimate is what it holds then (its resident set: the program, the
+//            raster, the tile cache, the patches' states, on rank 0 the gathered leaves at
+//            kForestGatherBytesPerLeaf), or its peak so far if larger, and on rank 0
+//            kMeshBytesPerTriangle for the triangles the leaves' templates make (an exact count:
+//            forest::RankMemory); the run stops there if that is above the limit.
 constexpr double kLatticeBitsPerPixel = 8.0;
 constexpr double kForestBytesPerPatch = 200.0;
-constexpr double kForestBytesPerActivePixel = 2.25;
-constexpr double kForestBytesPerQuadrant = 120.0;
 constexpr double kForestGatherBytesPerLeaf = 27.0;
 // The forest reads a raster in tiles (raster::OpenOptions::tiles_above_bytes) above this.
 constexpr std::int64_t kForestTilesAboveBytes = std::int64_t{1} << 30;
@@ -158,23 +163,18 @@ Lattice window_lattice(const config::GlobalConfig& c, const Lattice& g, const Po
 // base + raster + bitmaps and mesh: their sum while the bitmaps stay, else the larger.
 static double model_bytes(const GlobalSetup& s, double mesh_bytes) {
   const auto lattice = static_cast<double>(s.lattice_bytes);
-  if (s.forest)  // rank 0: its share of the forest beside the whole mesh
-    return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) + lattice + mesh_bytes;
+  if (s.forest)  // before the leaves: the program, the raster and a rank's patches (the mesh comes later)
+    return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) + lattice;
   return static_cast<double>(kBaseBytes) + static_cast<double>(s.raster.bytes) +
          (s.masks_kept ? lattice + mesh_bytes : std::max(lattice, mesh_bytes));
 }
 
-// The forest's structures on one of `ranks` ranks (the memory model above).
-static double forest_bytes(const Lattice& l, double triangles, int ranks) {
+// The forest's patches on one of `ranks` ranks, known before the run (the memory model above).
+static double forest_bytes(const Lattice& l, int ranks) {
   const int plog = std::min(l.levels, 7);
   const double p = static_cast<double>(std::int64_t{1} << plog);
-  const double patches = static_cast<double>(l.nx) / p * static_cast<double>(l.ny) / p;
-  const double leaves = triangles / 2.4;
-  const double r = std::max(1, ranks);
-  return (kForestBytesPerPatch * patches + kForestBytesPerActivePixel * p * triangles / 10.0 +
-          kForestBytesPerQuadrant * 1.5 * leaves) /
-             r +
-         kForestGatherBytesPerLeaf * leaves;
+  const double patches = std::ceil(static_cast<double>(l.nx) / p) * std::ceil(static_cast<double>(l.ny) / p);
+  return kForestBytesPerPatch * patches / static_cast<double>(std::max(1, ranks));
 }
 
 // The lattice (a window lattice for a regional run), the rotation, the memory limit and the
@@ -204,8 +204,9 @@ static void plan_lattice(GlobalSetup& s, const config::GlobalConfig& c, const Se
   if (c.mask.min_depth_m < 0.0)  // a floodplain: the pixels at the datum, the sea and (regional) the open water
     s.lattice_bytes = saturate(estimate_lattice_bytes_f(s.lattice) * (kLatticeBitsPerPixel + kFloodplainBitsPerPixel) /
                                kLatticeBitsPerPixel);
-  if (s.forest) s.lattice_bytes = saturate(forest_bytes(s.lattice, static_cast<double>(s.triangles_guess), s.ranks));
+  if (s.forest) s.lattice_bytes = saturate(forest_bytes(s.lattice, s.ranks));
   s.mesh_bytes = saturate(kMeshBytesPerTriangle * static_cast<double>(s.triangles_guess));
+  if (s.forest) s.triangles_guess = s.mesh_bytes = 0;  // no guess: estimated once the leaves are known
   const Lattice& lat = s.lattice;
   if (!s.forest && s.memory_limit_bytes > 0 && s.lattice_bytes > s.memory_limit_bytes) {
     throw ConfigError(fmt::format(
@@ -308,10 +309,12 @@ static void check_memory_estimate(GlobalSetup& s, const config::GlobalConfig& c)
                 : "";
     }
     throw ConfigError(
-        fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, mesh {:.2f} GB), "
+        fmt::format("the run is estimated to need {:.2f} GB (raster {:.2f} GB {}{}, {} {:.2f} GB, {}), "
                     "more than input.max_memory_gb = {:.2f} GB; nothing was read",
                     gb(s.estimate_bytes), gb(s.raster.bytes), s.raster.streamed ? "streamed" : "held whole", why,
-                    s.forest ? "forest per rank" : "lattice bitmaps", gb(s.lattice_bytes), gb(s.mesh_bytes),
+                    s.forest ? "the forest's patches per rank" : "lattice bitmaps", gb(s.lattice_bytes),
+                    s.forest ? std::string("the mesh not yet counted: it follows the leaves")
+                             : fmt::format("mesh {:.2f} GB", gb(s.mesh_bytes)),
                     gb(s.memory_limit_bytes)));
   }
 }
@@ -326,6 +329,8 @@ GlobalSetup prepare_global_run(const config::GlobalConfig& c, const SetupOptions
 }
 
 std::int64_t estimate_bytes_for(const GlobalSetup& s, std::int64_t triangles) {
+  if (s.forest)  // rank 0 with the mesh: the same model as the estimate once the leaves are known
+    return saturate(model_bytes(s, 0.0) + kMeshBytesPerTriangle * static_cast<double>(triangles));
   return saturate(model_bytes(s, kMeshBytesPerTriangle * static_cast<double>(triangles)));
 }
 
@@ -343,11 +348,12 @@ Json memory_json(const GlobalSetup& s, std::int64_t triangles) {
 void log_memory_estimate(const GlobalSetup& s, const Logger& log) {
   if (s.forest) {
     log.info(
-        "memory: estimate {:.2f} GB on rank 0 of {} of {:.2f} GB allowed (input.max_memory_gb): raster {:.2f} "
-        "GB {}, forest {:.2f} GB per rank, mesh {:.2f} GB (~{} triangles) on rank 0",
+        "memory: estimate before the data {:.2f} GB per rank ({} ranks) of {:.2f} GB allowed (input.max_memory_gb): "
+        "raster {:.2f} GB {}, the forest's patches {:.2f} GB per rank; the leaves and the mesh on rank 0 follow "
+        "the coast: estimated again once the leaves are known",
         gb(s.estimate_bytes), s.ranks, gb(s.memory_limit_bytes), gb(s.raster.bytes),
         s.raster.streamed ? fmt::format("streamed in bands of {} rows", s.raster.band_rows) : std::string("held whole"),
-        gb(s.lattice_bytes), gb(s.mesh_bytes), s.triangles_guess);
+        gb(s.lattice_bytes));
     return;
   }
   log.info(
@@ -908,6 +914,57 @@ static void finish_mesh(GlobalRun& run, const config::GlobalConfig& c, const Glo
 }
 
 #ifdef AQ_HAVE_MPI
+// The forest's estimate per rank once the leaves are known (the memory model above), logged and
+// in the report's "forest" section; above input.max_memory_gb the run stops there, before the
+// mesh (every rank holds every rank's figures, so every rank stops alike).
+static void check_forest_memory(const GlobalSetup& s, const std::vector<forest::RankMemory>& ranks,
+                                const forest::Comm& comm, const Logger& log, Report* report) {
+  // What each rank holds now, the forest's stages done: the raster, the tile cache, the patches.
+  const std::vector<std::int64_t> rss = comm.allgatherv(std::vector<std::int64_t>{current_rss_bytes()});
+  std::int64_t leaves = 0, elements = 0;
+  for (const forest::RankMemory& r : ranks) {
+    leaves += r.leaves;
+    elements += r.elements;
+  }
+  const double gather = kForestGatherBytesPerLeaf * static_cast<double>(leaves);  // in rank 0's resident set
+  const double mesh = kMeshBytesPerTriangle * static_cast<double>(elements);
+  std::vector<std::int64_t> est(ranks.size());
+  Json per = Json::array();
+  for (std::size_t k = 0; k < ranks.size(); ++k) {
+    const forest::RankMemory& r = ranks[k];
+    const double e = static_cast<double>(rss[k]) + (k == 0 ? mesh : 0.0);
+    est[k] = saturate(std::max(e, static_cast<double>(r.peak_bytes)));
+    per.push_back(Json{{"rank", k},
+                       {"resident_bytes", rss[k]},
+                       {"peak_bytes_so_far", r.peak_bytes},
+                       {"leaves", r.leaves},
+                       {"triangles", r.elements},
+                       {"estimate_bytes", est[k]}});
+  }
+  std::string others;
+  for (std::size_t k = 1; k < est.size() && k < 8; ++k) others += fmt::format(", rank {} {:.2f} GB", k, gb(est[k]));
+  if (est.size() > 8) {
+    const auto [lo, hi] = std::minmax_element(est.begin() + 1, est.end());
+    others += fmt::format(", ranks 8..{} {:.2f}-{:.2f} GB", est.size() - 1, gb(*lo), gb(*hi));
+  }
+  log.info(
+      "memory: estimate with the leaves known ({} leaves, {} triangles): rank 0 {:.2f} GB (resident {:.2f} GB with "
+      "the gathered leaves' {:.2f} GB, the mesh {:.2f} GB){} of {:.2f} GB allowed (input.max_memory_gb)",
+      leaves, elements, gb(est[0]), gb(rss[0]), gather / 1e9, mesh / 1e9, others, gb(s.memory_limit_bytes));
+  if (report != nullptr)
+    (*report)["forest"]["memory"] = Json{{"estimate_bytes_before_data", s.estimate_bytes},
+                                         {"mesh_bytes_per_triangle", kMeshBytesPerTriangle},
+                                         {"gather_bytes_per_leaf", kForestGatherBytesPerLeaf},
+                                         {"per_rank", per}};
+  const auto worst = std::max_element(est.begin(), est.end());
+  if (s.memory_limit_bytes > 0 && *worst > s.memory_limit_bytes)
+    throw ConfigError(fmt::format(
+        "the run is estimated to need {:.2f} GB on rank {} once its {} leaves are known ({} triangles, the mesh "
+        "{:.2f} GB on rank 0), more than input.max_memory_gb = {:.2f} GB; no file was written (more ranks share the "
+        "forest, not the mesh: a larger quadtree.step_deg or a coarser size field makes fewer triangles)",
+        gb(*worst), worst - est.begin(), leaves, elements, mesh / 1e9, gb(s.memory_limit_bytes)));
+}
+
 // The forest's passage table, dropped seas and separate seeds, on rank 0: the dense engine's lines
 // and report entries, from the wet and filled pixels gathered there (forest/pipeline.hpp
 // kDroppedSeasMaxPixels; beyond it the dropped components are counted, not named).
@@ -967,6 +1024,9 @@ static GlobalRun run_forest_pipeline(const config::GlobalConfig& c, const Global
   }
   input_json(*run.bathy, c, report);
   if (comm.root()) report_forest_mask(run, fl, c, log, report);
+  // The estimate per rank before the mesh (the dropped seas' gathered bitmaps are gone).
+  forest::collective(comm,
+                     [&] { check_forest_memory(setup, fl.rank_memory, comm, log, comm.root() ? report : nullptr); });
   forest::collective(comm, [&] {  // the mesh, on rank 0
     if (!comm.root()) return;
     StageScope stage("mesh", report, log);

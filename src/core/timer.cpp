@@ -5,6 +5,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdio>
+
 namespace aq {
 
 double process_cpu_seconds() {
@@ -18,6 +20,16 @@ std::int64_t peak_rss_bytes() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return static_cast<std::int64_t>(u.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+std::int64_t current_rss_bytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  long long size = 0, resident = 0;
+  const int n = std::fscanf(f, "%lld %lld", &size, &resident);
+  std::fclose(f);
+  const long page = sysconf(_SC_PAGE_SIZE);
+  return n == 2 && page > 0 ? static_cast<std::int64_t>(resident) * page : 0;
 }
 
 std::int64_t physical_memory_bytes() {

@@ -11,6 +11,8 @@ namespace aq {
 double process_cpu_seconds();
 /// Peak resident set size of the process so far, in bytes.
 std::int64_t peak_rss_bytes();
+/// Resident set size of the process now, in bytes (/proc/self/statm; 0 if unknown).
+std::int64_t current_rss_bytes();
 /// Total physical memory of the machine, in bytes (0 if unknown).
 std::int64_t physical_memory_bytes();
 

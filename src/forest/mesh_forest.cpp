@@ -8,6 +8,7 @@
 #include <p4est_communication.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -300,41 +301,65 @@ std::vector<quadtree::LeafNeighbourhood> MeshForest::local_neighbourhoods() cons
     Square s;
     return leaf_at(i, j, s);
   };
-  // Whether the filled leaf holding pixel (i, j) has its corner `c` (0 SW, 1 SE, 2 NE, 3 NW) at (I, J).
-  const auto corner_at = [&](std::int64_t i, std::int64_t j, int c, std::int64_t I, std::int64_t J) {
-    Square s;
-    if (!leaf_at(i, j, s)) return false;
+  // Whether square `s` has its corner `c` (0 SW, 1 SE, 2 NE, 3 NW) at vertex (I, J).
+  const auto has_corner = [&](const Square& s, int c, std::int64_t I, std::int64_t J) {
     const std::int64_t z = lat.pixels_per_square(s.level);
     const std::int64_t x = s.a * z + ((c == 1 || c == 2) ? z : 0), y = s.b * z + (c >= 2 ? z : 0);
     return wrap_index(x, nx) == wrap_index(I, nx) && y == J;
   };
+  const auto corner_at = [&](std::int64_t i, std::int64_t j, int c, std::int64_t I, std::int64_t J) {
+    Square s;
+    return leaf_at(i, j, s) && has_corner(s, c, I, J);
+  };
+  // Every answer is the one of looking up each pixel the rules name (quadtree::leaf_neighbourhoods),
+  // with fewer lookups (binary searches over the quadrants, most of this stage's time): the 8
+  // neighbour pixels are looked up once and reused; a side whose outer midside pixel lies in a
+  // filled leaf as large as this one or larger has no hanging node (that leaf spans the whole side,
+  // and its corners are multiples of its size, which the side's midpoint is not); at each corner,
+  // one of the 4 pixels is this leaf's own (filled), so a pinch needs the 2 next to it unfilled,
+  // and those are asked first.
   const auto n = static_cast<std::int64_t>(sq.size());
-#pragma omp parallel for default(none) shared(sq, out, lat, n, ny, filled, corner_at) schedule(dynamic, 256)
+#pragma omp parallel for default(none) shared(sq, out, lat, n, ny, filled, corner_at, has_corner, leaf_at) \
+    schedule(dynamic, 256)
   for (std::int64_t k = 0; k < n; ++k) {
     const Square& s = sq[static_cast<std::size_t>(k)];
     const std::int64_t z = lat.pixels_per_square(s.level), i0 = s.a * z, j0 = s.b * z, h = z / 2;
     quadtree::LeafNeighbourhood& nb = out[static_cast<std::size_t>(k)];
     const std::int64_t px[8][2] = {{i0, j0 - 1},     {i0 + h, j0 - 1}, {i0 + z, j0},     {i0 + z, j0 + h},
                                    {i0 + h, j0 + z}, {i0, j0 + z},     {i0 - 1, j0 + h}, {i0 - 1, j0}};
-    for (int b = 0; b < 8; ++b)
-      if (filled(px[b][0], px[b][1])) nb.covered = static_cast<std::uint8_t>(nb.covered | (1U << b));
-    if (z >= 2) {
-      if (corner_at(i0 + h - 1, j0 - 1, 2, i0 + h, j0) || corner_at(i0 + h, j0 - 1, 3, i0 + h, j0))
-        nb.midside |= quadtree::kSideS;
-      if (corner_at(i0 + z, j0 + h - 1, 3, i0 + z, j0 + h) || corner_at(i0 + z, j0 + h, 0, i0 + z, j0 + h))
-        nb.midside |= quadtree::kSideE;
-      if (corner_at(i0 + h - 1, j0 + z, 1, i0 + h, j0 + z) || corner_at(i0 + h, j0 + z, 0, i0 + h, j0 + z))
-        nb.midside |= quadtree::kSideN;
-      if (corner_at(i0 - 1, j0 + h - 1, 2, i0, j0 + h) || corner_at(i0 - 1, j0 + h, 1, i0, j0 + h))
-        nb.midside |= quadtree::kSideW;
+    std::array<Square, 8> ns{};
+    std::array<bool, 8> cov{};
+    for (int b = 0; b < 8; ++b) {
+      cov[static_cast<std::size_t>(b)] = leaf_at(px[b][0], px[b][1], ns[static_cast<std::size_t>(b)]);
+      if (cov[static_cast<std::size_t>(b)]) nb.covered = static_cast<std::uint8_t>(nb.covered | (1U << b));
     }
-    const std::int64_t cv[4][2] = {{i0, j0}, {i0 + z, j0}, {i0 + z, j0 + z}, {i0, j0 + z}};
-    for (int c = 0; c < 4; ++c) {
-      const std::int64_t I = cv[c][0], J = cv[c][1];
-      if (J <= 0 || J >= ny) continue;
-      const bool ne = filled(I, J), nw = filled(I - 1, J), se = filled(I, J - 1), sw = filled(I - 1, J - 1);
-      if ((ne && sw && !nw && !se) || (nw && se && !ne && !sw))
-        nb.pinch = static_cast<std::uint8_t>(nb.pinch | (1U << c));
+    if (z >= 2) {
+      // side: its outer midside pixel px[m], the corner `cm` of that pixel's leaf at the midpoint
+      // (I, J), and the pixel beside px[m] whose leaf's corner `cb` would be there instead.
+      struct Side {
+        int m, cm, cb;
+        std::int64_t bi, bj, I, J;
+        std::uint8_t bit;
+      };
+      const std::array<Side, 4> sides{{{1, 3, 2, i0 + h - 1, j0 - 1, i0 + h, j0, quadtree::kSideS},
+                                       {3, 0, 3, i0 + z, j0 + h - 1, i0 + z, j0 + h, quadtree::kSideE},
+                                       {4, 0, 1, i0 + h - 1, j0 + z, i0 + h, j0 + z, quadtree::kSideN},
+                                       {6, 1, 2, i0 - 1, j0 + h - 1, i0, j0 + h, quadtree::kSideW}}};
+      for (const Side& d : sides) {
+        const auto m = static_cast<std::size_t>(d.m);
+        const bool coarse = cov[m] && ns[m].level <= s.level;
+        if ((cov[m] && has_corner(ns[m], d.cm, d.I, d.J)) || (!coarse && corner_at(d.bi, d.bj, d.cb, d.I, d.J)))
+          nb.midside |= d.bit;
+      }
+    }
+    // Corner c's pinch: the 2 pixels beside this leaf's own unfilled, the one across filled.
+    if (j0 > 0) {
+      if (!cov[7] && !cov[0] && filled(i0 - 1, j0 - 1)) nb.pinch |= 1U;                      // SW
+      if (!cov[2] && !filled(i0 + z - 1, j0 - 1) && filled(i0 + z, j0 - 1)) nb.pinch |= 2U;  // SE
+    }
+    if (j0 + z < ny) {
+      if (!filled(i0 + z - 1, j0 + z) && !filled(i0 + z, j0 + z - 1) && filled(i0 + z, j0 + z)) nb.pinch |= 4U;  // NE
+      if (!cov[5] && !filled(i0 - 1, j0 + z - 1) && filled(i0 - 1, j0 + z)) nb.pinch |= 8U;                      // NW
     }
   }
   return out;

@@ -26,6 +26,7 @@
 #include "mask/lattice_coords.hpp"
 #include "mask/passages.hpp"
 #include "mask/pinches.hpp"
+#include "mesh/templates.hpp"
 #include "quadtree/balance.hpp"
 #include "quadtree/build_leaves.hpp"
 #include "size/terms.hpp"
@@ -244,6 +245,18 @@ void inland_sea(const PatchForest& pf, const std::vector<PatchBits>& sea, const 
   area.inland_sea_lon_max = box[1];
   area.inland_sea_lat_min = -box[2];
   area.inland_sea_lat_max = box[3];
+}
+
+// This rank's memory with its leaves known: the elements are those the mesh stage's templates make
+// from each leaf's midside code (a level-L pixel has none), so their sum is the mesh's count.
+RankMemory rank_memory(const std::vector<quadtree::Leaf>& leaves, const std::vector<quadtree::LeafNeighbourhood>& nb,
+                       int levels, bool triangles) {
+  RankMemory m;
+  m.peak_bytes = peak_rss_bytes();
+  m.leaves = static_cast<std::int64_t>(leaves.size());
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    m.elements += triangles ? mesh::triangle_count(leaves[k].level < levels ? nb[k].midside : 0U) : 2;
+  return m;
 }
 
 }  // namespace
@@ -484,6 +497,8 @@ ForestLeaves run_forest_leaves(const config::GlobalConfig& c, const Lattice& lat
                              {"balance_rounds", br.rounds},
                              {"balance_splits", br.forced_splits}};
     mf.reset();
+    out.rank_memory = comm.allgatherv(
+        std::vector<RankMemory>{rank_memory(local, local_nb, lat.levels, config::has_triangles(c.mesh.elements))});
     out.leaves = comm.gatherv(local, 0);
     out.neighbourhoods = comm.gatherv(local_nb, 0);
     const double gather_s = t_gather.wall_s();

@@ -27,6 +27,14 @@ namespace aq::forest {
 /// What the stages keep for later collective questions (the open boundary of a regional run).
 struct ForestState;
 
+/// One rank's memory once the leaves are known, before rank 0 gathers them and builds the mesh
+/// (app/global_run.cpp turns these into the estimate per rank printed then).
+struct RankMemory {
+  std::int64_t peak_bytes = 0;  ///< the rank's peak so far (the classification, the fill, the pyramids)
+  std::int64_t leaves = 0;      ///< its filled leaves (the gather sends them with their neighbourhoods)
+  std::int64_t elements = 0;    ///< the triangles their templates make (mesh/templates.hpp; squares x 2 for quads)
+};
+
 /// The dropped seas (mask::find_dropped_seas) are found on rank 0 from the wet and filled pixels
 /// gathered there on lattices up to this many pixels (two bitmaps of 256 MB); on larger ones
 /// the forest counts the dropped components over its ranks and names none. (The hidden test knob
@@ -46,6 +54,7 @@ struct ForestLeaves {
   std::vector<quadtree::Leaf> leaves;
   std::vector<quadtree::LeafNeighbourhood> neighbourhoods;
   std::int64_t area_domain_pixels = 0;  ///< a regional run: the domain's pixels, over all ranks
+  std::vector<RankMemory> rank_memory;  ///< every rank's, in rank order, on every rank
   std::shared_ptr<ForestState> state;
 };
 

@@ -5,7 +5,8 @@
 # `mpirun --oversubscribe -np NP`, and every file they write must be the same bytes (the
 # _report.json aside: it holds timings). Also asserts the forest run's report names NP ranks, that
 # the report's floodplain, dropped-sea, passage, time-step and warning sections are the dense
-# run's, and that the log's warnings and passage table are the same lines.
+# run's, that the log's warnings and passage table are the same lines, and the memory estimate
+# per rank (the mesh's triangle count foreseen exactly, rank 0 near its peak).
 #   forest_vs_dense.sh AQUATORIA MPIEXEC NP OUTDIR [CONFIG|-] [ARGS...]   (no CONFIG or -: the seed run;
 #   ARGS: more options for both runs, e.g. --set mask.min_depth_m=-5)
 set -euo pipefail
@@ -33,6 +34,18 @@ for f in $dense_files; do
 done
 ranks=$(python3 -c 'import json,sys,glob; print(json.load(open(glob.glob(sys.argv[1] + "/*_report.json")[0]))["forest"]["ranks"])' "$out/forest")
 if [ "$ranks" != "$np" ]; then echo "FAIL: the forest report says $ranks ranks, not $np"; fail=1; fi
+# The memory estimate once the leaves are known: one per rank, the triangles the mesh made (an
+# exact count from the leaves' templates), and rank 0's estimate within its tolerance of its peak.
+python3 - "$out/forest" "$np" <<'PY' || fail=1
+import glob, json, sys
+r = json.load(open(glob.glob(sys.argv[1] + "/*_report.json")[0]))
+per, np = r["forest"]["memory"]["per_rank"], int(sys.argv[2])
+tri, est, peak = sum(k["triangles"] for k in per), per[0]["estimate_bytes"], r["memory"]["peak_rss_bytes"]
+ok = len(per) == np and tri == r["mesh_counts"]["triangles"] and 0.7 * peak <= est <= 1.5 * peak
+print(f"memory: {len(per)} ranks, {tri} triangles foreseen of {r['mesh_counts']['triangles']}, rank 0 estimate "
+      f"{est / 1e6:.0f} MB, peak {peak / 1e6:.0f} MB" + ("" if ok else ": FAIL"))
+sys.exit(0 if ok else 1)
+PY
 # The report's sections that say what the mask dropped, flooded and kept (timings aside).
 python3 - "$out/dense" "$out/forest" <<'PY' || fail=1
 import glob, json, sys
