@@ -28,7 +28,7 @@ TEST(WindowLattice, VerticesHaveTheGlobalBits) {
     for (std::int64_t j = 0; j <= w.ny; j += 5) {
       EXPECT_EQ(w.lat_of(j), g.lat_of(j + 500 * sq)) << j;
       EXPECT_EQ(w.plane_y_of(j), g.plane_y_of(j + 500 * sq)) << j;
-      EXPECT_EQ(w.lat_of_row(j + 0.5), g.lat_of_row(j + 500 * sq + 0.5)) << j;
+      EXPECT_EQ(w.lat_of_row(static_cast<double>(j) + 0.5), g.lat_of_row(static_cast<double>(j + 500 * sq) + 0.5)) << j;
       EXPECT_NEAR(w.row_of_lat(w.lat_of(j)), static_cast<double>(j), 1e-6) << j;
       EXPECT_FALSE(w.pole_row(j));
     }

@@ -262,8 +262,11 @@ TEST(PixelClasses, RotatedUnitsGiveTheBitsOfSamplingEveryVertex) {
         EXPECT_EQ(mismatches, 0) << "nx = " << l.nx << ", h = " << h << (r == &cubic ? ", bicubic" : "");
         EXPECT_GT(wet, l.nx);  // both classes are present
         EXPECT_LT(wet, l.nx * (l.ny + 1) - l.nx);
-        for (std::int64_t J = 0; J <= l.ny; ++J)  // padding bits stay clear
-          if (l.nx % 64 != 0) EXPECT_EQ(wv.row(J)[wv.words_per_row() - 1] >> (l.nx % 64), 0U);
+        for (std::int64_t J = 0; J <= l.ny; ++J) {  // padding bits stay clear
+          if (l.nx % 64 != 0) {
+            EXPECT_EQ(wv.row(J)[wv.words_per_row() - 1] >> (l.nx % 64), 0U);
+          }
+        }
       }
     }
   }
