@@ -766,7 +766,7 @@ struct Bathymetry::Impl {
   // The stored rows [y0, y1) in `raw` normalised into dst (see read_stored); rows are shared
   // among the OpenMP threads when `parallel` (each row is written and summarised on its own).
   void normalise_rows(std::int64_t y0, std::int64_t y1, const float* raw, float* dst, std::int64_t lo, RowStats* stats,
-                      bool parallel) const {
+                      [[maybe_unused]] bool parallel) const {
     const std::int64_t w = col_window() ? held_nc : info.width, h = info.height, ny = y1 - y0, nc = held_nc;
     const bool north_up = info.north_up;
 #pragma omp parallel for schedule(static) default(none) \
@@ -1358,7 +1358,7 @@ void Bathymetry::raw_rows(const Columns& cols, const double* lats, std::int64_t 
   if (stack_) return stack_->sample_rows(cols, lats, n, sink, progress);
   const Impl& im = *impl_;
   const auto nc = static_cast<std::int64_t>(cols.c0.size());
-  const bool parallel = n * nc >= (std::int64_t{1} << 16);
+  [[maybe_unused]] const bool parallel = n * nc >= (std::int64_t{1} << 16);  // OpenMP off: unused
   if (!im.info.streamed) {
     RowProgress rp(progress, n, "rows");
     // A tiled raster has no rows in memory: sample_row reads its tiles (row_ptr is for held rows).

@@ -108,7 +108,7 @@ double sor_half_sweep(double* u, double* v, int nx, int ny, int cj, StencilWeigh
   // lot more on a loaded machine). The result is the same either way. Rows are handed out in
   // small chunks, so when one thread is descheduled the other does its rows instead of waiting
   // for it at the join (rows are independent and max is exact: same bits for any split).
-  const bool parallel = static_cast<long>(nrows) * nx >= kMinParallelNodes;
+  [[maybe_unused]] const bool parallel = static_cast<long>(nrows) * nx >= kMinParallelNodes;  // OpenMP off: unused
   double max_dq = 0.0;
   // clang-format off
 #pragma omp parallel for default(none) shared(u, v) firstprivate(nx, j0, nrows, stride, w, scale) \

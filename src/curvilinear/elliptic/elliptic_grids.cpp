@@ -172,7 +172,7 @@ void face_coefficients(const Grid2D& g, const ControlFunction& w, EllipticMethod
   double* pa = A.data();
   double* pb = B.data();
   const ControlFunction* pw = &w;
-  const bool parallel = static_cast<std::size_t>(L) * static_cast<std::size_t>(M) >= kParallelNodes;
+  [[maybe_unused]] const bool parallel = static_cast<std::size_t>(L) * static_cast<std::size_t>(M) >= kParallelNodes;
 #pragma omp parallel for default(none) shared(x, y, pa, pb, pw) firstprivate(L, M, s, ed2, floor) \
     schedule(static) if (parallel)
   for (int j = 0; j < M; ++j) {

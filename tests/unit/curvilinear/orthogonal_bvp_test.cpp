@@ -230,7 +230,7 @@ TEST(OrthogonalBvp, ClusteredLevelsClusterTheNodesAndKeepOrthogonality) {
 
 TEST(OrthogonalBvp, SameBytesOnOneAndTwoThreads) {
   std::vector<SurfaceGrid> grids;
-  for (int threads : {1, 2}) {
+  for ([[maybe_unused]] int threads : {1, 2}) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #endif

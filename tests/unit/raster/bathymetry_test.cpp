@@ -168,6 +168,8 @@ TEST(BathymetryFromGrid, BicubicReproducesSmoothFieldAndGridValues) {
   EXPECT_NEAR(cub.sample(10.0, 20.0), f(10.0, 20.0), 1e-3);  // interpolates the grid values
 }
 
+namespace {  // beside Layout (in the namespace above), so the fixture's type has the same linkage
+
 struct VariantCase {
   const char* name;
   const char* driver;
@@ -206,6 +208,8 @@ INSTANTIATE_TEST_SUITE_P(
                       VariantCase{"ehdr_raw_binary", "EHdr", {-180.0, 90.0, 1.0, 360, 181, true}},
                       VariantCase{"gmt_grd", "netCDF", {-180.0, 90.0, 1.0, 361, 181, true}}),
     [](const ::testing::TestParamInfo<VariantCase>& i) { return std::string(i.param.name); });
+
+}  // namespace
 
 TEST(Raster, RegistrationIsReported) {
   const auto g = open(write_raster("reg_grid.tif", "GTiff", {0.0, 90.0, 1.0, 360, 181, true}, global_field));
