@@ -13,6 +13,7 @@
 
 #include "core/edit_distance.hpp"
 #include "core/error.hpp"
+#include "core/sphere_vectors.hpp"
 #include "core/types.hpp"
 #include "mask/passages.hpp"
 
@@ -20,7 +21,7 @@ namespace aq::mask {
 
 namespace {
 
-using V3 = std::array<double, 3>;
+using V3 = sphere::Vec3;
 
 constexpr double kKmPerDeg = 111.19508;  // great-circle km per degree on the 6371.0088 km sphere
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -28,14 +29,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // A table passage's carved path continues this many times (K + 1) pixels past each side's centre.
 constexpr double kExtendPixels = 3.0;
 
-V3 unit(double lon_deg, double lat_deg) {
-  const double lo = lon_deg * kDegToRad, la = lat_deg * kDegToRad;
-  return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
-}
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using sphere::cross;
+using sphere::dot;
+V3 unit(double lon_deg, double lat_deg) { return sphere::unit_deg(lon_deg, lat_deg); }
 V3 normalized(const V3& a) {
   const double l = std::sqrt(dot(a, a));
   return {a[0] / l, a[1] / l, a[2] / l};

@@ -4,25 +4,20 @@
 
 #include <cmath>
 
+#include "core/sphere_vectors.hpp"
 #include "core/types.hpp"
 
 namespace aq::mesh {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using Vec3 = sphere::Vec3;
+using sphere::cross;
+using sphere::dot;
 
 }  // namespace
 
-Vec3 unit_vector_deg(double lon_deg, double lat_deg) {
-  const double lo = lon_deg * kDegToRad, la = lat_deg * kDegToRad;
-  return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
-}
+Vec3 unit_vector_deg(double lon_deg, double lat_deg) { return sphere::unit_deg(lon_deg, lat_deg); }
 
 double spherical_triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double det = dot(a, cross(b, c));

@@ -9,23 +9,19 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/sphere_vectors.hpp"
 #include "core/types.hpp"
 
 namespace aq::raster {
 
 namespace {
 
-using V3 = std::array<double, 3>;
+using V3 = sphere::Vec3;
 
-V3 unit(double lon_deg, double lat_deg) {
-  const double lo = lon_deg * kDegToRad, la = lat_deg * kDegToRad;
-  return {std::cos(la) * std::cos(lo), std::cos(la) * std::sin(lo), std::sin(la)};
-}
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+using sphere::cross;
+using sphere::dot;
+using sphere::norm;
+V3 unit(double lon_deg, double lat_deg) { return sphere::unit_deg(lon_deg, lat_deg); }
 
 // Longitude, latitude (degrees) of a unit vector.
 void lonlat(const V3& v, double& lon, double& lat) {
