@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "app/commands.hpp"
 #include "app/interrupt.hpp"
 #include "core/error.hpp"
+#include "core/large_pages.hpp"
 #ifdef AQ_HAVE_MPI
 #include "forest/mpi_session.hpp"
 #endif
@@ -33,6 +35,25 @@ __attribute__((section(".preinit_array"), used)) void (*const kInstallHandlersFi
                                                                                      char**) = install_handlers_first;
 
 }  // namespace
+
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+// The program's operator new (it replaces the library's for the whole process; new[], nothrow new
+// and every delete reach this one or free() through the library's): malloc, as the library's,
+// and large blocks advised onto transparent huge pages (core/large_pages.hpp). The sanitizers
+// bring their own operator new, which this one would hide.
+void* operator new(std::size_t bytes) {
+  if (bytes == 0) bytes = 1;
+  for (;;) {
+    if (void* p = std::malloc(bytes)) {
+      aq::advise_large_pages(p, bytes);
+      return p;
+    }
+    const std::new_handler handler = std::get_new_handler();
+    if (handler == nullptr) throw std::bad_alloc();
+    handler();
+  }
+}
+#endif
 
 int main(int argc, char** argv) {
   // Large arrays (lattice bitmaps, mesh and statistics tables of tens to hundreds of MB) from the
