@@ -77,7 +77,7 @@ std::vector<io::WrittenFile> write_global_mesh_files(const config::GlobalConfig&
     outputs.push_back(Json{{"file", f.name},
                            {"format", f.format},
                            {"bytes", f.stats.bytes},
-                           {kChecksumKey, file_checksum(out.pending_path(f.name))},
+                           {kChecksumKey, f.checksum},
                            {"seconds", std::round(f.seconds * 1000.0) / 1000.0}});
   }
   report["outputs"] = outputs;

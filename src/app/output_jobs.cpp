@@ -9,6 +9,7 @@
 #include <exception>
 #include <future>
 
+#include "core/output_files.hpp"
 #include "core/timer.hpp"
 
 namespace aq::io {
@@ -26,6 +27,7 @@ WrittenFile write_one(const OutputJob& job) {
   WrittenFile w;
   w.stats = job.writer(job.temp_path);
   w.seconds = timer.wall_s();
+  w.checksum = file_checksum(job.temp_path);
   w.name = job.name;
   w.format = job.format;
   w.path = job.final_path;

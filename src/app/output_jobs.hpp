@@ -35,6 +35,7 @@ struct WrittenFile {
   std::filesystem::path path;  ///< final path (the file is there after OutputSet::commit)
   std::int64_t bytes = 0;
   double seconds = 0.0;  ///< wall time of the writer
+  std::string checksum;  ///< XXH64 of the written file (file_checksum), taken on the writer's thread
   WriteStats stats;
   Facts facts;
   bool own_thread = false;  ///< written on the extra thread while the other files were written
@@ -62,7 +63,9 @@ struct OutputJob {
   std::function<std::vector<LogLine>()> step;  ///< set: no file; returns the lines to log
 };
 
-/// Runs every job's writer (or step) and returns the files in the jobs' order, logging for each
+/// Runs every job's writer (or step) and returns the files in the jobs' order, each with its
+/// checksum (taken right after the writer, on its thread: the extra thread's big file is read back
+/// while the calling thread writes the others), logging for each
 /// job its log_before lines and "output: <name> (<format>, <bytes> bytes, <seconds> s, <facts>)"
 /// (a step: the lines it returned), then `trailing`. With `concurrent` (and at least one job of each kind) the
 /// own_thread jobs run one after another on one extra thread while the others run on the calling thread; otherwise all

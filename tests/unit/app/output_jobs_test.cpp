@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/output_files.hpp"
 #include "support/temp_dir.hpp"
 
 namespace aq::io::unit_app_output_jobs_test {
@@ -107,6 +108,9 @@ TEST(OutputJobs, TheOwnThreadJobRunsBesideTheOthersAndTheLinesKeepTheJobOrder) {
     EXPECT_EQ(w[k].name, std::string(1, static_cast<char>('a' + k)));
     EXPECT_EQ(w[k].bytes, static_cast<std::int64_t>(k + 1));
     EXPECT_EQ(w[k].own_thread, k == 1);
+    // The checksum of the file as its writer left it, taken on the writer's thread.
+    EXPECT_EQ(w[k].checksum, file_checksum(folder() / (w[k].name + ".tmp")));
+    EXPECT_EQ(w[k].checksum.size(), 16u);
   }
 }
 
