@@ -4,6 +4,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/bitmap.hpp"
 
@@ -182,6 +188,45 @@ void rotate_row(const std::uint64_t* src, std::uint64_t* dst, std::int64_t n, st
         dst[w] |= v;
         break;
     }
+  }
+}
+
+float float_threshold(double t) {
+  constexpr float kMax = std::numeric_limits<float>::max(), kInf = std::numeric_limits<float>::infinity();
+  if (std::isnan(t)) return std::numeric_limits<float>::quiet_NaN();
+  if (t >= static_cast<double>(kMax)) return t == std::numeric_limits<double>::infinity() ? kInf : kMax;
+  if (t < -static_cast<double>(kMax)) return -kInf;
+  auto f = static_cast<float>(t);  // the nearest float: one step down when it rounded up
+  if (static_cast<double>(f) > t) f = std::nextafter(f, -kInf);
+  return f;
+}
+
+void threshold_row(const float* values, std::int64_t n, double threshold, std::uint64_t* out) {
+  const float f = float_threshold(threshold);
+  const std::int64_t nw = words_for(n);
+  for (std::int64_t w = 0; w < nw; ++w) {
+    const float* x = values + (w << 6);
+    const int len = static_cast<int>(std::min<std::int64_t>(64, n - (w << 6)));
+    std::uint64_t word = 0;
+    int b = 0;
+#if defined(__SSE2__)
+    const __m128 f4 = _mm_set1_ps(f);
+    for (; b + 4 <= len; b += 4)
+      word |= static_cast<std::uint64_t>(_mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(x + b), f4))) << b;
+#endif
+    for (; b < len; ++b) word |= static_cast<std::uint64_t>(x[b] <= f) << b;
+    out[w] = word;
+  }
+}
+
+void threshold_row(const double* values, std::int64_t n, double threshold, std::uint64_t* out) {
+  const std::int64_t nw = words_for(n);
+  for (std::int64_t w = 0; w < nw; ++w) {
+    const double* x = values + (w << 6);
+    const int len = static_cast<int>(std::min<std::int64_t>(64, n - (w << 6)));
+    std::uint64_t word = 0;
+    for (int b = 0; b < len; ++b) word |= static_cast<std::uint64_t>(x[b] <= threshold) << b;
+    out[w] = word;
   }
 }
 

@@ -49,6 +49,16 @@ enum class Combine { kCopy, kAnd, kOr };
 /// `shift` may be any integer (reduced mod n). src and dst must not overlap. Padding stays clear.
 void rotate_row(const std::uint64_t* src, std::uint64_t* dst, std::int64_t n, std::int64_t shift, Combine op);
 
+/// out bit k = (values[k] <= threshold, compared as doubles) for 0 <= k < n; NaN compares false
+/// (clear). Writes words_for(n) words; padding bits are cleared. The float version compares in
+/// float against float_threshold(threshold), four values at a time (SSE2): the same bits.
+void threshold_row(const float* values, std::int64_t n, double threshold, std::uint64_t* out);
+void threshold_row(const double* values, std::int64_t n, double threshold, std::uint64_t* out);
+
+/// The largest float f with (double)f <= t (-inf when none is finite, NaN for NaN t): for every
+/// float x, x <= f exactly when (double)x <= t.
+[[nodiscard]] float float_threshold(double t);
+
 /// Bitmaps smaller than this many words are processed by one thread: starting a parallel region
 /// costs more than the work (and much more when the cores are shared).
 inline constexpr std::int64_t kParallelMinWords = std::int64_t{1} << 14;

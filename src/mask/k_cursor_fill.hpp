@@ -68,7 +68,9 @@ struct ComponentStats {
   std::int64_t touching_probe = 0;        ///< components with at least one cell set in the probe
   std::int64_t cells_touching_probe = 0;  ///< cells of those components
 };
-ComponentStats count_components(const Bitmap& mask, const Bitmap* probe = nullptr);
+/// `scratch`, when given, holds the working copy of `mask` (consumed by the floods; its contents
+/// afterwards are unspecified): a bitmap of the same shape lends its storage, no new memory.
+ComponentStats count_components(const Bitmap& mask, const Bitmap* probe = nullptr, Bitmap* scratch = nullptr);
 
 /// K-fill on the lattice level: Ω_L from seed windows given by their lower-left pixels (each
 /// must be set in all_wet_windows(wet, k), else it contributes nothing). When `reached_per_seed`

@@ -25,20 +25,6 @@ namespace aq::mask {
 
 namespace {
 
-// out bit k = (values[k] <= threshold) for k < n; NaN compares false (dry).
-template <typename T>
-void threshold_row(const T* values, std::int64_t n, double threshold, std::uint64_t* out) {
-  const std::int64_t nw = bits::words_for(n);
-  for (std::int64_t w = 0; w < nw; ++w) {
-    const std::int64_t i0 = w << 6;
-    const int len = static_cast<int>(std::min<std::int64_t>(64, n - i0));
-    std::uint64_t word = 0;
-    for (int b = 0; b < len; ++b)
-      word |= static_cast<std::uint64_t>(static_cast<double>(values[i0 + b]) <= threshold) << b;
-    out[w] = word;
-  }
-}
-
 // Lattices with fewer samples than this are classified by one thread.
 constexpr std::int64_t kParallelMinSamples = std::int64_t{1} << 16;
 
@@ -104,7 +90,7 @@ struct RotatedSampler {
                      lat.data());
       bathy.sample_points(lon.data(), lat.data(), n, val.data());
       std::uint64_t word = 0;
-      threshold_row(val.data(), n, threshold, &word);
+      bits::threshold_row(val.data(), n, threshold, &word);
       wv.row(J)[w] |= word << (I0 & 63);
     }
   }
@@ -291,7 +277,7 @@ Bitmap sample_wet_vertices(const raster::Bathymetry& bathy, const Lattice& latti
       cols, lats.data(), nvr,
       [&wv, nx, ncv, I0, J0, all_cols, threshold](std::int64_t k, const float* values) {
         if (all_cols) {
-          threshold_row(values, nx, threshold, wv.row(J0 + k));
+          bits::threshold_row(values, nx, threshold, wv.row(J0 + k));
           return;
         }
         for (std::int64_t c = 0; c < ncv; ++c)

@@ -111,6 +111,11 @@ void reduce_rows(const std::uint64_t* lo, const std::uint64_t* hi, std::int64_t 
       const std::int64_t cw = 2 * w + h;
       if (cw >= child_words) break;
       const std::uint64_t x = use_or ? (lo[cw] | hi[cw]) : (lo[cw] & hi[cw]);
+      // Words of open sea or land (most of a row) are all 0 or all 1: no compaction needed.
+      if (x == 0 || x == ~0ULL) {
+        half[h] = x & 0xffffffffULL;
+        continue;
+      }
       half[h] = compact_even(use_or ? (x | (x >> 1)) : (x & (x >> 1)));
     }
     out[w] = half[0] | (half[1] << 32);
@@ -131,7 +136,13 @@ Bitmap reduce(const Bitmap& fine, bool use_or) {
 
 void expand_row(const std::uint64_t* parent, std::uint64_t* child, std::int64_t child_words) {
   for (std::int64_t w = 0; w < child_words; ++w) {
-    const std::uint64_t s = spread_even(parent[w >> 1] >> (32 * (w & 1)));
+    const std::uint64_t half = (parent[w >> 1] >> (32 * (w & 1))) & 0xffffffffULL;
+    // Half-words of open sea or land (most of a row) are all 0 or all 1: no spreading needed.
+    if (half == 0 || half == 0xffffffffULL) {
+      child[w] = half == 0 ? 0 : ~0ULL;
+      continue;
+    }
+    const std::uint64_t s = spread_even(half);
     child[w] = s | (s << 1);
   }
 }

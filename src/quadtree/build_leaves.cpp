@@ -108,6 +108,18 @@ void check_leaf_steps(const LeafSteps& steps, int levels, std::int64_t filled_pi
           fmt::format("quadtree: leaves hold {} pixels but Ω_L has {}", pixels_of(*c, levels), filled_pixels));
 }
 
+void check_leaves_per_level(const std::vector<Leaf>& leaves, const std::vector<std::int64_t>& per_level) {
+  std::vector<std::int64_t> got(per_level.size(), 0);
+  for (const Leaf& f : leaves) {
+    if (f.level < 0 || static_cast<std::size_t>(f.level) >= got.size())
+      throw InternalError(fmt::format("quadtree: a leaf of level {} outside 0..{}", f.level, got.size() - 1));
+    ++got[static_cast<std::size_t>(f.level)];
+  }
+  if (got != per_level)
+    throw InternalError(fmt::format("quadtree: {} leaves per level extracted, the pyramid has {}", fmt::join(got, "/"),
+                                    fmt::join(per_level, "/")));
+}
+
 void leaf_steps_json(Json& q, const Lattice& lat, const config::QuadtreeOptions& options, std::int64_t filled_pixels,
                      const LeafSteps& steps, std::int64_t violations) {
   q["lattice"] = lat.kind_name();
@@ -167,12 +179,16 @@ std::vector<Leaf> build_leaves(const Bitmap& filled, const Lattice& lat, const c
   std::vector<Leaf> leaves = extract_leaves(masks, lat);
   const double extract_s = t_extract.wall_s();
   throw_if_cancelled();
-  masks = LevelMasks{};
 
+  // The checks: the balance on the pyramid the leaves were read from (the pyramid rebuilt from
+  // the leaves, masks_from_leaves, is the same bitmaps: building it again cost more than the
+  // count), and the leaves per level against the pyramid's.
   Timer t_check;
   const LeafSteps steps{bare, banded, refined, balanced};
   check_leaf_steps(steps, lat.levels, filled_pixels);
-  const std::int64_t violations = count_balance_violations(leaves, lat, mode);
+  const std::int64_t violations = count_balance_violations(masks, mode);
+  masks = LevelMasks{};
+  check_leaves_per_level(leaves, balanced);
   if (violations != 0) {
     throw InternalError(fmt::format("quadtree: {} {}-balance violations left after smoothing", violations, mode));
   }

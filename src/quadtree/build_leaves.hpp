@@ -49,6 +49,10 @@ struct LeafSteps {
 /// Throws InternalError unless the leaves of every step hold the `filled_pixels` pixels of Ω_L.
 void check_leaf_steps(const LeafSteps& steps, int levels, std::int64_t filled_pixels);
 
+/// Throws InternalError unless `leaves` hold per_level[l] leaves of each level l (the counts of
+/// the pyramid they were extracted from).
+void check_leaves_per_level(const std::vector<Leaf>& leaves, const std::vector<std::int64_t>& per_level);
+
 /// The "quadtree" report entries of both engines: the lattice, the options, the steps' leaf counts
 /// and the balance violations left (none).
 void leaf_steps_json(Json& q, const Lattice& lat, const config::QuadtreeOptions& options, std::int64_t filled_pixels,

@@ -445,6 +445,10 @@ namespace {
 
 using bathymetry_detail::FileMap;
 
+// The float32 bytes of a band of a pass through the file map, at most (Impl::pass_rows): with
+// the thread's sampling rows, well inside a processor's last-level cache.
+constexpr std::int64_t kMappedBandBytes = std::int64_t{8} << 20;
+
 }  // namespace
 
 struct Bathymetry::Impl {
@@ -786,7 +790,16 @@ struct Bathymetry::Impl {
     read_stored(y0, y0 + nr, dst, r_lo, raw, nullptr);
   }
 
-  [[nodiscard]] BandGeometry bands() const { return BandGeometry{info.height, info.band_rows, info.north_up}; }
+  // Stored rows per band of a pass. Through the file map, a band is at most about 8 MB of float32
+  // (kMappedBandBytes): its buffer is normalised and then sampled while it is still in the
+  // processor's cache (a 64 MB band went out to memory and was read back); the disk is still
+  // asked for info.band_rows ahead (stream). Through GDAL reads, info.band_rows.
+  [[nodiscard]] std::int64_t pass_rows() const {
+    if (!map) return info.band_rows;
+    const std::int64_t cached = std::max<std::int64_t>(1, kMappedBandBytes / std::max<std::int64_t>(1, info.ncols * 4));
+    return std::min(info.band_rows, cached);
+  }
+  [[nodiscard]] BandGeometry bands() const { return BandGeometry{info.height, pass_rows(), info.north_up}; }
 
   // One streamed pass: for every band s with wanted(s) (all bands when `stats` is given), its
   // buffer (normalised rows [lo(s), hi(s))) and then work(s, buffer). Records row statistics when
@@ -796,8 +809,10 @@ struct Bathymetry::Impl {
   //   reader:  read band k+1 ──────────┐ read band k+2 ...
   //   team:    normalise k │ work(k)   └> normalise k+1 │ work(k+1) ...
   //
-  // Through the file map, the team normalises each band straight from the map, and the band's
-  // rows are released after its work.
+  // Through the file map, the team normalises each band straight from the map (the band's first
+  // row, the last of the band before when that one was just worked on, is moved over instead),
+  // the disk is asked for the stored rows info.band_rows ahead, and the band's rows are released
+  // after its work.
   template <typename Wanted, typename Work>
   void stream(const Wanted& wanted, const Work& work, RowStats* stats, const ProgressFn& progress,
               std::string_view label) const {
@@ -813,12 +828,21 @@ struct Bathymetry::Impl {
       if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
     };
     if (map) {
-      if (!todo.empty()) map->prefetch(g.first(todo[0]), g.end(todo[0]));
+      std::int64_t asked = 0;  // stored rows below this one were asked for (each row once)
       for (std::size_t k = 0; k < todo.size(); ++k) {
         throw_if_cancelled();  // between bands (core/cancel.hpp)
-        const std::int64_t s = todo[k];
-        if (k + 1 < todo.size()) map->prefetch(g.first(todo[k + 1]), g.end(todo[k + 1]));
-        normalise_mapped(g.first(s), g.end(s), buf.data(), g.lo(s), stats);
+        const std::int64_t s = todo[k], lo = g.lo(s);
+        std::int64_t y0 = g.first(s);
+        const std::int64_t ahead = std::min(g.h, y0 + info.band_rows + 1);
+        if (ahead > std::max(asked, y0)) map->prefetch(std::max(asked, y0), ahead);
+        asked = std::max(asked, ahead);
+        if (k > 0 && s > 0 && todo[k - 1] == s - 1) {
+          const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
+          std::memmove(buf.data() + (r - lo) * nc, buf.data() + (r - g.lo(s - 1)) * nc,
+                       static_cast<std::size_t>(nc) * sizeof(float));
+          ++y0;
+        }
+        normalise_mapped(y0, g.end(s), buf.data(), lo, stats);
         if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
         map->release(g.first(s), g.end(s));
         done(k);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -107,6 +109,68 @@ TEST(BitRows, ReadWriteBitsAcrossWordBoundary) {
   write_bits(row.data(), 64, ~std::uint64_t{0}, 64);
   EXPECT_EQ(row[1], ~std::uint64_t{0});
   EXPECT_EQ(read_bits(row.data(), 60, 4), 0xDULL);
+}
+
+// threshold_row against the straightforward rule (compare as doubles), bit by bit: thresholds
+// between floats, on floats, beyond the float range, infinite and NaN; values with NaN, ±0,
+// ±inf, subnormals and the floats next to the threshold; row lengths around the word size.
+TEST(BitRows, ThresholdRowMatchesDoubleComparison) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  constexpr float kFInf = std::numeric_limits<float>::infinity();
+  const float fnan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<double> thresholds = {0.0,
+                                          -0.0,
+                                          -1e-300,
+                                          1e-300,
+                                          -0.1,
+                                          0.1,
+                                          -5.0,
+                                          1e39,
+                                          -1e39,
+                                          kInf,
+                                          -kInf,
+                                          3.4028234663852886e38,
+                                          static_cast<double>(0.1f),
+                                          std::nextafter(static_cast<double>(0.1f), 1.0),
+                                          std::nextafter(static_cast<double>(-0.1f), -1.0),
+                                          std::numeric_limits<double>::quiet_NaN()};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> val(-10.0f, 10.0f);
+  for (const double t : thresholds) {
+    const auto tf = static_cast<float>(t);
+    const std::vector<float> special = {
+        fnan, 0.0f, -0.0f, kFInf, -kFInf, 1e-45f, -1e-45f, tf, std::nextafter(tf, kFInf), std::nextafter(tf, -kFInf),
+        0.1f, -0.1f};
+    for (const std::int64_t n : {1, 3, 4, 63, 64, 65, 130, 1000}) {
+      std::vector<float> v(static_cast<std::size_t>(n));
+      for (std::int64_t i = 0; i < n; ++i)
+        v[static_cast<std::size_t>(i)] =
+            i % 3 == 0 ? special[static_cast<std::size_t>(i / 3) % special.size()] : val(rng);
+      std::vector<double> d(v.begin(), v.end());
+      std::vector<std::uint64_t> got(static_cast<std::size_t>(words_for(n)) + 1, ~std::uint64_t{0});
+      std::vector<std::uint64_t> got_d(got);
+      threshold_row(v.data(), n, t, got.data());
+      threshold_row(d.data(), n, t, got_d.data());
+      for (std::int64_t i = 0; i < words_for(n) * 64; ++i) {
+        const bool want = i < n && static_cast<double>(v[static_cast<std::size_t>(i)]) <= t;
+        ASSERT_EQ(((got[static_cast<std::size_t>(i >> 6)] >> (i & 63)) & 1U) != 0, want)
+            << "threshold " << t << ", n " << n << ", bit " << i;
+        ASSERT_EQ(((got_d[static_cast<std::size_t>(i >> 6)] >> (i & 63)) & 1U) != 0, want)
+            << "double values, threshold " << t << ", n " << n << ", bit " << i;
+      }
+      EXPECT_EQ(got.back(), ~std::uint64_t{0}) << "wrote past words_for(n)";
+    }
+  }
+}
+
+TEST(BitRows, FloatThresholdIsTheLargestFloatAtOrBelow) {
+  EXPECT_EQ(float_threshold(0.0), 0.0f);
+  EXPECT_EQ(float_threshold(0.1), std::nextafter(0.1f, -1.0f));  // 0.1f lies above 0.1
+  EXPECT_EQ(float_threshold(static_cast<double>(0.1f)), 0.1f);
+  EXPECT_EQ(float_threshold(1e39), std::numeric_limits<float>::max());
+  EXPECT_EQ(float_threshold(-1e39), -std::numeric_limits<float>::infinity());
+  EXPECT_EQ(float_threshold(std::numeric_limits<double>::infinity()), std::numeric_limits<float>::infinity());
+  EXPECT_TRUE(std::isnan(float_threshold(std::numeric_limits<double>::quiet_NaN())));
 }
 
 }  // namespace

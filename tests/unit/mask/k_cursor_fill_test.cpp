@@ -229,6 +229,18 @@ TEST(KFill, ComponentsWrapAcrossTheSeamAndCountProbeHits) {
   EXPECT_EQ(cs.largest, 4);
   EXPECT_EQ(cs.touching_probe, 1);
   EXPECT_EQ(cs.cells_touching_probe, 3);
+  // The same figures with a scratch bitmap of the same shape lending its storage (k_cursor_fill
+  // lends its spent windows), which is reused, not reallocated; the input is untouched.
+  Bitmap scratch = probe;
+  const std::uint64_t* storage = scratch.words().data();
+  const Bitmap before = m;
+  const ComponentStats lent = count_components(m, &probe, &scratch);
+  EXPECT_EQ(lent.count, cs.count);
+  EXPECT_EQ(lent.largest, cs.largest);
+  EXPECT_EQ(lent.touching_probe, cs.touching_probe);
+  EXPECT_EQ(lent.cells_touching_probe, cs.cells_touching_probe);
+  EXPECT_EQ(scratch.words().data(), storage);
+  EXPECT_EQ(m, before);
 }
 
 TEST(KFill, FullRowRunAndRepeatedSeedsCountOnce) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "quadtree/build_leaves.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
 
 namespace aq::quadtree::unit_quadtree_balance_test {
@@ -66,6 +67,38 @@ INSTANTIATE_TEST_SUITE_P(Seeds, BalanceRandom,
                          ::testing::Values(Case{1, BalanceMode::kFace}, Case{2, BalanceMode::kFace},
                                            Case{3, BalanceMode::kFace}, Case{1, BalanceMode::kCorner},
                                            Case{2, BalanceMode::kCorner}, Case{3, BalanceMode::kCorner}));
+
+// The stage counts the violations on the balanced pyramid instead of one rebuilt from the
+// extracted leaves: the rebuilt pyramid is the same bitmaps, so the count is the same, before
+// the balance (violations) and after it (none), in both modes.
+TEST(Balance, ViolationsOnThePyramidAreThoseOfItsLeaves) {
+  const Lattice lat = make_lattice(45.0, 5);
+  for (const std::uint32_t seed : {5u, 6u}) {
+    const Bitmap m = random_mask(lat.nx, lat.ny, seed, 0.6, 0.004, 24);
+    for (const BalanceMode mode : {BalanceMode::kFace, BalanceMode::kCorner}) {
+      LevelMasks masks = make_level_masks(m, lat, 2);
+      for (int pass = 0; pass < 2; ++pass) {  // as built, then balanced
+        const std::vector<Leaf> leaves = extract_leaves(masks, lat);
+        const LevelMasks rebuilt = masks_from_leaves(leaves, lat);
+        ASSERT_EQ(rebuilt.omega.size(), masks.omega.size());
+        for (std::size_t l = 0; l < masks.omega.size(); ++l) EXPECT_EQ(rebuilt.omega[l], masks.omega[l]) << l;
+        const std::int64_t v = count_balance_violations(masks, mode);
+        EXPECT_EQ(v, count_balance_violations(leaves, lat, mode));
+        if (pass == 0) {
+          EXPECT_GT(v, 0);
+        } else {
+          EXPECT_EQ(v, 0);
+        }
+        EXPECT_NO_THROW(check_leaves_per_level(leaves, count_leaves_per_level(masks)));
+        balance(masks, mode);
+      }
+    }
+  }
+  const std::vector<Leaf> two = {{0, 0, 0}, {1, 2, 0}};
+  EXPECT_THROW(check_leaves_per_level(two, {1, 0}), InternalError);  // one leaf of level 1 too many
+  EXPECT_THROW(check_leaves_per_level(two, {2}), InternalError);     // a level beyond the pyramid
+  EXPECT_NO_THROW(check_leaves_per_level(two, {1, 1}));
+}
 
 TEST(Balance, CornerModeRefinesAtLeastAsMuchAsFace) {
   const Lattice lat = make_lattice(45.0, 5);

@@ -78,6 +78,48 @@ TEST(Bits, RotateAndDilatePeriodicRows) {
   }
 }
 
+// expand_row and reduce_rows bit by bit against their definitions, on rows mixing all-0 and
+// all-1 words and half-words (the shortcut) with random ones, of lengths that end mid-word.
+TEST(Bits, ExpandAndReduceRowsMatchPerBitDefinition) {
+  std::mt19937_64 rng(11);
+  const auto word = [&rng](int kind) -> std::uint64_t {
+    switch (kind) {
+      case 0:
+        return 0;
+      case 1:
+        return ~0ULL;
+      case 2:
+        return 0xffffffffULL;  // low half all 1, high half all 0
+      case 3:
+        return 0xffffffff00000000ULL | (rng() & 0xffffffffULL);
+      default:
+        return rng();
+    }
+  };
+  for (const std::int64_t n : {6, 64, 70, 128, 200, 320}) {  // bits per child row (even)
+    for (int trial = 0; trial < 20; ++trial) {
+      Bitmap lo(n, 1), hi(n, 1), parent(n / 2, 1);
+      for (Bitmap* b : {&lo, &hi, &parent}) {
+        for (std::int64_t w = 0; w < b->words_per_row(); ++w) b->row(0)[w] = word(static_cast<int>(rng() % 5));
+        b->row(0)[b->words_per_row() - 1] &= bits::last_word_mask(b->nx());  // padding clear
+      }
+      Bitmap child(n, 1);
+      bits::expand_row(parent.row(0), child.row(0), child.words_per_row());
+      for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(child.get(i, 0), parent.get(i / 2, 0)) << "n " << n << " i " << i;
+      EXPECT_EQ(child.count(), 2 * parent.count());
+      for (const bool use_or : {false, true}) {
+        Bitmap out(n / 2, 1);
+        bits::reduce_rows(lo.row(0), hi.row(0), lo.words_per_row(), out.row(0), use_or);
+        for (std::int64_t a = 0; a < n / 2; ++a) {
+          const bool q[4] = {lo.get(2 * a, 0), lo.get(2 * a + 1, 0), hi.get(2 * a, 0), hi.get(2 * a + 1, 0)};
+          const bool want = use_or ? (q[0] || q[1] || q[2] || q[3]) : (q[0] && q[1] && q[2] && q[3]);
+          ASSERT_EQ(out.get(a, 0), want) << "n " << n << " a " << a << " or " << use_or;
+        }
+      }
+    }
+  }
+}
+
 TEST(Leaves, PyramidMatchesNaiveAllAndAny) {
   const Lattice lat = make_lattice(30.0, 3);  // 96 × 48 pixels
   const Bitmap m = random_mask(lat.nx, lat.ny, 7u);

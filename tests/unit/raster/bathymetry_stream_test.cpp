@@ -417,6 +417,79 @@ TEST(StreamedRaster, PlainIntegersGiveTheFiguresOfTheGeneralRule) {
   }
 }
 
+// A raster 2^19 columns wide (Int16, raw, striped: mapped): through the file map a band of a
+// pass is 4 rows (8 MB of float32, well inside a processor's cache), below the 32-row bands of
+// the memory estimate the disk is asked for; each band's first row is carried over from the band
+// before. The same rows, points and figures as the raster held whole, bit for bit.
+TEST(StreamedRaster, WideRasterInCacheSizedBandsEqualsWhole) {
+  GDALAllRegister();
+  const int w = 1 << 19, h = 40;
+  const double step = 360.0 / w, top = 10.0;
+  std::vector<std::int16_t> v(static_cast<std::size_t>(w) * h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double lon = -180.0 + (c + 0.5) * step;
+      auto x = static_cast<std::int16_t>(std::lround(3000.0 * std::sin(lon * 0.05)) + (r * 37 + c * 11) % 200 - 100);
+      if (c % 997 == 5) x = -32768;  // no-data
+      v[static_cast<std::size_t>(r) * w + c] = x;
+    }
+  GDALDataset* mem = GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, 1, GDT_Int16, nullptr);
+  double gt[6] = {-180.0, step, 0.0, top, 0.0, -step};
+  mem->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  mem->SetSpatialRef(&srs);
+  mem->GetRasterBand(1)->SetNoDataValue(-32768.0);
+  ASSERT_EQ(mem->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, v.data(), w, h, GDT_Int16, 0, 0, nullptr), CE_None);
+  const fs::path p = tmpdir() / "wide_int16.tif";
+  char** opts = CSLSetNameValue(nullptr, "BLOCKYSIZE", "1");
+  GDALClose(
+      GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(p.c_str(), mem, FALSE, opts, nullptr, nullptr));
+  CSLDestroy(opts);
+  GDALClose(mem);
+  v = {};
+
+  // Lattice rows across the raster's rows (and beyond its southern edge: NaN), every 4th column.
+  const double bottom = top - h * step;
+  std::vector<double> lons(static_cast<std::size_t>(w / 4)), lats(30);
+  for (std::size_t i = 0; i < lons.size(); ++i) lons[i] = -180.0 + (static_cast<double>(i) * 4.0 + 0.37) * step;
+  for (std::size_t j = 0; j < lats.size(); ++j) lats[j] = bottom - 2.0 * step + static_cast<double>(j) * 1.43 * step;
+  const auto rows = [&](const Bathymetry& b) {
+    const auto cols = b.prepare_columns(lons.data(), static_cast<std::int64_t>(lons.size()));
+    std::vector<float> out(lons.size() * lats.size(), -1.0f);
+    b.sample_rows(cols, lats.data(), static_cast<std::int64_t>(lats.size()), [&](std::int64_t k, const float* x) {
+      std::memcpy(out.data() + k * static_cast<std::int64_t>(lons.size()), x, lons.size() * sizeof(float));
+    });
+    return out;
+  };
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> lon(-180.0, 180.0), lat(bottom, top);
+  std::vector<double> px(20000), py(px.size());
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    px[k] = lon(rng);
+    py[k] = lat(rng);
+  }
+  const auto pts = [&](const Bathymetry& b) {
+    std::vector<double> out(px.size());
+    b.sample_points(px.data(), py.data(), static_cast<std::int64_t>(px.size()), out.data());
+    return out;
+  };
+  const Bathymetry whole = open(p, false);
+  const auto rows_w = rows(whole);
+  const auto pts_w = pts(whole);
+  for (const int threads : {1, 2}) {
+    aq::test::set_threads(threads);
+    const Bathymetry s = open(p, true);
+    ASSERT_TRUE(s.info().streamed);
+    ASSERT_TRUE(s.info().mapped);
+    EXPECT_EQ(s.info().band_rows, 32);  // 64 MB of float32 per band of the estimate
+    EXPECT_TRUE(same_bits(rows(s), rows_w)) << threads;
+    expect_same_stats(s, whole);
+    EXPECT_TRUE(same_bits(pts(s), pts_w)) << threads;
+  }
+  aq::test::set_threads(2);
+}
+
 }  // namespace
 
 }  // namespace unit_raster_bathymetry_stream_test
