@@ -3,7 +3,9 @@
 #include "mesh/time_step.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/types.hpp"
@@ -69,14 +71,25 @@ double triangle_dt(const std::array<NodeId, 3>& tri, const double* lon_deg, cons
   return edge / std::sqrt(kGravity * h);
 }
 
-// cos φ of every node (radians from degrees as great_circle_m converts them).
+// cos φ of every node (radians from degrees as great_circle_m converts them), once per run of
+// nodes of one latitude (the same bits): the lattice's nodes are numbered by row (mesh.hpp).
 std::vector<double> node_cos_lat(const std::vector<double>& lat_deg) {
   const auto nodes = static_cast<std::int64_t>(lat_deg.size());
   std::vector<double> cos_lat(lat_deg.size());
-#pragma omp parallel for schedule(static) default(none) \
-    shared(lat_deg, cos_lat, nodes) if (quadtree::parallel_worth(nodes * 16))
-  for (std::int64_t k = 0; k < nodes; ++k)
-    cos_lat[static_cast<std::size_t>(k)] = std::cos(lat_deg[static_cast<std::size_t>(k)] * kDegToRad);
+  const double* lat = lat_deg.data();
+  double* out = cos_lat.data();
+  quadtree::for_each_block(nodes, quadtree::block_count(nodes, 16), [&](int, std::int64_t begin, std::int64_t end) {
+    std::uint64_t row_bits = 0;
+    double row_cos = 0.0;
+    for (std::int64_t k = begin; k < end; ++k) {
+      const auto bits = std::bit_cast<std::uint64_t>(lat[k]);
+      if (k == begin || bits != row_bits) {
+        row_bits = bits;
+        row_cos = std::cos(lat[k] * kDegToRad);
+      }
+      out[k] = row_cos;
+    }
+  });
   return cos_lat;
 }
 

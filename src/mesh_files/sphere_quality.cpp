@@ -165,17 +165,21 @@ void neighbour_area_ratios(const std::array<NodeId, 3>* tri, std::int64_t nt, st
   for (std::int64_t t = 0; t < nt; ++t) {
     const auto& v = tri[t];
     double worst = 1.0;
-    for (int e = 0; e < 3; ++e) {
-      const NodeId a = v[e], b = v[(e + 1) % 3];
+    // The edge neighbours are the other triangles with two of t's nodes: those round v0 with v1
+    // or v2, and those round v1 with v2 (two lists instead of one per edge; a neighbour met twice
+    // changes no maximum).
+    const auto meet = [&](NodeId a, NodeId b, NodeId c) {
       for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
         const std::int64_t u = ap[k];
         if (u == t) continue;
         const auto& w = tri[u];
-        if (w[0] != b && w[1] != b && w[2] != b) continue;
+        if (w[0] != b && w[1] != b && w[2] != b && w[0] != c && w[1] != c && w[2] != c) continue;
         const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
         worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
       }
-    }
+    };
+    meet(v[0], v[1], v[2]);
+    meet(v[1], v[2], v[2]);
     ratio[t] = static_cast<float>(worst);
   }
 }

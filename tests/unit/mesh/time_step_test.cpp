@@ -68,9 +68,28 @@ Nodes random_nodes(unsigned seed, int n_nodes, int n_tri) {
 
 }  // namespace
 
-TEST(TimeStep, TriangleStepsAreThePerEdgeHaversineBitForBit) {
-  const Nodes s = random_nodes(7u, 5000, 20000);
-  const double min_depth = 10.0;
+// A lon–lat lattice of nx × ny cells of `cell_deg` from (lon0, lat0), two triangles per cell,
+// one depth everywhere but a deeper node at `deep` (-1: none): every triangle of a row has
+// the same edges up to rounding, so the smallest dt has near-ties and exact ties.
+Nodes lattice(int nx, int ny, double lon0, double lat0, double cell_deg, NodeId deep) {
+  Nodes s;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      s.lon.push_back(lon0 + cell_deg * i);
+      s.lat.push_back(std::min(90.0, lat0 + cell_deg * j));
+      s.depth.push_back(static_cast<NodeId>(s.depth.size()) == deep ? 5000.0 : 4000.0);
+    }
+  const auto id = [nx](int i, int j) { return static_cast<NodeId>(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      s.tri.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.tri.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+// Every triangle's dt against the haversine written out per edge, bit for bit.
+void expect_haversine_bit_for_bit(const Nodes& s, double min_depth) {
   const std::vector<double> dt = triangle_time_steps(s.lon, s.lat, s.depth, s.tri, min_depth);
   ASSERT_EQ(dt.size(), s.tri.size());
   std::int64_t compared = 0;
@@ -92,6 +111,17 @@ TEST(TimeStep, TriangleStepsAreThePerEdgeHaversineBitForBit) {
   EXPECT_EQ(compared, static_cast<std::int64_t>(s.tri.size()));
 }
 
+TEST(TimeStep, TriangleStepsAreThePerEdgeHaversineBitForBit) {
+  // Random nodes (each of its own latitude), and lattices numbered by row (cos φ taken once per
+  // row of nodes), one across the equator with −0 and +0 latitudes in its row.
+  expect_haversine_bit_for_bit(random_nodes(7u, 5000, 20000), 10.0);
+  expect_haversine_bit_for_bit(lattice(720, 30, -180.0, 75.0, 0.5, -1), 10.0);
+  Nodes equator = lattice(400, 40, 0.0, -10.0, 0.5, -1);
+  for (std::size_t k = 0; k < equator.lat.size(); k += 2)
+    if (equator.lat[k] == 0.0) equator.lat[k] = -0.0;
+  expect_haversine_bit_for_bit(equator, 10.0);
+}
+
 TEST(TimeStep, OneDegreeMeridianEdge) {
   // A right triangle of 1° legs on the equator; its shortest edges are the 1° legs (111.195 km).
   const std::vector<double> lon{0.0, 1.0, 0.0}, lat{0.0, 0.0, 1.0}, depth{100.0, 50.0, 20.0};
@@ -100,26 +130,6 @@ TEST(TimeStep, OneDegreeMeridianEdge) {
   ASSERT_EQ(dt.size(), 1u);
   EXPECT_NEAR(dt[0], kR * kDegToRad / std::sqrt(kG * 100.0), 1e-6);
   EXPECT_NEAR(dt[0], 3550.1, 0.1);
-}
-
-// A lon–lat lattice of nx × ny cells of `cell_deg` from (lon0, lat0), two triangles per cell,
-// one depth everywhere but a deeper node at `deep` (-1: none): every triangle of a row has
-// the same edges up to rounding, so the smallest dt has near-ties and exact ties.
-Nodes lattice(int nx, int ny, double lon0, double lat0, double cell_deg, NodeId deep) {
-  Nodes s;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) {
-      s.lon.push_back(lon0 + cell_deg * i);
-      s.lat.push_back(std::min(90.0, lat0 + cell_deg * j));
-      s.depth.push_back(static_cast<NodeId>(s.depth.size()) == deep ? 5000.0 : 4000.0);
-    }
-  const auto id = [nx](int i, int j) { return static_cast<NodeId>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      s.tri.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.tri.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
 }
 
 // smallest_time_step against the first smallest of every triangle's dt, bit for bit.
