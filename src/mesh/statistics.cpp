@@ -839,6 +839,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t t = example[static_cast<std::size_t>(cell)];
       if (t >= 0) table[static_cast<std::size_t>(cell)] = lattice_area(t);
     }
+    std::vector<std::int64_t>().swap(example);  // its memory for the counts
     area_values.reset(table, nlevels, quadtree::block_count(ntri, 4));
     quadtree::for_each_block(ntri, area_values.blocks(), [&](int b, std::int64_t begin, std::int64_t end) {
       for (std::int64_t t = begin; t < end; ++t) {
@@ -1018,6 +1019,7 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t e = example[static_cast<std::size_t>(cell)];
       if (e >= 0) table[static_cast<std::size_t>(cell)] = direct_length(e);
     }
+    std::vector<std::int64_t>().swap(example);  // its memory for the counts
     length_values.reset(table, nlevels, quadtree::block_count(nedges, 2));
     quadtree::for_each_block(nedges, length_values.blocks(), [&](int b, std::int64_t begin, std::int64_t end) {
       for (std::int64_t e = begin; e < end; ++e) {
