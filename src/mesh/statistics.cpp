@@ -14,7 +14,9 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <span>
+#include <utility>
 
 #include "core/cancel.hpp"
 #include "core/error.hpp"
@@ -79,15 +81,49 @@ bool all_finite(std::span<const double> v) {
   return bad == 0;
 }
 
-/// Min, lower median and max of `v` (reorders it); zeros when empty.
-std::array<double, 3> min_median_max(std::span<double> v) {
-  if (v.empty()) return {0.0, 0.0, 0.0};
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  const double mn = *lo, mx = *hi;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>((v.size() - 1) / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return {mn, *mid, mx};
-}
+/// The values of the faces (or edges) by level, when most of them are entries of a memo table:
+/// per table cell the number of faces of the cell's level that take its value, the others' values
+/// one by one. Filled by the blocks of a parallel loop (add, one block per thread), then read.
+class LevelValues {
+ public:
+  /// For values from `table` (which must outlive this), levels 0 .. nlevels − 1, `blocks` blocks.
+  void reset(const std::vector<double>& table, std::int64_t nlevels, int blocks) {
+    table_ = &table;
+    nlevels_ = nlevels;
+    counts_.assign(static_cast<std::size_t>(blocks), std::vector<std::int32_t>(table.size(), 0));
+    loose_.assign(static_cast<std::size_t>(blocks * nlevels), {});
+  }
+  [[nodiscard]] int blocks() const { return static_cast<int>(counts_.size()); }
+  /// Value v of a face of `level` (none outside 0 .. nlevels − 1) in block b: table[cell] when the
+  /// cell is of that level, else cell = −1.
+  void add(int b, int level, std::int64_t cell, double v) {
+    if (level < 0 || level >= nlevels_) return;
+    if (cell >= 0)
+      ++counts_[static_cast<std::size_t>(b)][static_cast<std::size_t>(cell)];
+    else
+      loose_[static_cast<std::size_t>(b * nlevels_ + level)].push_back(v);
+  }
+  /// The (value, count) multiset of every level; cell c is of level cell_level(c).
+  template <class CellLevel>
+  [[nodiscard]] std::vector<std::vector<std::pair<double, std::int64_t>>> by_level(const CellLevel& cell_level) const {
+    std::vector<std::vector<std::pair<double, std::int64_t>>> out(static_cast<std::size_t>(nlevels_));
+    if (table_ == nullptr) return out;
+    for (std::size_t c = 0; c < table_->size(); ++c) {
+      std::int64_t count = 0;
+      for (const auto& block : counts_) count += block[c];
+      if (count > 0) out[static_cast<std::size_t>(cell_level(c))].emplace_back((*table_)[c], count);
+    }
+    for (std::size_t k = 0; k < loose_.size(); ++k)
+      for (const double v : loose_[k]) out[k % static_cast<std::size_t>(nlevels_)].emplace_back(v, 1);
+    return out;
+  }
+
+ private:
+  const std::vector<double>* table_ = nullptr;
+  std::int64_t nlevels_ = 0;
+  std::vector<std::vector<std::int32_t>> counts_;  ///< per block, per cell
+  std::vector<std::vector<double>> loose_;         ///< per block and level
+};
 
 /// Geodesic area (m², signed: anticlockwise positive) of a polygon of n <= 8 vertices given in
 /// lattice coordinates.
@@ -96,8 +132,8 @@ double polygon_area_m2(const Lattice& lat, const PoleRotation& rot, const std::a
   GeographicLib::PolygonArea poly(GeographicLib::Geodesic::WGS84());
   for (int v = 0; v < n; ++v) {
     double lon = 0.0, la = 0.0;
-    rot.to_geographic(lat.lon_at(ui[static_cast<std::size_t>(v)]),
-                      lat.lat_of_row(uj[static_cast<std::size_t>(v)]), lon, la);
+    rot.to_geographic(lat.lon_at(ui[static_cast<std::size_t>(v)]), lat.lat_of_row(uj[static_cast<std::size_t>(v)]), lon,
+                      la);
     poly.AddPoint(la, lon);
   }
   double perimeter = 0.0, area = 0.0;
@@ -141,6 +177,37 @@ double distance_m(double lat1, double lon1, double lat2, double lon2) {
 }
 
 }  // namespace
+
+// (statistics.hpp)
+std::array<double, 3> min_median_max(std::span<double> v) {
+  if (v.empty()) return {0.0, 0.0, 0.0};
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  const double mn = *lo, mx = *hi;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>((v.size() - 1) / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return {mn, *mid, mx};
+}
+
+// (statistics.hpp)
+std::optional<std::array<double, 3>> weighted_min_median_max(std::vector<std::pair<double, std::int64_t>>& v,
+                                                             std::int64_t& n) {
+  n = 0;
+  for (const auto& [value, count] : v) n += count;
+  if (n == 0) return std::array<double, 3>{0.0, 0.0, 0.0};
+  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [value, count] : v)
+    if (std::signbit(value) || !std::isfinite(value)) return std::nullopt;
+  std::int64_t rank = (n - 1) / 2;
+  double median = v.back().first;
+  for (const auto& [value, count] : v) {
+    if (rank < count) {
+      median = value;
+      break;
+    }
+    rank -= count;
+  }
+  return std::array<double, 3>{v.front().first, median, v.back().first};
+}
 
 std::vector<std::string> MeshStatistics::failed_checks() const {
   std::vector<std::string> f = non_finite;
@@ -729,6 +796,19 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   };
 
   throw_if_cancelled();  // between the passes (core/cancel.hpp)
+  // Without rotation the per-level statistics at the end are taken from the memo tables: each
+  // table cell's value with the number of faces (edges) of the cell's level that take it, plus
+  // the values of the others one by one (level_values below), instead of gathering 8 bytes per
+  // face and edge by level and selecting among them.
+  const std::int64_t nlevels = levels + 1;
+  std::vector<std::uint8_t> row_level(memo ? static_cast<std::size_t>(row_offset.back()) : 0);
+  for (std::int64_t l = 0; l < nlevels && memo; ++l)
+    std::fill(row_level.begin() + row_offset[static_cast<std::size_t>(l)],
+              row_level.begin() + row_offset[static_cast<std::size_t>(l) + 1], static_cast<std::uint8_t>(l));
+  LevelValues area_values, length_values;
+  std::vector<double> area_table, length_table;  // the memo tables (kept for the LevelValues)
+  std::int64_t area_nshapes = 1;
+
   // Element areas.
   FillVector<double> edge_s12, edge_S12;  // per edge, when not memoised (below)
   FillVector<double> area(static_cast<std::size_t>(nfaces));
@@ -742,8 +822,10 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       }
     }
     const auto nshapes = static_cast<std::int64_t>(shapes.size());
+    area_nshapes = std::max<std::int64_t>(1, nshapes);
     const std::int64_t cells = row_offset.back() * nshapes;
-    std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
+    std::vector<double>& table = area_table;
+    table.assign(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
     std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
     for (std::int64_t t = 0; t < ntri; ++t) {
       const std::int32_t c = shape[static_cast<std::size_t>(t)];
@@ -757,14 +839,18 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t t = example[static_cast<std::size_t>(cell)];
       if (t >= 0) table[static_cast<std::size_t>(cell)] = lattice_area(t);
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(ntri * 4)) \
-    shared(area, shape, shape_id, table, ntri, nshapes, row_of, lattice_area) schedule(static)
-    for (std::int64_t t = 0; t < ntri; ++t) {
-      const std::int32_t c = shape[static_cast<std::size_t>(t)];
-      area[static_cast<std::size_t>(t)] =
-          c < 0 ? lattice_area(t)
-                : table[static_cast<std::size_t>(row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)])];
-    }
+    std::vector<std::int64_t>().swap(example);  // its memory for the counts
+    area_values.reset(table, nlevels, quadtree::block_count(ntri, 4));
+    quadtree::for_each_block(ntri, area_values.blocks(), [&](int b, std::int64_t begin, std::int64_t end) {
+      for (std::int64_t t = begin; t < end; ++t) {
+        const std::int32_t c = shape[static_cast<std::size_t>(t)];
+        const std::int64_t cell = c < 0 ? -1 : row_of(t) * nshapes + shape_id[static_cast<std::size_t>(c)];
+        const double a = cell < 0 ? lattice_area(t) : table[static_cast<std::size_t>(cell)];
+        area[static_cast<std::size_t>(t)] = a;
+        const int l = face_level(t);
+        area_values.add(b, l, cell >= 0 && row_level[static_cast<std::size_t>(cell / nshapes)] == l ? cell : -1, a);
+      }
+    });
   } else {
     // Rotated frame or squares: no two cells are alike, so each edge's geodesic is solved once, for
     // its length s12 and its area S12 (between the geodesic and the equator), and a face's area is
@@ -905,7 +991,8 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   if (memo) {
     length.resize(static_cast<std::size_t>(nedges));  // every edge written below
     const std::int64_t cells = row_offset.back() * 81;
-    std::vector<double> table(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
+    std::vector<double>& table = length_table;
+    table.assign(static_cast<std::size_t>(cells), std::numeric_limits<double>::quiet_NaN());
     std::vector<std::int64_t> example(static_cast<std::size_t>(cells), -1);
     std::vector<std::int64_t> cell_of(static_cast<std::size_t>(nedges), -1);
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 8)) \
@@ -932,17 +1019,23 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
       const std::int64_t e = example[static_cast<std::size_t>(cell)];
       if (e >= 0) table[static_cast<std::size_t>(cell)] = direct_length(e);
     }
-#pragma omp parallel for default(none) if (quadtree::parallel_worth(nedges * 2)) \
-    shared(length, cell_of, table, nedges, direct_length) schedule(static)
-    for (std::int64_t e = 0; e < nedges; ++e) {
-      const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
-      length[static_cast<std::size_t>(e)] = cell < 0 ? direct_length(e) : table[static_cast<std::size_t>(cell)];
-    }
+    std::vector<std::int64_t>().swap(example);  // its memory for the counts
+    length_values.reset(table, nlevels, quadtree::block_count(nedges, 2));
+    quadtree::for_each_block(nedges, length_values.blocks(), [&](int b, std::int64_t begin, std::int64_t end) {
+      for (std::int64_t e = begin; e < end; ++e) {
+        const std::int64_t cell = cell_of[static_cast<std::size_t>(e)];
+        const double len = cell < 0 ? direct_length(e) : table[static_cast<std::size_t>(cell)];
+        length[static_cast<std::size_t>(e)] = len;
+        const int l = edge_level[static_cast<std::size_t>(e)];
+        length_values.add(b, l, cell >= 0 && row_level[static_cast<std::size_t>(cell / 81)] == l ? cell : -1, len);
+      }
+    });
   } else {
     length = std::move(edge_s12);  // solved with the areas above
   }
 
-  if (!all_finite(length)) {
+  const bool lengths_finite = all_finite(length);
+  if (!lengths_finite) {
     finite.values("geodesic edge length (m)", length, [&](std::int64_t e) {
       const auto k = static_cast<std::size_t>(e);
       return fmt::format("edge {} between {} and {}", e, node_where(edge_a[k]), node_where(edge_b[k]));
@@ -950,37 +1043,52 @@ MeshStatistics compute_statistics(const Mesh& m, const StatisticsOptions& option
   }
   s.non_finite = finite.failures();
 
-  // Per level: the areas and lengths grouped by level in face and edge order (levels outside 0..L
-  // are not counted), then the min, median and max of each group, the groups in parallel.
-  const std::int64_t nlevels = levels + 1;
-  Buckets<double> area_of = stable_buckets<double>(nfaces, nlevels, 2, [&](std::int64_t t, const auto& emit) {
-    const int l = face_level(t);
-    if (l <= levels) emit(l, area[static_cast<std::size_t>(t)]);
-  });
-  Buckets<double> length_of = stable_buckets<double>(nedges, nlevels, 2, [&](std::int64_t e, const auto& emit) {
-    const int l = edge_level[static_cast<std::size_t>(e)];
-    if (l <= levels) emit(l, length[static_cast<std::size_t>(e)]);
-  });
-  // Group g: level L − g/2, areas for even g, lengths for odd g (the finest, largest groups first).
-  std::vector<std::array<double, 3>> extremes(2 * static_cast<std::size_t>(nlevels));
+  // Per level: the min, median and max of the areas and of the lengths (levels outside 0..L are
+  // not counted) and their numbers. Group g: level L − g/2, areas for even g, lengths for odd g.
   const std::int64_t groups = 2 * nlevels;
+  std::vector<std::array<double, 3>> extremes(static_cast<std::size_t>(groups));
+  std::vector<std::int64_t> group_size(static_cast<std::size_t>(groups), 0);
+  bool from_memo = memo && areas_finite && lengths_finite;
+  if (from_memo) {  // from the memo tables' counts (LevelValues)
+    auto area_groups =
+        area_values.by_level([&](std::size_t c) { return row_level[c / static_cast<std::size_t>(area_nshapes)]; });
+    auto length_groups = length_values.by_level([&](std::size_t c) { return row_level[c / 81]; });
+    for (std::int64_t g = 0; g < groups && from_memo; ++g) {
+      auto& values = (g % 2 == 0 ? area_groups : length_groups)[static_cast<std::size_t>(levels - g / 2)];
+      const auto r = weighted_min_median_max(values, group_size[static_cast<std::size_t>(g)]);
+      from_memo = r.has_value();
+      if (r) extremes[static_cast<std::size_t>(g)] = *r;
+    }
+  }
+  if (!from_memo) {
+    // The areas and lengths grouped by level in face and edge order, then the min, median and max
+    // of each group, the groups in parallel (the finest, largest groups first).
+    Buckets<double> area_of = stable_buckets<double>(nfaces, nlevels, 2, [&](std::int64_t t, const auto& emit) {
+      const int l = face_level(t);
+      if (l <= levels) emit(l, area[static_cast<std::size_t>(t)]);
+    });
+    Buckets<double> length_of = stable_buckets<double>(nedges, nlevels, 2, [&](std::int64_t e, const auto& emit) {
+      const int l = edge_level[static_cast<std::size_t>(e)];
+      if (l <= levels) emit(l, length[static_cast<std::size_t>(e)]);
+    });
 #pragma omp parallel for default(none) if (quadtree::parallel_worth(nfaces + nedges)) \
-    shared(area_of, length_of, extremes, groups, levels) schedule(dynamic, 1)
-  for (std::int64_t g = 0; g < groups; ++g) {
-    Buckets<double>& b = g % 2 == 0 ? area_of : length_of;  // each group reordered in place by one thread
-    const auto l = static_cast<std::size_t>(levels - g / 2);
-    extremes[static_cast<std::size_t>(g)] = min_median_max(
-        std::span<double>(b.values.data() + b.start[l], static_cast<std::size_t>(b.start[l + 1] - b.start[l])));
+    shared(area_of, length_of, extremes, group_size, groups, levels) schedule(dynamic, 1)
+    for (std::int64_t g = 0; g < groups; ++g) {
+      Buckets<double>& b = g % 2 == 0 ? area_of : length_of;  // each group reordered in place by one thread
+      const auto l = static_cast<std::size_t>(levels - g / 2);
+      group_size[static_cast<std::size_t>(g)] = b.start[l + 1] - b.start[l];
+      extremes[static_cast<std::size_t>(g)] = min_median_max(
+          std::span<double>(b.values.data() + b.start[l], static_cast<std::size_t>(b.start[l + 1] - b.start[l])));
+    }
   }
   for (int l = 0; l <= levels; ++l) {
-    const auto k = static_cast<std::size_t>(l);
-    if (area_of.start[k + 1] == area_of.start[k]) continue;
+    if (group_size[static_cast<std::size_t>(2 * (levels - l))] == 0) continue;
     const auto& am = extremes[static_cast<std::size_t>(2 * (levels - l))];
     const auto& lm = extremes[static_cast<std::size_t>(2 * (levels - l) + 1)];
     LevelStatistics ls;
     ls.level = l;
-    ls.triangles = area_of.start[k + 1] - area_of.start[k];
-    ls.edges = length_of.start[k + 1] - length_of.start[k];
+    ls.triangles = group_size[static_cast<std::size_t>(2 * (levels - l))];
+    ls.edges = group_size[static_cast<std::size_t>(2 * (levels - l) + 1)];
     ls.area_min_m2 = am[0];
     ls.area_median_m2 = am[1];
     ls.area_max_m2 = am[2];

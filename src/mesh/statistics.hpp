@@ -28,8 +28,12 @@
 // area is the sum of ±S12 over its edges, reduced as PolygonArea does (parallel, per edge/element).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/report.hpp"
@@ -82,6 +86,15 @@ struct StatisticsOptions {
   /// (statistics.cpp derives it; second order in the pixel size for a given coast).
   double area_tolerance = 0.0;
 };
+
+/// Min, lower median (rank ⌊(n − 1)/2⌋) and max of `v` (reorders it); zeros when empty.
+std::array<double, 3> min_median_max(std::span<double> v);
+/// The same for the multiset of values v[k].first, each v[k].second times (reorders v), and the
+/// multiset's size n: what min_median_max gives for the values written out, in any order. nullopt
+/// when a value is negative (−0 included) or not finite: then equal values could differ in their
+/// bits (−0 and +0) or not compare at all (NaN), and only the values in their order tell.
+std::optional<std::array<double, 3>> weighted_min_median_max(std::vector<std::pair<double, std::int64_t>>& v,
+                                                             std::int64_t& n);
 
 /// Statistics and checks of the triangles of `mesh` (a mesh without triangles gives zero counts
 /// except nodes and filled area). Does not throw on a bad mesh: see failed_checks(). Throws

@@ -3,10 +3,13 @@
 #include "mesh/time_step.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/types.hpp"
+#include "quadtree/parallel.hpp"
 
 namespace aq::mesh {
 
@@ -32,6 +35,64 @@ double great_circle_m(double lon1, double lat1, double lon2, double lat2) {
   return great_circle_m(lon1, lat1, std::cos(lat1 * kDegToRad), lon2, lat2, std::cos(lat2 * kDegToRad));
 }
 
+// A lower bound (m) of great_circle_m for the same ends, without a trigonometric call: from the
+// same half-angle arguments x, sin x ≥ x − x³/6 (x ≥ 0; sin² is bounded by the square of the
+// bound's positive part) and asin y ≥ y, less a relative 1e-12 for the rounding of either side
+// (both take the same rounded arguments; their other operations differ by a few ulp).
+double great_circle_lower_bound_m(double lon1, double lat1, double cos_lat1, double lon2, double lat2,
+                                  double cos_lat2) {
+  const double p1 = lat1 * kDegToRad, p2 = lat2 * kDegToRad;
+  const double hp = std::abs((p2 - p1) / 2), hl = std::abs((lon2 - lon1) * kDegToRad / 2);
+  const double sp = std::max(0.0, hp - hp * hp * hp / 6.0), sl = std::max(0.0, hl - hl * hl * hl / 6.0);
+  const double cc = cos_lat1 * cos_lat2;
+  // cc < 0 only for latitudes beyond ±90°: then cc·sin² ≥ cc·x², as |sin x| ≤ |x|.
+  const double a = sp * sp + (cc >= 0.0 ? cc * sl * sl : cc * hl * hl);
+  return 2.0 * kEarthRadiusM * std::min(1.0, std::sqrt(std::max(0.0, a))) * (1.0 - 1e-12);
+}
+
+// H of triangle `tri`: the deepest of its nodes, at least min_depth_m.
+double triangle_depth(const std::array<NodeId, 3>& tri, const double* depth_m, double min_depth_m) {
+  double h = min_depth_m;
+  for (const NodeId v : tri)
+    if (depth_m[v] > h) h = depth_m[v];
+  return h;
+}
+
+// dt (s) of triangle `tri`: its shortest edge over 1 mm / √(g·h) (+inf without such an edge).
+double triangle_dt(const std::array<NodeId, 3>& tri, const double* lon_deg, const double* lat_deg,
+                   const double* cos_lat, double h) {
+  double edge = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
+    const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
+    const double len = great_circle_m(lon_deg[a], lat_deg[a], cos_lat[a], lon_deg[b], lat_deg[b], cos_lat[b]);
+    if (len > kMinEdgeM) edge = std::min(edge, len);
+  }
+  return edge / std::sqrt(kGravity * h);
+}
+
+// cos φ of every node (radians from degrees as great_circle_m converts them), once per run of
+// nodes of one latitude (the same bits): the lattice's nodes are numbered by row (mesh.hpp).
+std::vector<double> node_cos_lat(const std::vector<double>& lat_deg) {
+  const auto nodes = static_cast<std::int64_t>(lat_deg.size());
+  std::vector<double> cos_lat(lat_deg.size());
+  const double* lat = lat_deg.data();
+  double* out = cos_lat.data();
+  quadtree::for_each_block(nodes, quadtree::block_count(nodes, 16), [&](int, std::int64_t begin, std::int64_t end) {
+    std::uint64_t row_bits = 0;
+    double row_cos = 0.0;
+    for (std::int64_t k = begin; k < end; ++k) {
+      const auto bits = std::bit_cast<std::uint64_t>(lat[k]);
+      if (k == begin || bits != row_bits) {
+        row_bits = bits;
+        row_cos = std::cos(lat[k] * kDegToRad);
+      }
+      out[k] = row_cos;
+    }
+  });
+  return cos_lat;
+}
+
 double round6(double x) { return std::round(x * 1e6) / 1e6; }
 
 }  // namespace
@@ -40,29 +101,54 @@ std::vector<double> triangle_time_steps(const std::vector<double>& lon_deg, cons
                                         const std::vector<double>& depth_m,
                                         const std::vector<std::array<NodeId, 3>>& triangles, double min_depth_m) {
   const auto n = static_cast<std::int64_t>(triangles.size());
-  const auto nodes = static_cast<std::int64_t>(lat_deg.size());
-  std::vector<double> cos_lat(lat_deg.size());
+  const std::vector<double> cos_lat = node_cos_lat(lat_deg);
   std::vector<double> dt(static_cast<std::size_t>(n));
-#pragma omp parallel default(none) shared(lon_deg, lat_deg, cos_lat, depth_m, triangles, dt, n, nodes, min_depth_m)
-  {
-#pragma omp for schedule(static)
-    for (std::int64_t k = 0; k < nodes; ++k)
-      cos_lat[static_cast<std::size_t>(k)] = std::cos(lat_deg[static_cast<std::size_t>(k)] * kDegToRad);
-#pragma omp for schedule(static)
-    for (std::int64_t t = 0; t < n; ++t) {
-      const auto& tri = triangles[static_cast<std::size_t>(t)];
-      double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
-      for (int k = 0; k < 3; ++k) {
-        const auto a = static_cast<std::size_t>(tri[static_cast<std::size_t>(k)]);
-        const auto b = static_cast<std::size_t>(tri[static_cast<std::size_t>((k + 1) % 3)]);
-        const double len = great_circle_m(lon_deg[a], lat_deg[a], cos_lat[a], lon_deg[b], lat_deg[b], cos_lat[b]);
-        if (len > kMinEdgeM) edge = std::min(edge, len);
-        if (depth_m[a] > h) h = depth_m[a];
-      }
-      dt[static_cast<std::size_t>(t)] = edge / std::sqrt(kGravity * h);
-    }
-  }
+  const double *lon = lon_deg.data(), *lat = lat_deg.data(), *cl = cos_lat.data(), *depth = depth_m.data();
+  const std::array<NodeId, 3>* tri = triangles.data();
+  double* out = dt.data();
+#pragma omp parallel for schedule(static) default(none) shared(lon, lat, cl, depth, tri, out, n, min_depth_m)
+  for (std::int64_t t = 0; t < n; ++t)
+    out[t] = triangle_dt(tri[t], lon, lat, cl, triangle_depth(tri[t], depth, min_depth_m));
   return dt;
+}
+
+SmallestTimeStep smallest_time_step(const std::vector<double>& lon_deg, const std::vector<double>& lat_deg,
+                                    const std::vector<double>& depth_m,
+                                    const std::vector<std::array<NodeId, 3>>& triangles, double min_depth_m) {
+  const auto n = static_cast<std::int64_t>(triangles.size());
+  const std::vector<double> cos_lat = node_cos_lat(lat_deg);
+  const double *lon = lon_deg.data(), *lat = lat_deg.data(), *cl = cos_lat.data(), *depth = depth_m.data();
+  const std::array<NodeId, 3>* tri = triangles.data();
+  // Each block keeps its own smallest (dt, first triangle) and measures a triangle's edges only
+  // when their lower bounds allow a dt at most that small. A block's smallest is never below the
+  // overall one, so every triangle whose dt equals the overall smallest is measured in its block:
+  // the result is that of a full scan, for any number of blocks.
+  const int blocks = quadtree::block_count(n, 16);
+  std::vector<SmallestTimeStep> best(static_cast<std::size_t>(blocks));
+  quadtree::for_each_block(n, blocks, [&](int b, std::int64_t begin, std::int64_t end) {
+    SmallestTimeStep mine;
+    for (std::int64_t t = begin; t < end; ++t) {
+      const std::array<NodeId, 3>& v = tri[t];
+      const double h = triangle_depth(v, depth, min_depth_m);
+      if (mine.triangle >= 0) {
+        double bound = std::numeric_limits<double>::infinity();  // ≤ the shortest edge over 1 mm
+        for (int k = 0; k < 3; ++k) {
+          const auto a = static_cast<std::size_t>(v[static_cast<std::size_t>(k)]);
+          const auto c = static_cast<std::size_t>(v[static_cast<std::size_t>((k + 1) % 3)]);
+          bound = std::min(bound, great_circle_lower_bound_m(lon[a], lat[a], cl[a], lon[c], lat[c], cl[c]));
+        }
+        if (bound / std::sqrt(kGravity * h) > mine.dt_s) continue;
+      }
+      const double dt = triangle_dt(v, lon, lat, cl, h);
+      if (std::isnan(dt) && t != 0) continue;  // as std::min_element: NaN only as the first entry
+      if (mine.triangle < 0 || dt < mine.dt_s) mine = {dt, t};
+    }
+    best[static_cast<std::size_t>(b)] = mine;
+  });
+  SmallestTimeStep r;
+  for (const SmallestTimeStep& b : best)  // blocks in triangle order: the first smallest wins ties
+    if (b.triangle >= 0 && (r.triangle < 0 || b.dt_s < r.dt_s)) r = b;
+  return r;
 }
 
 namespace {
@@ -75,12 +161,11 @@ struct Limiting {
   double edge_m = 0.0, depth_m = 0.0, lon_deg = 0.0, lat_deg = 0.0, max_elevation_m = 0.0;
 };
 
-Limiting limiting(const Mesh& mesh, const std::vector<double>& depth, const std::vector<double>& dt,
+Limiting limiting(const Mesh& mesh, const std::vector<double>& depth, const SmallestTimeStep& smallest,
                   double min_depth_m) {
   Limiting r;
-  const auto it = std::min_element(dt.begin(), dt.end());
-  r.dt_s = *it;
-  r.triangle = it - dt.begin();
+  r.dt_s = smallest.dt_s;
+  r.triangle = smallest.triangle;
   const auto& tri = mesh.triangles[static_cast<std::size_t>(r.triangle)];
   double edge = std::numeric_limits<double>::infinity(), h = min_depth_m;
   r.max_elevation_m = -std::numeric_limits<double>::infinity();
@@ -108,10 +193,14 @@ TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double cou
   r.courant_max = courant_max;
   std::vector<double> depth(mesh.depth_m.size());
   for (std::size_t k = 0; k < depth.size(); ++k) depth[k] = -mesh.depth_m[k];
-  const std::vector<double> dt = triangle_time_steps(mesh.lon_deg, mesh.lat_deg, depth, mesh.triangles, min_depth_m);
-  r.triangles = static_cast<std::int64_t>(dt.size());
-  if (dt.empty()) return r;
-  const Limiting at_rest = limiting(mesh, depth, dt, min_depth_m);
+  r.triangles = static_cast<std::int64_t>(mesh.triangles.size());
+  if (mesh.triangles.empty()) return r;
+  // Every triangle's dt only for the Courant numbers; the smallest alone measures few edges.
+  const std::vector<double> dt =
+      dt_s > 0.0 ? triangle_time_steps(mesh.lon_deg, mesh.lat_deg, depth, mesh.triangles, min_depth_m)
+                 : std::vector<double>();
+  const Limiting at_rest = limiting(
+      mesh, depth, smallest_time_step(mesh.lon_deg, mesh.lat_deg, depth, mesh.triangles, min_depth_m), min_depth_m);
   r.max_stable_dt_s = at_rest.dt_s;
   r.limiting_triangle = at_rest.triangle;
   r.limiting_edge_m = at_rest.edge_m;
@@ -121,9 +210,9 @@ TimeStep time_step(const Mesh& mesh, double min_depth_m, double dt_s, double cou
   if (flood_level_m > 0.0) {  // the highest water the floodplain is built for over every node
     std::vector<double> flooded(depth.size());
     for (std::size_t k = 0; k < depth.size(); ++k) flooded[k] = depth[k] + flood_level_m;
-    const std::vector<double> dt_wd =
-        triangle_time_steps(mesh.lon_deg, mesh.lat_deg, flooded, mesh.triangles, min_depth_m);
-    const Limiting wd = limiting(mesh, flooded, dt_wd, min_depth_m);
+    const Limiting wd =
+        limiting(mesh, flooded, smallest_time_step(mesh.lon_deg, mesh.lat_deg, flooded, mesh.triangles, min_depth_m),
+                 min_depth_m);
     TimeStep::WettingDrying& w = r.wetting_drying;
     w.flood_level_m = flood_level_m;
     w.max_stable_dt_s = wd.dt_s;

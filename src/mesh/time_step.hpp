@@ -27,13 +27,13 @@ struct TimeStep {
   std::int64_t limiting_triangle = -1;
   double limiting_edge_m = 0.0, limiting_depth_m = 0.0;
   double limiting_lon_deg = 0.0, limiting_lat_deg = 0.0;  ///< its first node
-  double min_depth_m = 0.0;                             ///< the floor of H
-  double dt_s = 0.0;                                    ///< the Δt the Courant numbers are for (0: none)
-  double courant_max = 0.0;                             ///< Cr_max the counts below compare with
-  std::vector<double> courant_percentiles;              ///< Cr at 0, 50, 90, 99, 100 %
-  std::int64_t above_courant_max = 0;                   ///< triangles with Cr > Cr_max
-  std::vector<std::int64_t> above_by_level;             ///< of those, per quadtree level of their square
-  std::int64_t above_touching_coast = 0;                ///< of those, with a node on a boundary edge
+  double min_depth_m = 0.0;                               ///< the floor of H
+  double dt_s = 0.0;                                      ///< the Δt the Courant numbers are for (0: none)
+  double courant_max = 0.0;                               ///< Cr_max the counts below compare with
+  std::vector<double> courant_percentiles;                ///< Cr at 0, 50, 90, 99, 100 %
+  std::int64_t above_courant_max = 0;                     ///< triangles with Cr > Cr_max
+  std::vector<std::int64_t> above_by_level;               ///< of those, per quadtree level of their square
+  std::int64_t above_touching_coast = 0;                  ///< of those, with a node on a boundary edge
   std::int64_t triangles = 0;
   /// With wetting and drying (flood_level_m > 0): the step with H = max(flood_level_m − elevation,
   /// min_depth_m) at every node, and its limiting triangle.
@@ -52,6 +52,18 @@ struct TimeStep {
 std::vector<double> triangle_time_steps(const std::vector<double>& lon_deg, const std::vector<double>& lat_deg,
                                         const std::vector<double>& depth_m,
                                         const std::vector<std::array<NodeId, 3>>& triangles, double min_depth_m);
+
+/// The smallest entry of triangle_time_steps (s) and the first triangle holding it (-1 without
+/// triangles): the same result, but a triangle's edges are measured only when lower bounds of
+/// their lengths (no trigonometry) allow a dt at most the smallest found so far (parallel; the
+/// same for any thread count).
+struct SmallestTimeStep {
+  double dt_s = 0.0;
+  std::int64_t triangle = -1;
+};
+SmallestTimeStep smallest_time_step(const std::vector<double>& lon_deg, const std::vector<double>& lat_deg,
+                                    const std::vector<double>& depth_m,
+                                    const std::vector<std::array<NodeId, 3>>& triangles, double min_depth_m);
 
 /// The time step of `mesh` (geographic node coordinates, depths = -elevation); `dt_s` > 0 adds
 /// the Courant distribution for that step and `courant_max`; `flood_level_m` > 0 (a floodplain up

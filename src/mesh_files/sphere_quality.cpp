@@ -86,37 +86,53 @@ int thread_id() {
 
 // Per-thread integer histograms, summed afterwards: the same for any thread count. Pass 1
 // (prefixes empty) counts the high 16 bits of every value; pass 2 counts the low 16 bits of the
-// values whose high bits equal prefixes[p], one histogram per prefix.
+// values whose high bits equal prefixes[p], one histogram per prefix (equal prefixes share one:
+// a value is looked up in a table of the high bits, not compared with every prefix).
 std::vector<std::vector<std::int64_t>> digit_histograms(const std::vector<float>& v,
                                                         const std::vector<std::uint32_t>& prefixes) {
   constexpr std::size_t kBins = 1u << 16;
-  const std::size_t nh = prefixes.empty() ? 1 : prefixes.size();
+  // slot[high]: 1 + the histogram of values with these high bits, 0 for none (pass 2).
+  std::vector<std::uint8_t> slot(prefixes.empty() ? 0 : kBins, 0);
+  std::vector<std::size_t> of_prefix(prefixes.size());
+  std::size_t nh = prefixes.empty() ? 1 : 0;
+  for (std::size_t p = 0; p < prefixes.size(); ++p) {
+    if (prefixes[p] >= kBins) throw InternalError("order_statistic: a prefix beyond 16 bits");
+    std::uint8_t& s = slot[prefixes[p]];
+    if (s == 0) {
+      if (nh == 255) throw InternalError("order_statistic: more than 255 ranks at once");
+      s = static_cast<std::uint8_t>(++nh);
+    }
+    of_prefix[p] = s - 1u;
+  }
   const int nt = thread_count();
   std::vector<std::int64_t> per(static_cast<std::size_t>(nt) * nh * kBins, 0);
   const auto n = static_cast<std::int64_t>(v.size());
   const float* data = v.data();
   std::int64_t* counts = per.data();
-  const std::uint32_t* pre = prefixes.data();
-  const auto np = static_cast<std::int64_t>(prefixes.size());
-#pragma omp parallel default(none) shared(n, data, counts, pre, np, nh) if (n >= kParallelMin)
+  const std::uint8_t* slots = slot.data();
+  const bool high = prefixes.empty();
+#pragma omp parallel default(none) shared(n, data, counts, slots, high, nh) if (n >= kParallelMin)
   {
     std::int64_t* mine = counts + static_cast<std::size_t>(thread_id()) * nh * kBins;
+    if (high) {
 #pragma omp for schedule(static)
-    for (std::int64_t k = 0; k < n; ++k) {
-      const auto bits = std::bit_cast<std::uint32_t>(data[k]);
-      if (np == 0) {
-        ++mine[bits >> 16];
-        continue;
+      for (std::int64_t k = 0; k < n; ++k) ++mine[std::bit_cast<std::uint32_t>(data[k]) >> 16];
+    } else {
+#pragma omp for schedule(static)
+      for (std::int64_t k = 0; k < n; ++k) {
+        const auto bits = std::bit_cast<std::uint32_t>(data[k]);
+        if (const std::size_t s = slots[bits >> 16]; s != 0) ++mine[(s - 1) * kBins + (bits & 0xffffu)];
       }
-      for (std::int64_t p = 0; p < np; ++p)
-        if ((bits >> 16) == pre[p]) ++mine[static_cast<std::size_t>(p) * kBins + (bits & 0xffffu)];
     }
   }
   std::vector<std::vector<std::int64_t>> h(nh, std::vector<std::int64_t>(kBins, 0));
   for (int t = 0; t < nt; ++t)
     for (std::size_t p = 0; p < nh; ++p)
       for (std::size_t b = 0; b < kBins; ++b) h[p][b] += per[(static_cast<std::size_t>(t) * nh + p) * kBins + b];
-  return h;
+  if (high) return h;
+  std::vector<std::vector<std::int64_t>> by_prefix(prefixes.size());
+  for (std::size_t p = 0; p < prefixes.size(); ++p) by_prefix[p] = h[of_prefix[p]];
+  return by_prefix;
 }
 
 // The bin holding rank `rank` of a histogram, and the rank within it.
@@ -149,30 +165,51 @@ void neighbour_area_ratios(const std::array<NodeId, 3>* tri, std::int64_t nt, st
   for (std::int64_t t = 0; t < nt; ++t) {
     const auto& v = tri[t];
     double worst = 1.0;
-    for (int e = 0; e < 3; ++e) {
-      const NodeId a = v[e], b = v[(e + 1) % 3];
+    // The edge neighbours are the other triangles with two of t's nodes: those round v0 with v1
+    // or v2, and those round v1 with v2 (two lists instead of one per edge; a neighbour met twice
+    // changes no maximum).
+    const auto meet = [&](NodeId a, NodeId b, NodeId c) {
       for (std::int64_t k = fp[a]; k < fp[a + 1]; ++k) {
         const std::int64_t u = ap[k];
         if (u == t) continue;
         const auto& w = tri[u];
-        if (w[0] != b && w[1] != b && w[2] != b) continue;
+        if (w[0] != b && w[1] != b && w[2] != b && w[0] != c && w[1] != c && w[2] != c) continue;
         const double lo = std::min(ar[t], ar[u]), hi = std::max(ar[t], ar[u]);
         worst = std::max(worst, lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity());
       }
-    }
+    };
+    meet(v[0], v[1], v[2]);
+    meet(v[1], v[2], v[2]);
     ratio[t] = static_cast<float>(worst);
   }
 }
 
-// The unit vector of every node of m.
+// The unit vector of every node of m: unit_vector_deg bit for bit, with cos φ and sin φ taken
+// once per run of nodes of one latitude (the bits of lat_deg: −0 and +0 have sines of two signs)
+// instead of once per node. The lattice's nodes are numbered by row (mesh.hpp), so without
+// rotation this halves the trigonometric calls.
 mesh::FillVector<Vec3> unit_vectors(const mesh::Mesh& m) {
   const auto nn = static_cast<std::int64_t>(m.lon_deg.size());
   mesh::FillVector<Vec3> p(static_cast<std::size_t>(nn));  // every node written below
   const double* lon = m.lon_deg.data();
   const double* lat = m.lat_deg.data();
   Vec3* pp = p.data();
-#pragma omp parallel for schedule(static) default(none) shared(nn, lon, lat, pp) if (nn >= kParallelMin)
-  for (std::int64_t k = 0; k < nn; ++k) pp[k] = unit_vector_deg(lon[k], lat[k]);
+  const int blocks = nn >= kParallelMin ? thread_count() : 1;
+  quadtree::for_each_block(nn, blocks, [&](int, std::int64_t begin, std::int64_t end) {
+    std::uint64_t row_bits = 0;
+    double cos_lat = 0.0, sin_lat = 0.0;
+    for (std::int64_t k = begin; k < end; ++k) {
+      const auto bits = std::bit_cast<std::uint64_t>(lat[k]);
+      if (k == begin || bits != row_bits) {
+        const double la = lat[k] * kDegToRad;
+        row_bits = bits;
+        cos_lat = std::cos(la);
+        sin_lat = std::sin(la);
+      }
+      const double lo = lon[k] * kDegToRad;
+      pp[k] = Vec3{cos_lat * std::cos(lo), cos_lat * std::sin(lo), sin_lat};
+    }
+  });
   return p;
 }
 

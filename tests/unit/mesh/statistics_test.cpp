@@ -10,8 +10,13 @@
 #include <GeographicLib/PolygonArea.hpp>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <map>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -22,9 +27,9 @@
 #include "core/error.hpp"
 #include "quadtree/bits.hpp"
 #include "quadtree/parallel.hpp"
+#include "support/omp_threads.hpp"
 #include "unit/mesh/mesh_fixtures.hpp"
 #include "unit/quadtree/mask_fixtures.hpp"
-#include "support/omp_threads.hpp"
 
 namespace aq::mesh::unit_mesh_statistics_test {
 namespace {
@@ -37,6 +42,45 @@ Mesh small_mesh(std::uint32_t seed = 3u) {
   const Lattice lat = make_lattice(45.0, 3);
   const Bitmap m = random_mask(lat.nx, lat.ny, seed, 0.6, 0.01, 8);
   return build_all(m, lat, {}, {}, PoleRotation(), testing::synthetic_bathymetry()).mesh;
+}
+
+// The per-level statistics of a run without rotation come from the memo tables' cells with their
+// counts: the same min, median and max, bit for bit, as the values written out and selected.
+TEST(Statistics, WeightedMinMedianMaxIsThatOfTheValuesWrittenOut) {
+  std::mt19937_64 rng(21);
+  std::uniform_int_distribution<int> count(1, 5), distinct(1, 300);
+  std::uniform_real_distribution<double> value(0.0, 1e9);
+  for (int round = 0; round < 200; ++round) {
+    std::vector<std::pair<double, std::int64_t>> pairs;
+    std::vector<double> written;
+    const int n = round == 0 ? 1 : distinct(rng);
+    for (int k = 0; k < n; ++k) {
+      const double v = k == 0 && round % 3 == 0 ? 0.0 : value(rng);  // +0: the pole row's areas
+      const int c = count(rng);
+      pairs.emplace_back(v, c);
+      written.insert(written.end(), static_cast<std::size_t>(c), v);
+      if (round % 2 == 0) pairs.emplace_back(v, 1);  // a value both in a cell and on its own
+      if (round % 2 == 0) written.push_back(v);
+    }
+    std::shuffle(pairs.begin(), pairs.end(), rng);
+    std::shuffle(written.begin(), written.end(), rng);
+    std::int64_t size = -1;
+    const auto got = weighted_min_median_max(pairs, size);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_EQ(size, static_cast<std::int64_t>(written.size()));
+    const auto want = min_median_max(written);
+    for (std::size_t k = 0; k < 3; ++k)
+      EXPECT_EQ(std::bit_cast<std::uint64_t>((*got)[k]), std::bit_cast<std::uint64_t>(want[k])) << round << " " << k;
+  }
+  std::vector<std::pair<double, std::int64_t>> none;
+  std::int64_t size = -1;
+  EXPECT_EQ(weighted_min_median_max(none, size), (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(size, 0);
+  for (const double bad :
+       {-0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    std::vector<std::pair<double, std::int64_t>> v{{1.0, 2}, {bad, 1}, {3.0, 1}};
+    EXPECT_FALSE(weighted_min_median_max(v, size).has_value()) << bad;
+  }
 }
 
 TEST(Statistics, FullGlobeFilledAreaIsTheEllipsoidArea) {

@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
@@ -115,6 +117,66 @@ TEST(SphereQuality, MinAnglesAgreeWithTheLawOfCosinesOnLargeTriangles) {
                                   law_of_cosines_deg(p[2], p[0], p[1])});
     EXPECT_NEAR(s.min_angle_deg[t], want, 1e-4) << t;
   }
+}
+
+// Several ranks at once, some equal, some in one bin of the high 16 bits (values packed into
+// [30, 30.01)), on one and two threads: each the value of its rank in the sorted values.
+TEST(SphereQuality, OrderStatisticsOfManyRanksAtOnceAreTheSortedValues) {
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<float> narrow(30.0f, 30.01f), wide(0.0f, 180.0f);
+  std::vector<float> v(300001);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = k % 3 == 0 ? wide(rng) : narrow(rng);
+  std::vector<float> sorted = v;
+  std::sort(sorted.begin(), sorted.end());
+  const std::vector<double> qs{0.5, 0.0, 0.99, 0.5, 0.4, 0.41, 0.6, 1.0, 0.01, 0.4000001};
+  for (const int threads : {1, 2}) {
+    const testing::ThreadCount use(threads);
+    const std::vector<float> got = order_statistics(v, qs);
+    ASSERT_EQ(got.size(), qs.size());
+    for (std::size_t k = 0; k < qs.size(); ++k) {
+      const auto rank = static_cast<std::size_t>(std::floor(qs[k] * static_cast<double>(v.size() - 1)));
+      EXPECT_EQ(got[k], sorted[rank]) << "q " << qs[k] << ", " << threads << " threads";
+    }
+  }
+}
+
+// The per-triangle values depend on the triangles' corners only, not on the node numbering: the
+// nodes in lattice row order (each row's cos φ and sin φ taken once, a row of the equator with
+// −0 and +0 latitudes among it) and shuffled (every node's taken afresh) give the same bits.
+TEST(SphereQuality, NodeOrderDoesNotChangeTheValues) {
+  const Lattice lat = Lattice::make(4.0, 4, -180.0);
+  mesh::Mesh rows = testing::regular_band_mesh(lat, 300, 420);  // the equator: J = 360
+  std::int64_t signed_zeros = 0;
+  for (std::size_t k = 0; k < rows.lat_deg.size(); ++k)
+    if (rows.lat_deg[k] == 0.0 && k % 2 == 0) {
+      rows.lat_deg[k] = -0.0;
+      ++signed_zeros;
+    }
+  ASSERT_GT(signed_zeros, 100);
+  std::vector<NodeId> to(rows.lon_deg.size());
+  for (std::size_t k = 0; k < to.size(); ++k) to[k] = static_cast<NodeId>(k);
+  std::shuffle(to.begin(), to.end(), std::mt19937(5));
+  mesh::Mesh shuffled;
+  shuffled.lon_deg.resize(to.size());
+  shuffled.lat_deg.resize(to.size());
+  for (std::size_t k = 0; k < to.size(); ++k) {
+    shuffled.lon_deg[static_cast<std::size_t>(to[k])] = rows.lon_deg[k];
+    shuffled.lat_deg[static_cast<std::size_t>(to[k])] = rows.lat_deg[k];
+  }
+  for (const auto& t : rows.triangles)
+    shuffled.triangles.push_back(
+        {to[static_cast<std::size_t>(t[0])], to[static_cast<std::size_t>(t[1])], to[static_cast<std::size_t>(t[2])]});
+  const TriangleShapes a = triangle_shapes(rows), b = triangle_shapes(shuffled);
+  const auto bits = [](const std::vector<float>& v) {
+    std::vector<std::uint32_t> out(v.size());
+    std::transform(v.begin(), v.end(), out.begin(), [](float x) { return std::bit_cast<std::uint32_t>(x); });
+    return out;
+  };
+  EXPECT_EQ(bits(a.min_angle_deg), bits(b.min_angle_deg));
+  EXPECT_EQ(bits(a.max_angle_deg), bits(b.max_angle_deg));
+  EXPECT_EQ(bits(a.edge_ratio), bits(b.edge_ratio));
+  EXPECT_EQ(bits(a.neighbour_area_ratio), bits(b.neighbour_area_ratio));
+  EXPECT_EQ(bits(a.size_km), bits(b.size_km));
 }
 
 TEST(SphereQuality, SameValuesForOneAndTwoThreads) {
