@@ -1222,7 +1222,10 @@ void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::i
     return;
   }
   // Streamed: points grouped by band (counting sort), one pass over the bands that hold points.
-  const BandGeometry g = im->bands();
+  // The disk's bands (info.band_rows), not a pass's cache-sized ones (pass_rows): a point reads
+  // four values where they lie, so a smaller band only adds steps (the 15" mesh's 11 M node
+  // depths took 1.29 s in 8 MB bands, 0.82 s in the 96 MB ones).
+  const BandGeometry g{im->info.height, im->info.band_rows, im->info.north_up};
   const std::int64_t nb = g.count(), nc = im->info.ncols;
   std::vector<std::int32_t> band(static_cast<std::size_t>(n));
 #pragma omp parallel for default(none) shared(im, g, lon_deg, lat_deg, n, out, band) schedule(static) if (n > 20000)
