@@ -800,6 +800,8 @@ struct Bathymetry::Impl {
     return std::min(info.band_rows, cached);
   }
   [[nodiscard]] BandGeometry bands() const { return BandGeometry{info.height, pass_rows(), info.north_up}; }
+  /// The bands the disk is read in (info.band_rows rows), whatever a pass works in.
+  [[nodiscard]] BandGeometry disk_bands() const { return BandGeometry{info.height, info.band_rows, info.north_up}; }
 
   // One streamed pass: for every band s with wanted(s) (all bands when `stats` is given), its
   // buffer (normalised rows [lo(s), hi(s))) and then work(s, buffer). Records row statistics when
@@ -827,6 +829,16 @@ struct Bathymetry::Impl {
     const auto done = [&](std::size_t k) {
       if (progress) progress(static_cast<double>(k + 1) / static_cast<double>(todo.size()), label);
     };
+    // Band todo[k]'s first stored row is the last of the band before when that band was worked on
+    // just before: then it is moved over in `buf` (and returns the next row to read), not read again.
+    const auto carried = [&](std::size_t k) { return k > 0 && todo[k] > 0 && todo[k - 1] == todo[k] - 1; };
+    const auto carry_over = [&](std::size_t k) {
+      const std::int64_t s = todo[k], y0 = g.first(s);
+      const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
+      std::memmove(buf.data() + (r - g.lo(s)) * nc, buf.data() + (r - g.lo(s - 1)) * nc,
+                   static_cast<std::size_t>(nc) * sizeof(float));
+      return y0 + 1;
+    };
     if (map) {
       std::int64_t asked = 0;  // stored rows below this one were asked for (each row once)
       for (std::size_t k = 0; k < todo.size(); ++k) {
@@ -836,12 +848,7 @@ struct Bathymetry::Impl {
         const std::int64_t ahead = std::min(g.h, y0 + info.band_rows + 1);
         if (ahead > std::max(asked, y0)) map->prefetch(std::max(asked, y0), ahead);
         asked = std::max(asked, ahead);
-        if (k > 0 && s > 0 && todo[k - 1] == s - 1) {
-          const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
-          std::memmove(buf.data() + (r - lo) * nc, buf.data() + (r - g.lo(s - 1)) * nc,
-                       static_cast<std::size_t>(nc) * sizeof(float));
-          ++y0;
-        }
+        if (carried(k)) y0 = carry_over(k);
         normalise_mapped(y0, g.end(s), buf.data(), lo, stats);
         if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
         map->release(g.first(s), g.end(s));
@@ -849,9 +856,7 @@ struct Bathymetry::Impl {
       }
       return;
     }
-    // Band todo[k]'s stored rows go to raw[k % 2], all but its first (the row the band before
-    // ended with) when that band was read just before: that row is moved over in `buf`.
-    const auto carried = [&](std::size_t k) { return k > 0 && todo[k] > 0 && todo[k - 1] == todo[k] - 1; };
+    // Band todo[k]'s stored rows go to raw[k % 2], all but its first when it is carried over.
     std::vector<float> raw[2];
     const auto read = [&](std::size_t k) {
       const std::int64_t s = todo[k];
@@ -864,13 +869,7 @@ struct Bathymetry::Impl {
       try {
         throw_if_cancelled();  // between bands (core/cancel.hpp)
         const std::int64_t s = todo[k], lo = g.lo(s);
-        std::int64_t y0 = g.first(s);
-        if (carried(k)) {
-          const std::int64_t r = g.north_up ? g.h - 1 - y0 : y0;  // stored row y0 = s·B - 1
-          std::memmove(buf.data() + (r - lo) * nc, buf.data() + (r - g.lo(s - 1)) * nc,
-                       static_cast<std::size_t>(nc) * sizeof(float));
-          ++y0;
-        }
+        const std::int64_t y0 = carried(k) ? carry_over(k) : g.first(s);
         normalise_rows(y0, g.end(s), raw[k % 2].data(), buf.data(), lo, stats, true);
         if (wanted(s)) work(s, static_cast<const float*>(buf.data()));
       } catch (...) {
@@ -1225,7 +1224,7 @@ void Bathymetry::raw_points(const double* lon_deg, const double* lat_deg, std::i
   // The disk's bands (info.band_rows), not a pass's cache-sized ones (pass_rows): a point reads
   // four values where they lie, so a smaller band only adds steps (the 15" mesh's 11 M node
   // depths took 1.29 s in 8 MB bands, 0.82 s in the 96 MB ones).
-  const BandGeometry g{im->info.height, im->info.band_rows, im->info.north_up};
+  const BandGeometry g = im->disk_bands();
   const std::int64_t nb = g.count(), nc = im->info.ncols;
   std::vector<std::int32_t> band(static_cast<std::size_t>(n));
 #pragma omp parallel for default(none) shared(im, g, lon_deg, lat_deg, n, out, band) schedule(static) if (n > 20000)
